@@ -1,0 +1,119 @@
+//! A dispatched command and the reply handle through which its adapter reports the outcome.
+//! Every outcome becomes an event; a reply dropped without an outcome reports a failure, so no
+//! command can vanish silently.
+
+use std::sync::Arc;
+
+use tokio::sync::oneshot;
+
+use crate::content::Verb;
+use crate::events::{ActRef, EventKind, Hub};
+
+/// A command on its way to an adapter. Cheap to clone.
+#[derive(Clone, Debug)]
+pub struct Command {
+    /// Unique id within this server run.
+    pub id: u64,
+    /// The trigger and act it came from.
+    pub act: Arc<ActRef>,
+    /// What to do.
+    pub verb: Verb,
+    /// Its argument.
+    pub arg: Option<Arc<str>>,
+}
+
+impl Command {
+    /// `VERB argument`, for status displays and messages.
+    pub fn describe(&self) -> String {
+        match &self.arg {
+            Some(arg) => format!("{} {arg}", self.verb),
+            None => self.verb.to_string(),
+        }
+    }
+}
+
+/// How a command ended.
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub enum Outcome {
+    /// Carried out.
+    Done,
+    /// Not carried out, for this reason.
+    Failed(String),
+    /// Dropped or cut short by a stop or interruption.
+    Cancelled(String),
+}
+
+/// The one-shot channel an adapter answers on.
+pub struct Reply {
+    hub: Hub,
+    command: Command,
+    waiter: Option<oneshot::Sender<Outcome>>,
+    answered: bool,
+}
+
+impl Reply {
+    /// A reply for `command`; `waiter` (if any) learns the outcome too, for `WAIT`.
+    pub fn new(hub: Hub, command: Command, waiter: Option<oneshot::Sender<Outcome>>) -> Self {
+        Reply {
+            hub,
+            command,
+            waiter,
+            answered: false,
+        }
+    }
+
+    /// The command this reply is for.
+    pub fn command(&self) -> &Command {
+        &self.command
+    }
+
+    /// Reports that execution began.
+    pub fn started(&self) {
+        self.hub.publish(EventKind::CommandStarted {
+            command: self.command.id,
+            act: Arc::clone(&self.command.act),
+            verb: self.command.verb.to_string(),
+        });
+    }
+
+    /// Reports the outcome.
+    pub fn finish(mut self, outcome: Outcome) {
+        self.report(outcome);
+    }
+
+    fn report(&mut self, outcome: Outcome) {
+        self.answered = true;
+        let command = self.command.id;
+        let act = Arc::clone(&self.command.act);
+        let verb = self.command.verb.to_string();
+        let kind = match &outcome {
+            Outcome::Done => EventKind::CommandDone { command, act, verb },
+            Outcome::Failed(reason) => EventKind::CommandFailed {
+                command,
+                act,
+                verb,
+                reason: reason.clone(),
+            },
+            Outcome::Cancelled(reason) => EventKind::CommandCancelled {
+                command,
+                act,
+                verb,
+                reason: reason.clone(),
+            },
+        };
+        self.hub.publish(kind);
+        if let Some(waiter) = self.waiter.take() {
+            let _ = waiter.send(outcome);
+        }
+    }
+}
+
+impl Drop for Reply {
+    fn drop(&mut self) {
+        if !self.answered {
+            self.report(Outcome::Failed(
+                "the adapter dropped the command without answering".into(),
+            ));
+        }
+    }
+}

@@ -1,0 +1,127 @@
+//! The `display` adapter: `DISPLAY_PAGE` and `PROJECT` change the server's display state and go
+//! to every connected kiosk or projector client. A client that connects later gets the current
+//! state at once, taken under the same lock as changes, so it neither misses nor repeats one.
+
+use std::sync::{Arc, Mutex};
+
+use serde::Serialize;
+use tokio::sync::broadcast;
+
+use crate::adapters::{Adapter, AdapterStatus, CancelScope, Command, Outcome, Reply};
+use crate::content::Verb;
+use crate::events::{ClientRole, EventKind, Hub};
+use crate::sync::lock;
+use crate::ws::outbox::Frame;
+use crate::ws::protocol::command_frame;
+
+/// How many display frames a slow client may fall behind before it is resynchronised.
+const DISPLAY_CHANNEL_CAPACITY: usize = 256;
+
+/// What the touchscreen and projector show.
+#[derive(Clone, Debug, Default, PartialEq, Serialize)]
+pub struct Display {
+    /// Page under `pages/` on the touchscreen.
+    pub page: Option<String>,
+    /// File under `media/` on the projector; `None` is black.
+    pub projector: Option<String>,
+}
+
+/// The display state and the channels to display clients. Shared by the adapter and the
+/// websocket connections.
+pub struct DisplayState {
+    current: Mutex<Display>,
+    kiosk: broadcast::Sender<Frame>,
+    projector: broadcast::Sender<Frame>,
+}
+
+impl DisplayState {
+    /// Starts with the kiosk on `home` and the projector black.
+    pub fn new(home: Option<String>) -> Self {
+        DisplayState {
+            current: Mutex::new(Display {
+                page: home,
+                projector: None,
+            }),
+            kiosk: broadcast::channel(DISPLAY_CHANNEL_CAPACITY).0,
+            projector: broadcast::channel(DISPLAY_CHANNEL_CAPACITY).0,
+        }
+    }
+
+    /// The current display.
+    pub fn snapshot(&self) -> Display {
+        self.lock().clone()
+    }
+
+    /// The current display and a receiver of later command frames for `role` (kiosk or
+    /// projector; other roles get `None`).
+    pub fn subscribe(&self, role: ClientRole) -> (Display, Option<broadcast::Receiver<Frame>>) {
+        let current = self.lock();
+        let rx = match role {
+            ClientRole::Kiosk => Some(self.kiosk.subscribe()),
+            ClientRole::Projector => Some(self.projector.subscribe()),
+            _ => None,
+        };
+        (current.clone(), rx)
+    }
+
+    fn lock(&self) -> std::sync::MutexGuard<'_, Display> {
+        lock(&self.current)
+    }
+}
+
+/// The built-in display adapter.
+pub struct DisplayAdapter {
+    state: Arc<DisplayState>,
+    hub: Hub,
+}
+
+impl DisplayAdapter {
+    /// A display adapter over `state`.
+    pub fn new(state: Arc<DisplayState>, hub: Hub) -> Self {
+        DisplayAdapter { state, hub }
+    }
+}
+
+impl Adapter for DisplayAdapter {
+    fn name(&self) -> &'static str {
+        "display"
+    }
+
+    fn submit(&self, command: Command, reply: Reply) {
+        let arg = command.arg.as_deref().map(str::to_owned);
+        let mut current = self.state.lock();
+        let channel = match command.verb {
+            Verb::DisplayPage => {
+                current.page = arg;
+                &self.state.kiosk
+            }
+            Verb::Project => {
+                current.projector = arg;
+                &self.state.projector
+            }
+            _ => {
+                drop(current);
+                let reason = format!("the display cannot carry out {}", command.verb);
+                return reply.finish(Outcome::Failed(reason));
+            }
+        };
+        // No connected client is fine: the state is kept for the next one.
+        let _ = channel.send(Frame::from(command_frame(&command)));
+        let changed = current.clone();
+        drop(current);
+        reply.started();
+        self.hub.publish(EventKind::DisplayChanged {
+            page: changed.page,
+            projector: changed.projector,
+        });
+        reply.finish(Outcome::Done);
+    }
+
+    fn cancel(&self, _scope: CancelScope<'_>, _reason: &str) {
+        // Nothing is ever queued here.
+    }
+
+    fn status(&self) -> AdapterStatus {
+        AdapterStatus::default()
+    }
+}

@@ -1,0 +1,118 @@
+//! Verb → adapter. Built once from the site configuration; the only place that knows which
+//! adapter serves which verb.
+
+use std::collections::HashMap;
+use std::sync::Arc;
+
+use crate::adapters::{
+    Adapter, DisplayAdapter, DisplayState, DriveSim, EspeakSpeech, LogAdapter, SpeechOutput,
+    WsAdapters,
+};
+use crate::content::Verb;
+use crate::content::config::{AdapterKind, SiteConfig};
+use crate::events::Hub;
+use crate::lifecycle::Lifecycle;
+
+/// The adapters a server runs, as handles other parts read state from; the [`Router`] that
+/// reaches them goes to the dispatcher alone.
+pub struct Devices {
+    /// Touchscreen and projector state.
+    pub display: Arc<DisplayState>,
+    /// The simulated base, when the drive is simulated.
+    pub drive: Option<Arc<DriveSim>>,
+    /// External adapter connections.
+    pub ws: Arc<WsAdapters>,
+    /// The speech adapter actually used (`espeak`, `log` or `ws`).
+    pub speech: AdapterKind,
+}
+
+impl Devices {
+    /// Starts every adapter the configuration routes to. `speech` is the speech adapter to use,
+    /// already decided by the caller (which knows whether espeak-ng is installed).
+    pub fn start(
+        config: &SiteConfig,
+        speech: AdapterKind,
+        speech_output: SpeechOutput,
+        hub: &Hub,
+        life: &Lifecycle,
+    ) -> (Devices, Router) {
+        let display = Arc::new(DisplayState::new(Some(config.home.clone())));
+        let ws = Arc::new(WsAdapters::new(config.adapter_timeout, life.clone()));
+        let log = Arc::new(LogAdapter::new(config.speech.rate_wpm, life));
+        let drive = (config.drive.adapter == AdapterKind::DriveSim)
+            .then(|| Arc::new(DriveSim::new(&config.drive, hub.clone(), life)));
+        let display_adapter: Arc<dyn Adapter> =
+            Arc::new(DisplayAdapter::new(Arc::clone(&display), hub.clone()));
+        let espeak: Option<Arc<dyn Adapter>> = (speech == AdapterKind::Espeak).then(|| {
+            let s = &config.speech;
+            Arc::new(EspeakSpeech::new(
+                s.voice.clone(),
+                s.rate_wpm,
+                speech_output,
+                life,
+            )) as _
+        });
+        let pick = |kind: AdapterKind| -> Arc<dyn Adapter> {
+            match kind {
+                AdapterKind::Espeak => espeak.clone().unwrap_or_else(|| log.clone()),
+                AdapterKind::Log => log.clone(),
+                AdapterKind::Ws => ws.clone(),
+                AdapterKind::Display => display_adapter.clone(),
+                AdapterKind::DriveSim => match &drive {
+                    Some(d) => d.clone(),
+                    None => log.clone(),
+                },
+            }
+        };
+        let mut routes: HashMap<Verb, Arc<dyn Adapter>> = HashMap::new();
+        routes.insert(Verb::Say, pick(speech));
+        for verb in [Verb::DisplayPage, Verb::Project] {
+            routes.insert(verb, pick(config.display.adapter));
+        }
+        for verb in [Verb::SetWaypoint, Verb::DriveStart, Verb::DriveStop] {
+            routes.insert(verb, pick(config.drive.adapter));
+        }
+        for (name, site) in &config.verbs {
+            routes.insert(Verb::Site(name.as_str().into()), pick(site.adapter));
+        }
+        (
+            Devices {
+                display,
+                drive,
+                ws,
+                speech,
+            },
+            Router::new(routes),
+        )
+    }
+}
+
+/// Which adapter serves each verb.
+pub struct Router {
+    routes: HashMap<Verb, Arc<dyn Adapter>>,
+    distinct: Vec<Arc<dyn Adapter>>,
+}
+
+impl Router {
+    /// A router over these routes.
+    pub fn new(routes: HashMap<Verb, Arc<dyn Adapter>>) -> Self {
+        let mut distinct: Vec<Arc<dyn Adapter>> = Vec::new();
+        for adapter in routes.values() {
+            if !distinct.iter().any(|d| Arc::ptr_eq(d, adapter)) {
+                distinct.push(Arc::clone(adapter));
+            }
+        }
+        distinct.sort_by_key(|a| a.name());
+        Router { routes, distinct }
+    }
+
+    /// The adapter for `verb`; `None` for `WAIT` (the dispatcher's own) and undeclared verbs.
+    pub fn adapter_for(&self, verb: &Verb) -> Option<&Arc<dyn Adapter>> {
+        self.routes.get(verb)
+    }
+
+    /// Every adapter once, by name.
+    pub fn adapters(&self) -> &[Arc<dyn Adapter>] {
+        &self.distinct
+    }
+}

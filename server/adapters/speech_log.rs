@@ -1,0 +1,76 @@
+//! The `log` adapter: carries nothing out, but keeps speech's pacing honest. A `SAY` is done
+//! after the time the text would take to speak at the configured rate; any other verb routed
+//! here (a site verb with `adapter: log`) is done at once. Every command is in the corpus.
+
+use std::time::Duration;
+
+use crate::adapters::worker::{Task, Worker};
+use crate::adapters::{Adapter, AdapterStatus, CancelScope, Command, Outcome, Reply};
+use crate::content::Verb;
+use crate::lifecycle::Lifecycle;
+
+/// Speech (and site verbs) without a device.
+pub struct LogAdapter {
+    worker: Worker,
+}
+
+impl LogAdapter {
+    /// A log adapter speaking at `rate_wpm` words per minute.
+    pub fn new(rate_wpm: u32, life: &Lifecycle) -> Self {
+        LogAdapter {
+            worker: Worker::start(Pacing { rate_wpm }, life),
+        }
+    }
+}
+
+/// How long `text` takes to say at `rate_wpm`: words over rate, plus a short pause.
+pub fn speaking_time(text: &str, rate_wpm: u32) -> Duration {
+    let words = text.split_whitespace().count().max(1) as f64;
+    Duration::from_secs_f64(words * 60.0 / f64::from(rate_wpm.max(1)) + 0.1)
+}
+
+struct Pacing {
+    rate_wpm: u32,
+}
+
+impl Task for Pacing {
+    async fn run(&self, command: &Command) -> Outcome {
+        if command.verb == Verb::Say {
+            let text = command.arg.as_deref().unwrap_or_default();
+            tokio::time::sleep(speaking_time(text, self.rate_wpm)).await;
+        }
+        Outcome::Done
+    }
+}
+
+impl Adapter for LogAdapter {
+    fn name(&self) -> &'static str {
+        "log"
+    }
+
+    fn submit(&self, command: Command, reply: Reply) {
+        self.worker.submit(command, reply);
+    }
+
+    fn cancel(&self, scope: CancelScope<'_>, reason: &str) {
+        self.worker.cancel(scope, reason);
+    }
+
+    fn status(&self) -> AdapterStatus {
+        self.worker.status()
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn speaking_time_grows_with_words_and_falls_with_rate() {
+        let short = speaking_time("Hello", 160);
+        let long = speaking_time("Hello there, welcome to the museum of old computers", 160);
+        assert!(long > short * 4);
+        assert!(speaking_time("one two three", 600) < speaking_time("one two three", 100));
+        assert_eq!(speaking_time("a b c d", 240), Duration::from_secs_f64(1.1));
+    }
+}

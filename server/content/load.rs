@@ -1,0 +1,351 @@
+//! Putting a bundle together: settings, acts files (read in parallel, merged in file-name
+//! order), commands, labels across files, pages and the home page. Every problem found is
+//! collected; loading never stops at the first.
+
+use std::collections::{BTreeSet, HashMap, HashSet};
+use std::io::Read;
+use std::num::NonZeroUsize;
+use std::path::Path;
+use std::sync::Arc;
+
+use crate::content::acts_file::{ActsFile, WrittenAct, read_acts_file, yaml::MAX_FILE_BYTES};
+use crate::content::commands::{CommandChecker, path_error_code};
+use crate::content::config::SiteConfig;
+use crate::content::config_file::{ConfigFile, parse_config};
+use crate::content::diagnostic::Diagnostic;
+use crate::content::model::{Act, Bundle, DEFAULT_VARIANT, Located, Pos};
+use crate::content::pages::page_act_references;
+use crate::content::paths::{BundleArea, PathError};
+use crate::content::suggest::closest;
+
+/// The name of the settings file at the top of a bundle.
+const CONFIG_FILE: &str = "docent.yaml";
+
+/// The outcome of loading a bundle: the bundle if it has no errors, and every problem found.
+#[derive(Debug)]
+pub struct LoadReport {
+    /// The loaded bundle; `Some` exactly when no diagnostic is an error.
+    pub bundle: Option<Bundle>,
+    /// Errors and warnings, sorted by file, line and column.
+    pub diagnostics: Vec<Diagnostic>,
+}
+
+/// Loads and checks the bundle in the folder `root`.
+pub fn load_bundle(root: &Path) -> LoadReport {
+    let started = std::time::Instant::now();
+    let mut diagnostics = Vec::new();
+    let root = match root.canonicalize() {
+        Ok(root) if root.is_dir() => root,
+        _ => {
+            let message = format!(
+                "`{}` is not a folder Docent can open. Give the path of the bundle folder (the one holding the acts files, pages/ and media/).",
+                root.display()
+            );
+            diagnostics.push(Diagnostic::error(
+                "not-a-bundle",
+                &Pos::new(".", 0, 0),
+                message,
+            ));
+            return LoadReport {
+                bundle: None,
+                diagnostics,
+            };
+        }
+    };
+    let settings = read_settings(&root, &mut diagnostics);
+    let names = acts_file_names(&root, &mut diagnostics);
+    let files = read_acts_files(&root, &names, &mut diagnostics);
+    let config = settings.config;
+    let checker = CommandChecker::new(&root, &config);
+    let mut merged = merge_acts(files, &checker, &config, &mut diagnostics);
+    check_pages(&root, &mut merged, &mut diagnostics);
+    check_home(&checker, &config, settings.home.as_ref(), &mut diagnostics);
+    let contexts = contexts(&config, &merged.acts);
+    diagnostics.sort_by(|a, b| (&a.file, a.line, a.column).cmp(&(&b.file, b.line, b.column)));
+    let errors = diagnostics.iter().filter(|d| d.is_error()).count();
+    tracing::debug!(
+        acts = merged.acts.len(),
+        files = names.len(),
+        errors,
+        elapsed_ms = started.elapsed().as_millis() as u64,
+        "content bundle checked"
+    );
+    let bundle = (errors == 0).then(|| Bundle {
+        page_acts: std::mem::take(&mut merged.page_acts),
+        root: root.clone(),
+        acts: merged.acts,
+        index: merged.index,
+        config,
+        contexts,
+    });
+    LoadReport {
+        bundle,
+        diagnostics,
+    }
+}
+
+fn read_settings(root: &Path, out: &mut Vec<Diagnostic>) -> ConfigFile {
+    let path = root.join(CONFIG_FILE);
+    if !path.exists() {
+        return ConfigFile {
+            config: SiteConfig::default(),
+            home: None,
+            diagnostics: Vec::new(),
+        };
+    }
+    let file: Arc<str> = Arc::from(CONFIG_FILE);
+    let mut settings = match read_limited(&path, &file) {
+        Ok(bytes) => parse_config(&file, &bytes),
+        Err(problem) => {
+            out.push(problem);
+            return ConfigFile {
+                config: SiteConfig::default(),
+                home: None,
+                diagnostics: Vec::new(),
+            };
+        }
+    };
+    out.append(&mut settings.diagnostics);
+    settings
+}
+
+/// Top-level `*.yaml`/`*.yml` files except `docent.yaml`, sorted by name. Hidden files
+/// (editor back-ups such as `.acts.yaml`) are skipped.
+fn acts_file_names(root: &Path, out: &mut Vec<Diagnostic>) -> Vec<String> {
+    let mut names: Vec<String> = std::fs::read_dir(root)
+        .into_iter()
+        .flatten()
+        .flatten()
+        .filter_map(|entry| entry.file_name().into_string().ok())
+        .filter(|name| {
+            let lower = name.to_ascii_lowercase();
+            !name.starts_with('.')
+                && name != CONFIG_FILE
+                && (lower.ends_with(".yaml") || lower.ends_with(".yml"))
+        })
+        .filter(|name| root.join(name).is_file())
+        .collect();
+    names.sort();
+    if names.is_empty() {
+        let message = "No acts files found. Acts are written in .yaml files at the top of the \
+                       bundle folder, next to pages/ and media/ (for example acts.yaml).";
+        out.push(Diagnostic::error("no-acts", &Pos::new(".", 0, 0), message));
+    }
+    names
+}
+
+/// Reads and parses the acts files, several at a time; results keep the order of `names`.
+fn read_acts_files(root: &Path, names: &[String], out: &mut Vec<Diagnostic>) -> Vec<ActsFile> {
+    let read_one = |name: &String| -> Result<ActsFile, Diagnostic> {
+        let file: Arc<str> = Arc::from(name.as_str());
+        let path = root.join(name);
+        // A symlinked acts file must still live inside the bundle.
+        if !path.canonicalize().is_ok_and(|p| p.starts_with(root)) {
+            let message = "This acts file is a link to a place outside the bundle folder. Copy the file into the bundle instead.";
+            return Err(Diagnostic::error(
+                "path-outside-bundle",
+                &Pos::new(file, 0, 0),
+                message,
+            ));
+        }
+        Ok(read_acts_file(&file, &read_limited(&path, &file)?))
+    };
+    if names.is_empty() {
+        return Vec::new();
+    }
+    let threads = std::thread::available_parallelism()
+        .map_or(1, NonZeroUsize::get)
+        .min(names.len());
+    let chunk = names.len().div_ceil(threads);
+    let results: Vec<Result<ActsFile, Diagnostic>> = std::thread::scope(|scope| {
+        let workers: Vec<_> = names
+            .chunks(chunk)
+            .map(|part| scope.spawn(move || part.iter().map(read_one).collect::<Vec<_>>()))
+            .collect();
+        workers
+            .into_iter()
+            .flat_map(|worker| {
+                worker
+                    .join()
+                    .unwrap_or_else(|panic| std::panic::resume_unwind(panic))
+            })
+            .collect()
+    });
+    results
+        .into_iter()
+        .filter_map(|result| result.map_err(|problem| out.push(problem)).ok())
+        .collect()
+}
+
+/// The file's bytes, reading at most one byte past the size limit (the parser reports it).
+fn read_limited(path: &Path, file: &Arc<str>) -> Result<Vec<u8>, Diagnostic> {
+    let limit = u64::try_from(MAX_FILE_BYTES)
+        .unwrap_or(u64::MAX)
+        .saturating_add(1);
+    let mut bytes = Vec::new();
+    std::fs::File::open(path)
+        .and_then(|f| f.take(limit).read_to_end(&mut bytes))
+        .map(|_| bytes)
+        .map_err(|e| {
+            Diagnostic::error(
+                "yaml-syntax",
+                &Pos::new(file.clone(), 0, 0),
+                format!("Docent could not read this file ({e}). Check that it is readable."),
+            )
+        })
+}
+
+/// The acts of all files merged, with everything that needs them all.
+#[derive(Default)]
+struct Merged {
+    acts: Vec<Act>,
+    index: HashMap<String, usize>,
+    unread_labels: HashSet<String>,
+    page_acts: Vec<String>,
+}
+
+fn merge_acts(
+    files: Vec<ActsFile>,
+    checker: &CommandChecker<'_>,
+    config: &SiteConfig,
+    out: &mut Vec<Diagnostic>,
+) -> Merged {
+    let mut merged = Merged::default();
+    // Later places of each label used more than once, reported at the first place at the end.
+    let mut again: Vec<(usize, Pos)> = Vec::new();
+    for mut file in files {
+        out.append(&mut file.diagnostics);
+        merged.unread_labels.extend(file.unread_labels);
+        for written in file.acts {
+            let WrittenAct {
+                label: Some(label),
+                variants,
+                commands,
+                ..
+            } = written
+            else {
+                continue;
+            };
+            let commands = commands
+                .iter()
+                .filter_map(|c| checker.check(c, out))
+                .collect();
+            check_contexts(config, &variants, out);
+            if let Some(&first) = merged.index.get(&label.value) {
+                let first_pos = &merged.acts[first].pos;
+                let message = format!(
+                    "The label `{}` is already used at {}:{}. Labels must be unique: rename one of the two acts.",
+                    label.value, first_pos.file, first_pos.line
+                );
+                out.push(Diagnostic::error("duplicate-label", &label.pos, message));
+                again.push((first, label.pos));
+                continue;
+            }
+            merged.index.insert(label.value.clone(), merged.acts.len());
+            merged.acts.push(Act {
+                label: label.value,
+                pos: label.pos,
+                variants,
+                commands,
+            });
+        }
+    }
+    let mut by_first: HashMap<usize, Vec<Pos>> = HashMap::new();
+    for (first, pos) in again {
+        by_first.entry(first).or_default().push(pos);
+    }
+    for (first, places) in by_first {
+        let act = &merged.acts[first];
+        let places: Vec<String> = places
+            .iter()
+            .map(|p| format!("{}:{}", p.file, p.line))
+            .collect();
+        let message = format!(
+            "The label `{}` is used again at {}. Labels must be unique: rename one of the acts.",
+            act.label,
+            places.join(" and ")
+        );
+        out.push(Diagnostic::error("duplicate-label", &act.pos, message));
+    }
+    merged
+}
+
+fn check_contexts(
+    config: &SiteConfig,
+    variants: &[crate::content::model::Variant],
+    out: &mut Vec<Diagnostic>,
+) {
+    if config.contexts.is_empty() {
+        return;
+    }
+    for variant in variants
+        .iter()
+        .filter(|v| v.name != DEFAULT_VARIANT && !config.contexts.contains(&v.name))
+    {
+        let hint = closest(&variant.name, config.contexts.iter().map(String::as_str))
+            .map_or_else(String::new, |s| format!(" Did you mean `{s}`?"));
+        let message = format!(
+            "`{}` is not one of the contexts declared in docent.yaml ({}).{hint} Rename the key, or add it under `contexts:`.",
+            variant.name,
+            config.contexts.join(", ")
+        );
+        out.push(Diagnostic::error("unknown-context", &variant.pos, message));
+    }
+}
+
+fn check_pages(root: &Path, merged: &mut Merged, out: &mut Vec<Diagnostic>) {
+    let references = page_act_references(root);
+    for Located { value, pos } in &references {
+        if merged.index.contains_key(value) || merged.unread_labels.contains(value) {
+            continue;
+        }
+        let hint = closest(value, merged.index.keys().map(String::as_str))
+            .map_or_else(String::new, |s| format!(" Did you mean `{s}`?"));
+        let message = format!(
+            "This page triggers the act `{value}`, but no act has that label.{hint} Fix the `data-act` value or add the act."
+        );
+        out.push(Diagnostic::error("unknown-act", pos, message));
+    }
+    let labels: BTreeSet<String> = references.into_iter().map(|r| r.value).collect();
+    merged.page_acts = labels.into_iter().collect();
+}
+
+/// A home page set in docent.yaml must exist; the default one only earns a warning.
+fn check_home(
+    checker: &CommandChecker<'_>,
+    config: &SiteConfig,
+    explicit: Option<&Located<String>>,
+    out: &mut Vec<Diagnostic>,
+) {
+    let Some((err, problem)) = checker.path_problem(BundleArea::Pages, &config.home) else {
+        return;
+    };
+    let pos = explicit.map_or_else(|| Pos::new("pages", 0, 0), |home| home.pos.clone());
+    let code = match err {
+        PathError::NotFound | PathError::NotAFile => "no-home-page",
+        other => path_error_code(&other),
+    };
+    let message = format!(
+        "{problem} The kiosk starts on this page: add it, or choose another page with `home:` in docent.yaml."
+    );
+    out.push(match explicit {
+        Some(_) => Diagnostic::error(code, &pos, message),
+        None => Diagnostic::warning(code, &pos, message),
+    });
+}
+
+/// `Text`, then the declared contexts, or else every variant name found, sorted.
+fn contexts(config: &SiteConfig, acts: &[Act]) -> Vec<String> {
+    let rest: Vec<String> = if config.contexts.is_empty() {
+        let found: BTreeSet<&str> = acts
+            .iter()
+            .flat_map(|a| a.variants.iter().map(|v| v.name.as_str()))
+            .collect();
+        found.into_iter().map(str::to_owned).collect()
+    } else {
+        config.contexts.clone()
+    };
+    std::iter::once(DEFAULT_VARIANT.to_owned())
+        .chain(rest.into_iter().filter(|c| c != DEFAULT_VARIANT))
+        .collect()
+}

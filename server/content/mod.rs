@@ -1,0 +1,36 @@
+//! Content bundles: loading a bundle folder (acts files, `docent.yaml`, `pages/`, `media/`)
+//! into a [`Bundle`], and reporting every problem found with its place.
+//!
+//! This is the only module that reads YAML (with `serde-saphyr`) and the only place that
+//! decides whether a path stays inside a bundle. Loading does no network I/O.
+//!
+//! Map:
+//! - `model`: the loaded data (acts, variants, commands, positions).
+//! - `config`: validated site settings; `config_file`: parsing `docent.yaml`.
+//! - `acts_file`: parsing one acts file, keeping every position.
+//! - `commands`: parsing and checking `VERB argument` strings.
+//! - `pages`: finding `data-act` labels in HTML pages.
+//! - `paths`: resolving a relative path inside the bundle (shared with the HTTP file routes).
+//! - `duration`: `2s`, `500ms`, `1.5m`.
+//! - `suggest`: "did you mean" for labels, keys, verbs and file names.
+//! - `load`: putting it together: `load_bundle`.
+
+pub mod config;
+pub mod diagnostic;
+pub mod model;
+
+mod acts_file;
+mod commands;
+mod config_file;
+mod duration;
+mod load;
+mod pages;
+mod paths;
+mod suggest;
+
+pub use diagnostic::{Diagnostic, Severity};
+pub use duration::parse_duration;
+pub use load::{LoadReport, load_bundle};
+pub use model::{Act, Bundle, CommandSpec, DEFAULT_VARIANT, Located, Pos, Variant, Verb};
+pub use paths::{BundleArea, PathError, resolve_in_bundle};
+pub use suggest::closest;

@@ -1,0 +1,179 @@
+//! The loaded form of a content bundle: acts, their text variants and commands, each with the
+//! place it was written. Everything here is plain data, built by the loader and read by the
+//! dispatcher, the HTTP API and the checker; nothing here touches the file system.
+
+use std::collections::HashMap;
+use std::fmt;
+use std::path::PathBuf;
+use std::sync::Arc;
+
+use crate::content::config::SiteConfig;
+
+/// Where something was written: a file relative to the bundle root, 1-based line and column.
+#[derive(Clone, Debug, PartialEq, Eq, Hash, PartialOrd, Ord, serde::Serialize)]
+pub struct Pos {
+    /// Path relative to the bundle root, with `/` separators (e.g. `acts.yaml`).
+    pub file: Arc<str>,
+    /// 1-based line.
+    pub line: u32,
+    /// 1-based column, counted in characters.
+    pub column: u32,
+}
+
+impl Pos {
+    /// A position in `file` at `line`:`column`.
+    pub fn new(file: impl Into<Arc<str>>, line: u32, column: u32) -> Self {
+        Pos {
+            file: file.into(),
+            line,
+            column,
+        }
+    }
+}
+
+impl fmt::Display for Pos {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        write!(f, "{}:{}:{}", self.file, self.line, self.column)
+    }
+}
+
+/// A value together with the place it was written.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Located<T> {
+    /// The value itself.
+    pub value: T,
+    /// Where it was written.
+    pub pos: Pos,
+}
+
+/// The name of the default text variant every act falls back to.
+pub const DEFAULT_VARIANT: &str = "Text";
+
+/// One dialog act (paper, Fig. 4): a unique label, text variants and commands.
+#[derive(Clone, Debug)]
+pub struct Act {
+    /// The unique label (`WELCOME`).
+    pub label: String,
+    /// Where the label's value was written.
+    pub pos: Pos,
+    /// Text variants in the order written (`Text`, `TextGroup`, ...). May be empty.
+    pub variants: Vec<Variant>,
+    /// The act's commands in the order written, without the implicit SAY.
+    pub commands: Vec<Located<CommandSpec>>,
+}
+
+impl Act {
+    /// The variant named `name`, if the act has it.
+    pub fn variant(&self, name: &str) -> Option<&Variant> {
+        self.variants.iter().find(|v| v.name == name)
+    }
+}
+
+/// One named list of alternative texts (`TextGroup: [...]`).
+#[derive(Clone, Debug)]
+pub struct Variant {
+    /// The key as written (`Text`, `TextGroup`, `TextChild`, ...).
+    pub name: String,
+    /// Where the key was written.
+    pub pos: Pos,
+    /// The alternatives, at least one.
+    pub alternatives: Vec<Located<String>>,
+}
+
+/// The closed set of built-in verbs (paper, Table 1, plus `WAIT` and `HIGHLIGHT`-like later
+/// additions); verbs a site declares in `docent.yaml` are [`Verb::Site`].
+#[derive(Clone, Debug, PartialEq, Eq, Hash, PartialOrd, Ord)]
+pub enum Verb {
+    /// `SAY text`: speak the text.
+    Say,
+    /// `PROJECT file`: show an image or video from `media/` on the projector.
+    Project,
+    /// `DISPLAY_PAGE file`: show a page from `pages/` on the touchscreen.
+    DisplayPage,
+    /// `SET_WAYPOINT x y [heading]`: set the drive target in map coordinates.
+    SetWaypoint,
+    /// `DRIVE_START`: start or continue driving to the waypoint; done on arrival.
+    DriveStart,
+    /// `DRIVE_STOP`: stop driving; preempts everything.
+    DriveStop,
+    /// `WAIT` (until the act's earlier commands are done) or `WAIT 2s` (pause).
+    Wait,
+    /// A verb declared in `docent.yaml`, routed with its argument to the adapter named there.
+    Site(Arc<str>),
+}
+
+impl Verb {
+    /// Every built-in verb, in the order the docs list them.
+    pub const BUILT_IN: [Verb; 7] = [
+        Verb::Say,
+        Verb::Project,
+        Verb::DisplayPage,
+        Verb::SetWaypoint,
+        Verb::DriveStart,
+        Verb::DriveStop,
+        Verb::Wait,
+    ];
+
+    /// The verb as written in acts files and sent on the wire.
+    pub fn as_str(&self) -> &str {
+        match self {
+            Verb::Say => "SAY",
+            Verb::Project => "PROJECT",
+            Verb::DisplayPage => "DISPLAY_PAGE",
+            Verb::SetWaypoint => "SET_WAYPOINT",
+            Verb::DriveStart => "DRIVE_START",
+            Verb::DriveStop => "DRIVE_STOP",
+            Verb::Wait => "WAIT",
+            Verb::Site(name) => name,
+        }
+    }
+
+    /// The built-in verb spelled exactly `word`, if any.
+    pub fn built_in(word: &str) -> Option<Verb> {
+        Verb::BUILT_IN.into_iter().find(|v| v.as_str() == word)
+    }
+}
+
+impl fmt::Display for Verb {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        f.write_str(self.as_str())
+    }
+}
+
+/// One command of an act: a verb and its argument (everything after the first space, trimmed).
+#[derive(Clone, Debug, PartialEq)]
+pub struct CommandSpec {
+    /// What to do.
+    pub verb: Verb,
+    /// The argument as written, or `None` when there is none.
+    pub arg: Option<String>,
+}
+
+/// A loaded, checked content bundle. Only the loader builds one, and only when it has no errors.
+#[derive(Debug)]
+pub struct Bundle {
+    /// The bundle folder, canonicalized.
+    pub root: PathBuf,
+    /// All acts of all acts files, in file-name order, then in written order.
+    pub acts: Vec<Act>,
+    /// Label to index into `acts`.
+    pub index: HashMap<String, usize>,
+    /// Site settings from `docent.yaml` (defaults when absent).
+    pub config: SiteConfig,
+    /// Every variant name usable as a context: `Text`, then declared or found names, sorted.
+    pub contexts: Vec<String>,
+    /// Labels that the bundle's pages trigger through `data-act` (what a kiosk may trigger).
+    pub page_acts: Vec<String>,
+}
+
+impl Bundle {
+    /// The act labelled `label`.
+    pub fn act(&self, label: &str) -> Option<&Act> {
+        self.index.get(label).map(|&i| &self.acts[i])
+    }
+
+    /// Every label, in loaded order.
+    pub fn labels(&self) -> impl Iterator<Item = &str> {
+        self.acts.iter().map(|a| a.label.as_str())
+    }
+}

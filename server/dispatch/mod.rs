@@ -1,0 +1,268 @@
+//! The dialog act dispatcher (paper, Fig. 3): the single place that turns a triggered act into
+//! commands and hands them to adapters. Every trigger source (HTTP, kiosk pages, operators, the
+//! dialog manager, later page timers) comes through [`Dispatcher::trigger`].
+//!
+//! Resolution: the context (asked for, or the current one) picks a variant, falling back to
+//! `Text`; one alternative is chosen at random, never the same twice in a row; it becomes a
+//! `SAY` before the act's commands. Commands go to their adapters at once unless the act has a
+//! `WAIT` (then `sequence` paces them). An act with `DRIVE_STOP` preempts everything first; an
+//! interrupting trigger first clears speech.
+
+mod choose;
+mod request;
+mod sequence;
+
+use std::collections::BTreeMap;
+use std::sync::atomic::{AtomicU64, Ordering};
+use std::sync::{Arc, Mutex};
+
+use arc_swap::ArcSwap;
+use tokio::sync::oneshot;
+use tokio_util::sync::CancellationToken;
+
+pub use request::{ResolvedCommand, TriggerError, TriggerRequest, Triggered};
+
+use crate::adapters::{AdapterStatus, CancelScope, Command, Outcome, Reply, Router};
+use crate::content::{Bundle, DEFAULT_VARIANT, Verb, closest};
+use crate::events::{ActRef, EventKind, Hub, Source};
+use crate::lifecycle::Lifecycle;
+use crate::sync::lock;
+use choose::Chooser;
+
+/// Resolves acts into commands and sends them to adapters.
+pub struct Dispatcher {
+    bundle: ArcSwap<Bundle>,
+    router: Router,
+    hub: Hub,
+    life: Lifecycle,
+    chooser: Mutex<Chooser>,
+    context: Mutex<String>,
+    next_id: AtomicU64,
+    /// Cancelled and replaced by every stop: sequences started before a stop end with it.
+    epoch: Mutex<CancellationToken>,
+}
+
+impl Dispatcher {
+    /// A dispatcher over `bundle`, sending through `router`.
+    pub fn new(
+        bundle: Arc<Bundle>,
+        router: Router,
+        hub: Hub,
+        seed: Option<u64>,
+        life: Lifecycle,
+    ) -> Arc<Self> {
+        let epoch = life.shutdown.child_token();
+        Arc::new(Dispatcher {
+            bundle: ArcSwap::new(bundle),
+            router,
+            hub,
+            life,
+            chooser: Mutex::new(Chooser::new(seed)),
+            context: Mutex::new(DEFAULT_VARIANT.to_owned()),
+            next_id: AtomicU64::new(1),
+            epoch: Mutex::new(epoch),
+        })
+    }
+
+    /// The bundle being served.
+    pub fn bundle(&self) -> Arc<Bundle> {
+        self.bundle.load_full()
+    }
+
+    /// The event hub.
+    pub fn hub(&self) -> &Hub {
+        &self.hub
+    }
+
+    /// Triggers an act: resolves it, starts its commands, and says what was resolved.
+    pub fn trigger(self: &Arc<Self>, req: TriggerRequest) -> Result<Triggered, TriggerError> {
+        let bundle = self.bundle.load();
+        let Some(&index) = bundle.index.get(&req.label) else {
+            let suggestion = closest(&req.label, bundle.labels()).map(str::to_owned);
+            return Err(self.refuse(
+                &req,
+                TriggerError::UnknownAct {
+                    label: req.label.clone(),
+                    suggestion,
+                },
+            ));
+        };
+        let context = match req.context.as_deref() {
+            Some(c) => self
+                .known_context(&bundle, c)
+                .map_err(|e| self.refuse(&req, e))?,
+            None => lock(&self.context).clone(),
+        };
+        let act = &bundle.acts[index];
+        let variant = (act.variants.iter().enumerate())
+            .find(|(_, v)| v.name == context)
+            .or_else(|| {
+                act.variants
+                    .iter()
+                    .enumerate()
+                    .find(|(_, v)| v.name == DEFAULT_VARIANT)
+            });
+        let choice = variant.map(|(vi, v)| {
+            let alt = lock(&self.chooser).pick(index, vi, v.alternatives.len());
+            (v, alt, v.alternatives[alt].value.as_str())
+        });
+        let trigger = self.next_id();
+        let act_ref = Arc::new(ActRef {
+            trigger,
+            source: req.source,
+            client: req.client,
+            reference: req.reference,
+            label: act.label.as_str().into(),
+            at: format!("{}:{}", act.pos.file, act.pos.line),
+        });
+        let mut commands = Vec::with_capacity(act.commands.len() + 1);
+        if let Some((_, _, text)) = choice {
+            commands.push(self.command(&act_ref, Verb::Say, Some(text)));
+        }
+        for c in &act.commands {
+            commands.push(self.command(&act_ref, c.value.verb.clone(), c.value.arg.as_deref()));
+        }
+        let triggered = Triggered {
+            trigger,
+            label: act.label.clone(),
+            context: context.clone(),
+            variant: choice.map(|(v, _, _)| v.name.clone()),
+            alternative: choice.map(|(_, alt, _)| alt),
+            text: choice.map(|(_, _, text)| text.to_owned()),
+            commands: commands.iter().map(resolved).collect(),
+        };
+        self.hub.publish(EventKind::ActTriggered {
+            act: Arc::clone(&act_ref),
+            context,
+            variant: triggered.variant.clone(),
+            alternative: triggered.alternative,
+            text: triggered.text.clone(),
+            interrupt: req.interrupt,
+        });
+        drop(bundle);
+        self.start(commands, &act_ref, req.interrupt);
+        Ok(triggered)
+    }
+
+    fn start(self: &Arc<Self>, commands: Vec<Command>, act: &ActRef, interrupt: bool) {
+        if interrupt && let Some(speech) = self.router.adapter_for(&Verb::Say) {
+            speech.cancel(
+                CancelScope::Verb(&Verb::Say),
+                &format!("interrupted by act {}", act.label),
+            );
+        }
+        if commands.iter().any(|c| c.verb == Verb::DriveStop) {
+            self.stop(act.source, &format!("DRIVE_STOP in act {}", act.label));
+        }
+        if commands.iter().any(|c| c.verb == Verb::Wait) {
+            let stop = lock(&self.epoch).clone();
+            self.life
+                .spawn(sequence::run_sequence(Arc::clone(self), commands, stop));
+        } else {
+            for command in commands {
+                self.send(command, None);
+            }
+        }
+    }
+
+    /// Hands one command to its adapter; `waiter` learns its outcome.
+    pub(crate) fn send(&self, command: Command, waiter: Option<oneshot::Sender<Outcome>>) {
+        let adapter = self.router.adapter_for(&command.verb);
+        self.hub.publish(EventKind::CommandSent {
+            command: command.id,
+            act: Arc::clone(&command.act),
+            verb: command.verb.to_string(),
+            arg: command.arg.as_deref().map(str::to_owned),
+            adapter: adapter.map_or("none", |a| a.name()),
+        });
+        let reply = Reply::new(self.hub.clone(), command.clone(), waiter);
+        match adapter {
+            Some(adapter) => adapter.submit(command, reply),
+            None => reply.finish(Outcome::Failed(format!(
+                "no adapter serves {}",
+                command.verb
+            ))),
+        }
+    }
+
+    /// Stops everything: sequences end, every queue is cleared, speech is killed and the drive
+    /// stops.
+    pub fn stop(&self, source: Source, reason: &str) {
+        let old = std::mem::replace(&mut *lock(&self.epoch), self.life.shutdown.child_token());
+        self.hub.publish(EventKind::Stop {
+            source,
+            reason: reason.to_owned(),
+        });
+        old.cancel();
+        for adapter in self.router.adapters() {
+            adapter.cancel(CancelScope::All, reason);
+        }
+    }
+
+    /// The current context.
+    pub fn context(&self) -> String {
+        lock(&self.context).clone()
+    }
+
+    /// Changes the current context.
+    pub fn set_context(&self, context: &str, source: Source) -> Result<(), TriggerError> {
+        let context = self.known_context(&self.bundle.load(), context)?;
+        *lock(&self.context) = context.clone();
+        self.hub
+            .publish(EventKind::ContextChanged { source, context });
+        Ok(())
+    }
+
+    /// Queue length and current command of every adapter, by name.
+    pub fn adapter_status(&self) -> BTreeMap<&'static str, AdapterStatus> {
+        self.router
+            .adapters()
+            .iter()
+            .map(|a| (a.name(), a.status()))
+            .collect()
+    }
+
+    fn known_context(&self, bundle: &Bundle, context: &str) -> Result<String, TriggerError> {
+        if bundle.contexts.iter().any(|c| c == context) {
+            return Ok(context.to_owned());
+        }
+        let suggestion =
+            closest(context, bundle.contexts.iter().map(String::as_str)).map(str::to_owned);
+        Err(TriggerError::UnknownContext {
+            context: context.to_owned(),
+            suggestion,
+        })
+    }
+
+    fn refuse(&self, req: &TriggerRequest, error: TriggerError) -> TriggerError {
+        self.hub.publish(EventKind::TriggerRefused {
+            source: req.source,
+            client: req.client,
+            label: req.label.clone(),
+            code: error.code(),
+            message: error.to_string(),
+        });
+        error
+    }
+
+    fn command(&self, act: &Arc<ActRef>, verb: Verb, arg: Option<&str>) -> Command {
+        Command {
+            id: self.next_id(),
+            act: Arc::clone(act),
+            verb,
+            arg: arg.map(Into::into),
+        }
+    }
+
+    fn next_id(&self) -> u64 {
+        self.next_id.fetch_add(1, Ordering::Relaxed)
+    }
+}
+
+fn resolved(command: &Command) -> ResolvedCommand {
+    ResolvedCommand {
+        id: command.id,
+        verb: command.verb.to_string(),
+        arg: command.arg.as_deref().map(str::to_owned),
+    }
+}

@@ -1,0 +1,113 @@
+//! What callers give the dispatcher and what they get back; the HTTP and websocket layers
+//! turn these into their own wire formats.
+
+use serde::Serialize;
+
+use crate::events::Source;
+
+/// A request to trigger an act.
+#[derive(Clone, Debug)]
+pub struct TriggerRequest {
+    /// The act's label.
+    pub label: String,
+    /// The context variant to use; the current context when absent.
+    pub context: Option<String>,
+    /// Whether to clear queued and current speech first.
+    pub interrupt: bool,
+    /// The caller's own reference, echoed in replies, commands and the log.
+    pub reference: Option<String>,
+    /// Who asks.
+    pub source: Source,
+    /// The websocket client that asks, if any.
+    pub client: Option<u64>,
+}
+
+impl TriggerRequest {
+    /// A plain trigger of `label` from `source`.
+    pub fn new(label: impl Into<String>, source: Source) -> Self {
+        TriggerRequest {
+            label: label.into(),
+            context: None,
+            interrupt: false,
+            reference: None,
+            source,
+            client: None,
+        }
+    }
+}
+
+/// One resolved command, as reported to the caller.
+#[derive(Clone, Debug, PartialEq, Serialize)]
+pub struct ResolvedCommand {
+    /// The command's id (matches `command` frames and events).
+    pub id: u64,
+    /// The verb.
+    pub verb: String,
+    /// The argument, `null` when there is none.
+    pub arg: Option<String>,
+}
+
+/// The outcome of a successful trigger.
+#[derive(Clone, Debug, Serialize)]
+pub struct Triggered {
+    /// The trigger's id.
+    pub trigger: u64,
+    /// The act's label.
+    pub label: String,
+    /// The context that applied.
+    pub context: String,
+    /// The variant whose text was chosen (`Text` on fallback); `null` when the act has none.
+    pub variant: Option<String>,
+    /// Index of the chosen alternative.
+    pub alternative: Option<usize>,
+    /// The chosen text.
+    pub text: Option<String>,
+    /// Every command in order, the implicit `SAY` first.
+    pub commands: Vec<ResolvedCommand>,
+}
+
+/// Why a trigger or a context change was refused.
+#[derive(Clone, Debug, PartialEq, Eq, thiserror::Error)]
+pub enum TriggerError {
+    /// No act has this label.
+    #[error("there is no act labelled {label:?}{}", hint(.suggestion))]
+    UnknownAct {
+        /// The label asked for.
+        label: String,
+        /// The closest existing label.
+        suggestion: Option<String>,
+    },
+    /// No variant of this name exists in the bundle.
+    #[error("there is no context {context:?}{}", hint(.suggestion))]
+    UnknownContext {
+        /// The context asked for.
+        context: String,
+        /// The closest existing context.
+        suggestion: Option<String>,
+    },
+}
+
+fn hint(suggestion: &Option<String>) -> String {
+    suggestion
+        .as_ref()
+        .map(|s| format!("; did you mean {s:?}?"))
+        .unwrap_or_default()
+}
+
+impl TriggerError {
+    /// The stable error code (`unknown-act`, `unknown-context`).
+    pub fn code(&self) -> &'static str {
+        match self {
+            TriggerError::UnknownAct { .. } => "unknown-act",
+            TriggerError::UnknownContext { .. } => "unknown-context",
+        }
+    }
+
+    /// The suggested correction.
+    pub fn suggestion(&self) -> Option<&str> {
+        match self {
+            TriggerError::UnknownAct { suggestion, .. }
+            | TriggerError::UnknownContext { suggestion, .. } => suggestion.as_deref(),
+        }
+    }
+}

@@ -1,0 +1,298 @@
+//! The event types. Field names here are the corpus format; change them only with a version bump.
+
+use std::sync::{Arc, OnceLock};
+
+use serde::Serialize;
+
+use crate::events::EVENT_FORMAT_VERSION;
+
+/// Who asked for something: the trigger API's callers and the server itself.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize)]
+#[serde(rename_all = "lowercase")]
+pub enum Source {
+    /// The HTTP API.
+    Http,
+    /// A touchscreen page.
+    Kiosk,
+    /// A projector page.
+    Projector,
+    /// A remote operator.
+    Operator,
+    /// An autonomous dialog manager.
+    Dm,
+    /// An external adapter process.
+    Adapter,
+    /// Docent itself (start-up, shutdown, a drive arriving).
+    Server,
+}
+
+/// The role a websocket client declares in `hello`.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, serde::Deserialize, Serialize)]
+#[serde(rename_all = "lowercase")]
+pub enum ClientRole {
+    /// The touchscreen shell.
+    Kiosk,
+    /// The projector page.
+    Projector,
+    /// A remote operator's console.
+    Operator,
+    /// An autonomous dialog manager.
+    Dm,
+    /// An external adapter process serving verbs.
+    Adapter,
+}
+
+impl ClientRole {
+    /// The source recorded for triggers from a client in this role.
+    pub fn source(self) -> Source {
+        match self {
+            ClientRole::Kiosk => Source::Kiosk,
+            ClientRole::Projector => Source::Projector,
+            ClientRole::Operator => Source::Operator,
+            ClientRole::Dm => Source::Dm,
+            ClientRole::Adapter => Source::Adapter,
+        }
+    }
+}
+
+/// What every command event says about the trigger it came from, shared by all its commands.
+#[derive(Debug, Serialize)]
+pub struct ActRef {
+    /// The trigger's id.
+    pub trigger: u64,
+    /// Who triggered.
+    pub source: Source,
+    /// The websocket client that triggered, if any.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub client: Option<u64>,
+    /// The caller's own reference, echoed back.
+    #[serde(rename = "ref", skip_serializing_if = "Option::is_none")]
+    pub reference: Option<String>,
+    /// The act's label.
+    pub label: Arc<str>,
+    /// Where the act is written, `file:line`.
+    pub at: String,
+}
+
+/// One thing that happened. Serialized with `type` as the tag.
+#[derive(Debug, Serialize)]
+#[serde(tag = "type")]
+pub enum EventKind {
+    /// Docent started serving a bundle.
+    #[serde(rename = "server.started")]
+    ServerStarted {
+        /// Bundle folder.
+        bundle: String,
+        /// Docent's version.
+        version: &'static str,
+        /// The random seed, when reproducible runs were asked for.
+        #[serde(skip_serializing_if = "Option::is_none")]
+        seed: Option<u64>,
+    },
+    /// Docent is shutting down.
+    #[serde(rename = "server.stopping")]
+    ServerStopping,
+    /// An act was triggered and resolved into commands.
+    #[serde(rename = "act.triggered")]
+    ActTriggered {
+        /// The trigger and act.
+        #[serde(flatten)]
+        act: Arc<ActRef>,
+        /// The context asked for (explicitly or the current one).
+        context: String,
+        /// The variant whose text was used (`Text` on fallback); absent when the act has no text.
+        variant: Option<String>,
+        /// Index of the chosen alternative within the variant.
+        alternative: Option<usize>,
+        /// The exact text chosen.
+        text: Option<String>,
+        /// Whether the trigger interrupted current speech.
+        interrupt: bool,
+    },
+    /// A trigger was refused (unknown act or context, not allowed).
+    #[serde(rename = "trigger.refused")]
+    TriggerRefused {
+        /// Who triggered.
+        source: Source,
+        /// The client, if any.
+        #[serde(skip_serializing_if = "Option::is_none")]
+        client: Option<u64>,
+        /// The label asked for.
+        label: String,
+        /// The error code.
+        code: &'static str,
+        /// Why.
+        message: String,
+    },
+    /// A command was handed to its adapter.
+    #[serde(rename = "command.sent")]
+    CommandSent {
+        /// Command id.
+        command: u64,
+        /// The trigger and act.
+        #[serde(flatten)]
+        act: Arc<ActRef>,
+        /// Verb.
+        verb: String,
+        /// Argument.
+        arg: Option<String>,
+        /// The adapter it went to.
+        adapter: &'static str,
+    },
+    /// An adapter started executing a command.
+    #[serde(rename = "command.started")]
+    CommandStarted {
+        /// Command id.
+        command: u64,
+        /// The trigger and act.
+        #[serde(flatten)]
+        act: Arc<ActRef>,
+        /// Verb.
+        verb: String,
+    },
+    /// A command finished.
+    #[serde(rename = "command.done")]
+    CommandDone {
+        /// Command id.
+        command: u64,
+        /// The trigger and act.
+        #[serde(flatten)]
+        act: Arc<ActRef>,
+        /// Verb.
+        verb: String,
+    },
+    /// A command failed.
+    #[serde(rename = "command.failed")]
+    CommandFailed {
+        /// Command id.
+        command: u64,
+        /// The trigger and act.
+        #[serde(flatten)]
+        act: Arc<ActRef>,
+        /// Verb.
+        verb: String,
+        /// Why, in words.
+        reason: String,
+    },
+    /// A command was dropped or cut short by a stop, `DRIVE_STOP` or an interrupting trigger.
+    #[serde(rename = "command.cancelled")]
+    CommandCancelled {
+        /// Command id.
+        command: u64,
+        /// The trigger and act.
+        #[serde(flatten)]
+        act: Arc<ActRef>,
+        /// Verb.
+        verb: String,
+        /// Why.
+        reason: String,
+    },
+    /// What the touchscreen or projector shows changed.
+    #[serde(rename = "display.changed")]
+    DisplayChanged {
+        /// Page under `pages/` on the touchscreen.
+        page: Option<String>,
+        /// File under `media/` on the projector.
+        projector: Option<String>,
+    },
+    /// The drive base's pose.
+    #[serde(rename = "pose")]
+    Pose {
+        /// Metres.
+        x: f64,
+        /// Metres.
+        y: f64,
+        /// Degrees, counter-clockwise from the x axis.
+        heading: f64,
+        /// Whether it is driving.
+        moving: bool,
+    },
+    /// The drive reached its waypoint.
+    #[serde(rename = "drive.arrived")]
+    DriveArrived {
+        /// Metres.
+        x: f64,
+        /// Metres.
+        y: f64,
+    },
+    /// The current context changed.
+    #[serde(rename = "context.changed")]
+    ContextChanged {
+        /// Who changed it.
+        source: Source,
+        /// The new context.
+        context: String,
+    },
+    /// Everything was stopped (global stop or `DRIVE_STOP`).
+    #[serde(rename = "stop")]
+    Stop {
+        /// Who stopped.
+        source: Source,
+        /// Why, e.g. `stop request` or `DRIVE_STOP in act GOODBYE`.
+        reason: String,
+    },
+    /// A websocket client said hello.
+    #[serde(rename = "client.connected")]
+    ClientConnected {
+        /// The connection's id.
+        client: u64,
+        /// Its role.
+        role: ClientRole,
+        /// Its self-given name.
+        name: Option<String>,
+        /// Verbs it serves (adapters).
+        #[serde(skip_serializing_if = "Vec::is_empty")]
+        verbs: Vec<String>,
+    },
+    /// A websocket client left or was dropped.
+    #[serde(rename = "client.left")]
+    ClientLeft {
+        /// The connection's id.
+        client: u64,
+        /// Its role.
+        role: ClientRole,
+        /// Why it ended.
+        reason: String,
+    },
+}
+
+/// An event stamped by the hub.
+#[derive(Debug, Serialize)]
+pub struct Event {
+    /// Format version.
+    pub v: u32,
+    /// Sequence number, from 1, without gaps within one server run.
+    pub seq: u64,
+    /// Wall-clock time, RFC 3339 UTC with milliseconds.
+    pub time: String,
+    /// Microseconds since the server started (monotonic).
+    pub mono_us: u64,
+    /// What happened.
+    #[serde(flatten)]
+    pub kind: EventKind,
+    /// The JSON line, made once for all readers.
+    #[serde(skip)]
+    json: OnceLock<String>,
+}
+
+impl Event {
+    /// An event with its stamps.
+    pub fn new(seq: u64, time: String, mono_us: u64, kind: EventKind) -> Self {
+        Event {
+            v: EVENT_FORMAT_VERSION,
+            seq,
+            time,
+            mono_us,
+            kind,
+            json: OnceLock::new(),
+        }
+    }
+
+    /// The event as one JSON object (no newline), serialized once.
+    pub fn json(&self) -> &str {
+        self.json.get_or_init(|| {
+            // Serializing plain data with string keys cannot fail.
+            serde_json::to_string(self).unwrap_or_else(|e| format!("{{\"error\":\"{e}\"}}"))
+        })
+    }
+}

@@ -1,0 +1,16 @@
+//! Events: everything that happens (act triggered, command sent/started/done/failed, display
+//! changed, pose, context changed, stop, clients coming and going) as one [`EventKind`] enum,
+//! stamped with a sequence number and times by the [`Hub`], which hands each event to the
+//! corpus writer (lossless) and to websocket subscribers (broadcast, may lag).
+//!
+//! The serialized form is a compatibility boundary: it is both the corpus log line and the
+//! `event` frame sent to operator and dialog-manager clients (see `docs/CORPUS.md`).
+
+mod hub;
+mod kind;
+
+pub use hub::{CorpusMsg, EVENT_CHANNEL_CAPACITY, Hub};
+pub use kind::{ActRef, ClientRole, Event, EventKind, Source};
+
+/// Version of the event format, written into every corpus line as `v`.
+pub const EVENT_FORMAT_VERSION: u32 = 1;

@@ -1,0 +1,179 @@
+//! The trigger API: acts, triggers, stop, context, state and health. Routes reach devices only
+//! through the dispatcher.
+
+use axum::Json;
+use axum::body::Bytes;
+use axum::extract::{Path, State};
+use axum::http::StatusCode;
+use axum::response::IntoResponse;
+use serde::{Deserialize, Serialize};
+use serde_json::{Value, json};
+
+use crate::content::{Act, Pos};
+use crate::dispatch::TriggerRequest;
+use crate::events::Source;
+use crate::http::AppError;
+use crate::state::AppState;
+use crate::ws::protocol::PROTOCOL_VERSION;
+
+/// `GET /healthz`
+pub async fn health(State(state): State<AppState>) -> Json<Value> {
+    let bundle = state.dispatcher.bundle();
+    Json(json!({
+        "status": "ok",
+        "version": env!("CARGO_PKG_VERSION"),
+        "protocol": PROTOCOL_VERSION,
+        "acts": bundle.acts.len(),
+    }))
+}
+
+#[derive(Serialize)]
+struct ActView<'a> {
+    label: &'a str,
+    at: &'a Pos,
+    variants: Vec<VariantView<'a>>,
+    commands: Vec<CommandView<'a>>,
+}
+
+#[derive(Serialize)]
+struct VariantView<'a> {
+    name: &'a str,
+    at: &'a Pos,
+    alternatives: Vec<TextView<'a>>,
+}
+
+#[derive(Serialize)]
+struct TextView<'a> {
+    text: &'a str,
+    at: &'a Pos,
+}
+
+#[derive(Serialize)]
+struct CommandView<'a> {
+    verb: &'a str,
+    arg: Option<&'a str>,
+    at: &'a Pos,
+}
+
+fn act_view(act: &Act) -> ActView<'_> {
+    ActView {
+        label: &act.label,
+        at: &act.pos,
+        variants: (act.variants.iter())
+            .map(|v| VariantView {
+                name: &v.name,
+                at: &v.pos,
+                alternatives: v
+                    .alternatives
+                    .iter()
+                    .map(|a| TextView {
+                        text: &a.value,
+                        at: &a.pos,
+                    })
+                    .collect(),
+            })
+            .collect(),
+        commands: (act.commands.iter())
+            .map(|c| CommandView {
+                verb: c.value.verb.as_str(),
+                arg: c.value.arg.as_deref(),
+                at: &c.pos,
+            })
+            .collect(),
+    }
+}
+
+/// `GET /api/acts`: every act with its variants, commands and positions.
+pub async fn list_acts(State(state): State<AppState>) -> impl IntoResponse {
+    let bundle = state.dispatcher.bundle();
+    let acts: Vec<ActView<'_>> = bundle.acts.iter().map(act_view).collect();
+    Json(json!({ "contexts": bundle.contexts, "acts": acts })).into_response()
+}
+
+#[derive(Deserialize, Default)]
+#[serde(deny_unknown_fields)]
+struct TriggerBody {
+    #[serde(default)]
+    context: Option<String>,
+    #[serde(default)]
+    interrupt: bool,
+    #[serde(default, rename = "ref")]
+    reference: Option<String>,
+}
+
+/// Reads an optional JSON body: empty means defaults.
+fn optional_json<T: for<'de> Deserialize<'de> + Default>(body: &Bytes) -> Result<T, AppError> {
+    if body.iter().all(u8::is_ascii_whitespace) {
+        return Ok(T::default());
+    }
+    serde_json::from_slice(body)
+        .map_err(|e| AppError::bad_request(format!("the request body is not right: {e}")))
+}
+
+/// `POST /api/acts/{label}/trigger`: 202 with the trigger id and resolved commands.
+pub async fn trigger_act(
+    State(state): State<AppState>,
+    Path(label): Path<String>,
+    body: Bytes,
+) -> Result<impl IntoResponse, AppError> {
+    let body: TriggerBody = optional_json(&body)?;
+    let request = TriggerRequest {
+        context: body.context,
+        interrupt: body.interrupt,
+        reference: body.reference,
+        ..TriggerRequest::new(label, Source::Http)
+    };
+    let triggered = state.dispatcher.trigger(request)?;
+    Ok((StatusCode::ACCEPTED, Json(triggered)))
+}
+
+/// `POST /api/stop`: stops speech, drive and every queue.
+pub async fn stop_all(State(state): State<AppState>) -> impl IntoResponse {
+    state.dispatcher.stop(Source::Http, "stop request");
+    (StatusCode::ACCEPTED, Json(json!({ "stopped": true })))
+}
+
+/// `GET /api/context`: the current context and the ones available.
+pub async fn get_context(State(state): State<AppState>) -> Json<Value> {
+    let bundle = state.dispatcher.bundle();
+    Json(json!({ "context": state.dispatcher.context(), "available": bundle.contexts }))
+}
+
+#[derive(Deserialize)]
+#[serde(deny_unknown_fields)]
+struct ContextBody {
+    context: String,
+}
+
+/// `PUT /api/context` with `{"context": "TextGroup"}`.
+pub async fn put_context(
+    State(state): State<AppState>,
+    body: Bytes,
+) -> Result<Json<Value>, AppError> {
+    let body: ContextBody = serde_json::from_slice(&body)
+        .map_err(|e| AppError::bad_request(format!("expected {{\"context\": \"...\"}}: {e}")))?;
+    state.dispatcher.set_context(&body.context, Source::Http)?;
+    Ok(get_context(State(state)).await)
+}
+
+/// `GET /api/state`: display, pose, speech, queues, context and connected clients.
+pub async fn get_state(State(state): State<AppState>) -> Json<Value> {
+    let adapters = state.dispatcher.adapter_status();
+    let speaking = (adapters.get(state.devices.speech.as_str()))
+        .and_then(|s| s.current.clone())
+        .filter(|c| c.starts_with("SAY "));
+    Json(json!({
+        "display": state.devices.display.snapshot(),
+        "pose": state.devices.drive.as_ref().map(|d| d.pose()),
+        "waypoint": state.devices.drive.as_ref().and_then(|d| d.waypoint()),
+        "speaking": speaking,
+        "queues": adapters,
+        "context": state.dispatcher.context(),
+        "clients": state.clients(),
+    }))
+}
+
+/// Anything else: a JSON 404.
+pub async fn not_found() -> AppError {
+    AppError::not_found("no such route; see docs/PROTOCOL.md")
+}

@@ -1,0 +1,40 @@
+//! The HTTP side: one route table ([`app`]), handlers grouped by resource.
+//!
+//! - `api`: the trigger API (`/api/...`, `/healthz`).
+//! - `files`: bundle files under `/pages/` and `/media/`, never outside the bundle.
+//! - `error`: [`AppError`], the one error type at the HTTP edge.
+
+mod api;
+mod error;
+mod files;
+
+use axum::Router;
+use axum::routing::{get, post};
+use tower_http::limit::RequestBodyLimitLayer;
+use tower_http::trace::TraceLayer;
+
+pub use error::AppError;
+
+use crate::state::AppState;
+use crate::ws::ws_upgrade;
+
+/// Largest request body accepted (trigger and context bodies are tiny).
+const MAX_BODY_BYTES: usize = 64 * 1024;
+
+/// The whole route table.
+pub fn app(state: AppState) -> Router {
+    Router::new()
+        .route("/healthz", get(api::health))
+        .route("/api/acts", get(api::list_acts))
+        .route("/api/acts/{label}/trigger", post(api::trigger_act))
+        .route("/api/stop", post(api::stop_all))
+        .route("/api/context", get(api::get_context).put(api::put_context))
+        .route("/api/state", get(api::get_state))
+        .route("/pages/{*path}", get(files::serve_page))
+        .route("/media/{*path}", get(files::serve_media))
+        .route("/ws", get(ws_upgrade))
+        .fallback(api::not_found)
+        .layer(RequestBodyLimitLayer::new(MAX_BODY_BYTES))
+        .layer(TraceLayer::new_for_http())
+        .with_state(state)
+}

@@ -1,0 +1,25 @@
+//! Docent: presents dialog acts on a robot or kiosk. Triggers come from touchscreen pages,
+//! timers, a remote operator and a dialog manager; the dispatcher resolves each act into
+//! commands for device adapters and every event goes to the corpus log.
+//!
+//! Module map (see `ARCHITECTURE.md` for the whole picture):
+//! - [`content`]: loading and checking content bundles (acts files, `docent.yaml`, pages, media).
+//! - [`dispatch`]: the dialog act dispatcher, the only path from a trigger to a device.
+//! - [`adapters`]: speech, display, drive and external (websocket) adapters, and the router.
+//! - [`events`]: the event types and the hub that stamps and fans them out.
+//! - [`corpus`]: the JSON Lines corpus writer.
+//! - [`http`]: the route table and HTTP handlers; [`ws`]: the websocket protocol.
+//! - [`serve`]: wiring it together and running with graceful shutdown.
+//! - [`state`], [`lifecycle`], [`sync`]: shared handles and small helpers.
+
+pub mod adapters;
+pub mod content;
+pub mod corpus;
+pub mod dispatch;
+pub mod events;
+pub mod http;
+pub mod lifecycle;
+pub mod serve;
+pub mod state;
+pub mod sync;
+pub mod ws;

@@ -1,0 +1,180 @@
+//! The `docent` command: parses the command line, sets up logging and calls into the library.
+
+use std::net::SocketAddr;
+use std::path::{Path, PathBuf};
+use std::process::ExitCode;
+
+use anyhow::Context;
+use clap::{Parser, Subcommand, ValueEnum};
+use docent::content::{Diagnostic, load_bundle};
+use docent::serve::{ServeOptions, Server, run};
+use tokio::net::TcpListener;
+
+/// Docent presents dialog acts on a robot or kiosk: speech, touchscreen pages, projector, drive.
+#[derive(Parser)]
+#[command(version, about)]
+struct Cli {
+    #[command(subcommand)]
+    command: Cmd,
+}
+
+#[derive(Subcommand)]
+enum Cmd {
+    /// Serve a content bundle: pages, the trigger API and the websocket.
+    Serve {
+        /// The bundle folder.
+        #[arg(default_value = "dialogs/info-terminal")]
+        bundle: PathBuf,
+        /// Address to listen on. Stays on loopback unless told otherwise.
+        #[arg(long, default_value = "127.0.0.1:8080")]
+        listen: SocketAddr,
+        /// Seed for choosing among alternative texts (reproducible runs).
+        #[arg(long)]
+        seed: Option<u64>,
+        /// Folder for the corpus log.
+        #[arg(long, default_value = "corpus")]
+        corpus: PathBuf,
+        /// Write speech as WAV files into this folder instead of playing it (no sound card).
+        #[arg(long, value_name = "DIR")]
+        speech_wav: Option<PathBuf>,
+    },
+    /// Check a bundle and list every problem with its file, line and column.
+    Check {
+        /// The bundle folder.
+        bundle: PathBuf,
+        /// Output format.
+        #[arg(long, value_enum, default_value_t = Format::Text)]
+        format: Format,
+    },
+}
+
+#[derive(Clone, Copy, ValueEnum)]
+enum Format {
+    /// One line per problem, for people.
+    Text,
+    /// A JSON array of {severity, code, message, file, line, column}, for tools.
+    Json,
+}
+
+fn main() -> ExitCode {
+    let cli = Cli::parse();
+    let result = match cli.command {
+        Cmd::Check { bundle, format } => check(&bundle, format),
+        Cmd::Serve {
+            bundle,
+            listen,
+            seed,
+            corpus,
+            speech_wav,
+        } => {
+            let options = ServeOptions {
+                seed,
+                corpus_dir: corpus,
+                speech_wav,
+            };
+            serve(&bundle, listen, options)
+        }
+    };
+    match result {
+        Ok(code) => code,
+        Err(e) => {
+            eprintln!("docent: {e:#}");
+            ExitCode::FAILURE
+        }
+    }
+}
+
+fn check(bundle: &Path, format: Format) -> anyhow::Result<ExitCode> {
+    let report = load_bundle(bundle);
+    match format {
+        Format::Json => println!("{}", serde_json::to_string_pretty(&report.diagnostics)?),
+        Format::Text => {
+            print_diagnostics(&report.diagnostics);
+            let (errors, warnings) = counts(&report.diagnostics);
+            println!(
+                "{}: {errors} error(s), {warnings} warning(s)",
+                bundle.display()
+            );
+        }
+    }
+    Ok(if report.bundle.is_some() {
+        ExitCode::SUCCESS
+    } else {
+        ExitCode::FAILURE
+    })
+}
+
+fn print_diagnostics(diagnostics: &[Diagnostic]) {
+    for d in diagnostics {
+        println!("{d}");
+    }
+}
+
+fn counts(diagnostics: &[Diagnostic]) -> (usize, usize) {
+    let errors = diagnostics.iter().filter(|d| d.is_error()).count();
+    (errors, diagnostics.len() - errors)
+}
+
+fn serve(bundle_dir: &Path, listen: SocketAddr, options: ServeOptions) -> anyhow::Result<ExitCode> {
+    tracing_subscriber::fmt()
+        .with_env_filter(
+            tracing_subscriber::EnvFilter::try_from_default_env()
+                .unwrap_or_else(|_| "docent=info,tower_http=warn".into()),
+        )
+        .with_writer(std::io::stderr)
+        .init();
+    let report = load_bundle(bundle_dir);
+    print_diagnostics(&report.diagnostics);
+    let Some(bundle) = report.bundle else {
+        let (errors, _) = counts(&report.diagnostics);
+        eprintln!(
+            "docent: {} has {errors} error(s); fix them and start again",
+            bundle_dir.display()
+        );
+        return Ok(ExitCode::FAILURE);
+    };
+    let home = bundle.config.home.clone();
+    let runtime = tokio::runtime::Runtime::new().context("starting the async runtime")?;
+    runtime.block_on(async move {
+        let listener = TcpListener::bind(listen)
+            .await
+            .with_context(|| format!("listening on {listen}"))?;
+        let addr = listener.local_addr()?;
+        let server = Server::start(bundle, &options).context("starting the server")?;
+        for warning in &server.warnings {
+            tracing::warn!("{warning}");
+        }
+        println!("Docent is serving {}", bundle_dir.display());
+        println!("  home page:  http://{addr}/pages/{home}");
+        println!("  trigger API: http://{addr}/api/acts  (docs/PROTOCOL.md)");
+        println!("  websocket:  ws://{addr}/ws");
+        println!("  corpus log: {}", server.corpus_path().display());
+        run(listener, server, shutdown_signal())
+            .await
+            .context("serving")?;
+        anyhow::Ok(ExitCode::SUCCESS)
+    })
+}
+
+/// Completes on Ctrl-C or SIGTERM.
+async fn shutdown_signal() {
+    let ctrl_c = async {
+        if tokio::signal::ctrl_c().await.is_err() {
+            std::future::pending::<()>().await;
+        }
+    };
+    #[cfg(unix)]
+    let terminate = async {
+        match tokio::signal::unix::signal(tokio::signal::unix::SignalKind::terminate()) {
+            Ok(mut s) => drop(s.recv().await),
+            Err(_) => std::future::pending().await,
+        }
+    };
+    #[cfg(not(unix))]
+    let terminate = std::future::pending::<()>();
+    tokio::select! {
+        () = ctrl_c => {}
+        () = terminate => {}
+    }
+    tracing::info!("shutting down");
+}

@@ -1,0 +1,173 @@
+//! Starting and running a server: [`Server::start`] wires a checked bundle to its adapters,
+//! dispatcher and corpus writer; [`run`] serves HTTP and websockets on a listener the caller
+//! bound (tests bind `127.0.0.1:0`) until the shutdown future completes, then winds down:
+//! connections closed, tasks awaited, the corpus flushed last.
+
+use std::future::Future;
+use std::io;
+use std::path::PathBuf;
+use std::sync::Arc;
+use std::time::Duration;
+
+use axum::serve::ListenerExt;
+use tokio::net::TcpListener;
+
+use crate::adapters::{Devices, SpeechOutput, espeak_available};
+use crate::content::Bundle;
+use crate::content::config::AdapterKind;
+use crate::corpus::CorpusWriter;
+use crate::dispatch::Dispatcher;
+use crate::events::{EventKind, Hub};
+use crate::http::app;
+use crate::lifecycle::Lifecycle;
+use crate::state::AppState;
+
+/// How long shutdown waits for connections and adapters to finish.
+const SHUTDOWN_GRACE: Duration = Duration::from_secs(5);
+
+/// What `docent serve` was asked for, beyond the bundle itself.
+#[derive(Clone, Debug)]
+pub struct ServeOptions {
+    /// Seed for the choice of alternatives; random when absent.
+    pub seed: Option<u64>,
+    /// Folder for the corpus log.
+    pub corpus_dir: PathBuf,
+    /// Write espeak-ng speech as WAV files into this folder instead of playing it.
+    pub speech_wav: Option<PathBuf>,
+}
+
+/// A server ready to run.
+pub struct Server {
+    state: AppState,
+    corpus: CorpusWriter,
+    /// Start-up warnings for the person starting it (e.g. espeak-ng missing).
+    pub warnings: Vec<String>,
+}
+
+impl Server {
+    /// Starts the corpus writer, adapters and dispatcher for `bundle`.
+    pub fn start(bundle: Bundle, options: &ServeOptions) -> io::Result<Server> {
+        let life = Lifecycle::new();
+        let (hub, corpus_rx) = Hub::new();
+        let corpus = CorpusWriter::start(&options.corpus_dir, corpus_rx)?;
+        let mut warnings = Vec::new();
+        let speech = choose_speech(
+            bundle.config.speech.adapter,
+            espeak_available(),
+            &mut warnings,
+        );
+        let output = match &options.speech_wav {
+            Some(dir) => {
+                std::fs::create_dir_all(dir)?;
+                SpeechOutput::Wav(dir.canonicalize()?)
+            }
+            None => SpeechOutput::Audio,
+        };
+        let (devices, router) = Devices::start(&bundle.config, speech, output, &hub, &life);
+        hub.publish(EventKind::ServerStarted {
+            bundle: bundle.root.display().to_string(),
+            version: env!("CARGO_PKG_VERSION"),
+            seed: options.seed,
+        });
+        let dispatcher = Dispatcher::new(Arc::new(bundle), router, hub, options.seed, life.clone());
+        let state = AppState::new(dispatcher, Arc::new(devices), life);
+        Ok(Server {
+            state,
+            corpus,
+            warnings,
+        })
+    }
+
+    /// The shared state (for tests and embedding).
+    pub fn state(&self) -> &AppState {
+        &self.state
+    }
+
+    /// The corpus log file.
+    pub fn corpus_path(&self) -> PathBuf {
+        self.corpus.path().to_owned()
+    }
+}
+
+/// Picks the speech adapter: the configured one, or espeak when installed; log otherwise.
+fn choose_speech(
+    configured: Option<AdapterKind>,
+    espeak: bool,
+    warnings: &mut Vec<String>,
+) -> AdapterKind {
+    match configured {
+        Some(AdapterKind::Espeak) | None if !espeak => {
+            warnings.push(
+                "espeak-ng is not installed, so speech is only logged (install the Debian package \
+                 espeak-ng to hear it)"
+                    .into(),
+            );
+            AdapterKind::Log
+        }
+        Some(kind) => kind,
+        None => AdapterKind::Espeak,
+    }
+}
+
+/// Serves until `shutdown` completes, then shuts down in order and flushes the corpus.
+pub async fn run(
+    listener: TcpListener,
+    server: Server,
+    shutdown: impl Future<Output = ()> + Send + 'static,
+) -> io::Result<()> {
+    let Server { state, corpus, .. } = server;
+    let life = state.life.clone();
+    let hub = state.hub.clone();
+    let listener = listener.tap_io(|tcp| {
+        // Commands are small frames that must go out at once.
+        let _ = tcp.set_nodelay(true);
+    });
+    let stop = life.shutdown.clone();
+    let signal = async move {
+        tokio::select! {
+            () = shutdown => stop.cancel(),
+            () = stop.cancelled() => {}
+        }
+    };
+    let served = axum::serve(listener, app(state))
+        .with_graceful_shutdown(signal)
+        .await;
+    // axum's graceful shutdown does not wait for websocket tasks (tokio-rs/axum#3003).
+    life.shutdown.cancel();
+    hub.publish(EventKind::ServerStopping);
+    life.tracker.close();
+    if tokio::time::timeout(SHUTDOWN_GRACE, life.tracker.wait())
+        .await
+        .is_err()
+    {
+        tracing::warn!("some tasks did not finish within {SHUTDOWN_GRACE:?}");
+    }
+    hub.close_corpus();
+    let logged = corpus.finish().await?;
+    tracing::info!(events = logged, "corpus log flushed");
+    served
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn missing_espeak_falls_back_to_log_with_one_warning() {
+        let mut warnings = Vec::new();
+        assert_eq!(choose_speech(None, false, &mut warnings), AdapterKind::Log);
+        assert_eq!(
+            choose_speech(Some(AdapterKind::Espeak), false, &mut warnings),
+            AdapterKind::Log
+        );
+        assert_eq!(warnings.len(), 2);
+        assert!(warnings[0].contains("espeak-ng is not installed"));
+        let mut none = Vec::new();
+        assert_eq!(choose_speech(None, true, &mut none), AdapterKind::Espeak);
+        assert_eq!(
+            choose_speech(Some(AdapterKind::Ws), false, &mut none),
+            AdapterKind::Ws
+        );
+        assert!(none.is_empty());
+    }
+}

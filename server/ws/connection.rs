@@ -1,0 +1,344 @@
+//! One websocket connection: the upgrade, the reader loop and what each client frame does.
+//! Every bad frame gets an `error` frame and the connection stays usable.
+
+use std::time::Duration;
+
+use axum::extract::State;
+use axum::extract::ws::{Message, WebSocket, WebSocketUpgrade};
+use axum::response::Response;
+use futures_util::StreamExt;
+use tokio::sync::oneshot;
+use tokio_util::sync::CancellationToken;
+
+use crate::adapters::Outcome;
+use crate::dispatch::TriggerRequest;
+use crate::events::{ClientRole, EventKind};
+use crate::state::{AppState, ClientInfo};
+use crate::ws::outbox::{Frame, OUTBOX_CAPACITY, Outbox};
+use crate::ws::protocol::{
+    ClientFrame, MAX_FRAME_BYTES, context_frame, error_frame, stopped_frame, triggered_frame,
+    welcome_frame,
+};
+use crate::ws::writer::{Feed, PING_INTERVAL, run_writer};
+
+/// Frames beyond this size end the connection at the websocket layer; frames between
+/// [`MAX_FRAME_BYTES`] and this get an `error` frame and the connection stays.
+const MAX_MESSAGE_BYTES: usize = 1024 * 1024;
+/// A client silent for this long (not even answering pings) is dropped.
+const IDLE_TIMEOUT: Duration = Duration::from_secs(3 * PING_INTERVAL.as_secs());
+
+/// The reader's reason when the writer ended first (the writer then has the real reason).
+const WRITER_ENDED: &str = "writer ended";
+
+/// `GET /ws`: upgrades to a websocket connection.
+pub async fn ws_upgrade(ws: WebSocketUpgrade, State(state): State<AppState>) -> Response {
+    ws.max_message_size(MAX_MESSAGE_BYTES)
+        .max_frame_size(MAX_MESSAGE_BYTES)
+        .on_upgrade(move |socket| serve(socket, state))
+}
+
+struct Session {
+    client: u64,
+    role: Option<ClientRole>,
+    outbox: Outbox,
+    feed: Option<oneshot::Sender<Feed>>,
+    state: AppState,
+}
+
+async fn serve(socket: WebSocket, state: AppState) {
+    let client = state.next_client_id();
+    let (sink, mut stream) = socket.split();
+    let (outbox, queue) = Outbox::new(OUTBOX_CAPACITY);
+    let (feed_tx, feed_rx) = oneshot::channel();
+    let stop = CancellationToken::new();
+    let writer = state.life.tracker.spawn(run_writer(
+        sink,
+        queue,
+        feed_rx,
+        state.clone(),
+        stop.clone(),
+    ));
+    let mut session = Session {
+        client,
+        role: None,
+        outbox,
+        feed: Some(feed_tx),
+        state: state.clone(),
+    };
+    let shutdown = state.life.shutdown.clone();
+    let kicked = session.outbox.kicked().clone();
+    let reason = loop {
+        let next = tokio::select! {
+            next = tokio::time::timeout(IDLE_TIMEOUT, stream.next()) => next,
+            () = kicked.cancelled() => break "too slow: its outgoing queue was full",
+            () = shutdown.cancelled() => break "server shutting down",
+            () = stop.cancelled() => break WRITER_ENDED,
+        };
+        match next {
+            Err(_) => break "idle timeout",
+            Ok(None) | Ok(Some(Ok(Message::Close(_)))) => break "closed by client",
+            Ok(Some(Err(_))) => break "protocol error",
+            Ok(Some(Ok(Message::Text(text)))) => session.on_text(text.as_str()),
+            Ok(Some(Ok(Message::Binary(_)))) => {
+                session.reply_error(
+                    "binary-frame",
+                    "send JSON text frames, not binary ones",
+                    None,
+                    None,
+                );
+            }
+            Ok(Some(Ok(_))) => {} // pings and pongs
+        }
+    };
+    stop.cancel();
+    let writer_end = writer.await.unwrap_or("writer failed");
+    session.leave(if reason == WRITER_ENDED {
+        writer_end
+    } else {
+        reason
+    });
+}
+
+impl Session {
+    fn send(&self, frame: String) {
+        self.outbox.send(Frame::from(frame));
+    }
+
+    fn reply_error(
+        &self,
+        code: &str,
+        message: &str,
+        reference: Option<&str>,
+        suggestion: Option<&str>,
+    ) {
+        self.send(error_frame(code, message, reference, suggestion));
+    }
+
+    fn on_text(&mut self, text: &str) {
+        if text.len() > MAX_FRAME_BYTES {
+            let message = format!("frames are limited to {MAX_FRAME_BYTES} bytes");
+            return self.reply_error("frame-too-large", &message, None, None);
+        }
+        match serde_json::from_str::<ClientFrame>(text) {
+            Ok(frame) => self.on_frame(frame),
+            Err(e) => {
+                let (code, message, reference) = diagnose(text, &e);
+                self.reply_error(code, &message, reference.as_deref(), None);
+            }
+        }
+    }
+
+    fn on_frame(&mut self, frame: ClientFrame) {
+        match frame {
+            ClientFrame::Hello {
+                role,
+                verbs,
+                name,
+                token: _,
+            } => self.hello(role, verbs, name),
+            ClientFrame::Trigger {
+                label,
+                context,
+                interrupt,
+                reference,
+            } => {
+                let Some(role) = self.allowed(
+                    &[ClientRole::Kiosk, ClientRole::Operator, ClientRole::Dm],
+                    reference.as_deref(),
+                ) else {
+                    return;
+                };
+                let request = TriggerRequest {
+                    label,
+                    context,
+                    interrupt,
+                    reference: reference.clone(),
+                    source: role.source(),
+                    client: Some(self.client),
+                };
+                match self.state.dispatcher.trigger(request) {
+                    Ok(t) => self.send(triggered_frame(reference.as_deref(), &t)),
+                    Err(e) => self.reply_error(
+                        e.code(),
+                        &e.to_string(),
+                        reference.as_deref(),
+                        e.suggestion(),
+                    ),
+                }
+            }
+            ClientFrame::Stop { reference } => {
+                let Some(role) = self.allowed(
+                    &[ClientRole::Operator, ClientRole::Dm],
+                    reference.as_deref(),
+                ) else {
+                    return;
+                };
+                self.state.dispatcher.stop(role.source(), "stop request");
+                self.send(stopped_frame(reference.as_deref()));
+            }
+            ClientFrame::Context { context, reference } => {
+                let Some(role) = self.allowed(
+                    &[ClientRole::Operator, ClientRole::Dm],
+                    reference.as_deref(),
+                ) else {
+                    return;
+                };
+                match self.state.dispatcher.set_context(&context, role.source()) {
+                    Ok(()) => self.send(context_frame(reference.as_deref(), &context)),
+                    Err(e) => self.reply_error(
+                        e.code(),
+                        &e.to_string(),
+                        reference.as_deref(),
+                        e.suggestion(),
+                    ),
+                }
+            }
+            ClientFrame::Started { id } => self.answer(id, None),
+            ClientFrame::Done { id } => self.answer(id, Some(Outcome::Done)),
+            ClientFrame::Failed { id, reason } => {
+                let reason = reason.unwrap_or_else(|| "the adapter reported a failure".into());
+                self.answer(id, Some(Outcome::Failed(reason)));
+            }
+        }
+    }
+
+    /// The client's role if it is one of `roles`; otherwise answers with an error.
+    fn allowed(&self, roles: &[ClientRole], reference: Option<&str>) -> Option<ClientRole> {
+        match self.role {
+            None => {
+                self.reply_error(
+                    "hello-first",
+                    "say hello (with your role) before anything else",
+                    reference,
+                    None,
+                );
+                None
+            }
+            Some(role) if roles.contains(&role) => Some(role),
+            Some(role) => {
+                let message = format!("a client with role {role:?} may not do this").to_lowercase();
+                self.reply_error("forbidden", &message, reference, None);
+                None
+            }
+        }
+    }
+
+    fn hello(&mut self, role: ClientRole, verbs: Vec<String>, name: Option<String>) {
+        if self.role.is_some() {
+            return self.reply_error(
+                "already-introduced",
+                "hello was already received on this connection",
+                None,
+                None,
+            );
+        }
+        if role == ClientRole::Adapter && verbs.is_empty() {
+            return self.reply_error(
+                "no-verbs",
+                "an adapter must list the verbs it serves in \"verbs\"",
+                None,
+                None,
+            );
+        }
+        self.role = Some(role);
+        let state = &self.state;
+        let (display, display_rx) = state.devices.display.subscribe(role);
+        let mut view = state.state_view();
+        view.display = display;
+        self.send(welcome_frame(self.client, role, &view));
+        let feed = match (role, display_rx) {
+            (_, Some(rx)) => Some(Feed::Display(rx)),
+            (ClientRole::Operator | ClientRole::Dm, None) => {
+                Some(Feed::Events(state.hub.subscribe()))
+            }
+            _ => None,
+        };
+        if let (Some(feed), Some(tx)) = (feed, self.feed.take()) {
+            let _ = tx.send(feed);
+        }
+        if role == ClientRole::Adapter {
+            state
+                .devices
+                .ws
+                .connect(self.client, verbs.clone(), self.outbox.clone());
+        }
+        state.client_joined(
+            self.client,
+            ClientInfo {
+                role,
+                name: name.clone(),
+                verbs: verbs.clone(),
+            },
+        );
+        state.hub.publish(EventKind::ClientConnected {
+            client: self.client,
+            role,
+            name,
+            verbs,
+        });
+    }
+
+    fn answer(&self, id: u64, outcome: Option<Outcome>) {
+        if self.allowed(&[ClientRole::Adapter], None).is_none() {
+            return;
+        }
+        let ws = &self.state.devices.ws;
+        let result = match outcome {
+            None => ws.started(self.client, id),
+            Some(outcome) => ws.answer(self.client, id, outcome),
+        };
+        if let Err(e) = result {
+            self.reply_error("unknown-command", &e.to_string(), None, None);
+        }
+    }
+
+    fn leave(self, reason: &str) {
+        let Some(role) = self.role else { return };
+        if role == ClientRole::Adapter {
+            self.state.devices.ws.disconnect(self.client);
+        }
+        self.state.client_left(self.client);
+        let reason = reason.to_owned();
+        self.state.hub.publish(EventKind::ClientLeft {
+            client: self.client,
+            role,
+            reason,
+        });
+    }
+}
+
+/// Why a text frame could not be read: an error code, a message and the frame's `ref` if any.
+fn diagnose(text: &str, error: &serde_json::Error) -> (&'static str, String, Option<String>) {
+    let Ok(value) = serde_json::from_str::<serde_json::Value>(text) else {
+        return (
+            "malformed-json",
+            format!("the frame is not valid JSON: {error}"),
+            None,
+        );
+    };
+    let reference = value.get("ref").and_then(|r| r.as_str()).map(str::to_owned);
+    match value.get("type").and_then(|t| t.as_str()) {
+        None => (
+            "missing-type",
+            "every frame needs a \"type\" field".into(),
+            reference,
+        ),
+        Some(t) if !KNOWN_TYPES.contains(&t) => {
+            let known = KNOWN_TYPES.join(", ");
+            (
+                "unknown-type",
+                format!("unknown frame type {t:?}; known types: {known}"),
+                reference,
+            )
+        }
+        Some(t) => (
+            "bad-frame",
+            format!("a {t:?} frame is not right: {error}"),
+            reference,
+        ),
+    }
+}
+
+const KNOWN_TYPES: [&str; 7] = [
+    "hello", "trigger", "stop", "context", "started", "done", "failed",
+];

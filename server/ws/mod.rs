@@ -1,0 +1,13 @@
+//! The websocket endpoint `/ws`: kiosk and projector pages, operators, the dialog manager and
+//! external adapters all speak the same JSON protocol (`protocol`, `docs/PROTOCOL.md`).
+//!
+//! Each connection has a reader loop (`connection`) and a writer task (`writer`); when one ends,
+//! the other stops. Outgoing frames pass through a bounded [`outbox::Outbox`], so a slow
+//! client is dropped instead of slowing others.
+
+mod connection;
+pub mod outbox;
+pub mod protocol;
+mod writer;
+
+pub use connection::ws_upgrade;

@@ -1,0 +1,224 @@
+//! The websocket protocol's frames (JSON text, tagged by `type`). A compatibility boundary:
+//! documented in `docs/PROTOCOL.md`; change it only with a version bump.
+
+use serde::{Deserialize, Serialize};
+
+use crate::adapters::{Command, Display, Pose};
+use crate::dispatch::ResolvedCommand;
+use crate::events::{ClientRole, Event};
+
+/// The protocol version sent in `welcome`.
+pub const PROTOCOL_VERSION: u32 = 1;
+
+/// Largest text frame Docent reads; larger ones are answered with an error.
+pub const MAX_FRAME_BYTES: usize = 16 * 1024;
+
+/// A frame from a client.
+#[derive(Debug, Deserialize)]
+#[serde(tag = "type", rename_all = "lowercase", deny_unknown_fields)]
+pub enum ClientFrame {
+    /// First frame: who the client is.
+    Hello {
+        /// Its role.
+        role: ClientRole,
+        /// Verbs served (adapters only).
+        #[serde(default)]
+        verbs: Vec<String>,
+        /// A name for logs and the operator's view.
+        #[serde(default)]
+        name: Option<String>,
+        /// A credential (operator and dialog-manager roles; checked from a later version).
+        #[serde(default)]
+        token: Option<String>,
+    },
+    /// Trigger an act.
+    Trigger {
+        /// The act.
+        label: String,
+        /// A context variant.
+        #[serde(default)]
+        context: Option<String>,
+        /// Clear speech first.
+        #[serde(default)]
+        interrupt: bool,
+        /// Echoed back.
+        #[serde(default, rename = "ref")]
+        reference: Option<String>,
+    },
+    /// Stop everything.
+    Stop {
+        /// Echoed back.
+        #[serde(default, rename = "ref")]
+        reference: Option<String>,
+    },
+    /// Set the current context.
+    Context {
+        /// The new context.
+        context: String,
+        /// Echoed back.
+        #[serde(default, rename = "ref")]
+        reference: Option<String>,
+    },
+    /// An adapter began a command.
+    Started {
+        /// Command id.
+        id: u64,
+    },
+    /// An adapter finished a command.
+    Done {
+        /// Command id.
+        id: u64,
+    },
+    /// An adapter could not carry out a command.
+    Failed {
+        /// Command id.
+        id: u64,
+        /// Why.
+        #[serde(default)]
+        reason: Option<String>,
+    },
+}
+
+/// The state a client gets on `welcome` and after falling behind.
+#[derive(Debug, Serialize)]
+pub struct StateView {
+    /// What the touchscreen and projector show.
+    pub display: Display,
+    /// The drive's pose, when simulated.
+    pub pose: Option<Pose>,
+    /// The current context.
+    pub context: String,
+}
+
+#[derive(Serialize)]
+#[serde(tag = "type", rename_all = "lowercase")]
+enum ServerFrame<'a> {
+    Welcome {
+        protocol: u32,
+        client: u64,
+        role: ClientRole,
+        state: &'a StateView,
+    },
+    State {
+        state: &'a StateView,
+    },
+    Triggered {
+        #[serde(rename = "ref")]
+        reference: Option<&'a str>,
+        trigger: u64,
+        label: &'a str,
+        context: &'a str,
+        variant: Option<&'a str>,
+        text: Option<&'a str>,
+        commands: &'a [ResolvedCommand],
+    },
+    Command {
+        id: u64,
+        trigger: u64,
+        #[serde(rename = "ref")]
+        reference: Option<&'a str>,
+        label: &'a str,
+        verb: &'a str,
+        arg: Option<&'a str>,
+    },
+    Cancel {
+        verbs: Option<&'a [String]>,
+        reason: &'a str,
+    },
+    Stopped {
+        #[serde(rename = "ref")]
+        reference: Option<&'a str>,
+    },
+    Context {
+        #[serde(rename = "ref")]
+        reference: Option<&'a str>,
+        context: &'a str,
+    },
+    Error {
+        code: &'a str,
+        message: &'a str,
+        #[serde(rename = "ref")]
+        reference: Option<&'a str>,
+        suggestion: Option<&'a str>,
+    },
+}
+
+fn encode(frame: &ServerFrame<'_>) -> String {
+    // Plain data with string keys: serialization cannot fail.
+    serde_json::to_string(frame).unwrap_or_default()
+}
+
+/// `welcome`: protocol version, the client's id and role, and the current state.
+pub fn welcome_frame(client: u64, role: ClientRole, state: &StateView) -> String {
+    encode(&ServerFrame::Welcome {
+        protocol: PROTOCOL_VERSION,
+        client,
+        role,
+        state,
+    })
+}
+
+/// `state`: a fresh snapshot for a client that fell behind.
+pub fn state_frame(state: &StateView) -> String {
+    encode(&ServerFrame::State { state })
+}
+
+/// `triggered`: the answer to a trigger.
+pub fn triggered_frame(reference: Option<&str>, t: &crate::dispatch::Triggered) -> String {
+    encode(&ServerFrame::Triggered {
+        reference,
+        trigger: t.trigger,
+        label: &t.label,
+        context: &t.context,
+        variant: t.variant.as_deref(),
+        text: t.text.as_deref(),
+        commands: &t.commands,
+    })
+}
+
+/// `command`: a command for an adapter or a display client.
+pub fn command_frame(c: &Command) -> String {
+    encode(&ServerFrame::Command {
+        id: c.id,
+        trigger: c.act.trigger,
+        reference: c.act.reference.as_deref(),
+        label: &c.act.label,
+        verb: c.verb.as_str(),
+        arg: c.arg.as_deref(),
+    })
+}
+
+/// `cancel`: drop queued commands and stop the current one (of `verbs`, or all).
+pub fn cancel_frame(verbs: Option<&[String]>, reason: &str) -> String {
+    encode(&ServerFrame::Cancel { verbs, reason })
+}
+
+/// `stopped`: the answer to `stop`.
+pub fn stopped_frame(reference: Option<&str>) -> String {
+    encode(&ServerFrame::Stopped { reference })
+}
+
+/// `context`: the answer to a context change.
+pub fn context_frame(reference: Option<&str>, context: &str) -> String {
+    encode(&ServerFrame::Context { reference, context })
+}
+
+/// `error`: what went wrong with a client's frame; the connection stays open.
+pub fn error_frame(
+    code: &str,
+    message: &str,
+    reference: Option<&str>,
+    suggestion: Option<&str>,
+) -> String {
+    encode(&ServerFrame::Error {
+        code,
+        message,
+        reference,
+        suggestion,
+    })
+}
+
+/// `event`: one event, for operator and dialog-manager clients.
+pub fn event_frame(event: &Event) -> String {
+    format!("{{\"type\":\"event\",\"event\":{}}}", event.json())
+}

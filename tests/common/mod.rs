@@ -1,0 +1,251 @@
+//! Test helpers: a real Docent server on `127.0.0.1:0`, HTTP and websocket clients, temporary
+//! bundles, and reading the corpus log. Waiting is always for an event, with a generous
+//! deadline only so that a broken build fails instead of hanging.
+
+#![allow(dead_code)] // Each test binary uses a different part of the helpers.
+
+use std::path::{Path, PathBuf};
+use std::time::Duration;
+
+use docent::content::load_bundle;
+use docent::serve::{ServeOptions, Server, run};
+use futures_util::{SinkExt, StreamExt};
+use serde_json::{Value, json};
+use tokio::net::TcpStream;
+use tokio::sync::oneshot;
+use tokio::task::JoinHandle;
+use tokio_tungstenite::tungstenite::Message;
+use tokio_tungstenite::{MaybeTlsStream, WebSocketStream, connect_async};
+
+/// How long any single wait may take before the test fails.
+pub const DEADLINE: Duration = Duration::from_secs(20);
+
+/// The repository root.
+pub fn repo() -> PathBuf {
+    PathBuf::from(env!("CARGO_MANIFEST_DIR"))
+}
+
+/// A bundle shipped in `dialogs/` or `tests/fixtures/`.
+pub fn bundle(path: &str) -> PathBuf {
+    repo().join(path)
+}
+
+/// A bundle written into a temporary folder.
+pub struct TempBundle {
+    pub dir: tempfile::TempDir,
+}
+
+impl TempBundle {
+    /// A bundle with this acts file and no other files.
+    pub fn new(acts: &str) -> Self {
+        let dir = tempfile::tempdir().expect("temp dir");
+        std::fs::write(dir.path().join("acts.yaml"), acts).expect("write acts");
+        std::fs::create_dir_all(dir.path().join("pages")).expect("pages");
+        std::fs::create_dir_all(dir.path().join("media")).expect("media");
+        std::fs::write(dir.path().join("pages/index.html"), "<!doctype html><title>home</title>").expect("home");
+        TempBundle { dir }
+    }
+
+    /// Adds or replaces a file.
+    pub fn with_file(self, rel: &str, contents: &str) -> Self {
+        let path = self.dir.path().join(rel);
+        std::fs::create_dir_all(path.parent().expect("parent")).expect("mkdir");
+        std::fs::write(path, contents).expect("write");
+        self
+    }
+
+    /// The folder.
+    pub fn path(&self) -> &Path {
+        self.dir.path()
+    }
+}
+
+/// A running server.
+pub struct TestServer {
+    pub addr: std::net::SocketAddr,
+    pub corpus_file: PathBuf,
+    pub corpus_dir: tempfile::TempDir,
+    shutdown: Option<oneshot::Sender<()>>,
+    task: Option<JoinHandle<std::io::Result<()>>>,
+    http: reqwest::Client,
+}
+
+impl TestServer {
+    /// Serves `bundle` with seed 1.
+    pub async fn start(bundle: &Path) -> Self {
+        Self::start_with(bundle, |_| {}).await
+    }
+
+    /// Serves `bundle`, letting the test adjust the options.
+    pub async fn start_with(bundle: &Path, adjust: impl FnOnce(&mut ServeOptions)) -> Self {
+        let report = load_bundle(bundle);
+        let loaded = report.bundle.unwrap_or_else(|| panic!("bundle has errors: {:#?}", report.diagnostics));
+        let corpus_dir = tempfile::tempdir().expect("corpus dir");
+        let mut options = ServeOptions { seed: Some(1), corpus_dir: corpus_dir.path().to_owned(), speech_wav: None };
+        adjust(&mut options);
+        let server = Server::start(loaded, &options).expect("server starts");
+        let corpus_file = server.corpus_path();
+        let listener = tokio::net::TcpListener::bind("127.0.0.1:0").await.expect("bind");
+        let addr = listener.local_addr().expect("addr");
+        let (tx, rx) = oneshot::channel::<()>();
+        let task = tokio::spawn(run(listener, server, async move {
+            let _ = rx.await;
+        }));
+        TestServer { addr, corpus_file, corpus_dir, shutdown: Some(tx), task: Some(task), http: reqwest::Client::new() }
+    }
+
+    /// `http://addr/path`
+    pub fn url(&self, path: &str) -> String {
+        format!("http://{}{}", self.addr, path)
+    }
+
+    /// GET, returning status and JSON body.
+    pub async fn get(&self, path: &str) -> (u16, Value) {
+        let r = self.http.get(self.url(path)).send().await.expect("GET");
+        let status = r.status().as_u16();
+        (status, r.json().await.unwrap_or(Value::Null))
+    }
+
+    /// POST JSON (or nothing), returning status and JSON body.
+    pub async fn post(&self, path: &str, body: Option<Value>) -> (u16, Value) {
+        let mut req = self.http.post(self.url(path));
+        if let Some(body) = body {
+            req = req.json(&body);
+        }
+        let r = req.send().await.expect("POST");
+        let status = r.status().as_u16();
+        (status, r.json().await.unwrap_or(Value::Null))
+    }
+
+    /// PUT JSON.
+    pub async fn put(&self, path: &str, body: Value) -> (u16, Value) {
+        let r = self.http.put(self.url(path)).json(&body).send().await.expect("PUT");
+        let status = r.status().as_u16();
+        (status, r.json().await.unwrap_or(Value::Null))
+    }
+
+    /// Triggers `label` over HTTP, expecting 202.
+    pub async fn trigger(&self, label: &str, body: Value) -> Value {
+        let (status, body) = self.post(&format!("/api/acts/{label}/trigger"), Some(body)).await;
+        assert_eq!(status, 202, "trigger {label}: {body}");
+        body
+    }
+
+    /// A websocket client that has said hello with `hello` and read its welcome.
+    pub async fn client(&self, hello: Value) -> WsClient {
+        let mut c = WsClient::connect(&format!("ws://{}/ws", self.addr)).await;
+        c.send(hello).await;
+        let welcome = c.recv_type("welcome").await;
+        c.welcome = welcome;
+        c
+    }
+
+    /// An operator client (receives every event).
+    pub async fn operator(&self) -> WsClient {
+        self.client(json!({"type": "hello", "role": "operator", "name": "test"})).await
+    }
+
+    /// Shuts down gracefully and returns every corpus line.
+    pub async fn stop(mut self) -> Vec<Value> {
+        if let Some(tx) = self.shutdown.take() {
+            let _ = tx.send(());
+        }
+        if let Some(task) = self.task.take() {
+            tokio::time::timeout(DEADLINE, task).await.expect("shutdown in time").expect("join").expect("run");
+        }
+        read_corpus(&self.corpus_file)
+    }
+}
+
+/// Every line of a corpus file, parsed.
+pub fn read_corpus(path: &Path) -> Vec<Value> {
+    std::fs::read_to_string(path)
+        .expect("corpus file")
+        .lines()
+        .map(|l| serde_json::from_str(l).expect("corpus line is JSON"))
+        .collect()
+}
+
+/// A raw websocket client speaking JSON frames.
+pub struct WsClient {
+    stream: WebSocketStream<MaybeTlsStream<TcpStream>>,
+    pub welcome: Value,
+}
+
+impl WsClient {
+    /// Connects without saying anything.
+    pub async fn connect(url: &str) -> Self {
+        let (stream, _) = connect_async(url).await.expect("websocket connects");
+        WsClient { stream, welcome: Value::Null }
+    }
+
+    /// Sends a JSON frame.
+    pub async fn send(&mut self, frame: Value) {
+        self.send_text(&frame.to_string()).await;
+    }
+
+    /// Sends a raw text frame.
+    pub async fn send_text(&mut self, text: &str) {
+        self.stream.send(Message::text(text)).await.expect("send");
+    }
+
+    /// Sends a raw message.
+    pub async fn send_message(&mut self, message: Message) {
+        self.stream.send(message).await.expect("send");
+    }
+
+    /// The next JSON frame.
+    pub async fn recv(&mut self) -> Value {
+        loop {
+            let msg = tokio::time::timeout(DEADLINE, self.stream.next())
+                .await
+                .expect("a frame within the deadline")
+                .expect("connection open")
+                .expect("frame");
+            match msg {
+                Message::Text(t) => return serde_json::from_str(&t).expect("JSON frame"),
+                Message::Close(c) => panic!("connection closed: {c:?}"),
+                _ => continue,
+            }
+        }
+    }
+
+    /// The next frame of `type`, skipping others.
+    pub async fn recv_type(&mut self, kind: &str) -> Value {
+        self.recv_where(|f| f["type"] == kind).await
+    }
+
+    /// The next frame matching `pred`, skipping others.
+    pub async fn recv_where(&mut self, pred: impl Fn(&Value) -> bool) -> Value {
+        loop {
+            let frame = self.recv().await;
+            if pred(&frame) {
+                return frame;
+            }
+        }
+    }
+
+    /// The next event (operator clients) matching `pred`.
+    pub async fn event_where(&mut self, pred: impl Fn(&Value) -> bool) -> Value {
+        self.recv_where(|f| f["type"] == "event" && pred(&f["event"])).await["event"].clone()
+    }
+
+    /// The next event of type `kind`.
+    pub async fn event(&mut self, kind: &str) -> Value {
+        self.event_where(|e| e["type"] == kind).await
+    }
+
+    /// Events up to and including the first matching `pred`.
+    pub async fn events_until(&mut self, pred: impl Fn(&Value) -> bool) -> Vec<Value> {
+        let mut seen = Vec::new();
+        loop {
+            let frame = self.recv_type("event").await;
+            let event = frame["event"].clone();
+            let last = pred(&event);
+            seen.push(event);
+            if last {
+                return seen;
+            }
+        }
+    }
+}
