@@ -97,7 +97,7 @@ shapes() {
 
 save_png() { # save_png FILE [PIXEL_FORMAT]
     mkdir -p "$(dirname "$1")"
-    ffmpeg -nostdin -v error -y -filter_complex "$FG[out]" -map "[out]" -frames:v 1 -update 1 \
+    ffmpeg -nostdin -v error -y -filter_complex "${FG}[out]" -map "[out]" -frames:v 1 -update 1 \
         -pix_fmt "${2:-rgb24}" -fflags +bitexact -flags +bitexact "$1"
     echo "wrote $1 ($(stat -c %s "$1") bytes)"
 }
@@ -106,7 +106,7 @@ save_png() { # save_png FILE [PIXEL_FORMAT]
 # video source lasting SECONDS) with the given lavfi audio source as VP8 + Opus.
 save_webm() {
     mkdir -p "$(dirname "$1")"
-    ffmpeg -nostdin -v error -y -filter_complex "$FG[out]" -f lavfi -i "$3" \
+    ffmpeg -nostdin -v error -y -filter_complex "${FG}[out]" -f lavfi -i "$3" \
         -map "[out]" -map 0:a -t "$2" -pix_fmt yuv420p \
         -c:v libvpx -b:v 300k -crf 12 -g 50 -threads 1 -c:a libopus -b:a 48k \
         -fflags +bitexact -flags:v +bitexact -flags:a +bitexact "$1"
