@@ -1,5 +1,6 @@
 //! The `docent` command: parses the command line, sets up logging and calls into the library.
 
+use std::io::Write;
 use std::net::SocketAddr;
 use std::path::{Path, PathBuf};
 use std::process::ExitCode;
@@ -144,11 +145,13 @@ fn serve(bundle_dir: &Path, listen: SocketAddr, options: ServeOptions) -> anyhow
         for warning in &server.warnings {
             tracing::warn!("{warning}");
         }
-        println!("Docent is serving {}", bundle_dir.display());
-        println!("  home page:  http://{addr}/pages/{home}");
-        println!("  trigger API: http://{addr}/api/acts  (docs/PROTOCOL.md)");
-        println!("  websocket:  ws://{addr}/ws");
-        println!("  corpus log: {}", server.corpus_path().display());
+        // A closed stdout (a supervisor that stopped reading) must not stop the server.
+        let _ = writeln!(
+            std::io::stdout(),
+            "Docent is serving {}\n  home page:   http://{addr}/pages/{home}\n  trigger API: http://{addr}/api/acts  (docs/PROTOCOL.md)\n  websocket:   ws://{addr}/ws\n  corpus log:  {}",
+            bundle_dir.display(),
+            server.corpus_path().display()
+        );
         run(listener, server, shutdown_signal())
             .await
             .context("serving")?;

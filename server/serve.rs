@@ -12,7 +12,7 @@ use std::time::Duration;
 use axum::serve::ListenerExt;
 use tokio::net::TcpListener;
 
-use crate::adapters::{Devices, SpeechOutput, espeak_available};
+use crate::adapters::{Devices, SpeechOutput, espeak_available, espeak_voices};
 use crate::content::Bundle;
 use crate::content::config::AdapterKind;
 use crate::corpus::CorpusWriter;
@@ -56,6 +56,13 @@ impl Server {
             espeak_available(),
             &mut warnings,
         );
+        let voice = &bundle.config.speech.voice;
+        if speech == AdapterKind::Espeak && !espeak_voices().contains(voice) {
+            warnings.push(format!(
+                "espeak-ng has no voice {voice:?} (see `espeak-ng --voices`); \
+                 it will speak with its default voice"
+            ));
+        }
         let output = match &options.speech_wav {
             Some(dir) => {
                 std::fs::create_dir_all(dir)?;

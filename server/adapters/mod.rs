@@ -23,7 +23,7 @@ pub use command::{Command, Outcome, Reply};
 pub use display::{Display, DisplayAdapter, DisplayState};
 pub use drive_sim::{DriveSim, Pose};
 pub use router::{Devices, Router};
-pub use speech_espeak::{EspeakSpeech, SpeechOutput, espeak_available};
+pub use speech_espeak::{EspeakSpeech, SpeechOutput, espeak_available, espeak_voices};
 pub use speech_log::LogAdapter;
 pub use ws::WsAdapters;
 

@@ -41,6 +41,29 @@ pub fn espeak_available() -> bool {
         .is_ok_and(|s| s.success())
 }
 
+/// The voice names espeak-ng knows (languages such as `en-us` and voice files such as
+/// `gmw/en`). espeak-ng silently falls back to its default voice for an unknown name, so the
+/// server checks the configured voice against this list at start-up.
+pub fn espeak_voices() -> Vec<String> {
+    let Ok(out) = std::process::Command::new("espeak-ng").arg("--voices").output() else {
+        return Vec::new();
+    };
+    let listing = String::from_utf8_lossy(&out.stdout);
+    // Columns: priority, language, age/gender, voice name, file, then "(language priority)"
+    // pairs for other languages; espeak-ng accepts any of these names and the file's base name.
+    let mut names: Vec<String> = Vec::new();
+    for line in listing.lines().skip(1) {
+        let columns: Vec<&str> = line.split_whitespace().collect();
+        let [_, language, _, voice, file, others @ ..] = &columns[..] else { continue };
+        let base = file.rsplit('/').next().unwrap_or(file);
+        names.extend([language, voice, file, &base].map(|s| (*s).to_owned()));
+        names.extend(others.iter().filter_map(|o| o.strip_prefix('(')).map(str::to_owned));
+    }
+    names.sort();
+    names.dedup();
+    names
+}
+
 /// Speech through espeak-ng.
 pub struct EspeakSpeech {
     worker: Worker,

@@ -34,7 +34,11 @@ const WRITER_ENDED: &str = "writer ended";
 pub async fn ws_upgrade(ws: WebSocketUpgrade, State(state): State<AppState>) -> Response {
     ws.max_message_size(MAX_MESSAGE_BYTES)
         .max_frame_size(MAX_MESSAGE_BYTES)
-        .on_upgrade(move |socket| serve(socket, state))
+        .on_upgrade(move |socket| {
+            // axum spawns this itself; tracking it lets shutdown wait for the client.left event.
+            let tracker = state.life.tracker.clone();
+            tracker.track_future(serve(socket, state))
+        })
 }
 
 struct Session {

@@ -162,7 +162,7 @@ pub fn read_corpus(path: &Path) -> Vec<Value> {
     std::fs::read_to_string(path)
         .expect("corpus file")
         .lines()
-        .map(|l| serde_json::from_str(l).expect("corpus line is JSON"))
+        .map(|l| serde_json::from_str(l).unwrap_or_else(|e| panic!("corpus line is not JSON ({e}): {l}")))
         .collect()
 }
 
