@@ -9,14 +9,27 @@ use common::{TempBundle, repo};
 use serde_json::Value;
 
 fn docent(args: &[&str]) -> (i32, String, String) {
-    let out = Command::new(env!("CARGO_BIN_EXE_docent")).args(args).current_dir(repo()).output().unwrap();
+    let out = Command::new(env!("CARGO_BIN_EXE_docent"))
+        .args(args)
+        .current_dir(repo())
+        .output()
+        .unwrap();
     let text = |b: Vec<u8>| String::from_utf8(b).unwrap();
-    (out.status.code().unwrap_or(-1), text(out.stdout), text(out.stderr))
+    (
+        out.status.code().unwrap_or(-1),
+        text(out.stdout),
+        text(out.stderr),
+    )
 }
 
 #[test]
 fn every_shipped_bundle_passes_the_check() {
-    for bundle in ["paper-fig4", "info-terminal", "museum-tour", "poster-presenter"] {
+    for bundle in [
+        "paper-fig4",
+        "info-terminal",
+        "museum-tour",
+        "poster-presenter",
+    ] {
         let path = format!("dialogs/{bundle}");
         let (code, out, _) = docent(&["check", &path, "--format", "json"]);
         let problems: Vec<Value> = serde_json::from_str(&out).unwrap();
@@ -24,7 +37,8 @@ fn every_shipped_bundle_passes_the_check() {
     }
 }
 
-const BROKEN: &str = "- Label: A\n  Text: [Hello]\n  Cmds:\n    - SAYY Hi\n    - DISPLAY_PAGE nowhere.html\n";
+const BROKEN: &str =
+    "- Label: A\n  Text: [Hello]\n  Cmds:\n    - SAYY Hi\n    - DISPLAY_PAGE nowhere.html\n";
 
 #[test]
 fn check_lists_problems_with_places_and_exits_1() {
@@ -38,24 +52,52 @@ fn check_lists_problems_with_places_and_exits_1() {
         for key in ["severity", "code", "message", "file", "line", "column"] {
             assert!(keys.contains(&key), "{key} missing in {p}");
         }
-        assert_eq!((p["severity"].as_str(), p["file"].as_str()), (Some("error"), Some("acts.yaml")));
+        assert_eq!(
+            (p["severity"].as_str(), p["file"].as_str()),
+            (Some("error"), Some("acts.yaml"))
+        );
     }
-    assert_eq!((problems[0]["code"].as_str(), problems[0]["line"].as_u64(), problems[0]["column"].as_u64()), (Some("unknown-verb"), Some(4), Some(7)));
-    assert!(problems[0]["message"].as_str().unwrap().contains("SAY"), "did you mean SAY: {}", problems[0]);
-    assert_eq!((problems[1]["code"].as_str(), problems[1]["line"].as_u64()), (Some("missing-file"), Some(5)));
+    assert_eq!(
+        (
+            problems[0]["code"].as_str(),
+            problems[0]["line"].as_u64(),
+            problems[0]["column"].as_u64()
+        ),
+        (Some("unknown-verb"), Some(4), Some(7))
+    );
+    assert!(
+        problems[0]["message"].as_str().unwrap().contains("SAY"),
+        "did you mean SAY: {}",
+        problems[0]
+    );
+    assert_eq!(
+        (problems[1]["code"].as_str(), problems[1]["line"].as_u64()),
+        (Some("missing-file"), Some(5))
+    );
 
     let (code, text, _) = docent(&["check", b.path().to_str().unwrap()]);
     assert_eq!(code, 1);
-    assert!(text.contains("acts.yaml:4:7: error[unknown-verb]"), "{text}");
+    assert!(
+        text.contains("acts.yaml:4:7: error[unknown-verb]"),
+        "{text}"
+    );
     assert!(text.contains("2 error(s)"), "{text}");
 }
 
 #[test]
 fn serve_refuses_a_bundle_with_errors_and_lists_them() {
     let b = TempBundle::new(BROKEN);
-    let (code, out, err) = docent(&["serve", b.path().to_str().unwrap(), "--listen", "127.0.0.1:0"]);
+    let (code, out, err) = docent(&[
+        "serve",
+        b.path().to_str().unwrap(),
+        "--listen",
+        "127.0.0.1:0",
+    ]);
     assert_eq!(code, 1);
-    assert!(out.contains("error[unknown-verb]") && out.contains("error[missing-file]"), "{out}");
+    assert!(
+        out.contains("error[unknown-verb]") && out.contains("error[missing-file]"),
+        "{out}"
+    );
     assert!(err.contains("2 error(s)"), "{err}");
 }
 
@@ -63,5 +105,8 @@ fn serve_refuses_a_bundle_with_errors_and_lists_them() {
 fn a_missing_bundle_folder_is_a_clear_error() {
     let (code, out, _) = docent(&["check", "/no/such/bundle"]);
     assert_eq!(code, 1);
-    assert!(out.contains("/no/such/bundle") || out.contains("bundle"), "{out}");
+    assert!(
+        out.contains("/no/such/bundle") || out.contains("bundle"),
+        "{out}"
+    );
 }

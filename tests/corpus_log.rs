@@ -22,7 +22,10 @@ const CONFIG: &str = "speech: {adapter: log, rate: 600}\ndrive: {speed: 10, pose
 
 fn fields(e: &Value, names: &[&str]) {
     for name in names {
-        assert!(e.get(*name).is_some_and(|v| !v.is_null()), "{name} missing in {e}");
+        assert!(
+            e.get(*name).is_some_and(|v| !v.is_null()),
+            "{name} missing in {e}"
+        );
     }
 }
 
@@ -31,8 +34,15 @@ async fn the_log_holds_every_event_with_its_fields_in_sequence() {
     let b = TempBundle::new(ACTS).with_file("docent.yaml", CONFIG);
     let server = TestServer::start(b.path()).await;
     let mut op = server.operator().await;
-    let t = server.trigger("GREET", json!({"context": "TextGroup", "ref": "visitor-1"})).await;
-    let mut pending: Vec<Value> = t["commands"].as_array().unwrap().iter().map(|c| c["id"].clone()).collect();
+    let t = server
+        .trigger("GREET", json!({"context": "TextGroup", "ref": "visitor-1"}))
+        .await;
+    let mut pending: Vec<Value> = t["commands"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .map(|c| c["id"].clone())
+        .collect();
     while !pending.is_empty() {
         let done = op.event("command.done").await;
         pending.retain(|id| *id != done["command"]);
@@ -41,7 +51,11 @@ async fn the_log_holds_every_event_with_its_fields_in_sequence() {
     let log = server.stop().await;
 
     let seqs: Vec<u64> = log.iter().map(|e| e["seq"].as_u64().unwrap()).collect();
-    assert_eq!(seqs, (1..=log.len() as u64).collect::<Vec<_>>(), "no gaps, in order");
+    assert_eq!(
+        seqs,
+        (1..=log.len() as u64).collect::<Vec<_>>(),
+        "no gaps, in order"
+    );
     let monos: Vec<u64> = log.iter().map(|e| e["mono_us"].as_u64().unwrap()).collect();
     assert!(monos.windows(2).all(|w| w[0] <= w[1]));
     for e in &log {
@@ -52,12 +66,39 @@ async fn the_log_holds_every_event_with_its_fields_in_sequence() {
     assert_eq!(log[0]["type"], "server.started");
     assert!(log.iter().any(|e| e["type"] == "server.stopping"));
     let act = log.iter().find(|e| e["type"] == "act.triggered").unwrap();
-    fields(act, &["trigger", "source", "label", "context", "variant", "alternative", "text", "at"]);
-    assert_eq!(
-        (act["label"].as_str(), act["source"].as_str(), act["ref"].as_str(), act["variant"].as_str(), act["text"].as_str()),
-        (Some("GREET"), Some("http"), Some("visitor-1"), Some("TextGroup"), Some("Hello everyone"))
+    fields(
+        act,
+        &[
+            "trigger",
+            "source",
+            "label",
+            "context",
+            "variant",
+            "alternative",
+            "text",
+            "at",
+        ],
     );
-    assert_eq!((act["alternative"].as_u64(), act["at"].as_str()), (Some(0), Some("acts.yaml:2")));
+    assert_eq!(
+        (
+            act["label"].as_str(),
+            act["source"].as_str(),
+            act["ref"].as_str(),
+            act["variant"].as_str(),
+            act["text"].as_str()
+        ),
+        (
+            Some("GREET"),
+            Some("http"),
+            Some("visitor-1"),
+            Some("TextGroup"),
+            Some("Hello everyone")
+        )
+    );
+    assert_eq!(
+        (act["alternative"].as_u64(), act["at"].as_str()),
+        (Some(0), Some("acts.yaml:2"))
+    );
     for kind in ["command.sent", "command.started", "command.done"] {
         let commands: Vec<&Value> = log.iter().filter(|e| e["type"] == kind).collect();
         assert_eq!(commands.len(), 4, "{kind}");
@@ -66,9 +107,21 @@ async fn the_log_holds_every_event_with_its_fields_in_sequence() {
             assert_eq!(c["trigger"], act["trigger"]);
         }
     }
-    let sent_say = log.iter().find(|e| e["type"] == "command.sent" && e["verb"] == "SAY").unwrap();
-    assert_eq!((sent_say["arg"].as_str(), sent_say["adapter"].as_str()), (Some("Hello everyone"), Some("log")));
-    for kind in ["display.changed", "pose", "drive.arrived", "client.connected", "client.left"] {
+    let sent_say = log
+        .iter()
+        .find(|e| e["type"] == "command.sent" && e["verb"] == "SAY")
+        .unwrap();
+    assert_eq!(
+        (sent_say["arg"].as_str(), sent_say["adapter"].as_str()),
+        (Some("Hello everyone"), Some("log"))
+    );
+    for kind in [
+        "display.changed",
+        "pose",
+        "drive.arrived",
+        "client.connected",
+        "client.left",
+    ] {
         assert!(log.iter().any(|e| e["type"] == kind), "no {kind} event");
     }
 }
@@ -76,7 +129,14 @@ async fn the_log_holds_every_event_with_its_fields_in_sequence() {
 /// Runs the real `docent` binary on a bundle; returns the child and its address.
 fn spawn_docent(bundle: &std::path::Path, corpus: &std::path::Path) -> (Child, String) {
     let mut child = Command::new(env!("CARGO_BIN_EXE_docent"))
-        .args(["serve", bundle.to_str().unwrap(), "--listen", "127.0.0.1:0", "--corpus", corpus.to_str().unwrap()])
+        .args([
+            "serve",
+            bundle.to_str().unwrap(),
+            "--listen",
+            "127.0.0.1:0",
+            "--corpus",
+            corpus.to_str().unwrap(),
+        ])
         .stdout(Stdio::piped())
         .stderr(Stdio::null())
         .spawn()
@@ -84,7 +144,14 @@ fn spawn_docent(bundle: &std::path::Path, corpus: &std::path::Path) -> (Child, S
     let mut lines = BufReader::new(child.stdout.take().unwrap()).lines();
     let addr = (&mut lines)
         .map_while(Result::ok)
-        .find_map(|l| l.trim().strip_prefix("websocket:").map(|u| u.trim().trim_start_matches("ws://").trim_end_matches("/ws").to_owned()))
+        .find_map(|l| {
+            l.trim().strip_prefix("websocket:").map(|u| {
+                u.trim()
+                    .trim_start_matches("ws://")
+                    .trim_end_matches("/ws")
+                    .to_owned()
+            })
+        })
         .expect("docent prints its websocket address");
     // Keep reading what it prints so its stdout never breaks.
     std::thread::spawn(move || lines.for_each(drop));
@@ -92,7 +159,10 @@ fn spawn_docent(bundle: &std::path::Path, corpus: &std::path::Path) -> (Child, S
 }
 
 fn corpus_file(dir: &std::path::Path) -> std::path::PathBuf {
-    let files: Vec<_> = std::fs::read_dir(dir).unwrap().map(|e| e.unwrap().path()).collect();
+    let files: Vec<_> = std::fs::read_dir(dir)
+        .unwrap()
+        .map(|e| e.unwrap().path())
+        .collect();
     assert_eq!(files.len(), 1, "{files:?}");
     files[0].clone()
 }
@@ -105,17 +175,28 @@ async fn the_log_survives_a_crash() {
     let mut op = WsClient::connect(&format!("ws://{addr}/ws")).await;
     op.send(json!({"type": "hello", "role": "operator"})).await;
     op.recv_type("welcome").await;
-    op.send(json!({"type": "trigger", "label": "GREET", "ref": "before-crash"})).await;
+    op.send(json!({"type": "trigger", "label": "GREET", "ref": "before-crash"}))
+        .await;
     let t = op.recv_type("triggered").await;
     let say = t["commands"][0]["id"].clone();
-    op.event_where(|e| e["type"] == "command.done" && e["command"] == say).await;
+    op.event_where(|e| e["type"] == "command.done" && e["command"] == say)
+        .await;
     child.kill().expect("SIGKILL");
     child.wait().unwrap();
     let log = read_corpus(&corpus_file(corpus.path()));
-    let act = log.iter().find(|e| e["type"] == "act.triggered").expect("the trigger was logged");
+    let act = log
+        .iter()
+        .find(|e| e["type"] == "act.triggered")
+        .expect("the trigger was logged");
     assert_eq!(act["ref"], "before-crash");
-    assert!(log.iter().any(|e| e["type"] == "command.done" && e["command"] == say));
-    assert!(!log.iter().any(|e| e["type"] == "server.stopping"), "it crashed; it did not stop");
+    assert!(
+        log.iter()
+            .any(|e| e["type"] == "command.done" && e["command"] == say)
+    );
+    assert!(
+        !log.iter().any(|e| e["type"] == "server.stopping"),
+        "it crashed; it did not stop"
+    );
 }
 
 #[tokio::test]
@@ -126,7 +207,10 @@ async fn sigterm_shuts_down_gracefully_and_flushes_the_log() {
     let mut kiosk = WsClient::connect(&format!("ws://{addr}/ws")).await;
     kiosk.send(json!({"type": "hello", "role": "kiosk"})).await;
     kiosk.recv_type("welcome").await;
-    let status = Command::new("kill").args(["-TERM", &child.id().to_string()]).status().unwrap();
+    let status = Command::new("kill")
+        .args(["-TERM", &child.id().to_string()])
+        .status()
+        .unwrap();
     assert!(status.success());
     let exit = child.wait().unwrap();
     assert!(exit.success(), "docent exits 0 on SIGTERM: {exit}");
@@ -134,5 +218,9 @@ async fn sigterm_shuts_down_gracefully_and_flushes_the_log() {
     let kinds: Vec<&str> = log.iter().map(|e| e["type"].as_str().unwrap()).collect();
     assert_eq!(kinds.first(), Some(&"server.started"));
     assert!(kinds.contains(&"server.stopping"));
-    assert!(log.iter().any(|e| e["type"] == "client.left" && e["reason"] == "server shutting down"), "{kinds:?}");
+    assert!(
+        log.iter()
+            .any(|e| e["type"] == "client.left" && e["reason"] == "server shutting down"),
+        "{kinds:?}"
+    );
 }

@@ -40,11 +40,19 @@ fn is(kind: &'static str, command: u64) -> impl Fn(&Value) -> bool {
 }
 
 fn position(events: &[Value], pred: impl Fn(&Value) -> bool) -> usize {
-    events.iter().position(pred).unwrap_or_else(|| panic!("event not found in {events:#?}"))
+    events
+        .iter()
+        .position(pred)
+        .unwrap_or_else(|| panic!("event not found in {events:#?}"))
 }
 
 fn ids(triggered: &Value) -> Vec<u64> {
-    triggered["commands"].as_array().unwrap().iter().map(|c| c["id"].as_u64().unwrap()).collect()
+    triggered["commands"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .map(|c| c["id"].as_u64().unwrap())
+        .collect()
 }
 
 #[tokio::test]
@@ -53,10 +61,15 @@ async fn speech_and_drive_run_side_by_side_and_wait_sequences_them() {
     let server = TestServer::start(b.path()).await;
     let mut op = server.operator().await;
     let t = server.trigger("TOUR", json!({})).await;
-    let [say, _waypoint, drive, wait, here] = ids(&t)[..] else { panic!("{t}") };
+    let [say, _waypoint, drive, wait, here] = ids(&t)[..] else {
+        panic!("{t}")
+    };
     let events = op.events_until(is("command.done", here)).await;
     // The drive started while the first SAY was still being spoken.
-    assert!(position(&events, is("command.started", drive)) < position(&events, is("command.done", say)));
+    assert!(
+        position(&events, is("command.started", drive))
+            < position(&events, is("command.done", say))
+    );
     // The WAIT ended only after both were done, and only then was the last SAY sent.
     let wait_done = position(&events, is("command.done", wait));
     assert!(position(&events, is("command.done", say)) < wait_done);
@@ -65,7 +78,13 @@ async fn speech_and_drive_run_side_by_side_and_wait_sequences_them() {
     assert!(wait_done < position(&events, is("command.sent", here)));
     let poses: Vec<&Value> = events.iter().filter(|e| e["type"] == "pose").collect();
     assert!(poses.len() >= 2, "the base reports its pose while driving");
-    assert_eq!((poses.last().unwrap()["x"].as_f64(), poses.last().unwrap()["y"].as_f64()), (Some(1.0), Some(0.0)));
+    assert_eq!(
+        (
+            poses.last().unwrap()["x"].as_f64(),
+            poses.last().unwrap()["y"].as_f64()
+        ),
+        (Some(1.0), Some(0.0))
+    );
     server.stop().await;
 }
 
@@ -75,7 +94,9 @@ async fn a_timed_wait_pauses_and_a_plain_wait_covers_every_earlier_command() {
     let server = TestServer::start(b.path()).await;
     let mut op = server.operator().await;
     let t = server.trigger("PAUSE", json!({})).await;
-    let [one, pause, two, wait, three] = ids(&t)[..] else { panic!("{t}") };
+    let [one, pause, two, wait, three] = ids(&t)[..] else {
+        panic!("{t}")
+    };
     let events = op.events_until(is("command.done", three)).await;
     let at = |p| position(&events, p);
     assert!(at(is("command.done", pause)) < at(is("command.sent", two)));
@@ -84,7 +105,9 @@ async fn a_timed_wait_pauses_and_a_plain_wait_covers_every_earlier_command() {
     assert!(at(is("command.done", wait)) < at(is("command.sent", three)));
     let done_pause = &events[at(is("command.done", pause))];
     let sent_pause = &events[at(is("command.sent", pause))];
-    assert!(done_pause["mono_us"].as_u64().unwrap() - sent_pause["mono_us"].as_u64().unwrap() >= 50_000);
+    assert!(
+        done_pause["mono_us"].as_u64().unwrap() - sent_pause["mono_us"].as_u64().unwrap() >= 50_000
+    );
     server.stop().await;
 }
 
@@ -95,13 +118,17 @@ async fn stop_preempts_a_long_say_and_a_running_drive_and_the_next_act_works() {
     let mut op = server.operator().await;
     let long = ids(&server.trigger("LONG", json!({})).await)[0];
     let far = ids(&server.trigger("FAR", json!({})).await)[1];
-    op.event_where(|e| e["type"] == "pose" && e["moving"] == true).await;
+    op.event_where(|e| e["type"] == "pose" && e["moving"] == true)
+        .await;
     op.send(json!({"type": "stop", "ref": "s1"})).await;
     let mut seen = op.events_until(is("command.cancelled", long)).await;
     if !seen.iter().any(is("command.cancelled", far)) {
         seen.extend(op.events_until(is("command.cancelled", far)).await);
     }
-    assert!(seen.iter().any(|e| e["type"] == "stop" && e["source"] == "operator"));
+    assert!(
+        seen.iter()
+            .any(|e| e["type"] == "stop" && e["source"] == "operator")
+    );
     assert!(!seen.iter().any(is("command.done", long)));
     let (_, state) = server.get("/api/state").await;
     assert_eq!(state["pose"]["moving"], false, "{state}");
@@ -125,8 +152,15 @@ async fn an_act_with_drive_stop_preempts_everything_but_keeps_its_own_speech() {
     let events = op.events_until(is("command.done", halt[0])).await;
     assert!(events.iter().any(is("command.cancelled", long)));
     assert!(events.iter().any(is("command.cancelled", far)));
-    assert!(events.iter().any(|e| e["type"] == "stop" && e["reason"] == "DRIVE_STOP in act HALT"));
-    assert!(events.iter().any(is("command.done", halt[1])), "DRIVE_STOP itself is done");
+    assert!(
+        events
+            .iter()
+            .any(|e| e["type"] == "stop" && e["reason"] == "DRIVE_STOP in act HALT")
+    );
+    assert!(
+        events.iter().any(is("command.done", halt[1])),
+        "DRIVE_STOP itself is done"
+    );
     server.stop().await;
 }
 
@@ -141,7 +175,10 @@ async fn an_interrupting_trigger_cuts_current_speech_short() {
     let events = op.events_until(is("command.done", hello)).await;
     let cancelled = &events[position(&events, is("command.cancelled", long))];
     assert_eq!(cancelled["reason"], "interrupted by act HELLO");
-    assert!(position(&events, is("command.cancelled", long)) < position(&events, is("command.started", hello)));
+    assert!(
+        position(&events, is("command.cancelled", long))
+            < position(&events, is("command.started", hello))
+    );
     server.stop().await;
 }
 
@@ -153,6 +190,9 @@ async fn speech_says_one_utterance_at_a_time_in_trigger_order() {
     let first = ids(&server.trigger("HELLO", json!({})).await)[0];
     let second = ids(&server.trigger("TOUR", json!({})).await)[0];
     let events = op.events_until(is("command.done", second)).await;
-    assert!(position(&events, is("command.done", first)) < position(&events, is("command.started", second)));
+    assert!(
+        position(&events, is("command.done", first))
+            < position(&events, is("command.started", second))
+    );
     server.stop().await;
 }

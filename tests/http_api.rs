@@ -11,7 +11,12 @@ fn commands(triggered: &Value) -> Vec<(String, Option<String>)> {
         .as_array()
         .expect("commands")
         .iter()
-        .map(|c| (c["verb"].as_str().unwrap().to_owned(), c["arg"].as_str().map(str::to_owned)))
+        .map(|c| {
+            (
+                c["verb"].as_str().unwrap().to_owned(),
+                c["arg"].as_str().map(str::to_owned),
+            )
+        })
         .collect()
 }
 
@@ -25,7 +30,10 @@ async fn every_act_of_the_paper_sample_resolves_into_its_commands() {
     let welcome = server.trigger("WELCOME", json!({})).await;
     assert_eq!(
         commands(&welcome),
-        vec![say("Hello!"), ("DISPLAY_PAGE".into(), Some("Welcome/Welcome.html".into()))]
+        vec![
+            say("Hello!"),
+            ("DISPLAY_PAGE".into(), Some("Welcome/Welcome.html".into()))
+        ]
     );
     let ok = server.trigger("OK", json!({})).await;
     let text = ok["text"].as_str().unwrap();
@@ -36,7 +44,10 @@ async fn every_act_of_the_paper_sample_resolves_into_its_commands() {
     let video = server.trigger("RUN_VIDEO_EXHIBIT", json!({})).await;
     assert_eq!(
         commands(&video),
-        vec![say("Let me show you a video about this exhibit."), ("PROJECT".into(), Some("Exhibit/video.mpg".into()))]
+        vec![
+            say("Let me show you a video about this exhibit."),
+            ("PROJECT".into(), Some("Exhibit/video.mpg".into()))
+        ]
     );
     assert!(video["trigger"].as_u64().unwrap() > where_from["trigger"].as_u64().unwrap());
     server.stop().await;
@@ -47,11 +58,19 @@ async fn alternatives_never_repeat_back_to_back() {
     let server = TestServer::start(&bundle("tests/fixtures/fig4-verbatim")).await;
     let mut texts = Vec::new();
     for _ in 0..40 {
-        texts.push(server.trigger("OK", json!({})).await["text"].as_str().unwrap().to_owned());
+        texts.push(
+            server.trigger("OK", json!({})).await["text"]
+                .as_str()
+                .unwrap()
+                .to_owned(),
+        );
     }
     assert!(texts.windows(2).all(|w| w[0] != w[1]), "{texts:?}");
     for alt in ["OK!", "Great!", "Splendid!"] {
-        assert!(texts.iter().any(|t| t == alt), "{alt} never chosen in {texts:?}");
+        assert!(
+            texts.iter().any(|t| t == alt),
+            "{alt} never chosen in {texts:?}"
+        );
     }
     server.stop().await;
 }
@@ -60,7 +79,10 @@ async fn alternatives_never_repeat_back_to_back() {
 async fn the_same_seed_gives_the_same_choices() {
     let mut runs = Vec::new();
     for _ in 0..2 {
-        let server = TestServer::start_with(&bundle("tests/fixtures/fig4-verbatim"), |o| o.seed = Some(99)).await;
+        let server = TestServer::start_with(&bundle("tests/fixtures/fig4-verbatim"), |o| {
+            o.seed = Some(99)
+        })
+        .await;
         let mut texts = Vec::new();
         for _ in 0..12 {
             texts.push(server.trigger("OK", json!({})).await["text"].clone());
@@ -74,25 +96,52 @@ async fn the_same_seed_gives_the_same_choices() {
 #[tokio::test]
 async fn a_context_picks_its_variant_and_falls_back_to_text() {
     let server = TestServer::start(&bundle("tests/fixtures/fig4-verbatim")).await;
-    let group = server.trigger("WHERE_FROM", json!({"context": "TextGroup"})).await;
-    assert_eq!((group["variant"].as_str(), group["text"].as_str()), (Some("TextGroup"), Some("Where are you from?")));
-    let formal = server.trigger("WHERE_FROM", json!({"context": "TextFormally"})).await;
+    let group = server
+        .trigger("WHERE_FROM", json!({"context": "TextGroup"}))
+        .await;
+    assert_eq!(
+        (group["variant"].as_str(), group["text"].as_str()),
+        (Some("TextGroup"), Some("Where are you from?"))
+    );
+    let formal = server
+        .trigger("WHERE_FROM", json!({"context": "TextFormally"}))
+        .await;
     assert_eq!(formal["text"], "May I ask from where you are?");
     // WELCOME has no TextGroup: it falls back to Text.
-    let welcome = server.trigger("WELCOME", json!({"context": "TextGroup"})).await;
-    assert_eq!((welcome["context"].as_str(), welcome["variant"].as_str()), (Some("TextGroup"), Some("Text")));
+    let welcome = server
+        .trigger("WELCOME", json!({"context": "TextGroup"}))
+        .await;
+    assert_eq!(
+        (welcome["context"].as_str(), welcome["variant"].as_str()),
+        (Some("TextGroup"), Some("Text"))
+    );
 
     // The current context applies when a trigger names none.
-    let (status, body) = server.put("/api/context", json!({"context": "TextFormally"})).await;
+    let (status, body) = server
+        .put("/api/context", json!({"context": "TextFormally"}))
+        .await;
     assert_eq!(status, 200, "{body}");
-    assert_eq!(server.get("/api/context").await.1["context"], "TextFormally");
+    assert_eq!(
+        server.get("/api/context").await.1["context"],
+        "TextFormally"
+    );
     let current = server.trigger("WHERE_FROM", json!({})).await;
     assert_eq!(current["text"], "May I ask from where you are?");
 
-    let (status, body) = server.put("/api/context", json!({"context": "TextGrop"})).await;
-    assert_eq!((status, body["code"].as_str(), body["suggestion"].as_str()), (400, Some("unknown-context"), Some("TextGroup")));
-    let (status, body) = server.post("/api/acts/OK/trigger", Some(json!({"context": "Nope"}))).await;
-    assert_eq!((status, body["code"].as_str()), (400, Some("unknown-context")));
+    let (status, body) = server
+        .put("/api/context", json!({"context": "TextGrop"}))
+        .await;
+    assert_eq!(
+        (status, body["code"].as_str(), body["suggestion"].as_str()),
+        (400, Some("unknown-context"), Some("TextGroup"))
+    );
+    let (status, body) = server
+        .post("/api/acts/OK/trigger", Some(json!({"context": "Nope"})))
+        .await;
+    assert_eq!(
+        (status, body["code"].as_str()),
+        (400, Some("unknown-context"))
+    );
     server.stop().await;
 }
 
@@ -103,8 +152,13 @@ async fn an_unknown_label_answers_404_naming_the_closest_label() {
     assert_eq!(status, 404);
     assert_eq!(body["code"], "unknown-act");
     assert_eq!(body["suggestion"], "WELCOME");
-    assert!(body["error"].as_str().unwrap().contains("WELCOME"), "{body}");
-    let (status, body) = server.post("/api/acts/OK/trigger", Some(json!({"colour": "red"}))).await;
+    assert!(
+        body["error"].as_str().unwrap().contains("WELCOME"),
+        "{body}"
+    );
+    let (status, body) = server
+        .post("/api/acts/OK/trigger", Some(json!({"colour": "red"})))
+        .await;
     assert_eq!((status, body["code"].as_str()), (400, Some("bad-request")));
     let (status, _) = server.get("/api/no-such-thing").await;
     assert_eq!(status, 404);
@@ -119,15 +173,29 @@ async fn the_acts_listing_carries_labels_variants_commands_and_positions() {
     let acts = body["acts"].as_array().unwrap();
     let labels: Vec<&str> = acts.iter().map(|a| a["label"].as_str().unwrap()).collect();
     assert_eq!(labels, ["WELCOME", "OK", "WHERE_FROM", "RUN_VIDEO_EXHIBIT"]);
-    assert_eq!(acts[0]["at"], json!({"file": "acts.yaml", "line": 1, "column": 10}));
+    assert_eq!(
+        acts[0]["at"],
+        json!({"file": "acts.yaml", "line": 1, "column": 10})
+    );
     assert_eq!(acts[0]["commands"][0]["verb"], "DISPLAY_PAGE");
     assert_eq!(acts[0]["commands"][0]["at"]["line"], 5);
     let where_from = &acts[2]["variants"];
-    let names: Vec<&str> = where_from.as_array().unwrap().iter().map(|v| v["name"].as_str().unwrap()).collect();
+    let names: Vec<&str> = where_from
+        .as_array()
+        .unwrap()
+        .iter()
+        .map(|v| v["name"].as_str().unwrap())
+        .collect();
     assert_eq!(names, ["Text", "TextGroup", "TextFormally"]);
-    assert_eq!(body["contexts"], json!(["Text", "TextFormally", "TextGroup"]));
+    assert_eq!(
+        body["contexts"],
+        json!(["Text", "TextFormally", "TextGroup"])
+    );
     let (status, health) = server.get("/healthz").await;
-    assert_eq!((status, health["status"].as_str(), health["acts"].as_u64()), (200, Some("ok"), Some(4)));
+    assert_eq!(
+        (status, health["status"].as_str(), health["acts"].as_u64()),
+        (200, Some("ok"), Some(4))
+    );
     server.stop().await;
 }
 
@@ -140,7 +208,10 @@ async fn state_reports_display_pose_context_and_queues() {
     assert_eq!(state["display"]["page"], "Welcome/Welcome.html");
     assert_eq!(state["context"], "Text");
     assert_eq!(state["pose"]["moving"], false);
-    assert!(state["queues"].as_object().unwrap().contains_key("display"), "{state}");
+    assert!(
+        state["queues"].as_object().unwrap().contains_key("display"),
+        "{state}"
+    );
     let (status, stopped) = server.post("/api/stop", None).await;
     assert_eq!((status, stopped["stopped"].as_bool()), (202, Some(true)));
     server.stop().await;

@@ -22,11 +22,16 @@ fn bundle(timeout: &str) -> TempBundle {
 }
 
 async fn adapter(server: &TestServer, verbs: &[&str]) -> WsClient {
-    server.client(json!({"type": "hello", "role": "adapter", "name": "robot", "verbs": verbs})).await
+    server
+        .client(json!({"type": "hello", "role": "adapter", "name": "robot", "verbs": verbs}))
+        .await
 }
 
 fn terminal(e: &Value) -> bool {
-    matches!(e["type"].as_str(), Some("command.done" | "command.failed" | "command.cancelled"))
+    matches!(
+        e["type"].as_str(),
+        Some("command.done" | "command.failed" | "command.cancelled")
+    )
 }
 
 #[tokio::test]
@@ -53,7 +58,12 @@ async fn an_adapter_receives_its_verbs_in_order_and_completes_them() {
         lights.send(json!({"type": "done", "id": c["id"]})).await;
     }
     assert_eq!(switched, ["on", "dim"]);
-    let ids: Vec<u64> = t["commands"].as_array().unwrap().iter().map(|c| c["id"].as_u64().unwrap()).collect();
+    let ids: Vec<u64> = t["commands"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .map(|c| c["id"].as_u64().unwrap())
+        .collect();
     let mut done = Vec::new();
     while done.len() < 4 {
         let e = op.event_where(terminal).await;
@@ -73,9 +83,14 @@ async fn a_failure_answer_becomes_command_failed_with_its_reason() {
     let mut lights = adapter(&server, &["LIGHTS"]).await;
     server.trigger("SHOW", json!({})).await;
     let c = lights.recv_type("command").await;
-    lights.send(json!({"type": "failed", "id": c["id"], "reason": "relay stuck"})).await;
+    lights
+        .send(json!({"type": "failed", "id": c["id"], "reason": "relay stuck"}))
+        .await;
     let e = op.event_where(terminal).await;
-    assert_eq!((e["type"].as_str(), e["reason"].as_str()), (Some("command.failed"), Some("relay stuck")));
+    assert_eq!(
+        (e["type"].as_str(), e["reason"].as_str()),
+        (Some("command.failed"), Some("relay stuck"))
+    );
     lights.send(json!({"type": "done", "id": c["id"]})).await;
     assert_eq!(lights.recv_type("error").await["code"], "unknown-command");
     server.stop().await;
@@ -89,20 +104,35 @@ async fn no_adapter_a_silent_adapter_or_a_leaving_one_fails_the_command() {
     server.trigger("SHOW", json!({})).await;
     let e = op.event_where(terminal).await;
     assert_eq!(e["type"], "command.failed");
-    assert!(e["reason"].as_str().unwrap().contains("no adapter for LIGHTS"), "{e}");
+    assert!(
+        e["reason"]
+            .as_str()
+            .unwrap()
+            .contains("no adapter for LIGHTS"),
+        "{e}"
+    );
 
     let mut silent = adapter(&server, &["LIGHTS"]).await;
     server.trigger("SHOW", json!({})).await;
     silent.recv_type("command").await;
     let e = op.event_where(terminal).await;
     assert_eq!(e["type"], "command.failed");
-    assert!(e["reason"].as_str().unwrap().contains("no adapter answered"), "{e}");
+    assert!(
+        e["reason"]
+            .as_str()
+            .unwrap()
+            .contains("no adapter answered"),
+        "{e}"
+    );
 
     server.trigger("SHOW", json!({})).await;
     silent.recv_type("command").await;
     drop(silent);
     let e = op.event_where(terminal).await;
-    assert_eq!((e["type"].as_str(), e["reason"].as_str()), (Some("command.failed"), Some("the adapter disconnected")));
+    assert_eq!(
+        (e["type"].as_str(), e["reason"].as_str()),
+        (Some("command.failed"), Some("the adapter disconnected"))
+    );
     // The server keeps running: the next act still reaches a fresh adapter.
     let mut fresh = adapter(&server, &["LIGHTS"]).await;
     server.trigger("SHOW", json!({})).await;
@@ -124,7 +154,9 @@ async fn stop_sends_cancel_to_adapters_and_cancels_what_they_owe() {
     assert_eq!(status, 202);
     let cancel = speech.recv_type("cancel").await;
     assert_eq!(cancel["reason"], "stop request");
-    let e = op.event_where(|e| terminal(e) && e["command"] == c["id"]).await;
+    let e = op
+        .event_where(|e| terminal(e) && e["command"] == c["id"])
+        .await;
     assert_eq!(e["type"], "command.cancelled");
     server.stop().await;
 }

@@ -19,15 +19,26 @@ async fn a_trigger_is_answered_with_its_ref_and_resolved_commands() {
     assert_eq!(op.welcome["protocol"], 1);
     assert_eq!(op.welcome["role"], "operator");
     assert_eq!(op.welcome["state"]["context"], "Text");
-    op.send(json!({"type": "trigger", "label": "WHERE_FROM", "context": "TextGroup", "ref": "q-7"})).await;
+    op.send(
+        json!({"type": "trigger", "label": "WHERE_FROM", "context": "TextGroup", "ref": "q-7"}),
+    )
+    .await;
     let t = op.recv_type("triggered").await;
     assert_eq!(t["ref"], "q-7");
     assert_eq!(t["text"], "Where are you from?");
     assert_eq!(t["commands"][0]["verb"], "SAY");
     assert!(t["commands"][0]["id"].as_u64().is_some());
-    op.send(json!({"type": "trigger", "label": "WELCOMEE", "ref": "q-8"})).await;
+    op.send(json!({"type": "trigger", "label": "WELCOMEE", "ref": "q-8"}))
+        .await;
     let e = op.recv_type("error").await;
-    assert_eq!((e["code"].as_str(), e["ref"].as_str(), e["suggestion"].as_str()), (Some("unknown-act"), Some("q-8"), Some("WELCOME")));
+    assert_eq!(
+        (
+            e["code"].as_str(),
+            e["ref"].as_str(),
+            e["suggestion"].as_str()
+        ),
+        (Some("unknown-act"), Some("q-8"), Some("WELCOME"))
+    );
     server.stop().await;
 }
 
@@ -42,7 +53,10 @@ async fn every_bad_frame_gets_an_error_and_the_connection_stays_usable() {
         (r#"{"type":"dance"}"#.into(), "unknown-type"),
         (r#"{"type":"hello","role":"pilot"}"#.into(), "bad-frame"),
         (r#"{"type":"hello","role":"adapter"}"#.into(), "no-verbs"),
-        (format!(r#"{{"type":"trigger","label":"{}"}}"#, "X".repeat(20_000)), "frame-too-large"),
+        (
+            format!(r#"{{"type":"trigger","label":"{}"}}"#, "X".repeat(20_000)),
+            "frame-too-large",
+        ),
     ];
     for (frame, code) in &cases {
         c.send_text(frame).await;
@@ -56,7 +70,8 @@ async fn every_bad_frame_gets_an_error_and_the_connection_stays_usable() {
     assert_eq!(c.recv_type("welcome").await["role"], "dm");
     c.send(json!({"type": "hello", "role": "dm"})).await;
     assert_eq!(c.recv_type("error").await["code"], "already-introduced");
-    c.send(json!({"type": "trigger", "label": "OK", "ref": "after"})).await;
+    c.send(json!({"type": "trigger", "label": "OK", "ref": "after"}))
+        .await;
     assert_eq!(c.recv_type("triggered").await["ref"], "after");
     server.stop().await;
 }
@@ -64,11 +79,20 @@ async fn every_bad_frame_gets_an_error_and_the_connection_stays_usable() {
 #[tokio::test]
 async fn roles_limit_what_a_client_may_do() {
     let server = fig4().await;
-    let mut projector = server.client(json!({"type": "hello", "role": "projector"})).await;
-    projector.send(json!({"type": "trigger", "label": "OK", "ref": "p"})).await;
+    let mut projector = server
+        .client(json!({"type": "hello", "role": "projector"}))
+        .await;
+    projector
+        .send(json!({"type": "trigger", "label": "OK", "ref": "p"}))
+        .await;
     let e = projector.recv_type("error").await;
-    assert_eq!((e["code"].as_str(), e["ref"].as_str()), (Some("forbidden"), Some("p")));
-    let mut kiosk = server.client(json!({"type": "hello", "role": "kiosk"})).await;
+    assert_eq!(
+        (e["code"].as_str(), e["ref"].as_str()),
+        (Some("forbidden"), Some("p"))
+    );
+    let mut kiosk = server
+        .client(json!({"type": "hello", "role": "kiosk"}))
+        .await;
     kiosk.send(json!({"type": "stop"})).await;
     assert_eq!(kiosk.recv_type("error").await["code"], "forbidden");
     kiosk.send(json!({"type": "done", "id": 1})).await;
@@ -79,21 +103,54 @@ async fn roles_limit_what_a_client_may_do() {
 #[tokio::test]
 async fn display_clients_get_commands_and_late_ones_get_the_current_state() {
     let server = fig4().await;
-    let mut kiosk = server.client(json!({"type": "hello", "role": "kiosk"})).await;
-    let mut projector = server.client(json!({"type": "hello", "role": "projector"})).await;
-    assert_eq!(projector.welcome["state"]["display"]["projector"], serde_json::Value::Null);
+    let mut kiosk = server
+        .client(json!({"type": "hello", "role": "kiosk"}))
+        .await;
+    let mut projector = server
+        .client(json!({"type": "hello", "role": "projector"}))
+        .await;
+    assert_eq!(
+        projector.welcome["state"]["display"]["projector"],
+        serde_json::Value::Null
+    );
     let mut op = server.operator().await;
-    op.send(json!({"type": "trigger", "label": "WELCOME", "ref": "w"})).await;
+    op.send(json!({"type": "trigger", "label": "WELCOME", "ref": "w"}))
+        .await;
     let page = kiosk.recv_type("command").await;
-    assert_eq!((page["verb"].as_str(), page["arg"].as_str(), page["ref"].as_str()), (Some("DISPLAY_PAGE"), Some("Welcome/Welcome.html"), Some("w")));
-    op.send(json!({"type": "trigger", "label": "RUN_VIDEO_EXHIBIT"})).await;
+    assert_eq!(
+        (
+            page["verb"].as_str(),
+            page["arg"].as_str(),
+            page["ref"].as_str()
+        ),
+        (
+            Some("DISPLAY_PAGE"),
+            Some("Welcome/Welcome.html"),
+            Some("w")
+        )
+    );
+    op.send(json!({"type": "trigger", "label": "RUN_VIDEO_EXHIBIT"}))
+        .await;
     let shown = projector.recv_type("command").await;
-    assert_eq!((shown["verb"].as_str(), shown["arg"].as_str()), (Some("PROJECT"), Some("Exhibit/video.mpg")));
-    let changed = op.event_where(|e| e["type"] == "display.changed" && e["projector"] == "Exhibit/video.mpg").await;
+    assert_eq!(
+        (shown["verb"].as_str(), shown["arg"].as_str()),
+        (Some("PROJECT"), Some("Exhibit/video.mpg"))
+    );
+    let changed = op
+        .event_where(|e| e["type"] == "display.changed" && e["projector"] == "Exhibit/video.mpg")
+        .await;
     assert_eq!(changed["page"], "Welcome/Welcome.html");
-    let late = server.client(json!({"type": "hello", "role": "kiosk"})).await;
-    assert_eq!(late.welcome["state"]["display"]["page"], "Welcome/Welcome.html");
-    assert_eq!(late.welcome["state"]["display"]["projector"], "Exhibit/video.mpg");
+    let late = server
+        .client(json!({"type": "hello", "role": "kiosk"}))
+        .await;
+    assert_eq!(
+        late.welcome["state"]["display"]["page"],
+        "Welcome/Welcome.html"
+    );
+    assert_eq!(
+        late.welcome["state"]["display"]["projector"],
+        "Exhibit/video.mpg"
+    );
     server.stop().await;
 }
 
@@ -101,22 +158,32 @@ async fn display_clients_get_commands_and_late_ones_get_the_current_state() {
 async fn operators_see_clients_come_and_go_and_can_set_the_context() {
     let server = fig4().await;
     let mut op = server.operator().await;
-    let kiosk = server.client(json!({"type": "hello", "role": "kiosk", "name": "front"})).await;
-    let joined = op.event_where(|e| e["type"] == "client.connected" && e["role"] == "kiosk").await;
-    assert_eq!((joined["role"].as_str(), joined["name"].as_str()), (Some("kiosk"), Some("front")));
+    let kiosk = server
+        .client(json!({"type": "hello", "role": "kiosk", "name": "front"}))
+        .await;
+    let joined = op
+        .event_where(|e| e["type"] == "client.connected" && e["role"] == "kiosk")
+        .await;
+    assert_eq!(
+        (joined["role"].as_str(), joined["name"].as_str()),
+        (Some("kiosk"), Some("front"))
+    );
     let (_, state) = server.get("/api/state").await;
     assert_eq!(state["clients"].as_object().unwrap().len(), 2, "{state}");
     drop(kiosk);
     let left = op.event("client.left").await;
     assert_eq!(left["client"], joined["client"]);
-    op.send(json!({"type": "context", "context": "TextGroup", "ref": "c"})).await;
+    op.send(json!({"type": "context", "context": "TextGroup", "ref": "c"}))
+        .await;
     // The answer and the event travel separately: take them in either order.
     let (mut answer, mut event) = (None, None);
     while answer.is_none() || event.is_none() {
         let f = op.recv().await;
         match f["type"].as_str() {
             Some("context") => answer = Some(f),
-            Some("event") if f["event"]["type"] == "context.changed" => event = Some(f["event"].clone()),
+            Some("event") if f["event"]["type"] == "context.changed" => {
+                event = Some(f["event"].clone())
+            }
             _ => {}
         }
     }

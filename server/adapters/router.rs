@@ -116,3 +116,84 @@ impl Router {
         &self.distinct
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::content::config::{ArgRule, SiteVerb};
+
+    fn names(router: &Router, verbs: &[Verb]) -> Vec<&'static str> {
+        verbs
+            .iter()
+            .map(|v| router.adapter_for(v).map_or("none", |a| a.name()))
+            .collect()
+    }
+
+    #[tokio::test]
+    async fn defaults_need_no_hardware() {
+        let (hub, _rx) = Hub::new();
+        let (_, router) = Devices::start(
+            &SiteConfig::default(),
+            AdapterKind::Log,
+            SpeechOutput::Audio,
+            &hub,
+            &Lifecycle::new(),
+        );
+        let verbs = [
+            Verb::Say,
+            Verb::DisplayPage,
+            Verb::Project,
+            Verb::SetWaypoint,
+            Verb::DriveStart,
+            Verb::DriveStop,
+            Verb::Wait,
+        ];
+        assert_eq!(
+            names(&router, &verbs),
+            ["log", "display", "display", "sim", "sim", "sim", "none"]
+        );
+        let all: Vec<&str> = router.adapters().iter().map(|a| a.name()).collect();
+        assert_eq!(all, ["display", "log", "sim"]);
+    }
+
+    #[tokio::test]
+    async fn the_configuration_routes_built_in_and_site_verbs() {
+        let mut config = SiteConfig::default();
+        config.display.adapter = AdapterKind::Ws;
+        config.drive.adapter = AdapterKind::Ws;
+        for (name, adapter) in [("LIGHTS", AdapterKind::Log), ("ARM", AdapterKind::Ws)] {
+            let verb = SiteVerb {
+                adapter,
+                argument: ArgRule::Optional,
+                description: None,
+            };
+            config.verbs.insert(name.to_owned(), verb);
+        }
+        let (hub, _rx) = Hub::new();
+        let (devices, router) = Devices::start(
+            &config,
+            AdapterKind::Ws,
+            SpeechOutput::Audio,
+            &hub,
+            &Lifecycle::new(),
+        );
+        let verbs = [
+            Verb::Say,
+            Verb::Project,
+            Verb::DriveStop,
+            Verb::Site("LIGHTS".into()),
+            Verb::Site("ARM".into()),
+            Verb::Site("NOPE".into()),
+        ];
+        assert_eq!(
+            names(&router, &verbs),
+            ["ws", "ws", "ws", "log", "ws", "none"]
+        );
+        assert!(
+            devices.drive.is_none(),
+            "no simulated base when the drive is external"
+        );
+        let all: Vec<&str> = router.adapters().iter().map(|a| a.name()).collect();
+        assert_eq!(all, ["log", "ws"], "each adapter once");
+    }
+}

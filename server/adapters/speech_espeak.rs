@@ -45,7 +45,10 @@ pub fn espeak_available() -> bool {
 /// `gmw/en`). espeak-ng silently falls back to its default voice for an unknown name, so the
 /// server checks the configured voice against this list at start-up.
 pub fn espeak_voices() -> Vec<String> {
-    let Ok(out) = std::process::Command::new("espeak-ng").arg("--voices").output() else {
+    let Ok(out) = std::process::Command::new("espeak-ng")
+        .arg("--voices")
+        .output()
+    else {
         return Vec::new();
     };
     let listing = String::from_utf8_lossy(&out.stdout);
@@ -54,10 +57,17 @@ pub fn espeak_voices() -> Vec<String> {
     let mut names: Vec<String> = Vec::new();
     for line in listing.lines().skip(1) {
         let columns: Vec<&str> = line.split_whitespace().collect();
-        let [_, language, _, voice, file, others @ ..] = &columns[..] else { continue };
+        let [_, language, _, voice, file, others @ ..] = &columns[..] else {
+            continue;
+        };
         let base = file.rsplit('/').next().unwrap_or(file);
         names.extend([language, voice, file, &base].map(|s| (*s).to_owned()));
-        names.extend(others.iter().filter_map(|o| o.strip_prefix('(')).map(str::to_owned));
+        names.extend(
+            others
+                .iter()
+                .filter_map(|o| o.strip_prefix('('))
+                .map(str::to_owned),
+        );
     }
     names.sort();
     names.dedup();

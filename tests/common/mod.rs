@@ -42,7 +42,11 @@ impl TempBundle {
         std::fs::write(dir.path().join("acts.yaml"), acts).expect("write acts");
         std::fs::create_dir_all(dir.path().join("pages")).expect("pages");
         std::fs::create_dir_all(dir.path().join("media")).expect("media");
-        std::fs::write(dir.path().join("pages/index.html"), "<!doctype html><title>home</title>").expect("home");
+        std::fs::write(
+            dir.path().join("pages/index.html"),
+            "<!doctype html><title>home</title>",
+        )
+        .expect("home");
         TempBundle { dir }
     }
 
@@ -79,19 +83,34 @@ impl TestServer {
     /// Serves `bundle`, letting the test adjust the options.
     pub async fn start_with(bundle: &Path, adjust: impl FnOnce(&mut ServeOptions)) -> Self {
         let report = load_bundle(bundle);
-        let loaded = report.bundle.unwrap_or_else(|| panic!("bundle has errors: {:#?}", report.diagnostics));
+        let loaded = report
+            .bundle
+            .unwrap_or_else(|| panic!("bundle has errors: {:#?}", report.diagnostics));
         let corpus_dir = tempfile::tempdir().expect("corpus dir");
-        let mut options = ServeOptions { seed: Some(1), corpus_dir: corpus_dir.path().to_owned(), speech_wav: None };
+        let mut options = ServeOptions {
+            seed: Some(1),
+            corpus_dir: corpus_dir.path().to_owned(),
+            speech_wav: None,
+        };
         adjust(&mut options);
         let server = Server::start(loaded, &options).expect("server starts");
         let corpus_file = server.corpus_path();
-        let listener = tokio::net::TcpListener::bind("127.0.0.1:0").await.expect("bind");
+        let listener = tokio::net::TcpListener::bind("127.0.0.1:0")
+            .await
+            .expect("bind");
         let addr = listener.local_addr().expect("addr");
         let (tx, rx) = oneshot::channel::<()>();
         let task = tokio::spawn(run(listener, server, async move {
             let _ = rx.await;
         }));
-        TestServer { addr, corpus_file, corpus_dir, shutdown: Some(tx), task: Some(task), http: reqwest::Client::new() }
+        TestServer {
+            addr,
+            corpus_file,
+            corpus_dir,
+            shutdown: Some(tx),
+            task: Some(task),
+            http: reqwest::Client::new(),
+        }
     }
 
     /// `http://addr/path`
@@ -119,14 +138,22 @@ impl TestServer {
 
     /// PUT JSON.
     pub async fn put(&self, path: &str, body: Value) -> (u16, Value) {
-        let r = self.http.put(self.url(path)).json(&body).send().await.expect("PUT");
+        let r = self
+            .http
+            .put(self.url(path))
+            .json(&body)
+            .send()
+            .await
+            .expect("PUT");
         let status = r.status().as_u16();
         (status, r.json().await.unwrap_or(Value::Null))
     }
 
     /// Triggers `label` over HTTP, expecting 202.
     pub async fn trigger(&self, label: &str, body: Value) -> Value {
-        let (status, body) = self.post(&format!("/api/acts/{label}/trigger"), Some(body)).await;
+        let (status, body) = self
+            .post(&format!("/api/acts/{label}/trigger"), Some(body))
+            .await;
         assert_eq!(status, 202, "trigger {label}: {body}");
         body
     }
@@ -142,7 +169,8 @@ impl TestServer {
 
     /// An operator client (receives every event).
     pub async fn operator(&self) -> WsClient {
-        self.client(json!({"type": "hello", "role": "operator", "name": "test"})).await
+        self.client(json!({"type": "hello", "role": "operator", "name": "test"}))
+            .await
     }
 
     /// Shuts down gracefully and returns every corpus line.
@@ -151,7 +179,11 @@ impl TestServer {
             let _ = tx.send(());
         }
         if let Some(task) = self.task.take() {
-            tokio::time::timeout(DEADLINE, task).await.expect("shutdown in time").expect("join").expect("run");
+            tokio::time::timeout(DEADLINE, task)
+                .await
+                .expect("shutdown in time")
+                .expect("join")
+                .expect("run");
         }
         read_corpus(&self.corpus_file)
     }
@@ -162,7 +194,9 @@ pub fn read_corpus(path: &Path) -> Vec<Value> {
     std::fs::read_to_string(path)
         .expect("corpus file")
         .lines()
-        .map(|l| serde_json::from_str(l).unwrap_or_else(|e| panic!("corpus line is not JSON ({e}): {l}")))
+        .map(|l| {
+            serde_json::from_str(l).unwrap_or_else(|e| panic!("corpus line is not JSON ({e}): {l}"))
+        })
         .collect()
 }
 
@@ -176,7 +210,10 @@ impl WsClient {
     /// Connects without saying anything.
     pub async fn connect(url: &str) -> Self {
         let (stream, _) = connect_async(url).await.expect("websocket connects");
-        WsClient { stream, welcome: Value::Null }
+        WsClient {
+            stream,
+            welcome: Value::Null,
+        }
     }
 
     /// Sends a JSON frame.
@@ -227,7 +264,9 @@ impl WsClient {
 
     /// The next event (operator clients) matching `pred`.
     pub async fn event_where(&mut self, pred: impl Fn(&Value) -> bool) -> Value {
-        self.recv_where(|f| f["type"] == "event" && pred(&f["event"])).await["event"].clone()
+        self.recv_where(|f| f["type"] == "event" && pred(&f["event"]))
+            .await["event"]
+            .clone()
     }
 
     /// The next event of type `kind`.
