@@ -13,7 +13,7 @@ use axum::serve::ListenerExt;
 use tokio::net::TcpListener;
 
 use crate::adapters::{Devices, SpeechOutput, espeak_available, espeak_voices};
-use crate::content::Bundle;
+use crate::content::{Bundle, BundleArea, resolve_in_bundle};
 use crate::content::config::AdapterKind;
 use crate::corpus::CorpusWriter;
 use crate::dispatch::Dispatcher;
@@ -70,7 +70,10 @@ impl Server {
             }
             None => SpeechOutput::Audio,
         };
-        let (devices, router) = Devices::start(&bundle.config, speech, output, &hub, &life);
+        // The kiosk starts on the home page only if the bundle has one (`check` warns otherwise).
+        let home = Some(bundle.config.home.clone())
+            .filter(|h| resolve_in_bundle(&bundle.root, BundleArea::Pages, h).is_ok());
+        let (devices, router) = Devices::start(&bundle.config, home, speech, output, &hub, &life);
         hub.publish(EventKind::ServerStarted {
             bundle: bundle.root.display().to_string(),
             version: env!("CARGO_PKG_VERSION"),

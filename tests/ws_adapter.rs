@@ -160,3 +160,19 @@ async fn stop_sends_cancel_to_adapters_and_cancels_what_they_owe() {
     assert_eq!(e["type"], "command.cancelled");
     server.stop().await;
 }
+
+#[tokio::test]
+async fn an_adapter_is_told_which_of_its_verbs_go_elsewhere() {
+    let b = TempBundle::new(ACTS).with_file("docent.yaml", "speech: {adapter: log}\nverbs:\n  LIGHTS: {adapter: ws}\n");
+    let server = TestServer::start(b.path()).await;
+    let mut a = adapter(&server, &["LIGHTS", "SAY", "DANCE"]).await;
+    let first = a.recv_type("error").await;
+    assert_eq!(first["code"], "verb-not-routed");
+    assert!(first["message"].as_str().unwrap().starts_with("SAY goes to the log adapter"), "{first}");
+    let second = a.recv_type("error").await;
+    assert!(second["message"].as_str().unwrap().starts_with("DANCE is not a verb"), "{second}");
+    // Still connected and served for what is routed to it.
+    server.trigger("SHOW", json!({})).await;
+    assert_eq!(a.recv_type("command").await["verb"], "LIGHTS");
+    server.stop().await;
+}

@@ -28,15 +28,17 @@ pub struct Devices {
 
 impl Devices {
     /// Starts every adapter the configuration routes to. `speech` is the speech adapter to use,
-    /// already decided by the caller (which knows whether espeak-ng is installed).
+    /// already decided by the caller (which knows whether espeak-ng is installed); `home` is the
+    /// page the kiosk starts on, if the bundle has it.
     pub fn start(
         config: &SiteConfig,
+        home: Option<String>,
         speech: AdapterKind,
         speech_output: SpeechOutput,
         hub: &Hub,
         life: &Lifecycle,
     ) -> (Devices, Router) {
-        let display = Arc::new(DisplayState::new(Some(config.home.clone())));
+        let display = Arc::new(DisplayState::new(home));
         let ws = Arc::new(WsAdapters::new(config.adapter_timeout, life.clone()));
         let log = Arc::new(LogAdapter::new(config.speech.rate_wpm, life));
         let drive = (config.drive.adapter == AdapterKind::DriveSim)
@@ -134,6 +136,7 @@ mod tests {
         let (hub, _rx) = Hub::new();
         let (_, router) = Devices::start(
             &SiteConfig::default(),
+            None,
             AdapterKind::Log,
             SpeechOutput::Audio,
             &hub,
@@ -172,6 +175,7 @@ mod tests {
         let (hub, _rx) = Hub::new();
         let (devices, router) = Devices::start(
             &config,
+            None,
             AdapterKind::Ws,
             SpeechOutput::Audio,
             &hub,

@@ -13,8 +13,10 @@ use crate::content::diagnostic::Diagnostic;
 use crate::content::model::{DEFAULT_VARIANT, Located, Pos, Variant};
 use crate::content::suggest::closest;
 
+mod values;
 pub(in crate::content) mod yaml;
 
+use values::{read_alternatives, read_commands, read_label};
 use yaml::{Kind, Node, Recovery};
 
 /// One act as written, before labels are compared across files and commands are checked.
@@ -64,7 +66,8 @@ pub(crate) fn read_acts_file(file: &Arc<str>, bytes: &[u8]) -> ActsFile {
             }
         }
         Kind::Null if out.diagnostics.iter().all(|d| !d.is_error()) => {
-            let message = "This acts file has no acts. Add acts (a list of `- Label: ...` entries) or delete the file.";
+            let message = "This acts file has no acts. Add acts (a list of `- Label: ...` \
+                           entries) or delete the file.";
             out.diagnostics.push(Diagnostic::warning(
                 "empty-file",
                 &Pos::new(file.clone(), 0, 0),
@@ -82,7 +85,10 @@ pub(crate) fn read_acts_file(file: &Arc<str>, bytes: &[u8]) -> ActsFile {
 }
 
 fn file_not_a_list_message(file: &str, root: &Node) -> String {
-    let looks_like_one_act = matches!(&root.kind, Kind::Map(entries) if entries.iter().any(|(k, _)| k.as_text() == Some("Label")));
+    let looks_like_one_act = match &root.kind {
+        Kind::Map(entries) => entries.iter().any(|(k, _)| k.as_text() == Some("Label")),
+        _ => false,
+    };
     let hint = if looks_like_one_act {
         " Start each act with a dash: `- Label: WELCOME`, and indent its other keys by two spaces."
     } else if file
@@ -170,13 +176,16 @@ fn read_act(node: &Node, out: &mut Vec<Diagnostic>) -> Option<WrittenAct> {
     }
     let Some(label) = &act.label else {
         if !seen.iter().any(|(k, _)| *k == "Label") {
-            out.push(Diagnostic::error("missing-label", &node.pos, "This act has no `Label`. Add a line `Label: SOME_NAME` so pages and people can trigger it."));
+            let message = "This act has no `Label`. Add a line `Label: SOME_NAME` so pages \
+                           and people can trigger it.";
+            out.push(Diagnostic::error("missing-label", &node.pos, message));
         }
         return None;
     };
     if !wrote_content {
         let message = format!(
-            "The act `{}` has no text and no commands, so triggering it does nothing. Add `Text:` or `Cmds:`.",
+            "The act `{}` has no text and no commands, so triggering it does nothing. \
+             Add `Text:` or `Cmds:`.",
             label.value
         );
         out.push(Diagnostic::warning("empty-act", &node.pos, message));
@@ -214,147 +223,6 @@ fn unknown_key_message(name: &str) -> String {
     )
 }
 
-fn read_label(value: &Node, out: &mut Vec<Diagnostic>) -> Option<Located<String>> {
-    let label = match &value.kind {
-        Kind::Str { value: text, .. } if !text.trim().is_empty() => text.clone(),
-        Kind::Guessed(text) => {
-            out.push(unquoted_warning(value, text));
-            text.clone()
-        }
-        Kind::Str { .. } | Kind::Null => {
-            out.push(Diagnostic::error(
-                "empty-label",
-                &value.pos,
-                "The label is empty. Write a name after `Label:`, e.g. `Label: WELCOME`.",
-            ));
-            return None;
-        }
-        _ => {
-            let message = format!(
-                "A label must be a single name such as `WELCOME`, but this one is {}.",
-                value.describe()
-            );
-            out.push(Diagnostic::error("bad-value", &value.pos, message));
-            return None;
-        }
-    };
-    Some(Located {
-        value: label,
-        pos: value.pos.clone(),
-    })
-}
-
-/// The alternatives of one variant; a single string counts as a list of one.
-fn read_alternatives(key: &str, value: &Node, out: &mut Vec<Diagnostic>) -> Vec<Located<String>> {
-    match &value.kind {
-        Kind::Seq(items) if items.is_empty() => {
-            out.push(Diagnostic::error(
-                "empty-text",
-                &value.pos,
-                format!("`{key}` has no text. Write at least one alternative, or remove `{key}`."),
-            ));
-            Vec::new()
-        }
-        Kind::Seq(items) => items
-            .iter()
-            .filter_map(|item| read_alternative(item, out))
-            .collect(),
-        Kind::Null => {
-            out.push(Diagnostic::error("empty-text", &value.pos, format!("`{key}` has no text. Write the text after `{key}:` or as a list below it, or remove `{key}`.")));
-            Vec::new()
-        }
-        Kind::Map(_) => {
-            let message = format!(
-                "The text of `{key}` was read as keys and values, because it contains a colon \
-                 followed by a space (`: `). Put the whole text in quotes, e.g. `{key}: \"Note: this is splendid\"`."
-            );
-            out.push(Diagnostic::error("bad-value", &value.pos, message));
-            Vec::new()
-        }
-        _ => read_alternative(value, out).into_iter().collect(),
-    }
-}
-
-fn read_alternative(item: &Node, out: &mut Vec<Diagnostic>) -> Option<Located<String>> {
-    let text = match &item.kind {
-        Kind::Str { value, .. } if !value.trim().is_empty() => value.clone(),
-        Kind::Guessed(text) => {
-            out.push(unquoted_warning(item, text));
-            text.clone()
-        }
-        Kind::Str { .. } | Kind::Null => {
-            out.push(Diagnostic::error(
-                "empty-text",
-                &item.pos,
-                "This alternative is empty. Write the text after the `- `, or remove the line.",
-            ));
-            return None;
-        }
-        Kind::Map(entries) => {
-            out.push(Diagnostic::error(
-                "bad-value",
-                &item.pos,
-                colon_message("text", entries),
-            ));
-            return None;
-        }
-        Kind::Seq(_) => {
-            out.push(Diagnostic::error("bad-value", &item.pos, "This is a list inside the list of texts. Each alternative must be a single text; if it starts with `-` or `[`, put it in quotes."));
-            return None;
-        }
-    };
-    Some(Located {
-        value: text,
-        pos: item.pos.clone(),
-    })
-}
-
-/// Commands; a single string counts as a list of one, and `Cmds:` left empty as none.
-fn read_commands(value: &Node, out: &mut Vec<Diagnostic>) -> Vec<WrittenCommand> {
-    let items: Vec<&Node> = match &value.kind {
-        Kind::Seq(items) => items.iter().collect(),
-        Kind::Null => Vec::new(),
-        _ => vec![value],
-    };
-    let mut commands = Vec::with_capacity(items.len());
-    for item in items {
-        match &item.kind {
-            Kind::Str { value: text, verbatim_at } => {
-                commands.push(WrittenCommand { text: text.clone(), pos: item.pos.clone(), verbatim_at: *verbatim_at });
-            }
-            Kind::Guessed(text) => commands.push(WrittenCommand { text: text.clone(), pos: item.pos.clone(), verbatim_at: Some(0) }),
-            Kind::Null => out.push(Diagnostic::error("bad-value", &item.pos, "This command is empty. Write a command such as `SAY Hello`, or remove the line.")),
-            Kind::Map(entries) => out.push(Diagnostic::error("bad-value", &item.pos, colon_message("command", entries))),
-            Kind::Seq(_) => out.push(Diagnostic::error("bad-value", &item.pos, "This is a list inside the list of commands. Write each command as one line, e.g. `- SAY Hello`.")),
-        }
-    }
-    commands
-}
-
-/// For `- Note: splendid`: YAML made a mapping of it. Rebuild the text for the hint.
-fn colon_message(what: &str, entries: &[(Node, Node)]) -> String {
-    let written = match entries {
-        [(k, v)] => k
-            .as_text()
-            .zip(v.as_text())
-            .map(|(k, v)| format!("{k}: {v}")),
-        _ => None,
-    };
-    let example = written.unwrap_or_else(|| "Note: this is splendid".to_owned());
-    format!(
-        "This {what} was read as a key and a value, because it contains a colon followed by a \
-         space (`: `). Put the whole {what} in quotes: `- \"{example}\"`."
-    )
-}
-
-fn unquoted_warning(node: &Node, text: &str) -> Diagnostic {
-    let message = format!(
-        "`{text}` without quotes is read by YAML as a yes/no value or a number. Docent keeps the \
-         text as written, but other tools may not: write it in quotes, `\"{text}\"`."
-    );
-    Diagnostic::warning("unquoted-scalar", &node.pos, message)
-}
-
 /// Labels written in `Label: NAME` lines within the skipped line ranges.
 fn labels_in_lines(source: &str, ranges: &[(u32, u32)]) -> Vec<String> {
     source
@@ -381,4 +249,59 @@ fn labels_in_lines(source: &str, ranges: &[(u32, u32)]) -> Vec<String> {
             (!label.is_empty()).then(|| label.to_owned())
         })
         .collect()
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn read(text: &str) -> ActsFile {
+        read_acts_file(&Arc::from("acts.yaml"), text.as_bytes())
+    }
+
+    #[test]
+    fn variant_keys_start_with_text_exactly() {
+        for key in ["Text", "TextGroup", "TextChild", "Text2", "Text_formal"] {
+            assert!(is_variant_key(key), "{key}");
+        }
+        for key in ["text", "TEXT", "Texts and more", "Txt", "Label"] {
+            assert!(!is_variant_key(key), "{key}");
+        }
+    }
+
+    #[test]
+    fn miscapitalised_variant_keys_get_the_right_suggestion() {
+        assert!(unknown_key_message("textGroup").contains("Did you mean `TextGroup`?"));
+        assert!(unknown_key_message("TEXTCHILD").contains("Did you mean `TextChild`?"));
+        assert!(unknown_key_message("Lable").contains("Did you mean `Label`?"));
+        assert!(!unknown_key_message("Colour").contains("Did you mean"));
+    }
+
+    #[test]
+    fn reads_commands_with_their_verbatim_offsets() {
+        let file = read(
+            "- Label: A\n  Cmds:\n    - SAY hi\n    - 'WAIT 2s'\n    - >-\n      SAY folded\n",
+        );
+        let commands: Vec<(&str, u32, u32, Option<u32>)> = file.acts[0]
+            .commands
+            .iter()
+            .map(|c| (c.text.as_str(), c.pos.line, c.pos.column, c.verbatim_at))
+            .collect();
+        assert_eq!(
+            commands,
+            [
+                ("SAY hi", 3, 7, Some(0)),
+                ("WAIT 2s", 4, 7, Some(1)),
+                ("SAY folded", 6, 7, None)
+            ]
+        );
+    }
+
+    #[test]
+    fn labels_of_skipped_acts_are_still_known() {
+        let file = read("- Label: GOOD\n  Text: fine\n- Label: \"BROKEN\"\n  Text: [oops\n");
+        assert_eq!(file.acts.len(), 1);
+        assert_eq!(file.unread_labels, ["BROKEN"]);
+        assert_eq!(file.diagnostics.len(), 1);
+    }
 }

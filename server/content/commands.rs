@@ -4,7 +4,8 @@
 //! have fixed argument rules; verbs declared in `docent.yaml` carry their own rule. File
 //! arguments go through the bundle's path gate, exactly as the HTTP routes will later.
 
-use std::cell::OnceCell;
+use std::cell::{OnceCell, RefCell};
+use std::collections::HashMap;
 use std::path::Path;
 use std::sync::Arc;
 
@@ -13,7 +14,7 @@ use crate::content::diagnostic::Diagnostic;
 use crate::content::duration::parse_duration;
 use crate::content::model::{CommandSpec, Located, Pos, Verb};
 use crate::content::paths::{BundleArea, PathError, list_files, resolve_in_bundle};
-use crate::content::suggest::closest;
+use crate::content::suggest::{closest, did_you_mean};
 
 /// A command string as written in an acts file.
 #[derive(Debug)]
@@ -34,6 +35,20 @@ const UNPLAYABLE_VIDEO: &[&str] = &[
 ];
 const UNPLAYABLE_AUDIO: &[&str] = &["wma", "aif", "aiff", "amr", "mid", "midi", "ra"];
 
+const SAY_USAGE: &str = "SAY needs the text to speak, e.g. `SAY Welcome to the museum`.";
+const PROJECT_USAGE: &str =
+    "PROJECT needs a file from the media folder, e.g. `PROJECT Exhibit/video.webm`.";
+const DISPLAY_PAGE_USAGE: &str =
+    "DISPLAY_PAGE needs a page from the pages folder, e.g. `DISPLAY_PAGE Welcome/Welcome.html`.";
+const WAIT_USAGE: &str = "Write `WAIT` alone to wait until the act's earlier commands are \
+                          done, or a time with its unit such as `WAIT 2s` or `WAIT 500ms`.";
+const WAYPOINT_USAGE: &str = "SET_WAYPOINT needs two or three numbers: x and y in metres, and \
+                              optionally the heading, e.g. `SET_WAYPOINT 3.5 2` or \
+                              `SET_WAYPOINT 3.5 2 90`.";
+
+/// Why a path was refused, and the message for people.
+pub(crate) type PathProblem = (PathError, String);
+
 /// Checks commands against the site settings and the bundle's files.
 pub(crate) struct CommandChecker<'a> {
     root: &'a Path,
@@ -41,6 +56,8 @@ pub(crate) struct CommandChecker<'a> {
     /// File listings for suggestions, made only when a file is missing.
     pages: OnceCell<Vec<String>>,
     media: OnceCell<Vec<String>>,
+    /// Verdicts per path: many acts show the same few pages, and each check lists folders.
+    verdicts: RefCell<HashMap<(BundleArea, String), Option<PathProblem>>>,
 }
 
 impl<'a> CommandChecker<'a> {
@@ -51,6 +68,7 @@ impl<'a> CommandChecker<'a> {
             config,
             pages: OnceCell::new(),
             media: OnceCell::new(),
+            verdicts: RefCell::new(HashMap::new()),
         }
     }
 
@@ -84,10 +102,10 @@ impl<'a> CommandChecker<'a> {
             ));
             return None;
         };
-        let arg_pos = self.offset_pos(cmd, arg_start);
-        let before = out.iter().filter(|d| d.is_error()).count();
+        let arg_pos = offset_pos(cmd, arg_start);
+        let before = out.len();
         self.check_argument(&verb, arg, cmd, arg_start, &arg_pos, out);
-        if out.iter().filter(|d| d.is_error()).count() > before {
+        if out[before..].iter().any(Diagnostic::is_error) {
             return None;
         }
         let spec = CommandSpec {
@@ -136,39 +154,55 @@ impl<'a> CommandChecker<'a> {
         arg_pos: &Pos,
         out: &mut Vec<Diagnostic>,
     ) {
-        let bad = |out: &mut Vec<Diagnostic>, pos: &Pos, msg: String| {
-            out.push(Diagnostic::error("bad-argument", pos, msg))
-        };
-        match (verb, arg) {
-            (Verb::Say, None) => bad(out, &cmd.pos, "SAY needs the text to speak, e.g. `SAY Welcome to the museum`.".into()),
-            (Verb::Project, None) => bad(out, &cmd.pos, "PROJECT needs a file from the media folder, e.g. `PROJECT Exhibit/video.webm`.".into()),
-            (Verb::DisplayPage, None) => bad(out, &cmd.pos, "DISPLAY_PAGE needs a page from the pages folder, e.g. `DISPLAY_PAGE Welcome/Welcome.html`.".into()),
+        let problem: Option<(&Pos, String)> = match (verb, arg) {
+            (Verb::Say, None) => Some((&cmd.pos, SAY_USAGE.to_owned())),
+            (Verb::Project, None) => Some((&cmd.pos, PROJECT_USAGE.to_owned())),
+            (Verb::DisplayPage, None) => Some((&cmd.pos, DISPLAY_PAGE_USAGE.to_owned())),
             (Verb::Project, Some(file)) => {
                 self.check_file(BundleArea::Media, file, arg_pos, out);
                 media_format(file, arg_pos, out);
+                None
             }
-            (Verb::DisplayPage, Some(file)) => self.check_file(BundleArea::Pages, file, arg_pos, out),
-            (Verb::SetWaypoint, _) => self.check_waypoint(arg.unwrap_or(""), cmd, arg_start, out),
-            (Verb::DriveStart | Verb::DriveStop, Some(extra)) => {
-                bad(out, arg_pos, format!("{verb} takes nothing after it. Remove `{extra}`."));
+            (Verb::DisplayPage, Some(file)) => {
+                self.check_file(BundleArea::Pages, file, arg_pos, out);
+                None
             }
-            (Verb::Wait, Some(wait)) if parse_duration(wait).is_none() => bad(out, arg_pos, format!(
-                "`{wait}` is not a length of time. Write `WAIT` alone to wait until the act's \
-                 earlier commands are done, or a time with its unit such as `WAIT 2s` or `WAIT 500ms`."
+            (Verb::SetWaypoint, _) => {
+                self.check_waypoint(arg.unwrap_or(""), cmd, arg_start, out);
+                None
+            }
+            (Verb::DriveStart | Verb::DriveStop, Some(extra)) => Some((
+                arg_pos,
+                format!("{verb} takes nothing after it. Remove `{extra}`."),
+            )),
+            (Verb::Wait, Some(wait)) if parse_duration(wait).is_none() => Some((
+                arg_pos,
+                format!("`{wait}` is not a length of time. {WAIT_USAGE}"),
             )),
             (Verb::Site(name), _) => {
-                let rule = self.config.verbs.get(name.as_ref()).map_or(ArgRule::Optional, |v| v.argument);
+                let rule = self.config.verbs.get(name.as_ref()).map(|v| v.argument);
                 match (rule, arg) {
-                    (ArgRule::Required, None) => bad(out, &cmd.pos, format!(
-                        "{name} needs something after it (docent.yaml says `argument: required`)."
+                    (Some(ArgRule::Required), None) => Some((
+                        &cmd.pos,
+                        format!(
+                            "{name} needs something after it (docent.yaml says \
+                             `argument: required`)."
+                        ),
                     )),
-                    (ArgRule::None, Some(extra)) => bad(out, arg_pos, format!(
-                        "{name} takes nothing after it (docent.yaml says `argument: none`). Remove `{extra}`."
+                    (Some(ArgRule::None), Some(extra)) => Some((
+                        arg_pos,
+                        format!(
+                            "{name} takes nothing after it (docent.yaml says `argument: none`). \
+                             Remove `{extra}`."
+                        ),
                     )),
-                    _ => {}
+                    _ => None,
                 }
             }
-            _ => {}
+            _ => None,
+        };
+        if let Some((pos, message)) = problem {
+            out.push(Diagnostic::error("bad-argument", pos, message));
         }
     }
 
@@ -179,19 +213,17 @@ impl<'a> CommandChecker<'a> {
         arg_start: usize,
         out: &mut Vec<Diagnostic>,
     ) {
-        let usage = "SET_WAYPOINT needs two or three numbers: x and y in metres, and optionally \
-                     the heading, e.g. `SET_WAYPOINT 3.5 2` or `SET_WAYPOINT 3.5 2 90`.";
         let words = words_with_offsets(arg, arg_start);
         if !(2..=3).contains(&words.len()) {
             let pos = if words.is_empty() {
                 cmd.pos.clone()
             } else {
-                self.offset_pos(cmd, arg_start)
+                offset_pos(cmd, arg_start)
             };
             out.push(Diagnostic::error(
                 "bad-argument",
                 &pos,
-                format!("Found {} value(s). {usage}", words.len()),
+                format!("Found {} value(s). {WAYPOINT_USAGE}", words.len()),
             ));
             return;
         }
@@ -200,11 +232,11 @@ impl<'a> CommandChecker<'a> {
             match word.parse::<f64>() {
                 Ok(n) if n.is_finite() => numbers.push(n),
                 _ => {
-                    let pos = self.offset_pos(cmd, offset);
+                    let pos = offset_pos(cmd, offset);
                     out.push(Diagnostic::error(
                         "bad-argument",
                         &pos,
-                        format!("`{word}` is not a number. {usage}"),
+                        format!("`{word}` is not a number. {WAYPOINT_USAGE}"),
                     ));
                 }
             }
@@ -213,12 +245,13 @@ impl<'a> CommandChecker<'a> {
             return;
         };
         if numbers.len() == words.len() && !bounds.contains(*x, *y) {
-            let pos = self.offset_pos(cmd, arg_start);
-            out.push(Diagnostic::error("waypoint-out-of-bounds", &pos, format!(
-                "The point ({x}, {y}) lies outside the area the robot may drive in: x from {} to {}, \
-                 y from {} to {} (set in docent.yaml under `drive: bounds`).",
+            let pos = offset_pos(cmd, arg_start);
+            let message = format!(
+                "The point ({x}, {y}) lies outside the area the robot may drive in: x from {} \
+                 to {}, y from {} to {} (set in docent.yaml under `drive: bounds`).",
                 bounds.min_x, bounds.max_x, bounds.min_y, bounds.max_y
-            )));
+            );
+            out.push(Diagnostic::error("waypoint-out-of-bounds", &pos, message));
         }
     }
 
@@ -229,7 +262,17 @@ impl<'a> CommandChecker<'a> {
     }
 
     /// Why `rel` is not a usable file under `area`, in words, or `None` when it is.
-    pub fn path_problem(&self, area: BundleArea, rel: &str) -> Option<(PathError, String)> {
+    pub fn path_problem(&self, area: BundleArea, rel: &str) -> Option<PathProblem> {
+        let key = (area, rel.to_owned());
+        if let Some(verdict) = self.verdicts.borrow().get(&key) {
+            return verdict.clone();
+        }
+        let verdict = self.judge_path(area, rel);
+        self.verdicts.borrow_mut().insert(key, verdict.clone());
+        verdict
+    }
+
+    fn judge_path(&self, area: BundleArea, rel: &str) -> Option<PathProblem> {
         let err = resolve_in_bundle(self.root, area, rel).err()?;
         let folder = area.dir_name();
         let message = match &err {
@@ -247,8 +290,7 @@ impl<'a> CommandChecker<'a> {
             }
             PathError::NotFound => {
                 let files = self.listing(area);
-                let hint = closest(rel, files.iter().map(String::as_str))
-                    .map_or_else(String::new, |s| format!(" Did you mean `{s}`?"));
+                let hint = did_you_mean(rel, files.iter().map(String::as_str));
                 format!("There is no file `{folder}/{rel}`.{hint}")
             }
         };
@@ -262,19 +304,19 @@ impl<'a> CommandChecker<'a> {
         };
         cell.get_or_init(|| list_files(self.root, area))
     }
+}
 
-    /// The position `byte` bytes into the command text, when the text is verbatim in the file.
-    fn offset_pos(&self, cmd: &WrittenCommand, byte: usize) -> Pos {
-        let (Some(at), Some(before)) = (cmd.verbatim_at, cmd.text.get(..byte)) else {
-            return cmd.pos.clone();
-        };
-        let chars = u32::try_from(before.chars().count()).unwrap_or(0);
-        Pos::new(
-            cmd.pos.file.clone(),
-            cmd.pos.line,
-            cmd.pos.column.saturating_add(at).saturating_add(chars),
-        )
-    }
+/// The position `byte` bytes into the command text, when the text is verbatim in the file.
+fn offset_pos(cmd: &WrittenCommand, byte: usize) -> Pos {
+    let (Some(at), Some(before)) = (cmd.verbatim_at, cmd.text.get(..byte)) else {
+        return cmd.pos.clone();
+    };
+    let chars = u32::try_from(before.chars().count()).unwrap_or(0);
+    Pos::new(
+        cmd.pos.file.clone(),
+        cmd.pos.line,
+        cmd.pos.column.saturating_add(at).saturating_add(chars),
+    )
 }
 
 /// The diagnostic code for a path refused by the gate.
@@ -318,4 +360,88 @@ fn words_with_offsets(s: &str, base: usize) -> Vec<(usize, &str)> {
         rest = &tail[end..];
     }
     words
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn command(text: &str, column: u32, verbatim_at: Option<u32>) -> WrittenCommand {
+        WrittenCommand {
+            text: text.to_owned(),
+            pos: Pos::new("acts.yaml", 3, column),
+            verbatim_at,
+        }
+    }
+
+    fn check(cmd: &WrittenCommand) -> (Option<CommandSpec>, Vec<(&'static str, u32)>) {
+        let root = std::env::temp_dir();
+        let config = SiteConfig::default();
+        let checker = CommandChecker::new(&root, &config);
+        let mut out = Vec::new();
+        let spec = checker.check(cmd, &mut out).map(|c| c.value);
+        (spec, out.iter().map(|d| (d.code, d.column)).collect())
+    }
+
+    #[test]
+    fn splits_the_verb_from_a_trimmed_argument() {
+        let (spec, problems) = check(&command("SAY   Hello there  ", 7, Some(0)));
+        assert_eq!(
+            spec,
+            Some(CommandSpec {
+                verb: Verb::Say,
+                arg: Some("Hello there".to_owned())
+            })
+        );
+        assert!(problems.is_empty());
+        let (spec, _) = check(&command("DRIVE_STOP", 7, Some(0)));
+        assert_eq!(
+            spec,
+            Some(CommandSpec {
+                verb: Verb::DriveStop,
+                arg: None
+            })
+        );
+    }
+
+    #[test]
+    fn argument_problems_point_into_the_text_when_it_is_verbatim() {
+        assert_eq!(
+            check(&command("WAIT soon", 7, Some(0))).1,
+            [("bad-argument", 12)]
+        );
+        assert_eq!(
+            check(&command("WAIT soon", 7, Some(1))).1,
+            [("bad-argument", 13)]
+        );
+        assert_eq!(
+            check(&command("WAIT soon", 7, None)).1,
+            [("bad-argument", 7)]
+        );
+        assert_eq!(
+            check(&command("SET_WAYPOINT 1 é", 7, Some(0))).1,
+            [("bad-argument", 22)]
+        );
+    }
+
+    #[test]
+    fn empty_and_lower_case_commands_are_refused() {
+        assert_eq!(
+            check(&command("  ", 7, Some(0))),
+            (None, vec![("bad-value", 7)])
+        );
+        assert_eq!(
+            check(&command("wait", 7, Some(0))),
+            (None, vec![("unknown-verb", 7)])
+        );
+    }
+
+    #[test]
+    fn words_keep_their_byte_offsets() {
+        assert_eq!(
+            words_with_offsets(" 1  2.5\t3", 10),
+            [(11, "1"), (14, "2.5"), (18, "3")]
+        );
+        assert!(words_with_offsets("   ", 0).is_empty());
+    }
 }

@@ -4,16 +4,19 @@
 //! checked against the rest of the settings.
 
 use std::sync::Arc;
-use std::time::Duration;
 
 use crate::content::acts_file::yaml::{self, Kind, Node, Recovery};
 use crate::content::config::{AdapterKind, ArgRule, Bounds, SiteConfig, SiteVerb};
 use crate::content::diagnostic::Diagnostic;
 use crate::content::duration::parse_duration;
-use crate::content::model::{Located, Pos, Verb};
-use crate::content::suggest::closest;
+use crate::content::model::{Located, Verb};
+
+mod reader;
+
+use reader::Reader;
 
 /// What `docent.yaml` gave, beyond the settings themselves.
+#[derive(Default)]
 pub(crate) struct ConfigFile {
     /// The settings, defaults where absent or wrong.
     pub config: SiteConfig,
@@ -23,17 +26,34 @@ pub(crate) struct ConfigFile {
     pub diagnostics: Vec<Diagnostic>,
 }
 
+const TOP_KEYS: &[&str] = &[
+    "home", "contexts", "speech", "display", "drive", "adapters", "verbs",
+];
+const HOME_USAGE: &str = "`home` names the page under pages/ the kiosk starts on, e.g. \
+                          `home: index.html`.";
+const CONTEXT_USAGE: &str = "A context is the name of a text variant key: `Text` followed by \
+                             a name, e.g. `TextGroup` or `TextChild`.";
+const VOICE_USAGE: &str = "`voice` is an espeak-ng voice name such as `en`, `en-us` or `de`.";
+const RATE_USAGE: &str = "`rate` is the speaking speed in words per minute: a whole number \
+                          from 40 to 600, e.g. `rate: 160`.";
+const SPEED_USAGE: &str = "`speed` is the simulated driving speed in metres per second: a \
+                           number above 0, e.g. `speed: 0.5`.";
+const POSE_RATE_USAGE: &str = "`pose_rate` is how many position updates per second the \
+                               simulated drive sends: above 0 and at most 50, e.g. `pose_rate: 5`.";
+const BOUNDS_USAGE: &str = "`bounds` needs four numbers in metres, each min below its max, \
+                            e.g. `bounds: { min_x: 0, min_y: 0, max_x: 20, max_y: 12 }`.";
+const TIMEOUT_USAGE: &str = "`timeout` is a length of time with its unit, e.g. `timeout: 30s` \
+                             or `timeout: 2m`.";
+const VERBS_USAGE: &str = "`verbs` lists the site's own commands by name, e.g. \
+                           `verbs: { LIGHTS: { adapter: ws } }`.";
+
 /// Parses the content of `docent.yaml`.
 pub(crate) fn parse_config(file: &Arc<str>, bytes: &[u8]) -> ConfigFile {
     let parsed = yaml::parse(file, bytes, "config-syntax", Recovery::None);
     let mut reader = Reader {
         diagnostics: parsed.diagnostics,
     };
-    let mut out = ConfigFile {
-        config: SiteConfig::default(),
-        home: None,
-        diagnostics: Vec::new(),
-    };
+    let mut out = ConfigFile::default();
     if let Some(root) = &parsed.root {
         reader.top_level(root, &mut out);
     }
@@ -41,24 +61,37 @@ pub(crate) fn parse_config(file: &Arc<str>, bytes: &[u8]) -> ConfigFile {
     out
 }
 
-struct Reader {
-    diagnostics: Vec<Diagnostic>,
+/// Capital letters, digits and `_`, starting with a letter: the shape of every verb.
+fn is_verb_name(name: &str) -> bool {
+    name.starts_with(|c: char| c.is_ascii_uppercase())
+        && name
+            .chars()
+            .all(|c| c.is_ascii_uppercase() || c.is_ascii_digit() || c == '_')
+}
+
+/// An espeak-ng voice is passed as a process argument: a plain name, never an option.
+fn is_voice_name(name: &str) -> bool {
+    !name.is_empty()
+        && !name.starts_with('-')
+        && name
+            .chars()
+            .all(|c| c.is_ascii_alphanumeric() || "-+_/".contains(c))
+}
+
+fn positive(text: &str) -> Option<f64> {
+    text.parse::<f64>()
+        .ok()
+        .filter(|n| n.is_finite() && *n > 0.0)
 }
 
 impl Reader {
     fn top_level(&mut self, root: &Node, out: &mut ConfigFile) {
-        const KEYS: &[&str] = &[
-            "home", "contexts", "speech", "display", "drive", "adapters", "verbs",
-        ];
         let config = &mut out.config;
-        for (key, value) in self.entries(root, KEYS, "docent.yaml") {
+        for (key, value) in self.entries(root, TOP_KEYS, "docent.yaml") {
             match key {
                 "home" => {
-                    if let Some(home) = self.text(
-                        value,
-                        "`home` must name a page under pages/, e.g. `home: index.html`.",
-                    ) {
-                        config.home = home.clone();
+                    if let Some(home) = self.setting(value, HOME_USAGE, |t| Some(t.to_owned())) {
+                        config.home.clone_from(&home);
                         out.home = Some(Located {
                             value: home,
                             pos: value.pos.clone(),
@@ -66,44 +99,22 @@ impl Reader {
                     }
                 }
                 "contexts" => config.contexts = self.contexts(value),
-                "speech" => {
-                    for (key, value) in self.entries(value, &["adapter", "voice", "rate"], "speech")
-                    {
-                        match key {
-                            "adapter" => {
-                                let kinds = [
-                                    ("espeak", AdapterKind::Espeak),
-                                    ("log", AdapterKind::Log),
-                                    ("ws", AdapterKind::Ws),
-                                ];
-                                config.speech.adapter = self
-                                    .choice(value, "speech adapter", &kinds)
-                                    .or(config.speech.adapter);
-                            }
-                            "voice" => {
-                                config.speech.voice =
-                                    self.voice(value).unwrap_or(config.speech.voice.clone())
-                            }
-                            _ => {
-                                config.speech.rate_wpm =
-                                    self.rate(value).unwrap_or(config.speech.rate_wpm)
-                            }
-                        }
-                    }
-                }
+                "speech" => self.speech(value, config),
                 "display" => {
                     for (_, value) in self.entries(value, &["adapter"], "display") {
                         let kinds = [("display", AdapterKind::Display), ("ws", AdapterKind::Ws)];
-                        config.display.adapter = self
-                            .choice(value, "display adapter", &kinds)
-                            .unwrap_or(config.display.adapter);
+                        if let Some(kind) = self.choice(value, "display adapter", &kinds) {
+                            config.display.adapter = kind;
+                        }
                     }
                 }
                 "drive" => self.drive(value, config),
                 "adapters" => {
                     for (_, value) in self.entries(value, &["timeout"], "adapters") {
-                        config.adapter_timeout =
-                            self.timeout(value).unwrap_or(config.adapter_timeout);
+                        let parse = |t: &str| parse_duration(t).filter(|d| !d.is_zero());
+                        if let Some(timeout) = self.setting(value, TIMEOUT_USAGE, parse) {
+                            config.adapter_timeout = timeout;
+                        }
                     }
                 }
                 _ => self.verbs(value, config),
@@ -111,25 +122,58 @@ impl Reader {
         }
     }
 
+    fn speech(&mut self, node: &Node, config: &mut SiteConfig) {
+        let speech = &mut config.speech;
+        for (key, value) in self.entries(node, &["adapter", "voice", "rate"], "speech") {
+            match key {
+                "adapter" => {
+                    let kinds = [
+                        ("espeak", AdapterKind::Espeak),
+                        ("log", AdapterKind::Log),
+                        ("ws", AdapterKind::Ws),
+                    ];
+                    speech.adapter = self
+                        .choice(value, "speech adapter", &kinds)
+                        .or(speech.adapter);
+                }
+                "voice" => {
+                    let parse = |t: &str| is_voice_name(t).then(|| t.to_owned());
+                    if let Some(voice) = self.setting(value, VOICE_USAGE, parse) {
+                        speech.voice = voice;
+                    }
+                }
+                _ => {
+                    let parse = |t: &str| t.parse::<u32>().ok().filter(|r| (40..=600).contains(r));
+                    if let Some(rate) = self.setting(value, RATE_USAGE, parse) {
+                        speech.rate_wpm = rate;
+                    }
+                }
+            }
+        }
+    }
+
     fn drive(&mut self, node: &Node, config: &mut SiteConfig) {
+        let drive = &mut config.drive;
         for (key, value) in
             self.entries(node, &["adapter", "speed", "pose_rate", "bounds"], "drive")
         {
-            let drive = &mut config.drive;
             match key {
                 "adapter" => {
                     let kinds = [("sim", AdapterKind::DriveSim), ("ws", AdapterKind::Ws)];
-                    drive.adapter = self
-                        .choice(value, "drive adapter", &kinds)
-                        .unwrap_or(drive.adapter);
+                    if let Some(kind) = self.choice(value, "drive adapter", &kinds) {
+                        drive.adapter = kind;
+                    }
                 }
                 "speed" => {
-                    let ok = self.number(value).filter(|&s| s > 0.0);
-                    drive.speed = ok.unwrap_or_else(|| self.bad(value, "`speed` is the simulated speed in metres per second: a number above 0, e.g. `speed: 0.5`.", drive.speed));
+                    if let Some(speed) = self.setting(value, SPEED_USAGE, positive) {
+                        drive.speed = speed;
+                    }
                 }
                 "pose_rate" => {
-                    let ok = self.number(value).filter(|&r| r > 0.0 && r <= 50.0);
-                    drive.pose_hz = ok.unwrap_or_else(|| self.bad(value, "`pose_rate` is how many position updates per second the simulated drive sends: a number above 0 and at most 50, e.g. `pose_rate: 5`.", drive.pose_hz));
+                    let parse = |t: &str| positive(t).filter(|r| *r <= 50.0);
+                    if let Some(rate) = self.setting(value, POSE_RATE_USAGE, parse) {
+                        drive.pose_hz = rate;
+                    }
                 }
                 _ => drive.bounds = self.bounds(value).or(drive.bounds),
             }
@@ -138,29 +182,25 @@ impl Reader {
 
     fn bounds(&mut self, node: &Node) -> Option<Bounds> {
         const KEYS: &[&str] = &["min_x", "min_y", "max_x", "max_y"];
-        let usage = "`bounds` needs four numbers in metres, each min below its max, e.g. \
-                     `bounds: { min_x: 0, min_y: 0, max_x: 20, max_y: 12 }`.";
         let mut values = [None; 4];
         let mut all_numbers = true;
         for (key, value) in self.entries(node, KEYS, "bounds") {
-            let Some(index) = KEYS.iter().position(|k| *k == key) else {
-                continue;
-            };
-            values[index] = self.number(value);
-            if values[index].is_none() {
-                all_numbers = false;
-                self.bad(value, usage, ());
-            }
+            let index = KEYS.iter().position(|k| *k == key)?;
+            values[index] = self.setting(value, BOUNDS_USAGE, |t| {
+                t.parse::<f64>().ok().filter(|n| n.is_finite())
+            });
+            all_numbers &= values[index].is_some();
         }
         let [Some(min_x), Some(min_y), Some(max_x), Some(max_y)] = values else {
-            // A key left out (a wrong value or a wrong shape was reported already).
+            // A key left out; wrong values and wrong shapes were reported already.
             if all_numbers && matches!(node.kind, Kind::Map(_)) {
-                self.bad(node, usage, ());
+                self.bad(node, BOUNDS_USAGE);
             }
             return None;
         };
         if min_x >= max_x || min_y >= max_y {
-            return self.bad(node, usage, None);
+            self.bad(node, BOUNDS_USAGE);
+            return None;
         }
         Some(Bounds {
             min_x,
@@ -171,32 +211,29 @@ impl Reader {
     }
 
     fn verbs(&mut self, node: &Node, config: &mut SiteConfig) {
-        let Kind::Map(entries) = &node.kind else {
-            if !matches!(node.kind, Kind::Null) {
-                self.bad(node, "`verbs` lists new commands by name, e.g.\n  verbs:\n    LIGHTS:\n      adapter: ws", ());
-            }
-            return;
+        let entries = match &node.kind {
+            Kind::Map(entries) => entries,
+            Kind::Null => return,
+            _ => return self.bad(node, VERBS_USAGE),
         };
         for (key, value) in entries {
-            let Some(name) = key.as_text() else { continue };
-            if !is_verb_name(name) {
-                self.bad(key, &format!("`{name}` cannot be a command name: use capital letters, digits and `_`, starting with a letter, e.g. `LIGHTS_ON`."), ());
+            let name = key.as_text().unwrap_or_default();
+            let problem = if !is_verb_name(name) {
+                "A command name is written in capital letters, digits and `_`, starting with a \
+                 letter, e.g. `LIGHTS_ON`."
+            } else if Verb::built_in(name).is_some() {
+                "This is already a built-in command; choose another name for the site's command."
+            } else if config.verbs.contains_key(name) {
+                let message = format!("The command `{name}` is declared twice. Keep one.");
+                self.diagnostics
+                    .push(Diagnostic::error("duplicate-key", &key.pos, message));
                 continue;
-            }
-            if Verb::built_in(name).is_some() {
-                self.bad(key, &format!("`{name}` is already a built-in command; choose another name for the site's command."), ());
+            } else {
+                let verb = self.site_verb(value);
+                config.verbs.insert(name.to_owned(), verb);
                 continue;
-            }
-            if config.verbs.contains_key(name) {
-                self.diagnostics.push(Diagnostic::error(
-                    "duplicate-key",
-                    &key.pos,
-                    format!("The command `{name}` is declared twice. Keep one."),
-                ));
-                continue;
-            }
-            let verb = self.site_verb(value);
-            config.verbs.insert(name.to_owned(), verb);
+            };
+            self.bad(key, problem);
         }
     }
 
@@ -227,13 +264,15 @@ impl Reader {
                         .unwrap_or(verb.argument);
                 }
                 _ => {
-                    verb.description = self.text(value, "`description` is a short text for people.")
+                    let usage = "`description` is a short text for people.";
+                    verb.description = self.setting(value, usage, |t| Some(t.to_owned()));
                 }
             }
         }
         verb
     }
 
+    /// A single name or a list of names, each `Text` followed by something, no repeats.
     fn contexts(&mut self, node: &Node) -> Vec<String> {
         let items: Vec<&Node> = match &node.kind {
             Kind::Seq(items) => items.iter().collect(),
@@ -242,160 +281,182 @@ impl Reader {
         };
         let mut contexts: Vec<String> = Vec::new();
         for item in items {
-            let usage = "A context is the name of a text variant key starting with `Text`, e.g. `TextGroup` or `TextChild`.";
             match item.as_text() {
-                Some(name)
-                    if name.len() > 4
-                        && name.starts_with("Text")
-                        && !contexts.iter().any(|c| c == name) =>
-                {
-                    contexts.push(name.to_owned())
-                }
                 Some(name) if contexts.iter().any(|c| c == name) => {
-                    self.bad(item, &format!("`{name}` is listed twice."), ())
+                    self.bad(item, "This context is listed twice.");
                 }
-                _ => self.bad(item, usage, ()),
+                Some(name) if name.len() > 4 && name.starts_with("Text") => {
+                    contexts.push(name.to_owned());
+                }
+                _ => self.bad(item, CONTEXT_USAGE),
             }
         }
         contexts
     }
-
-    fn voice(&mut self, node: &Node) -> Option<String> {
-        // The voice is handed to espeak-ng as an argument: letters, digits and - + _ / only,
-        // never starting with `-` (it would be read as an option).
-        let ok = node.as_text().filter(|v| {
-            !v.is_empty()
-                && !v.starts_with('-')
-                && v.chars()
-                    .all(|c| c.is_ascii_alphanumeric() || "-+_/".contains(c))
-        });
-        match ok {
-            Some(voice) => Some(voice.to_owned()),
-            None => self.bad(
-                node,
-                "`voice` is an espeak-ng voice name such as `en`, `en-us` or `de`.",
-                None,
-            ),
-        }
-    }
-
-    fn rate(&mut self, node: &Node) -> Option<u32> {
-        let ok = node
-            .as_text()
-            .and_then(|t| t.trim().parse::<u32>().ok())
-            .filter(|r| (40..=600).contains(r));
-        ok.or_else(|| self.bad(node, "`rate` is the speaking speed in words per minute: a whole number from 40 to 600, e.g. `rate: 160`.", None))
-    }
-
-    fn timeout(&mut self, node: &Node) -> Option<Duration> {
-        let ok = node
-            .as_text()
-            .and_then(parse_duration)
-            .filter(|d| !d.is_zero());
-        ok.or_else(|| self.bad(node, "`timeout` is a length of time with its unit, e.g. `timeout: 30s` or `timeout: 2m`.", None))
-    }
-
-    fn number(&self, node: &Node) -> Option<f64> {
-        node.as_text()
-            .and_then(|t| t.trim().parse::<f64>().ok())
-            .filter(|n| n.is_finite())
-    }
-
-    fn text(&mut self, node: &Node, usage: &str) -> Option<String> {
-        match node.as_text().map(str::trim) {
-            Some(text) if !text.is_empty() => Some(text.to_owned()),
-            _ => self.bad(node, usage, None),
-        }
-    }
-
-    fn choice<T: Copy>(&mut self, node: &Node, what: &str, options: &[(&str, T)]) -> Option<T> {
-        let written = node.as_text().unwrap_or_default();
-        if let Some((_, value)) = options.iter().find(|(name, _)| *name == written) {
-            return Some(*value);
-        }
-        let names: Vec<&str> = options.iter().map(|(name, _)| *name).collect();
-        let hint = closest(written, names.iter().copied())
-            .map_or_else(String::new, |s| format!(" Did you mean `{s}`?"));
-        self.bad(
-            node,
-            &format!("The {what} must be one of: {}.{hint}", names.join(", ")),
-            None,
-        )
-    }
-
-    /// Reports a `config-bad-value` at `node` and returns `fallback`.
-    fn bad<T>(&mut self, node: &Node, message: &str, fallback: T) -> T {
-        let found = node.as_text().map_or_else(
-            || format!("found {}", node.describe()),
-            |t| format!("found `{t}`"),
-        );
-        self.diagnostics.push(Diagnostic::error(
-            "config-bad-value",
-            &node.pos,
-            format!("{message} ({found})"),
-        ));
-        fallback
-    }
-
-    /// The entries of a settings mapping, reporting unknown, duplicate and non-text keys.
-    /// A null section (`speech:` alone) has no entries.
-    fn entries<'n>(
-        &mut self,
-        node: &'n Node,
-        known: &'static [&'static str],
-        section: &str,
-    ) -> Vec<(&'static str, &'n Node)> {
-        let entries = match &node.kind {
-            Kind::Map(entries) => entries,
-            Kind::Null => return Vec::new(),
-            _ => {
-                let keys = known.join(", ");
-                return self.bad(
-                    node,
-                    &format!("`{section}` must be a set of settings ({keys})."),
-                    Vec::new(),
-                );
-            }
-        };
-        let mut seen: Vec<(&str, &Pos)> = Vec::new();
-        let mut out = Vec::new();
-        for (key, value) in entries {
-            let name = key.as_text().unwrap_or_default();
-            if let Some((_, first)) = seen.iter().find(|(k, _)| *k == name) {
-                let message = format!(
-                    "`{name}` is set twice here (first on line {}). Keep one.",
-                    first.line
-                );
-                self.diagnostics
-                    .push(Diagnostic::error("duplicate-key", &key.pos, message));
-                continue;
-            }
-            seen.push((name, &key.pos));
-            match known.iter().find(|k| **k == name) {
-                Some(k) => out.push((*k, value)),
-                None => {
-                    let hint = closest(name, known.iter().copied())
-                        .map_or_else(String::new, |s| format!(" Did you mean `{s}`?"));
-                    let message = format!(
-                        "`{name}` is not a setting Docent knows in `{section}`.{hint} Known settings here: {}.",
-                        known.join(", ")
-                    );
-                    self.diagnostics.push(Diagnostic::error(
-                        "config-unknown-key",
-                        &key.pos,
-                        message,
-                    ));
-                }
-            }
-        }
-        out
-    }
 }
 
-/// Capital letters, digits and `_`, starting with a letter: the shape of every verb.
-pub(crate) fn is_verb_name(name: &str) -> bool {
-    name.starts_with(|c: char| c.is_ascii_uppercase())
-        && name
-            .chars()
-            .all(|c| c.is_ascii_uppercase() || c.is_ascii_digit() || c == '_')
+#[cfg(test)]
+mod tests {
+    use std::time::Duration;
+
+    use super::*;
+
+    fn parse(text: &str) -> ConfigFile {
+        parse_config(&Arc::from("docent.yaml"), text.as_bytes())
+    }
+
+    fn problems(text: &str) -> Vec<(&'static str, u32, u32, String)> {
+        let file = parse(text);
+        file.diagnostics
+            .into_iter()
+            .map(|d| (d.code, d.line, d.column, d.message))
+            .collect()
+    }
+
+    #[test]
+    fn the_documented_example_maps_onto_site_config() {
+        let text = "home: start.html\ncontexts: [TextGroup, TextFormally, TextChild]\n\
+            speech:\n  adapter: espeak\n  voice: en-us\n  rate: 160\ndisplay:\n  adapter: ws\n\
+            drive:\n  adapter: sim\n  speed: 0.5\n  pose_rate: 5\n  \
+            bounds: { min_x: 0, min_y: 0, max_x: 20, max_y: 12 }\nadapters:\n  timeout: 45s\n\
+            verbs:\n  LIGHTS:\n    adapter: ws\n    argument: required\n    \
+            description: Switch the showcase lights\n  BELL:\n";
+        let file = parse(text);
+        assert!(file.diagnostics.is_empty(), "{:?}", file.diagnostics);
+        let config = file.config;
+        assert_eq!(config.home, "start.html");
+        assert_eq!(file.home.map(|h| (h.pos.line, h.pos.column)), Some((1, 7)));
+        assert_eq!(config.contexts, ["TextGroup", "TextFormally", "TextChild"]);
+        assert_eq!(config.speech.adapter, Some(AdapterKind::Espeak));
+        assert_eq!(
+            (config.speech.voice.as_str(), config.speech.rate_wpm),
+            ("en-us", 160)
+        );
+        assert_eq!(config.display.adapter, AdapterKind::Ws);
+        assert_eq!(
+            (
+                config.drive.adapter,
+                config.drive.speed,
+                config.drive.pose_hz
+            ),
+            (AdapterKind::DriveSim, 0.5, 5.0)
+        );
+        assert_eq!(
+            config.drive.bounds,
+            Some(Bounds {
+                min_x: 0.0,
+                min_y: 0.0,
+                max_x: 20.0,
+                max_y: 12.0
+            })
+        );
+        assert_eq!(config.adapter_timeout, Duration::from_secs(45));
+        let lights = &config.verbs["LIGHTS"];
+        assert_eq!(
+            (lights.adapter, lights.argument),
+            (AdapterKind::Ws, ArgRule::Required)
+        );
+        assert_eq!(
+            lights.description.as_deref(),
+            Some("Switch the showcase lights")
+        );
+        assert_eq!(
+            (config.verbs["BELL"].adapter, config.verbs["BELL"].argument),
+            (AdapterKind::Ws, ArgRule::Optional)
+        );
+    }
+
+    #[test]
+    fn an_empty_file_gives_the_defaults() {
+        let file = parse("# nothing set yet\n");
+        assert!(file.diagnostics.is_empty());
+        assert_eq!(file.config, SiteConfig::default());
+        assert!(file.home.is_none());
+    }
+
+    #[test]
+    fn unknown_keys_are_located_with_a_suggestion() {
+        let found = problems("hoem: x.html\nspeech:\n  volume: 3\n  rat: 100\n");
+        let located: Vec<_> = found.iter().map(|(c, l, col, _)| (*c, *l, *col)).collect();
+        assert_eq!(
+            located,
+            [
+                ("config-unknown-key", 1, 1),
+                ("config-unknown-key", 3, 3),
+                ("config-unknown-key", 4, 3)
+            ]
+        );
+        assert!(found[0].3.contains("Did you mean `home`?"));
+        assert!(!found[1].3.contains("Did you mean"));
+        assert!(found[2].3.contains("Did you mean `rate`?"));
+    }
+
+    #[test]
+    fn bad_values_are_located_and_defaults_kept() {
+        let text = [
+            "speech:",
+            "  adapter: espeek",
+            "  voice: \"-x\"",
+            "  rate: 1000",
+            "drive:",
+            "  speed: -1",
+            "  pose_rate: 100",
+            "  bounds: { min_x: 5, min_y: 0, max_x: 1, max_y: 2 }",
+            "adapters:",
+            "  timeout: 30",
+            "contexts: [TextGroup, Group, TextGroup]",
+        ];
+        let file = parse(&text.join("\n"));
+        let located: Vec<_> = file
+            .diagnostics
+            .iter()
+            .map(|d| (d.code, d.line, d.column))
+            .collect();
+        assert_eq!(
+            located,
+            [
+                ("config-bad-value", 2, 12),
+                ("config-bad-value", 3, 10),
+                ("config-bad-value", 4, 9),
+                ("config-bad-value", 6, 10),
+                ("config-bad-value", 7, 14),
+                ("config-bad-value", 8, 11),
+                ("config-bad-value", 10, 12),
+                ("config-bad-value", 11, 23),
+                ("config-bad-value", 11, 30),
+            ]
+        );
+        assert!(
+            file.diagnostics[0]
+                .message
+                .contains("Did you mean `espeak`?")
+        );
+        assert_eq!(file.config.speech, SiteConfig::default().speech);
+        assert_eq!(file.config.drive, SiteConfig::default().drive);
+        assert_eq!(file.config.contexts, ["TextGroup"]);
+    }
+
+    #[test]
+    fn site_verbs_must_be_capitalised_and_new() {
+        let found = problems("verbs:\n  SAY: {}\n  lights: {}\n  FOG:\n    argument: sometimes\n");
+        let located: Vec<_> = found.iter().map(|(c, l, col, _)| (*c, *l, *col)).collect();
+        assert_eq!(
+            located,
+            [
+                ("config-bad-value", 2, 3),
+                ("config-bad-value", 3, 3),
+                ("config-bad-value", 5, 15)
+            ]
+        );
+    }
+
+    #[test]
+    fn syntax_errors_and_duplicates_are_reported() {
+        assert_eq!(problems("home: [x\n")[0].0, "config-syntax");
+        let found = problems("home: a.html\nhome: b.html\n");
+        assert_eq!(
+            (found[0].0, found[0].1, found[0].2),
+            ("duplicate-key", 2, 1)
+        );
+    }
 }

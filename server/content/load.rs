@@ -2,7 +2,7 @@
 //! order), commands, labels across files, pages and the home page. Every problem found is
 //! collected; loading never stops at the first.
 
-use std::collections::{BTreeSet, HashMap, HashSet};
+use std::collections::{BTreeMap, BTreeSet, HashMap, HashSet};
 use std::io::Read;
 use std::num::NonZeroUsize;
 use std::path::Path;
@@ -13,10 +13,10 @@ use crate::content::commands::{CommandChecker, path_error_code};
 use crate::content::config::SiteConfig;
 use crate::content::config_file::{ConfigFile, parse_config};
 use crate::content::diagnostic::Diagnostic;
-use crate::content::model::{Act, Bundle, DEFAULT_VARIANT, Located, Pos};
+use crate::content::model::{Act, Bundle, DEFAULT_VARIANT, Located, Pos, Variant};
 use crate::content::pages::page_act_references;
 use crate::content::paths::{BundleArea, PathError};
-use crate::content::suggest::closest;
+use crate::content::suggest::did_you_mean;
 
 /// The name of the settings file at the top of a bundle.
 const CONFIG_FILE: &str = "docent.yaml";
@@ -38,7 +38,8 @@ pub fn load_bundle(root: &Path) -> LoadReport {
         Ok(root) if root.is_dir() => root,
         _ => {
             let message = format!(
-                "`{}` is not a folder Docent can open. Give the path of the bundle folder (the one holding the acts files, pages/ and media/).",
+                "`{}` is not a folder Docent can open. Give the path of the bundle folder (the \
+                 one holding the acts files, pages/ and media/).",
                 root.display()
             );
             diagnostics.push(Diagnostic::error(
@@ -67,7 +68,7 @@ pub fn load_bundle(root: &Path) -> LoadReport {
         acts = merged.acts.len(),
         files = names.len(),
         errors,
-        elapsed_ms = started.elapsed().as_millis() as u64,
+        elapsed_ms = u64::try_from(started.elapsed().as_millis()).unwrap_or(u64::MAX),
         "content bundle checked"
     );
     let bundle = (errors == 0).then(|| Bundle {
@@ -87,22 +88,14 @@ pub fn load_bundle(root: &Path) -> LoadReport {
 fn read_settings(root: &Path, out: &mut Vec<Diagnostic>) -> ConfigFile {
     let path = root.join(CONFIG_FILE);
     if !path.exists() {
-        return ConfigFile {
-            config: SiteConfig::default(),
-            home: None,
-            diagnostics: Vec::new(),
-        };
+        return ConfigFile::default();
     }
     let file: Arc<str> = Arc::from(CONFIG_FILE);
     let mut settings = match read_limited(&path, &file) {
         Ok(bytes) => parse_config(&file, &bytes),
         Err(problem) => {
             out.push(problem);
-            return ConfigFile {
-                config: SiteConfig::default(),
-                home: None,
-                diagnostics: Vec::new(),
-            };
+            return ConfigFile::default();
         }
     };
     out.append(&mut settings.diagnostics);
@@ -141,7 +134,8 @@ fn read_acts_files(root: &Path, names: &[String], out: &mut Vec<Diagnostic>) -> 
         let path = root.join(name);
         // A symlinked acts file must still live inside the bundle.
         if !path.canonicalize().is_ok_and(|p| p.starts_with(root)) {
-            let message = "This acts file is a link to a place outside the bundle folder. Copy the file into the bundle instead.";
+            let message = "This acts file is a link to a place outside the bundle folder. \
+                           Copy the file into the bundle instead.";
             return Err(Diagnostic::error(
                 "path-outside-bundle",
                 &Pos::new(file, 0, 0),
@@ -188,7 +182,7 @@ fn read_limited(path: &Path, file: &Arc<str>) -> Result<Vec<u8>, Diagnostic> {
         .map(|_| bytes)
         .map_err(|e| {
             Diagnostic::error(
-                "yaml-syntax",
+                "unreadable-file",
                 &Pos::new(file.clone(), 0, 0),
                 format!("Docent could not read this file ({e}). Check that it is readable."),
             )
@@ -234,7 +228,8 @@ fn merge_acts(
             if let Some(&first) = merged.index.get(&label.value) {
                 let first_pos = &merged.acts[first].pos;
                 let message = format!(
-                    "The label `{}` is already used at {}:{}. Labels must be unique: rename one of the two acts.",
+                    "The label `{}` is already used at {}:{}. Labels must be unique: rename \
+                     one of the two acts.",
                     label.value, first_pos.file, first_pos.line
                 );
                 out.push(Diagnostic::error("duplicate-label", &label.pos, message));
@@ -250,7 +245,7 @@ fn merge_acts(
             });
         }
     }
-    let mut by_first: HashMap<usize, Vec<Pos>> = HashMap::new();
+    let mut by_first: BTreeMap<usize, Vec<Pos>> = BTreeMap::new();
     for (first, pos) in again {
         by_first.entry(first).or_default().push(pos);
     }
@@ -270,11 +265,7 @@ fn merge_acts(
     merged
 }
 
-fn check_contexts(
-    config: &SiteConfig,
-    variants: &[crate::content::model::Variant],
-    out: &mut Vec<Diagnostic>,
-) {
+fn check_contexts(config: &SiteConfig, variants: &[Variant], out: &mut Vec<Diagnostic>) {
     if config.contexts.is_empty() {
         return;
     }
@@ -282,10 +273,10 @@ fn check_contexts(
         .iter()
         .filter(|v| v.name != DEFAULT_VARIANT && !config.contexts.contains(&v.name))
     {
-        let hint = closest(&variant.name, config.contexts.iter().map(String::as_str))
-            .map_or_else(String::new, |s| format!(" Did you mean `{s}`?"));
+        let hint = did_you_mean(&variant.name, config.contexts.iter().map(String::as_str));
         let message = format!(
-            "`{}` is not one of the contexts declared in docent.yaml ({}).{hint} Rename the key, or add it under `contexts:`.",
+            "`{}` is not one of the contexts declared in docent.yaml ({}).{hint} Rename the \
+             key, or add it under `contexts:`.",
             variant.name,
             config.contexts.join(", ")
         );
@@ -299,10 +290,10 @@ fn check_pages(root: &Path, merged: &mut Merged, out: &mut Vec<Diagnostic>) {
         if merged.index.contains_key(value) || merged.unread_labels.contains(value) {
             continue;
         }
-        let hint = closest(value, merged.index.keys().map(String::as_str))
-            .map_or_else(String::new, |s| format!(" Did you mean `{s}`?"));
+        let hint = did_you_mean(value, merged.index.keys().map(String::as_str));
         let message = format!(
-            "This page triggers the act `{value}`, but no act has that label.{hint} Fix the `data-act` value or add the act."
+            "This page triggers the act `{value}`, but no act has that label.{hint} Fix the \
+             `data-act` value or add the act."
         );
         out.push(Diagnostic::error("unknown-act", pos, message));
     }
@@ -320,13 +311,17 @@ fn check_home(
     let Some((err, problem)) = checker.path_problem(BundleArea::Pages, &config.home) else {
         return;
     };
-    let pos = explicit.map_or_else(|| Pos::new("pages", 0, 0), |home| home.pos.clone());
+    let pos = match explicit {
+        Some(home) => home.pos.clone(),
+        None => Pos::new(format!("pages/{}", config.home), 0, 0),
+    };
     let code = match err {
         PathError::NotFound | PathError::NotAFile => "no-home-page",
         other => path_error_code(&other),
     };
     let message = format!(
-        "{problem} The kiosk starts on this page: add it, or choose another page with `home:` in docent.yaml."
+        "{problem} The kiosk starts on this page: add it, or choose another page with `home:` \
+         in docent.yaml."
     );
     out.push(match explicit {
         Some(_) => Diagnostic::error(code, &pos, message),
@@ -348,4 +343,48 @@ fn contexts(config: &SiteConfig, acts: &[Act]) -> Vec<String> {
     std::iter::once(DEFAULT_VARIANT.to_owned())
         .chain(rest.into_iter().filter(|c| c != DEFAULT_VARIANT))
         .collect()
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn act(variants: &[&str]) -> Act {
+        let pos = Pos::new("acts.yaml", 1, 1);
+        let variants = variants
+            .iter()
+            .map(|name| Variant {
+                name: (*name).to_owned(),
+                pos: pos.clone(),
+                alternatives: Vec::new(),
+            })
+            .collect();
+        Act {
+            label: "A".to_owned(),
+            pos,
+            variants,
+            commands: Vec::new(),
+        }
+    }
+
+    #[test]
+    fn contexts_are_text_then_declared_or_found_names() {
+        let acts = [
+            act(&["TextGroup", "Text"]),
+            act(&["TextChild", "TextGroup"]),
+        ];
+        assert_eq!(
+            contexts(&SiteConfig::default(), &acts),
+            ["Text", "TextChild", "TextGroup"]
+        );
+        let declared = SiteConfig {
+            contexts: vec!["TextGroup".into(), "TextFormally".into()],
+            ..SiteConfig::default()
+        };
+        assert_eq!(
+            contexts(&declared, &acts),
+            ["Text", "TextGroup", "TextFormally"]
+        );
+        assert_eq!(contexts(&SiteConfig::default(), &[]), ["Text"]);
+    }
 }

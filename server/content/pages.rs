@@ -196,22 +196,29 @@ mod tests {
 
     #[test]
     fn finds_values_in_any_quoting_with_their_positions() {
-        let html = "<p>\n  <button data-act=\"WELCOME\">Hi</button>\n<a data-act='OK' href=x>ok</a>\n<div class=c DATA-ACT=WHERE_FROM>";
+        let html = [
+            "<p>",
+            "  <button data-act=\"WELCOME\">Hi</button>",
+            "<a data-act='OK' href=x>ok</a>",
+            "<div class=c DATA-ACT=WHERE_FROM>",
+        ];
         assert_eq!(
-            values(html),
+            values(&html.join("\n")),
             [
-                ("WELCOME".into(), 2, 20),
+                ("WELCOME".into(), 2, 21),
                 ("OK".into(), 3, 14),
-                ("WHERE_FROM".into(), 4, 22)
+                ("WHERE_FROM".into(), 4, 23)
             ]
         );
     }
 
     #[test]
     fn ignores_text_comments_scripts_and_similar_names() {
-        let html = "data-act=\"TEXT\" <!-- <b data-act=\"OLD\"> --> <b data-action=\"NO\" data-acts=NO>\n\
-                    <script>if (a<b data-act=\"JS\") {}</script> <i data-act = \"SPACED\" />";
-        assert_eq!(values(html), [("SPACED".into(), 2, 83)]);
+        let html = [
+            "data-act=\"TEXT\" <!-- <b data-act=\"OLD\"> --> <b data-action=\"NO\" data-acts=NO>",
+            "<script>if (a<b data-act=\"JS\") {}</script> <i data-act = \"SPACED\" />",
+        ];
+        assert_eq!(values(&html.join("\n")), [("SPACED".into(), 2, 59)]);
     }
 
     #[test]

@@ -53,7 +53,8 @@ pub enum PathError {
 /// Resolves `rel` (already percent-decoded, `/`-separated) inside `root/<area>`.
 ///
 /// `root` must be the canonical bundle root. On success the result is the canonical path of
-/// a regular file inside the area folder.
+/// a regular file inside the area folder. The area folder itself must be a real folder: if
+/// `pages` is a link, everything under it counts as outside.
 pub fn resolve_in_bundle(root: &Path, area: BundleArea, rel: &str) -> Result<PathBuf, PathError> {
     let components = split_relative(rel)?;
     let area_dir = root.join(area.dir_name());
@@ -62,13 +63,16 @@ pub fn resolve_in_bundle(root: &Path, area: BundleArea, rel: &str) -> Result<Pat
     let mut miscased = false;
     for component in &components {
         match find_entry(&current, component)? {
-            Entry::Exact => actual_names.push((*component).to_owned()),
+            Entry::Exact => {
+                actual_names.push((*component).to_owned());
+                current.push(component);
+            }
             Entry::CaseDiffers(real) => {
                 miscased = true;
                 actual_names.push(real.to_string_lossy().into_owned());
+                current.push(real);
             }
         }
-        current.push(actual_names.last().map_or(*component, String::as_str));
     }
     if miscased {
         return Err(PathError::Miscased {

@@ -28,6 +28,15 @@ pub fn closest<'a>(word: &str, candidates: impl IntoIterator<Item = &'a str>) ->
     best.map(|(_, candidate)| candidate)
 }
 
+/// `" Did you mean `X`?"` for the closest candidate, or an empty string: ready to append to
+/// a sentence.
+pub(crate) fn did_you_mean<'a>(
+    word: &str,
+    candidates: impl IntoIterator<Item = &'a str>,
+) -> String {
+    closest(word, candidates).map_or_else(String::new, |s| format!(" Did you mean `{s}`?"))
+}
+
 /// Lower is closer; `None` means "not a plausible match". Both arguments are lower-cased.
 fn score(word: &str, candidate: &str) -> Option<usize> {
     if word.is_empty() || candidate.is_empty() {

@@ -213,6 +213,12 @@ impl Dispatcher {
         Ok(())
     }
 
+    /// The name of the adapter serving `verb` (as written), if any.
+    pub fn adapter_for(&self, verb: &str) -> Option<&'static str> {
+        let verb = Verb::built_in(verb).unwrap_or_else(|| Verb::Site(verb.into()));
+        self.router.adapter_for(&verb).map(|a| a.name())
+    }
+
     /// Queue length and current command of every adapter, by name.
     pub fn adapter_status(&self) -> BTreeMap<&'static str, AdapterStatus> {
         self.router

@@ -265,6 +265,7 @@ impl Session {
                 .devices
                 .ws
                 .connect(self.client, verbs.clone(), self.outbox.clone());
+            self.warn_unrouted(&verbs);
         }
         state.client_joined(
             self.client,
@@ -280,6 +281,23 @@ impl Session {
             name,
             verbs,
         });
+    }
+
+    /// Tells an adapter which of its verbs this bundle sends elsewhere: it will not get them.
+    fn warn_unrouted(&self, verbs: &[String]) {
+        for verb in verbs {
+            let message = match self.state.dispatcher.adapter_for(verb) {
+                Some("ws") => continue,
+                Some(other) => format!(
+                    "{verb} goes to the {other} adapter in this bundle; \
+                     route it to ws in docent.yaml to receive it here"
+                ),
+                None => format!(
+                    "{verb} is not a verb of this bundle; declare it under verbs: in docent.yaml"
+                ),
+            };
+            self.reply_error("verb-not-routed", &message, None, None);
+        }
     }
 
     fn answer(&self, id: u64, outcome: Option<Outcome>) {

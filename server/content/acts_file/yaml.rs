@@ -6,8 +6,8 @@
 //! text written ([`Kind::Guessed`], taken from the source bytes) so callers can accept them as
 //! text and suggest quotes. Duplicate keys are passed through for the caller to report.
 //!
-//! A syntax error stops the parser; for acts files we then blank the top-level list item that
-//! holds the error (keeping byte offsets) and parse again, so the other acts are still read.
+//! A syntax error stops the parser; for acts files we then parse each top-level list item on
+//! its own, so one broken act costs only itself and every error in the file is reported.
 
 use std::sync::Arc;
 
@@ -16,14 +16,14 @@ use serde_saphyr::{DuplicateKeyPolicy, NonFiniteFloatPolicy, Options, Spanned};
 use crate::content::diagnostic::Diagnostic;
 use crate::content::model::Pos;
 
+mod layout;
 mod raw;
 mod wording;
 
+use layout::{Item, position_of_byte, tab_diagnostics, tab_positions, top_level_items};
+
 /// The largest YAML file read, in bytes. A real acts file of 100,000 acts is about 25 MB.
 pub(crate) const MAX_FILE_BYTES: usize = 32 * 1024 * 1024;
-
-/// How many syntax errors one file may report before reading it is abandoned.
-const MAX_SYNTAX_ERRORS: usize = 20;
 
 /// A YAML node and where it starts.
 #[derive(Debug)]
@@ -108,7 +108,8 @@ pub(crate) fn parse(
     };
     if bytes.len() > MAX_FILE_BYTES {
         let message = format!(
-            "This file is larger than {} MB, the most Docent reads from one YAML file. Split the acts into several files.",
+            "This file is larger than {} MB, the most Docent reads from one YAML file. \
+             Split the acts into several files.",
             MAX_FILE_BYTES / (1024 * 1024)
         );
         out.diagnostics
@@ -119,56 +120,102 @@ pub(crate) fn parse(
         Ok(text) => text,
         Err(e) => {
             let pos = position_of_byte(file, bytes, e.valid_up_to());
-            let message = "This file is not saved as UTF-8 text (the character here cannot be read). \
-                           Save it again choosing the UTF-8 encoding.";
+            let message = "This file is not saved as UTF-8 text (the character here cannot \
+                           be read). Save it again choosing the UTF-8 encoding.";
             out.diagnostics
                 .push(Diagnostic::error(syntax_code, &pos, message));
             return out;
         }
     };
     let tabs = tab_positions(source);
-    let mut text = source.to_owned();
-    let mut errors = 0;
-    loop {
-        match serde_saphyr::from_str_with_options::<Spanned<raw::Raw>>(&text, options()) {
-            Ok(tree) => {
-                out.root = Some(raw::into_node(tree, file, &text));
-                break;
+    let mut failed = false;
+    match serde_saphyr::from_str_with_options::<Spanned<raw::Raw>>(source, options()) {
+        Ok(tree) => out.root = Some(raw::into_node(tree, file, source, 0)),
+        Err(err) => {
+            failed = true;
+            let items = match recovery {
+                Recovery::SkipBrokenItems if wording::recoverable(&err) => top_level_items(source),
+                _ => None,
+            };
+            if let Some(items) = items {
+                parse_items(file, source, &items, syntax_code, &tabs, &mut out);
             }
-            Err(err) => {
-                errors += 1;
-                let line = err
-                    .location()
-                    .map(|l| u32::try_from(l.line()).unwrap_or(u32::MAX));
-                let near_tab =
-                    line.is_some_and(|l| tabs.iter().any(|&(t, _)| t == l || t == l + 1));
-                if !near_tab {
-                    let pos = err
-                        .location()
-                        .map_or(whole_file.clone(), |l| raw::pos(file, &l));
-                    out.diagnostics.push(Diagnostic::error(
-                        syntax_code,
-                        &pos,
-                        wording::describe(&err),
-                    ));
-                }
-                let item = match (recovery, line) {
-                    (Recovery::SkipBrokenItems, Some(line))
-                        if errors < MAX_SYNTAX_ERRORS && wording::recoverable(&err) =>
-                    {
-                        enclosing_item(&text, line)
-                    }
-                    _ => None,
-                };
-                let Some((start, end)) = item else { break };
-                text = blank_lines(&text, start, end);
-                out.skipped_lines.push((start, end));
+            // Not split into items, or the problem lies between them: report it as found.
+            if out.skipped_lines.is_empty() {
+                report_error(file, &err, 0, syntax_code, &tabs, &mut out.diagnostics);
             }
         }
     }
-    out.diagnostics
-        .extend(tab_diagnostics(file, &tabs, errors > 0));
+    out.diagnostics.extend(tab_diagnostics(file, &tabs, failed));
     out
+}
+
+/// Parses each top-level item on its own, so an error (even an unclosed bracket) stays
+/// inside its item and every other act is read.
+fn parse_items(
+    file: &Arc<str>,
+    source: &str,
+    items: &[Item],
+    syntax_code: &'static str,
+    tabs: &[(u32, u32)],
+    out: &mut YamlFile,
+) {
+    let mut nodes = Vec::with_capacity(items.len());
+    for item in items {
+        let text = &source[item.bytes.clone()];
+        let line_offset = item.lines.0 - 1;
+        match serde_saphyr::from_str_with_options::<Spanned<raw::Raw>>(text, options()) {
+            Ok(tree) => match raw::into_node(tree, file, text, line_offset) {
+                Node {
+                    kind: Kind::Seq(parsed),
+                    ..
+                } => nodes.extend(parsed),
+                other => nodes.push(other),
+            },
+            Err(err) => {
+                report_error(
+                    file,
+                    &err,
+                    line_offset,
+                    syntax_code,
+                    tabs,
+                    &mut out.diagnostics,
+                );
+                out.skipped_lines.push(item.lines);
+            }
+        }
+    }
+    let pos = Pos::new(file.clone(), items.first().map_or(1, |i| i.lines.0), 1);
+    out.root = Some(Node {
+        pos,
+        kind: Kind::Seq(nodes),
+    });
+}
+
+/// Adds the diagnostic for a parse error, unless a tab on that line (or the next, where the
+/// parser tends to notice it) already explains it.
+fn report_error(
+    file: &Arc<str>,
+    err: &serde_saphyr::Error,
+    line_offset: u32,
+    syntax_code: &'static str,
+    tabs: &[(u32, u32)],
+    out: &mut Vec<Diagnostic>,
+) {
+    let pos = match err.location() {
+        Some(location) => {
+            let mut pos = raw::pos(file, &location);
+            pos.line = pos.line.saturating_add(line_offset);
+            pos
+        }
+        None => Pos::new(file.clone(), 0, 0),
+    };
+    let explained_by_tab = tabs
+        .iter()
+        .any(|&(line, _)| line == pos.line || line == pos.line + 1);
+    if !explained_by_tab {
+        out.push(Diagnostic::error(syntax_code, &pos, wording::describe(err)));
+    }
 }
 
 fn options() -> Options {
@@ -184,96 +231,167 @@ fn options() -> Options {
     }
 }
 
-/// The position of byte `offset` (1-based line, column in characters).
-fn position_of_byte(file: &Arc<str>, bytes: &[u8], offset: usize) -> Pos {
-    let before = &bytes[..offset.min(bytes.len())];
-    let line = before.iter().filter(|&&b| b == b'\n').count() + 1;
-    let line_start = before
-        .iter()
-        .rposition(|&b| b == b'\n')
-        .map_or(0, |i| i + 1);
-    let column = String::from_utf8_lossy(&before[line_start..])
-        .chars()
-        .count()
-        + 1;
-    Pos::new(file.clone(), to_u32(line), to_u32(column))
-}
+#[cfg(test)]
+mod tests {
+    use super::*;
 
-fn to_u32(n: usize) -> u32 {
-    u32::try_from(n).unwrap_or(u32::MAX)
-}
-
-/// (line, column) of the first tab in each line's leading whitespace.
-fn tab_positions(source: &str) -> Vec<(u32, u32)> {
-    source
-        .lines()
-        .enumerate()
-        .filter_map(|(i, line)| {
-            let indent = line
-                .find(|c: char| c != ' ' && c != '\t')
-                .unwrap_or(line.len());
-            let column = line[..indent].find('\t')?;
-            Some((to_u32(i + 1), to_u32(column + 1)))
-        })
-        .collect()
-}
-
-/// Tabs are an error when the file did not parse (they are the likely cause); when YAML
-/// still read the file they sit inside text or were ignored, so a warning suffices.
-fn tab_diagnostics(file: &Arc<str>, tabs: &[(u32, u32)], failed: bool) -> Vec<Diagnostic> {
-    let message = "This line is indented with a tab. YAML allows only spaces for indentation: \
-                   replace the tab with spaces (for example two spaces per level).";
-    tabs.iter()
-        .map(|&(line, column)| {
-            let pos = Pos::new(file.clone(), line, column);
-            if failed {
-                Diagnostic::error("yaml-tab", &pos, message)
-            } else {
-                Diagnostic::warning("yaml-tab", &pos, message)
-            }
-        })
-        .collect()
-}
-
-/// The line range of the top-level list item (a line starting with `- ` at column 1)
-/// containing `line`, if the file is laid out that way.
-fn enclosing_item(text: &str, line: u32) -> Option<(u32, u32)> {
-    let starts: Vec<u32> = text
-        .lines()
-        .enumerate()
-        .filter(|(_, l)| {
-            l.starts_with('-')
-                && !l.starts_with("--")
-                && l[1..].chars().next().is_none_or(char::is_whitespace)
-        })
-        .map(|(i, _)| to_u32(i + 1))
-        .collect();
-    let last_line = to_u32(text.lines().count());
-    let line = line.min(last_line.max(1));
-    let start = *starts.iter().rev().find(|&&s| s <= line)?;
-    let end = starts
-        .iter()
-        .copied()
-        .find(|&s| s > line)
-        .unwrap_or(last_line + 1);
-    Some((start, end))
-}
-
-/// `text` with lines `start..end` turned into spaces, keeping every byte offset and line.
-fn blank_lines(text: &str, start: u32, end: u32) -> String {
-    let mut out = String::with_capacity(text.len());
-    for (i, line) in text.split_inclusive('\n').enumerate() {
-        let number = to_u32(i + 1);
-        if number < start || number >= end {
-            out.push_str(line);
-            continue;
-        }
-        for c in line.chars() {
-            match c {
-                '\n' | '\r' => out.push(c),
-                _ => out.extend(std::iter::repeat_n(' ', c.len_utf8())),
-            }
-        }
+    fn file() -> Arc<str> {
+        Arc::from("acts.yaml")
     }
-    out
+
+    fn parse_acts(text: &str) -> YamlFile {
+        parse(
+            &file(),
+            text.as_bytes(),
+            "yaml-syntax",
+            Recovery::SkipBrokenItems,
+        )
+    }
+
+    fn codes(parsed: &YamlFile) -> Vec<(&'static str, u32, u32)> {
+        parsed
+            .diagnostics
+            .iter()
+            .map(|d| (d.code, d.line, d.column))
+            .collect()
+    }
+
+    #[test]
+    fn budget_admits_100_000_acts_in_one_file() {
+        // Five nodes an act: twice serde-saphyr's default node budget.
+        let text: String = (0..100_000)
+            .map(|i| format!("- Label: A{i}\n  Text: hi\n"))
+            .collect();
+        let parsed = parse_acts(&text);
+        assert!(parsed.diagnostics.is_empty(), "{:?}", parsed.diagnostics);
+        let Some(Node {
+            kind: Kind::Seq(items),
+            ..
+        }) = parsed.root
+        else {
+            panic!("expected a list")
+        };
+        assert_eq!(items.len(), 100_000);
+        assert_eq!(items[99_999].pos.line, 199_999);
+        let default_budget = serde_saphyr::from_str::<Spanned<raw::Raw>>(&text);
+        assert!(
+            default_budget.is_err(),
+            "the default budget is too small for real bundles"
+        );
+    }
+
+    #[test]
+    fn refuses_files_over_the_size_limit() {
+        let parsed = parse_acts(&" ".repeat(MAX_FILE_BYTES + 1));
+        assert_eq!(codes(&parsed), [("file-too-large", 0, 0)]);
+        assert!(parsed.root.is_none());
+    }
+
+    #[test]
+    fn locates_bytes_that_are_not_utf8() {
+        let parsed = parse(
+            &file(),
+            b"- Label: A\n  Text: caf\xe9\n",
+            "yaml-syntax",
+            Recovery::SkipBrokenItems,
+        );
+        assert_eq!(codes(&parsed), [("yaml-syntax", 2, 12)]);
+    }
+
+    #[test]
+    fn guessed_scalars_keep_the_text_as_written() {
+        let parsed = parse_acts("- [yes, 3.5, 0x1F, 010, .inf, ~, 'quoted', \"d: q\", plain]\n");
+        let Some(Node {
+            kind: Kind::Seq(items),
+            ..
+        }) = parsed.root
+        else {
+            panic!("expected a list")
+        };
+        let Kind::Seq(values) = &items[0].kind else {
+            panic!("expected a nested list")
+        };
+        let shown: Vec<String> = values
+            .iter()
+            .map(|n| match &n.kind {
+                Kind::Guessed(t) => format!("guessed {t}"),
+                Kind::Str { value, verbatim_at } => format!("text {value} at {verbatim_at:?}"),
+                Kind::Null => "null".to_owned(),
+                _ => "other".to_owned(),
+            })
+            .collect();
+        assert_eq!(
+            shown,
+            [
+                "guessed yes",
+                "guessed 3.5",
+                "guessed 0x1F",
+                "guessed 010",
+                "guessed .inf",
+                "null",
+                "text quoted at Some(1)",
+                "text d: q at Some(1)",
+                "text plain at Some(0)",
+            ]
+        );
+    }
+
+    #[test]
+    fn a_tab_in_indentation_is_reported_at_the_tab_and_the_rest_still_parses() {
+        let parsed = parse_acts("- Label: A\n  Text:\n  \t- x\n- Label: B\n");
+        assert_eq!(codes(&parsed), [("yaml-tab", 3, 3)]);
+        assert_eq!(parsed.skipped_lines, [(1, 4)]);
+        let Some(Node {
+            kind: Kind::Seq(items),
+            ..
+        }) = parsed.root
+        else {
+            panic!("expected a list")
+        };
+        assert_eq!(items.len(), 1);
+    }
+
+    #[test]
+    fn a_tab_yaml_accepts_is_only_a_warning() {
+        let parsed = parse_acts("- Label: A\n  Text: |\n    line\n    \tindented text\n");
+        assert_eq!(parsed.diagnostics.len(), 1);
+        assert_eq!(
+            parsed.diagnostics[0].severity,
+            crate::content::Severity::Warning
+        );
+    }
+
+    #[test]
+    fn every_broken_item_is_reported_and_skipped() {
+        let text = "- Label: A\n  Text: \"open\n- Label: B\n  Text: fine\n\
+                    - Label: C\n  Text: [a, b\n- Label: D\n";
+        let parsed = parse_acts(text);
+        assert_eq!(
+            codes(&parsed),
+            [("yaml-syntax", 2, 9), ("yaml-syntax", 6, 9)]
+        );
+        assert_eq!(parsed.skipped_lines, [(1, 3), (5, 7)]);
+        let Some(Node {
+            kind: Kind::Seq(items),
+            ..
+        }) = parsed.root
+        else {
+            panic!("expected a list")
+        };
+        assert_eq!(items.len(), 2);
+        assert_eq!(items[1].pos.line, 7);
+    }
+
+    #[test]
+    fn settings_are_not_partially_read() {
+        let parsed = parse(
+            &file(),
+            b"home: [x\nspeech: {}\n",
+            "config-syntax",
+            Recovery::None,
+        );
+        assert!(parsed.root.is_none());
+        assert_eq!(parsed.diagnostics.len(), 1);
+        assert_eq!(parsed.diagnostics[0].code, "config-syntax");
+    }
 }

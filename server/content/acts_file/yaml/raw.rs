@@ -107,9 +107,14 @@ pub(super) fn pos(file: &Arc<str>, location: &Location) -> Pos {
     )
 }
 
-/// Converts the serde tree into ours. `source` is the text that was parsed. Recursion depth
-/// is bounded by the parser budget's nesting limit.
-pub(super) fn into_node(spanned: Spanned<Raw>, file: &Arc<str>, source: &str) -> Node {
+/// Converts the serde tree into ours. `source` is the text that was parsed, which starts
+/// `line_offset` lines into the file. Recursion depth is bounded by the parser budget.
+pub(super) fn into_node(
+    spanned: Spanned<Raw>,
+    file: &Arc<str>,
+    source: &str,
+    line_offset: u32,
+) -> Node {
     let written = || source_text(source, &spanned.defined);
     let kind = match spanned.value {
         Raw::Str(value) => {
@@ -121,20 +126,24 @@ pub(super) fn into_node(spanned: Spanned<Raw>, file: &Arc<str>, source: &str) ->
         Raw::Seq(items) => Kind::Seq(
             items
                 .into_iter()
-                .map(|i| into_node(i, file, source))
+                .map(|i| into_node(i, file, source, line_offset))
                 .collect(),
         ),
         Raw::Map(entries) => Kind::Map(
             entries
                 .into_iter()
-                .map(|(k, v)| (into_node(k, file, source), into_node(v, file, source)))
+                .map(|(k, v)| {
+                    (
+                        into_node(k, file, source, line_offset),
+                        into_node(v, file, source, line_offset),
+                    )
+                })
                 .collect(),
         ),
     };
-    Node {
-        pos: pos(file, &spanned.referenced),
-        kind,
-    }
+    let mut pos = pos(file, &spanned.referenced);
+    pos.line = pos.line.saturating_add(line_offset);
+    Node { pos, kind }
 }
 
 /// The source bytes a node was read from, when the parser reported them.

@@ -63,8 +63,14 @@ fn message_of(err: &Error) -> String {
 fn describe_parser_message(msg: &str) -> String {
     const RULES: &[(&[&str], &str)] = &[
         (
-            &["tab"],
+            &["tabs ", "a tab"],
             "A tab character is used here where YAML needs spaces. Replace the tab with spaces.",
+        ),
+        (
+            &["placement of ':'"],
+            "YAML does not allow a colon at this place. This usually comes from a `[` or `{` \
+             opened earlier and never closed, or from a text containing `: ` that needs quotes \
+             around it.",
         ),
         (
             &["mapping values are not allowed"],
@@ -97,12 +103,12 @@ fn describe_parser_message(msg: &str) -> String {
              is not valid. Write \\\\ for a backslash, or use single quotes instead.",
         ),
         (
-            &["expected ',' or ']'"],
+            &["expected ',' or ']'", "bracket '['"],
             "A list in square brackets [ ] is not closed properly. Check for a missing `]` or a \
              missing comma, or put text containing brackets in quotes.",
         ),
         (
-            &["expected ',' or '}'"],
+            &["expected ',' or '}'", "bracket '{'"],
             "A set of keys in curly braces { } is not closed properly. Check for a missing `}` \
              or a missing comma, or put text containing braces in quotes.",
         ),
@@ -112,7 +118,11 @@ fn describe_parser_message(msg: &str) -> String {
              it in quotes.",
         ),
         (
-            &["cannot start any token", "expected node content"],
+            &[
+                "cannot start any token",
+                "expected node content",
+                "unexpected character",
+            ],
             "This value starts with a character that YAML reserves (such as @, `, %, | or >). If \
              this is text, put it in quotes.",
         ),
@@ -128,11 +138,37 @@ fn describe_parser_message(msg: &str) -> String {
         ),
     ];
     let lower = msg.to_lowercase();
-    RULES
+    match RULES
         .iter()
         .find(|(needles, _)| needles.iter().any(|n| lower.contains(n)))
-        .map_or_else(
-            || format!("YAML cannot read the file from here ({msg}). Check the indentation and the quotes around this place."),
-            |(_, advice)| (*advice).to_owned(),
-        )
+    {
+        Some((_, advice)) => (*advice).to_owned(),
+        None => format!(
+            "YAML cannot read the file from here ({msg}). Check the indentation and the quotes \
+             around this place."
+        ),
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn message(yaml: &str) -> String {
+        let err =
+            serde_saphyr::from_str::<serde::de::IgnoredAny>(yaml).expect_err("should not parse");
+        describe(&err)
+    }
+
+    #[test]
+    fn common_mistakes_get_advice_instead_of_parser_words() {
+        assert!(message("Text: Note: this\n").contains("put the whole text in quotes"));
+        assert!(message("Text: \"open\n").contains("never closed"));
+        assert!(message("Text: [a, b\n").contains("square brackets"));
+        assert!(message("Text: [a\n  - b\nKey: c\n").contains("never closed"));
+        assert!(message("Text: *bold*\n").contains("`*`"));
+        assert!(message("a: 1\n---\nb: 2\n").contains("second document"));
+        assert!(message("Text: @home\n").contains("put it in quotes"));
+        assert!(message("a:\n  - b\n c: d\n").contains("indented"));
+    }
 }

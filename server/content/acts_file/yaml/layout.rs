@@ -1,0 +1,137 @@
+//! The layout of a YAML file as text, before and beside the parser: where the top-level list
+//! items are, where tabs indent lines, and the line and column of a byte.
+
+use std::sync::Arc;
+
+use crate::content::diagnostic::Diagnostic;
+use crate::content::model::Pos;
+
+/// One top-level list item: its 1-based lines (end exclusive) and bytes.
+pub(super) struct Item {
+    /// First line and the line after the last (1-based).
+    pub lines: (u32, u32),
+    /// Byte range in the source.
+    pub bytes: std::ops::Range<usize>,
+}
+
+/// The top-level list items (each starting with `-` in column 1), or `None` when the file
+/// is not laid out that way (something other than comments, `---` or directives before the
+/// first item).
+pub(super) fn top_level_items(source: &str) -> Option<Vec<Item>> {
+    let mut items: Vec<Item> = Vec::new();
+    let mut offset = 0;
+    for (index, line) in source.split_inclusive('\n').enumerate() {
+        let number = to_u32(index + 1);
+        let starts_item = line.starts_with('-')
+            && !line.starts_with("--")
+            && line[1..].chars().next().is_none_or(char::is_whitespace);
+        if starts_item {
+            if let Some(last) = items.last_mut() {
+                last.lines.1 = number;
+                last.bytes.end = offset;
+            }
+            items.push(Item {
+                lines: (number, number + 1),
+                bytes: offset..offset + line.len(),
+            });
+        } else if let Some(last) = items.last_mut() {
+            last.lines.1 = number + 1;
+            last.bytes.end = offset + line.len();
+        } else {
+            let trimmed = line.trim();
+            let preamble = trimmed.is_empty()
+                || trimmed.starts_with('#')
+                || trimmed == "---"
+                || trimmed.starts_with('%');
+            if !preamble {
+                return None;
+            }
+        }
+        offset += line.len();
+    }
+    (!items.is_empty()).then_some(items)
+}
+
+/// The position of byte `offset` (1-based line, column in characters).
+pub(super) fn position_of_byte(file: &Arc<str>, bytes: &[u8], offset: usize) -> Pos {
+    let before = &bytes[..offset.min(bytes.len())];
+    let line = before.iter().filter(|&&b| b == b'\n').count() + 1;
+    let line_start = before
+        .iter()
+        .rposition(|&b| b == b'\n')
+        .map_or(0, |i| i + 1);
+    let column = String::from_utf8_lossy(&before[line_start..])
+        .chars()
+        .count()
+        + 1;
+    Pos::new(file.clone(), to_u32(line), to_u32(column))
+}
+
+fn to_u32(n: usize) -> u32 {
+    u32::try_from(n).unwrap_or(u32::MAX)
+}
+
+/// (line, column) of the first tab in each line's leading whitespace.
+pub(super) fn tab_positions(source: &str) -> Vec<(u32, u32)> {
+    source
+        .lines()
+        .enumerate()
+        .filter_map(|(i, line)| {
+            // A blank line with a tab in it is harmless: only text lines are indented.
+            let indent = line.find(|c: char| c != ' ' && c != '\t')?;
+            let column = line[..indent].find('\t')?;
+            Some((to_u32(i + 1), to_u32(column + 1)))
+        })
+        .collect()
+}
+
+/// Tabs are an error when the file did not parse (they are the likely cause); when YAML
+/// still read the file they sit inside text or were ignored, so a warning suffices.
+pub(super) fn tab_diagnostics(
+    file: &Arc<str>,
+    tabs: &[(u32, u32)],
+    failed: bool,
+) -> Vec<Diagnostic> {
+    let message = "This line is indented with a tab. YAML allows only spaces for indentation: \
+                   replace the tab with spaces (for example two spaces per level).";
+    tabs.iter()
+        .map(|&(line, column)| {
+            let pos = Pos::new(file.clone(), line, column);
+            if failed {
+                Diagnostic::error("yaml-tab", &pos, message)
+            } else {
+                Diagnostic::warning("yaml-tab", &pos, message)
+            }
+        })
+        .collect()
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn finds_top_level_items_after_a_preamble() {
+        let items = top_level_items("# acts\n---\n- a\n  b\n\n- c\n").expect("items");
+        let ranges: Vec<((u32, u32), std::ops::Range<usize>)> =
+            items.into_iter().map(|i| (i.lines, i.bytes)).collect();
+        assert_eq!(ranges, [((3, 6), 11..20), ((6, 7), 20..24)]);
+        assert!(top_level_items("key: v\n- a\n").is_none());
+        assert!(top_level_items("# only a comment\n").is_none());
+    }
+
+    #[test]
+    fn finds_tabs_only_in_leading_whitespace() {
+        assert_eq!(
+            tab_positions("a:\n\tb: 1\n  \t- c\nd: \te\n"),
+            [(2, 1), (3, 3)]
+        );
+    }
+
+    #[test]
+    fn locates_a_byte_by_line_and_character() {
+        let file: Arc<str> = Arc::from("acts.yaml");
+        let pos = position_of_byte(&file, "ab\ncafé x".as_bytes(), 9);
+        assert_eq!((pos.line, pos.column), (2, 6));
+    }
+}

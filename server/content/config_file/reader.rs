@@ -1,0 +1,116 @@
+//! Generic readers for settings: a mapping's entries (reporting unknown and repeated keys
+//! with suggestions), a value parsed from text, a choice among fixed words. Each reports a
+//! located, plain-language problem and returns `None` so the default stays in force.
+
+use crate::content::acts_file::yaml::{Kind, Node};
+use crate::content::diagnostic::Diagnostic;
+use crate::content::model::Pos;
+use crate::content::suggest::did_you_mean;
+
+/// Collects the problems found while reading `docent.yaml`.
+pub(super) struct Reader {
+    /// Problems so far, in the order found.
+    pub diagnostics: Vec<Diagnostic>,
+}
+
+impl Reader {
+    /// The value parsed from its (trimmed) text, or `None` after reporting `usage`.
+    pub(super) fn setting<T>(
+        &mut self,
+        node: &Node,
+        usage: &str,
+        parse: impl FnOnce(&str) -> Option<T>,
+    ) -> Option<T> {
+        let parsed = node
+            .as_text()
+            .map(str::trim)
+            .filter(|t| !t.is_empty())
+            .and_then(parse);
+        if parsed.is_none() {
+            self.bad(node, usage);
+        }
+        parsed
+    }
+
+    pub(super) fn choice<T: Copy>(
+        &mut self,
+        node: &Node,
+        what: &str,
+        options: &[(&str, T)],
+    ) -> Option<T> {
+        let written = node.as_text().unwrap_or_default();
+        if let Some((_, value)) = options.iter().find(|(name, _)| *name == written) {
+            return Some(*value);
+        }
+        let names: Vec<&str> = options.iter().map(|(name, _)| *name).collect();
+        let hint = did_you_mean(written, names.iter().copied());
+        self.bad(
+            node,
+            &format!("The {what} must be one of: {}.{hint}", names.join(", ")),
+        );
+        None
+    }
+
+    /// Reports a `config-bad-value` at `node`, saying what was found there.
+    pub(super) fn bad(&mut self, node: &Node, message: &str) {
+        let found = match node.as_text() {
+            Some(text) => format!("`{text}`"),
+            None => node.describe().to_owned(),
+        };
+        let message = format!("{message} Found: {found}.");
+        self.diagnostics
+            .push(Diagnostic::error("config-bad-value", &node.pos, message));
+    }
+
+    /// The entries of a settings mapping, reporting unknown, duplicate and non-text keys.
+    /// A null section (`speech:` alone) has no entries.
+    pub(super) fn entries<'n>(
+        &mut self,
+        node: &'n Node,
+        known: &'static [&'static str],
+        section: &str,
+    ) -> Vec<(&'static str, &'n Node)> {
+        let entries = match &node.kind {
+            Kind::Map(entries) => entries,
+            Kind::Null => return Vec::new(),
+            _ => {
+                self.bad(
+                    node,
+                    &format!(
+                        "`{section}` must be a set of settings ({}).",
+                        known.join(", ")
+                    ),
+                );
+                return Vec::new();
+            }
+        };
+        let mut seen: Vec<(&str, &Pos)> = Vec::new();
+        let mut out = Vec::new();
+        for (key, value) in entries {
+            let name = key.as_text().unwrap_or_default();
+            if let Some((_, first)) = seen.iter().find(|(k, _)| *k == name) {
+                let message = format!(
+                    "`{name}` is set twice here (first on line {}). Keep one.",
+                    first.line
+                );
+                self.diagnostics
+                    .push(Diagnostic::error("duplicate-key", &key.pos, message));
+                continue;
+            }
+            seen.push((name, &key.pos));
+            if let Some(known_key) = known.iter().find(|k| **k == name) {
+                out.push((*known_key, value));
+                continue;
+            }
+            let hint = did_you_mean(name, known.iter().copied());
+            let message = format!(
+                "`{name}` is not a setting Docent knows in {section}.{hint} Known settings \
+                 here: {}.",
+                known.join(", ")
+            );
+            self.diagnostics
+                .push(Diagnostic::error("config-unknown-key", &key.pos, message));
+        }
+        out
+    }
+}
