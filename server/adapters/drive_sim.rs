@@ -66,7 +66,7 @@ impl DriveSim {
             tick: Duration::from_secs_f64(1.0 / config.pose_hz),
         };
         DriveSim {
-            worker: Worker::start(task, life),
+            worker: Worker::start("sim", task, life),
             state,
         }
     }

@@ -6,7 +6,7 @@
 //! Map:
 //! - `command`: a dispatched command and its [`Reply`] (the only way outcomes are reported).
 //! - `worker`: a queue that runs one command at a time and can be cancelled.
-//! - `speech_log`, `speech_espeak`: speech adapters; `display`: kiosk and projector state;
+//! - `speech_log`, `speech_espeak`: speech adapters (each a `Worker` with its own task); `display`: kiosk and projector state;
 //!   `drive_sim`: the simulated drive base; `ws`: external adapter processes over the websocket.
 //! - `router`: verb → adapter, built from the site configuration.
 
@@ -23,8 +23,9 @@ pub use command::{Command, Outcome, Reply};
 pub use display::{Display, DisplayAdapter, DisplayState};
 pub use drive_sim::{DriveSim, Pose};
 pub use router::{Devices, Router};
-pub use speech_espeak::{EspeakSpeech, SpeechOutput, espeak_available, espeak_voices};
-pub use speech_log::LogAdapter;
+pub use speech_espeak::{SpeechOutput, espeak_adapter, espeak_available, espeak_voices};
+pub use speech_log::log_adapter;
+pub use worker::Worker;
 pub use ws::WsAdapters;
 
 use crate::content::Verb;

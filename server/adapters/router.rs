@@ -5,8 +5,8 @@ use std::collections::HashMap;
 use std::sync::Arc;
 
 use crate::adapters::{
-    Adapter, DisplayAdapter, DisplayState, DriveSim, EspeakSpeech, LogAdapter, SpeechOutput,
-    WsAdapters,
+    Adapter, DisplayAdapter, DisplayState, DriveSim, SpeechOutput, WsAdapters, espeak_adapter,
+    log_adapter,
 };
 use crate::content::Verb;
 use crate::content::config::{AdapterKind, SiteConfig};
@@ -40,14 +40,14 @@ impl Devices {
     ) -> (Devices, Router) {
         let display = Arc::new(DisplayState::new(home));
         let ws = Arc::new(WsAdapters::new(config.adapter_timeout, life.clone()));
-        let log = Arc::new(LogAdapter::new(config.speech.rate_wpm, life));
+        let log = Arc::new(log_adapter(config.speech.rate_wpm, life));
         let drive = (config.drive.adapter == AdapterKind::DriveSim)
             .then(|| Arc::new(DriveSim::new(&config.drive, hub.clone(), life)));
         let display_adapter: Arc<dyn Adapter> =
             Arc::new(DisplayAdapter::new(Arc::clone(&display), hub.clone()));
         let espeak: Option<Arc<dyn Adapter>> = (speech == AdapterKind::Espeak).then(|| {
             let s = &config.speech;
-            Arc::new(EspeakSpeech::new(
+            Arc::new(espeak_adapter(
                 s.voice.clone(),
                 s.rate_wpm,
                 speech_output,

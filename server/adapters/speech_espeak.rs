@@ -14,7 +14,7 @@ use tokio::io::AsyncWriteExt;
 use tokio::process::Command as Process;
 
 use crate::adapters::worker::{Task, Worker};
-use crate::adapters::{Adapter, AdapterStatus, CancelScope, Command, Outcome, Reply};
+use crate::adapters::{Command, Outcome};
 use crate::lifecycle::Lifecycle;
 
 /// espeak-ng's WAV format: 16-bit mono at 22,050 Hz after a 44-byte header.
@@ -74,23 +74,22 @@ pub fn espeak_voices() -> Vec<String> {
     names
 }
 
-/// Speech through espeak-ng.
-pub struct EspeakSpeech {
-    worker: Worker,
-}
-
-impl EspeakSpeech {
-    /// An espeak-ng adapter with this voice, rate and output.
-    pub fn new(voice: String, rate_wpm: u32, output: SpeechOutput, life: &Lifecycle) -> Self {
-        let task = Espeak {
+/// The `espeak` adapter: speech through espeak-ng with this voice, rate and output.
+pub fn espeak_adapter(
+    voice: String,
+    rate_wpm: u32,
+    output: SpeechOutput,
+    life: &Lifecycle,
+) -> Worker {
+    Worker::start(
+        "espeak",
+        Espeak {
             voice,
             rate_wpm,
             output,
-        };
-        EspeakSpeech {
-            worker: Worker::start(task, life),
-        }
-    }
+        },
+        life,
+    )
 }
 
 struct Espeak {
@@ -193,24 +192,6 @@ fn wav_seconds(path: &std::path::Path) -> Result<f64, String> {
         ));
     }
     Ok((len - WAV_HEADER) as f64 / WAV_BYTES_PER_SECOND)
-}
-
-impl Adapter for EspeakSpeech {
-    fn name(&self) -> &'static str {
-        "espeak"
-    }
-
-    fn submit(&self, command: Command, reply: Reply) {
-        self.worker.submit(command, reply);
-    }
-
-    fn cancel(&self, scope: CancelScope<'_>, reason: &str) {
-        self.worker.cancel(scope, reason);
-    }
-
-    fn status(&self) -> AdapterStatus {
-        self.worker.status()
-    }
 }
 
 #[cfg(test)]

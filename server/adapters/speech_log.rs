@@ -5,22 +5,14 @@
 use std::time::Duration;
 
 use crate::adapters::worker::{Task, Worker};
-use crate::adapters::{Adapter, AdapterStatus, CancelScope, Command, Outcome, Reply};
+use crate::adapters::{Command, Outcome};
 use crate::content::Verb;
 use crate::lifecycle::Lifecycle;
 
-/// Speech (and site verbs) without a device.
-pub struct LogAdapter {
-    worker: Worker,
-}
-
-impl LogAdapter {
-    /// A log adapter speaking at `rate_wpm` words per minute.
-    pub fn new(rate_wpm: u32, life: &Lifecycle) -> Self {
-        LogAdapter {
-            worker: Worker::start(Pacing { rate_wpm }, life),
-        }
-    }
+/// The `log` adapter: speech (and site verbs) without a device, speaking at `rate_wpm` words
+/// per minute.
+pub fn log_adapter(rate_wpm: u32, life: &Lifecycle) -> Worker {
+    Worker::start("log", Pacing { rate_wpm }, life)
 }
 
 /// How long `text` takes to say at `rate_wpm`: words over rate, plus a short pause.
@@ -40,24 +32,6 @@ impl Task for Pacing {
             tokio::time::sleep(speaking_time(text, self.rate_wpm)).await;
         }
         Outcome::Done
-    }
-}
-
-impl Adapter for LogAdapter {
-    fn name(&self) -> &'static str {
-        "log"
-    }
-
-    fn submit(&self, command: Command, reply: Reply) {
-        self.worker.submit(command, reply);
-    }
-
-    fn cancel(&self, scope: CancelScope<'_>, reason: &str) {
-        self.worker.cancel(scope, reason);
-    }
-
-    fn status(&self) -> AdapterStatus {
-        self.worker.status()
     }
 }
 

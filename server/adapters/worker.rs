@@ -8,7 +8,7 @@ use std::sync::{Arc, Mutex, OnceLock};
 use tokio::sync::mpsc;
 use tokio_util::sync::CancellationToken;
 
-use crate::adapters::{AdapterStatus, CancelScope, Command, Outcome, Reply};
+use crate::adapters::{Adapter, AdapterStatus, CancelScope, Command, Outcome, Reply};
 use crate::content::Verb;
 use crate::lifecycle::Lifecycle;
 use crate::sync::lock;
@@ -42,8 +42,9 @@ struct Job {
     cancel: Arc<Cancel>,
 }
 
-/// A serial queue in front of a [`Task`].
+/// A serial queue in front of a [`Task`]; an [`Adapter`] by itself.
 pub struct Worker {
+    name: &'static str,
     tx: mpsc::UnboundedSender<Job>,
     /// One cancellation per verb, replaced after use, so cancelling speech leaves other verbs.
     cancels: Mutex<HashMap<Verb, Arc<Cancel>>>,
@@ -51,8 +52,8 @@ pub struct Worker {
 }
 
 impl Worker {
-    /// Starts the worker task for `task`.
-    pub fn start<T: Task>(task: T, life: &Lifecycle) -> Self {
+    /// Starts the worker task for `task`; `name` is the adapter's name.
+    pub fn start<T: Task>(name: &'static str, task: T, life: &Lifecycle) -> Self {
         let (tx, rx) = mpsc::unbounded_channel();
         let status = Arc::new(Mutex::new(AdapterStatus::default()));
         life.spawn(run_queue(
@@ -62,14 +63,14 @@ impl Worker {
             life.shutdown.clone(),
         ));
         Worker {
+            name,
             tx,
             cancels: Mutex::new(HashMap::new()),
             status,
         }
     }
 
-    /// Queues a command behind the ones already queued.
-    pub fn submit(&self, command: Command, reply: Reply) {
+    fn enqueue(&self, command: Command, reply: Reply) {
         let cancel = {
             let mut cancels = lock(&self.cancels);
             Arc::clone(cancels.entry(command.verb.clone()).or_default())
@@ -86,8 +87,7 @@ impl Worker {
         }
     }
 
-    /// Cancels queued and running commands within `scope`.
-    pub fn cancel(&self, scope: CancelScope<'_>, reason: &str) {
+    fn cancel_within(&self, scope: CancelScope<'_>, reason: &str) {
         let mut cancels = lock(&self.cancels);
         let taken: Vec<Arc<Cancel>> = match scope {
             CancelScope::All => cancels.drain().map(|(_, c)| c).collect(),
@@ -99,9 +99,25 @@ impl Worker {
             cancel.token.cancel();
         }
     }
+}
+
+impl Adapter for Worker {
+    fn name(&self) -> &'static str {
+        self.name
+    }
+
+    /// Queues a command behind the ones already queued.
+    fn submit(&self, command: Command, reply: Reply) {
+        self.enqueue(command, reply);
+    }
+
+    /// Cancels queued and running commands within `scope`.
+    fn cancel(&self, scope: CancelScope<'_>, reason: &str) {
+        self.cancel_within(scope, reason);
+    }
 
     /// Queue length and current command.
-    pub fn status(&self) -> AdapterStatus {
+    fn status(&self) -> AdapterStatus {
         lock(&self.status).clone()
     }
 }
