@@ -1,16 +1,20 @@
 //! The corpus writer: the only code that writes the event log. It runs on its own thread, off
 //! the dispatcher's hot path, appending one JSON line per event and flushing to the operating
-//! system after every batch, so a crash of Docent loses nothing that was published.
+//! system after every batch, so a crash of Docent loses nothing that was published; the file
+//! is synced to disk at least once a second while events come.
 //! Format: `docs/CORPUS.md`.
 
 use std::fs::{File, OpenOptions};
 use std::io::{self, BufWriter, Write};
 use std::path::{Path, PathBuf};
-use std::time::SystemTime;
+use std::time::{Duration, Instant, SystemTime};
 
 use tokio::sync::{mpsc, oneshot};
 
 use crate::events::{CorpusMsg, Event};
+
+/// At most this much of the log is only in the operating system's cache.
+const SYNC_INTERVAL: Duration = Duration::from_secs(1);
 
 /// Handle to the running writer thread.
 pub struct CorpusWriter {
@@ -75,6 +79,7 @@ fn unique_path(dir: &Path, stamp: &str) -> PathBuf {
 fn write_all(file: File, mut events: mpsc::UnboundedReceiver<CorpusMsg>) -> io::Result<u64> {
     let mut out = BufWriter::with_capacity(64 * 1024, file);
     let mut written = 0u64;
+    let mut last_sync = Instant::now();
     'outer: while let Some(msg) = events.blocking_recv() {
         let mut next = Some(msg);
         // Take whatever else is already queued, then flush once for the whole batch.
@@ -89,6 +94,12 @@ fn write_all(file: File, mut events: mpsc::UnboundedReceiver<CorpusMsg>) -> io::
             next = events.try_recv().ok();
         }
         out.flush()?;
+        // Flushed lines survive a crash of Docent at once; syncing now and then also bounds
+        // what a power cut can take.
+        if last_sync.elapsed() >= SYNC_INTERVAL {
+            out.get_ref().sync_data()?;
+            last_sync = Instant::now();
+        }
     }
     out.flush()?;
     out.get_ref().sync_all()?;

@@ -12,9 +12,9 @@ use std::time::Duration;
 use axum::serve::ListenerExt;
 use tokio::net::TcpListener;
 
-use crate::adapters::{Devices, SpeechOutput, espeak_available, espeak_voices};
+use crate::adapters::{Devices, SpeechOutput, espeak_available, espeak_can_play, espeak_voices};
+use crate::content::config::{AdapterKind, SpeechConfig};
 use crate::content::{Bundle, BundleArea, resolve_in_bundle};
-use crate::content::config::AdapterKind;
 use crate::corpus::CorpusWriter;
 use crate::dispatch::Dispatcher;
 use crate::events::{EventKind, Hub};
@@ -51,18 +51,6 @@ impl Server {
         let (hub, corpus_rx) = Hub::new();
         let corpus = CorpusWriter::start(&options.corpus_dir, corpus_rx)?;
         let mut warnings = Vec::new();
-        let speech = choose_speech(
-            bundle.config.speech.adapter,
-            espeak_available(),
-            &mut warnings,
-        );
-        let voice = &bundle.config.speech.voice;
-        if speech == AdapterKind::Espeak && !espeak_voices().contains(voice) {
-            warnings.push(format!(
-                "espeak-ng has no voice {voice:?} (see `espeak-ng --voices`); \
-                 it will speak with its default voice"
-            ));
-        }
         let output = match &options.speech_wav {
             Some(dir) => {
                 std::fs::create_dir_all(dir)?;
@@ -70,6 +58,7 @@ impl Server {
             }
             None => SpeechOutput::Audio,
         };
+        let speech = speech_adapter(&bundle.config.speech, &output, &mut warnings);
         // The kiosk starts on the home page only if the bundle has one (`check` warns otherwise).
         let home = Some(bundle.config.home.clone())
             .filter(|h| resolve_in_bundle(&bundle.root, BundleArea::Pages, h).is_ok());
@@ -97,6 +86,41 @@ impl Server {
     pub fn corpus_path(&self) -> PathBuf {
         self.corpus.path().to_owned()
     }
+}
+
+/// Decides the speech adapter and says why when it is not what the bundle asked for.
+fn speech_adapter(
+    config: &SpeechConfig,
+    output: &SpeechOutput,
+    warnings: &mut Vec<String>,
+) -> AdapterKind {
+    let kind = choose_speech(config.adapter, espeak_available(), warnings);
+    if kind != AdapterKind::Espeak {
+        return kind;
+    }
+    let voice = &config.voice;
+    if !espeak_voices().contains(voice) {
+        warnings.push(format!(
+            "espeak-ng has no voice {voice:?} (see `espeak-ng --voices`); \
+             it will speak with its default voice"
+        ));
+    }
+    if *output == SpeechOutput::Audio && !espeak_can_play() {
+        if config.adapter.is_none() {
+            warnings.push(
+                "espeak-ng cannot reach a sound device here, so speech is only logged \
+                 (use --speech-wav DIR to record it, or set speech: {adapter: espeak})"
+                    .into(),
+            );
+            return AdapterKind::Log;
+        }
+        warnings.push(
+            "espeak-ng cannot reach a sound device here: every SAY will fail \
+             (use --speech-wav DIR to record speech instead)"
+                .into(),
+        );
+    }
+    kind
 }
 
 /// Picks the speech adapter: the configured one, or espeak when installed; log otherwise.

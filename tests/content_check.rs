@@ -1,6 +1,8 @@
 //! What `docent check` reports: every diagnostic code at its exact file, line and column,
 //! with plain-language messages, and the path gate shared with the HTTP file routes.
 
+mod common;
+
 use std::fs;
 use std::path::Path;
 
@@ -689,5 +691,18 @@ fn an_oversized_acts_file_is_refused_without_reading_it_whole() {
     assert_eq!(
         places(&report),
         [("file-too-large", "huge.yaml:0:0".to_owned())]
+    );
+}
+
+#[test]
+fn an_act_with_variants_but_no_default_text_is_warned_about() {
+    let b = common::TempBundle::new("- Label: KIDS\n  TextChild: [Hi kids]\n");
+    let report = docent::content::load_bundle(b.path());
+    assert!(report.bundle.is_some(), "a warning, not an error");
+    let d = &report.diagnostics;
+    assert_eq!(d.len(), 1, "{d:?}");
+    assert_eq!(
+        (d[0].code, d[0].line, d[0].column),
+        ("no-default-text", 2, 3)
     );
 }

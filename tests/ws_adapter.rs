@@ -91,7 +91,7 @@ async fn a_failure_answer_becomes_command_failed_with_its_reason() {
         (e["type"].as_str(), e["reason"].as_str()),
         (Some("command.failed"), Some("relay stuck"))
     );
-    lights.send(json!({"type": "done", "id": c["id"]})).await;
+    lights.send(json!({"type": "done", "id": 424_242})).await;
     assert_eq!(lights.recv_type("error").await["code"], "unknown-command");
     server.stop().await;
 }
@@ -163,16 +163,123 @@ async fn stop_sends_cancel_to_adapters_and_cancels_what_they_owe() {
 
 #[tokio::test]
 async fn an_adapter_is_told_which_of_its_verbs_go_elsewhere() {
-    let b = TempBundle::new(ACTS).with_file("docent.yaml", "speech: {adapter: log}\nverbs:\n  LIGHTS: {adapter: ws}\n");
+    let b = TempBundle::new(ACTS).with_file(
+        "docent.yaml",
+        "speech: {adapter: log}\nverbs:\n  LIGHTS: {adapter: ws}\n",
+    );
     let server = TestServer::start(b.path()).await;
     let mut a = adapter(&server, &["LIGHTS", "SAY", "DANCE"]).await;
     let first = a.recv_type("error").await;
     assert_eq!(first["code"], "verb-not-routed");
-    assert!(first["message"].as_str().unwrap().starts_with("SAY goes to the log adapter"), "{first}");
+    assert!(
+        first["message"]
+            .as_str()
+            .unwrap()
+            .starts_with("SAY goes to the log adapter"),
+        "{first}"
+    );
     let second = a.recv_type("error").await;
-    assert!(second["message"].as_str().unwrap().starts_with("DANCE is not a verb"), "{second}");
+    assert!(
+        second["message"]
+            .as_str()
+            .unwrap()
+            .starts_with("DANCE is not a verb"),
+        "{second}"
+    );
     // Still connected and served for what is routed to it.
     server.trigger("SHOW", json!({})).await;
     assert_eq!(a.recv_type("command").await["verb"], "LIGHTS");
+    server.stop().await;
+}
+
+#[tokio::test]
+async fn a_started_command_is_off_the_answer_clock() {
+    let b = bundle("300ms");
+    let server = TestServer::start(b.path()).await;
+    let mut op = server.operator().await;
+    let mut lights = adapter(&server, &["LIGHTS"]).await;
+    server.trigger("SHOW", json!({})).await;
+    let long = lights.recv_type("command").await;
+    lights
+        .send(json!({"type": "started", "id": long["id"]}))
+        .await;
+    server.trigger("SHOW", json!({})).await;
+    let silent = lights.recv_type("command").await;
+    // The second command's clock runs out; the first, started before, is still running.
+    let e = op.event_where(terminal).await;
+    assert_eq!(
+        (e["type"].as_str(), &e["command"]),
+        (Some("command.failed"), &silent["id"])
+    );
+    lights.send(json!({"type": "done", "id": long["id"]})).await;
+    let e = op.event_where(terminal).await;
+    assert_eq!(
+        (e["type"].as_str(), &e["command"]),
+        (Some("command.done"), &long["id"])
+    );
+    server.stop().await;
+}
+
+#[tokio::test]
+async fn a_second_adapters_answer_to_a_settled_command_is_no_error() {
+    let b = bundle("5s");
+    let server = TestServer::start(b.path()).await;
+    let mut first = adapter(&server, &["LIGHTS"]).await;
+    let mut second = adapter(&server, &["LIGHTS"]).await;
+    server.trigger("SHOW", json!({})).await;
+    let c1 = first.recv_type("command").await;
+    let c2 = second.recv_type("command").await;
+    assert_eq!(c1["id"], c2["id"], "both serve LIGHTS");
+    first.send(json!({"type": "done", "id": c1["id"]})).await;
+    second.send(json!({"type": "done", "id": c2["id"]})).await;
+    second.send(json!({"type": "done", "id": 999_999})).await;
+    let e = second.recv_type("error").await;
+    assert!(
+        e["message"].as_str().unwrap().contains("999999"),
+        "only the unknown id is an error: {e}"
+    );
+    server.stop().await;
+}
+
+#[tokio::test]
+async fn a_wait_after_a_failed_command_abandons_the_rest_of_the_act() {
+    let acts = "- Label: GO\n  Text: [Follow me]\n  Cmds: [SET_WAYPOINT 1 1, DRIVE_START, WAIT, DISPLAY_PAGE index.html]\n";
+    let b = TempBundle::new(acts).with_file(
+        "docent.yaml",
+        "speech: {adapter: log, rate: 600}\ndrive: {adapter: ws}\n",
+    );
+    let server = TestServer::start(b.path()).await;
+    let mut op = server.operator().await;
+    let t = server.trigger("GO", json!({})).await;
+    let page = t["commands"][4]["id"].clone();
+    let wait = t["commands"][3]["id"].clone();
+    let events = op
+        .events_until(|e| e["command"] == page && terminal(e))
+        .await;
+    let wait_end = events
+        .iter()
+        .find(|e| e["command"] == wait && terminal(e))
+        .unwrap();
+    assert_eq!(wait_end["type"], "command.failed");
+    assert!(
+        wait_end["reason"]
+            .as_str()
+            .unwrap()
+            .contains("did not succeed (no adapter for SET_WAYPOINT"),
+        "{wait_end}"
+    );
+    let page_end = events.last().unwrap();
+    assert_eq!(page_end["type"], "command.cancelled");
+    assert!(
+        !events
+            .iter()
+            .any(|e| e["type"] == "command.sent" && e["command"] == page),
+        "never sent"
+    );
+    let (_, state) = server.get("/api/state").await;
+    assert_eq!(
+        state["display"]["page"], "index.html",
+        "the page did not change"
+    );
     server.stop().await;
 }

@@ -23,7 +23,9 @@ pub use command::{Command, Outcome, Reply};
 pub use display::{Display, DisplayAdapter, DisplayState};
 pub use drive_sim::{DriveSim, Pose};
 pub use router::{Devices, Router};
-pub use speech_espeak::{SpeechOutput, espeak_adapter, espeak_available, espeak_voices};
+pub use speech_espeak::{
+    SpeechOutput, espeak_adapter, espeak_available, espeak_can_play, espeak_voices,
+};
 pub use speech_log::log_adapter;
 pub use worker::Worker;
 pub use ws::WsAdapters;

@@ -41,6 +41,18 @@ pub fn espeak_available() -> bool {
         .is_ok_and(|s| s.success())
 }
 
+/// True when espeak-ng can reach a sound device: it speaks a silent utterance and must not
+/// complain on stderr (it exits 0 either way).
+pub fn espeak_can_play() -> bool {
+    std::process::Command::new("espeak-ng")
+        .args(["-a", "0", "."])
+        .stdout(Stdio::null())
+        .output()
+        .is_ok_and(|out| {
+            out.status.success() && alarming(&String::from_utf8_lossy(&out.stderr)).is_none()
+        })
+}
+
 /// The voice names espeak-ng knows (languages such as `en-us` and voice files such as
 /// `gmw/en`). espeak-ng silently falls back to its default voice for an unknown name, so the
 /// server checks the configured voice against this list at start-up.

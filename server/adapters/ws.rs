@@ -3,11 +3,12 @@
 //!
 //! Each command goes, as soon as it is dispatched, to every connected adapter that declared its
 //! verb; they receive commands in dispatch order and must carry them out in that order. The
-//! first `done` completes the command; it fails when every recipient failed or left, or when
-//! none answers within the configured time once it is that command's turn (the clock of a
-//! command starts when the previous command of the same verb has been answered).
+//! first `done` completes the command (later answers from other adapters are accepted and
+//! ignored); it fails when every recipient failed or left, or when none answers (`started`,
+//! `done` or `failed`) within the configured time once it is that command's turn: the clock of
+//! a command starts when the previous command of the same verb was answered or started.
 
-use std::collections::HashMap;
+use std::collections::{HashMap, VecDeque};
 use std::sync::{Arc, Mutex};
 use std::time::Duration;
 
@@ -34,6 +35,9 @@ struct Pending {
     settled: Option<oneshot::Sender<()>>,
 }
 
+/// How many settled command ids are remembered for late answers.
+const RECENTLY_SETTLED: usize = 1024;
+
 /// A command id and the signal that it was answered.
 type Clocked = (u64, oneshot::Receiver<()>);
 
@@ -45,6 +49,8 @@ pub struct WsAdapters {
 struct Inner {
     connections: Mutex<Vec<Connection>>,
     pending: Mutex<HashMap<u64, Pending>>,
+    /// Ids of commands settled lately, so that a second adapter's answer is not an error.
+    recently_settled: Mutex<VecDeque<u64>>,
     /// Per verb, the queue of commands whose answer clocks run one after another.
     clocks: Mutex<HashMap<Verb, mpsc::UnboundedSender<Clocked>>>,
     timeout: Duration,
@@ -65,6 +71,7 @@ impl WsAdapters {
         let inner = Inner {
             connections: Mutex::new(Vec::new()),
             pending: Mutex::new(HashMap::new()),
+            recently_settled: Mutex::new(VecDeque::with_capacity(RECENTLY_SETTLED)),
             clocks: Mutex::new(HashMap::new()),
             timeout,
             life,
@@ -103,13 +110,21 @@ impl WsAdapters {
     /// Takes an adapter's `started` report.
     pub fn started(&self, client: u64, id: u64) -> Result<(), AnswerError> {
         let mut pending = lock(&self.inner.pending);
-        let entry = pending
+        let Some(entry) = pending
             .get_mut(&id)
             .filter(|p| p.recipients.contains(&client))
-            .ok_or(AnswerError::UnknownCommand(id))?;
+        else {
+            return self.inner.late_answer(id);
+        };
         if !entry.started {
             entry.started = true;
             entry.reply.started();
+            // The adapter has taken the command on: the answer clock (which catches missing or
+            // dead adapters) stops, and the next command's clock starts. A long drive or
+            // utterance may take as long as it takes; a disconnect or a stop still ends it.
+            if let Some(settled) = entry.settled.take() {
+                let _ = settled.send(());
+            }
         }
         Ok(())
     }
@@ -117,25 +132,20 @@ impl WsAdapters {
     /// Takes an adapter's `done` or `failed` answer.
     pub fn answer(&self, client: u64, id: u64, outcome: Outcome) -> Result<(), AnswerError> {
         let mut pending = lock(&self.inner.pending);
-        let entry = pending
+        let Some(entry) = pending
             .get_mut(&id)
             .filter(|p| p.recipients.contains(&client))
-            .ok_or(AnswerError::UnknownCommand(id))?;
+        else {
+            return self.inner.late_answer(id);
+        };
         entry.recipients.retain(|&c| c != client);
         let settles = matches!(outcome, Outcome::Done) || entry.recipients.is_empty();
         if settles && let Some(entry) = pending.remove(&id) {
             drop(pending);
-            settle(entry, outcome);
+            self.inner.settle(id, entry, outcome);
         }
         Ok(())
     }
-}
-
-fn settle(mut entry: Pending, outcome: Outcome) {
-    if let Some(settled) = entry.settled.take() {
-        let _ = settled.send(());
-    }
-    entry.reply.finish(outcome);
 }
 
 impl Inner {
@@ -155,9 +165,35 @@ impl Inner {
     }
 
     fn expire(&self, id: u64) {
-        if let Some(entry) = lock(&self.pending).remove(&id) {
+        let mut pending = lock(&self.pending);
+        // A command an adapter has started is no longer on the clock.
+        if pending.get(&id).is_some_and(|p| !p.started)
+            && let Some(entry) = pending.remove(&id)
+        {
+            drop(pending);
             let reason = format!("no adapter answered within {:?}", self.timeout);
-            settle(entry, Outcome::Failed(reason));
+            self.settle(id, entry, Outcome::Failed(reason));
+        }
+    }
+
+    fn settle(&self, id: u64, mut entry: Pending, outcome: Outcome) {
+        if let Some(settled) = entry.settled.take() {
+            let _ = settled.send(());
+        }
+        entry.reply.finish(outcome);
+        let mut recent = lock(&self.recently_settled);
+        if recent.len() == RECENTLY_SETTLED {
+            recent.pop_front();
+        }
+        recent.push_back(id);
+    }
+
+    /// An answer for a command no longer waiting: fine if another adapter already settled it
+    /// (several adapters may serve one verb), an error otherwise.
+    fn late_answer(&self, id: u64) -> Result<(), AnswerError> {
+        match lock(&self.recently_settled).contains(&id) {
+            true => Ok(()),
+            false => Err(AnswerError::UnknownCommand(id)),
         }
     }
 }
@@ -240,10 +276,14 @@ impl Adapter for WsAdapters {
             .collect();
         // In dispatch order, so the log reads naturally.
         ids.sort_unstable();
-        let cancelled: Vec<Pending> = ids.iter().filter_map(|id| pending.remove(id)).collect();
+        let cancelled: Vec<(u64, Pending)> = ids
+            .iter()
+            .filter_map(|&id| Some((id, pending.remove(&id)?)))
+            .collect();
         drop(pending);
-        for entry in cancelled {
-            settle(entry, Outcome::Cancelled(reason.to_owned()));
+        for (id, entry) in cancelled {
+            self.inner
+                .settle(id, entry, Outcome::Cancelled(reason.to_owned()));
         }
     }
 

@@ -190,6 +190,18 @@ fn read_act(node: &Node, out: &mut Vec<Diagnostic>) -> Option<WrittenAct> {
         );
         out.push(Diagnostic::warning("empty-act", &node.pos, message));
     }
+    // The paper: "Text is the default and has to exist for all dialog acts where text
+    // utterance is desired"; without it the act is silent in every other context.
+    if let Some(first) = act.variants.first()
+        && !act.variants.iter().any(|v| v.name == DEFAULT_VARIANT)
+    {
+        let message = format!(
+            "The act `{}` has `{}` but no `Text`, so it says nothing in any other context. \
+             Add a `Text:` list as the default.",
+            label.value, first.name
+        );
+        out.push(Diagnostic::warning("no-default-text", &first.pos, message));
+    }
     Some(act)
 }
 

@@ -124,6 +124,7 @@ impl Dispatcher {
         }
         let triggered = Triggered {
             trigger,
+            reference: act_ref.reference.clone(),
             label: act.label.clone(),
             context: context.clone(),
             variant: choice.map(|(v, _, _)| v.name.clone()),

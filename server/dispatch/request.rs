@@ -52,6 +52,9 @@ pub struct ResolvedCommand {
 pub struct Triggered {
     /// The trigger's id.
     pub trigger: u64,
+    /// The caller's reference, echoed.
+    #[serde(rename = "ref")]
+    pub reference: Option<String>,
     /// The act's label.
     pub label: String,
     /// The context that applied.

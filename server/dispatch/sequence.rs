@@ -13,18 +13,21 @@ use crate::content::{Verb, parse_duration};
 use crate::dispatch::Dispatcher;
 use crate::events::EventKind;
 
-/// Runs `commands` in order, honouring `WAIT`, until done or `stop` is cancelled.
+/// Runs `commands` in order, honouring `WAIT`, until done, `stop` is cancelled, or a `WAIT`
+/// finds that an earlier command did not succeed (the rest of the act would then act on a
+/// false premise, e.g. show an exhibit's page although the robot never drove there).
 pub async fn run_sequence(
     dispatcher: Arc<Dispatcher>,
     commands: Vec<Command>,
     stop: CancellationToken,
 ) {
-    let mut outstanding: Vec<oneshot::Receiver<Outcome>> = Vec::new();
+    let mut outstanding: Vec<(String, oneshot::Receiver<Outcome>)> = Vec::new();
     let mut rest = commands.into_iter();
+    let mut abandoned = None;
     for command in rest.by_ref() {
         if command.verb != Verb::Wait {
             let (tx, rx) = oneshot::channel();
-            outstanding.push(rx);
+            outstanding.push((command.verb.to_string(), rx));
             dispatcher.send(command, Some(tx));
             continue;
         }
@@ -46,21 +49,56 @@ pub async fn run_sequence(
         };
         let waited = async {
             match pause {
-                Some(pause) => tokio::time::sleep(pause).await,
-                None => drop(join_all(earlier).await),
+                Some(pause) => {
+                    tokio::time::sleep(pause).await;
+                    Ok(())
+                }
+                None => first_failure(earlier).await,
             }
         };
-        tokio::select! {
-            () = waited => reply.finish(Outcome::Done),
-            () = stop.cancelled() => {
-                reply.finish(Outcome::Cancelled("stopped".into()));
+        // A stop cancels the earlier commands too: it must win over "they all ended".
+        let outcome = tokio::select! {
+            biased;
+            () = stop.cancelled() => Err("stopped".to_owned()),
+            result = waited => result,
+        };
+        match outcome {
+            Ok(()) => reply.finish(Outcome::Done),
+            Err(reason) if stop.is_cancelled() => {
+                reply.finish(Outcome::Cancelled(reason));
+                abandoned = Some("stopped before it was sent".to_owned());
+                break;
+            }
+            Err(reason) => {
+                reply.finish(Outcome::Failed(reason.clone()));
+                abandoned = Some(format!("not sent: {reason}"));
                 break;
             }
         }
     }
+    let reason = abandoned.unwrap_or_default();
     for command in rest {
         let hub = dispatcher.hub().clone();
-        Reply::new(hub, command, None)
-            .finish(Outcome::Cancelled("stopped before it was sent".into()));
+        Reply::new(hub, command, None).finish(Outcome::Cancelled(reason.clone()));
     }
+}
+
+/// Waits for every earlier command; the first that failed, in words.
+async fn first_failure(earlier: Vec<(String, oneshot::Receiver<Outcome>)>) -> Result<(), String> {
+    let (verbs, outcomes): (Vec<String>, Vec<_>) = earlier.into_iter().unzip();
+    let outcomes = join_all(outcomes).await;
+    for (verb, outcome) in verbs.iter().zip(outcomes) {
+        match outcome {
+            // Speech cut short by an interrupting trigger still ended; a stop is seen
+            // through the stop token.
+            Ok(Outcome::Done | Outcome::Cancelled(_)) => {}
+            Ok(Outcome::Failed(why)) => {
+                return Err(format!(
+                    "an earlier {verb} of this act did not succeed ({why})"
+                ));
+            }
+            Err(_) => return Err(format!("an earlier {verb} of this act was lost")),
+        }
+    }
+    Ok(())
 }

@@ -159,9 +159,12 @@ pub async fn put_context(
 /// `GET /api/state`: display, pose, speech, queues, context and connected clients.
 pub async fn get_state(State(state): State<AppState>) -> Json<Value> {
     let adapters = state.dispatcher.adapter_status();
-    let speaking = (adapters.get(state.devices.speech.as_str()))
-        .and_then(|s| s.current.clone())
-        .filter(|c| c.starts_with("SAY "));
+    let speaking = (adapters.get(state.devices.speech.as_str())).and_then(|s| {
+        s.current
+            .as_deref()?
+            .strip_prefix("SAY ")
+            .map(str::to_owned)
+    });
     Json(json!({
         "display": state.devices.display.snapshot(),
         "pose": state.devices.drive.as_ref().map(|d| d.pose()),

@@ -150,7 +150,7 @@ impl Session {
                     &[ClientRole::Kiosk, ClientRole::Operator, ClientRole::Dm],
                     reference.as_deref(),
                 ) else {
-                    return;
+                    return self.log_refused(label);
                 };
                 let request = TriggerRequest {
                     label,
@@ -161,7 +161,7 @@ impl Session {
                     client: Some(self.client),
                 };
                 match self.state.dispatcher.trigger(request) {
-                    Ok(t) => self.send(triggered_frame(reference.as_deref(), &t)),
+                    Ok(t) => self.send(triggered_frame(&t)),
                     Err(e) => self.reply_error(
                         e.code(),
                         &e.to_string(),
@@ -225,6 +225,18 @@ impl Session {
                 None
             }
         }
+    }
+
+    /// Records a trigger this client's role may not make.
+    fn log_refused(&self, label: String) {
+        let Some(role) = self.role else { return };
+        self.state.hub.publish(EventKind::TriggerRefused {
+            source: role.source(),
+            client: Some(self.client),
+            label,
+            code: "forbidden",
+            message: format!("a client with role {role:?} may not trigger acts").to_lowercase(),
+        });
     }
 
     fn hello(&mut self, role: ClientRole, verbs: Vec<String>, name: Option<String>) {

@@ -109,6 +109,7 @@ enum ServerFrame<'a> {
         label: &'a str,
         context: &'a str,
         variant: Option<&'a str>,
+        alternative: Option<usize>,
         text: Option<&'a str>,
         commands: &'a [ResolvedCommand],
     },
@@ -164,13 +165,14 @@ pub fn state_frame(state: &StateView) -> String {
 }
 
 /// `triggered`: the answer to a trigger.
-pub fn triggered_frame(reference: Option<&str>, t: &crate::dispatch::Triggered) -> String {
+pub fn triggered_frame(t: &crate::dispatch::Triggered) -> String {
     encode(&ServerFrame::Triggered {
-        reference,
+        reference: t.reference.as_deref(),
         trigger: t.trigger,
         label: &t.label,
         context: &t.context,
         variant: t.variant.as_deref(),
+        alternative: t.alternative,
         text: t.text.as_deref(),
         commands: &t.commands,
     })

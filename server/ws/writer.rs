@@ -46,7 +46,9 @@ pub async fn run_writer(
     let mut ping = tokio::time::interval(PING_INTERVAL);
     ping.tick().await;
     let end = 'writing: loop {
+        // Biased: direct answers (and `welcome` before anything fed) go out first.
         let frame = tokio::select! {
+            biased;
             frame = queue.recv() => match frame { Some(f) => f, None => break "closed" },
             f = async {
                 match feed.as_mut() {
