@@ -196,3 +196,83 @@ async fn speech_says_one_utterance_at_a_time_in_trigger_order() {
     );
     server.stop().await;
 }
+
+const LATER_STOP: &str = r#"
+- Label: GO_THEN_STOP
+  Cmds: [SET_WAYPOINT 19 0, DRIVE_START, WAIT 100ms, DRIVE_STOP, SAY Stopped here]
+- Label: TALK_THEN_MORE
+  Text: [First part]
+  Cmds: [WAIT, SAY Second part]
+- Label: HUSH
+  Text: [Quiet please]
+"#;
+
+#[tokio::test]
+async fn a_drive_stop_after_a_wait_stops_the_drive_when_it_is_reached() {
+    let b = TempBundle::new(LATER_STOP).with_file("docent.yaml", CONFIG);
+    let server = TestServer::start(b.path()).await;
+    let mut op = server.operator().await;
+    let t = server.trigger("GO_THEN_STOP", json!({})).await;
+    let [_, drive, pause, stop, said] = ids(&t)[..] else {
+        panic!("{t}")
+    };
+    let events = op.events_until(is("command.done", said)).await;
+    let at = |kind, id| position(&events, is(kind, id));
+    let stopped = position(&events, |e| e["type"] == "stop");
+    assert!(
+        at("command.started", drive) < stopped,
+        "no stop at trigger time"
+    );
+    assert!(at("command.done", pause) < stopped);
+    assert!(stopped < at("command.cancelled", drive));
+    assert!(at("command.cancelled", drive) < at("command.done", stop));
+    let (_, state) = server.get("/api/state").await;
+    assert_eq!(state["pose"]["moving"], false);
+    assert!(state["pose"]["x"].as_f64().unwrap() < 5.0, "{state}");
+    server.stop().await;
+}
+
+#[tokio::test]
+async fn an_interrupt_also_drops_speech_an_act_has_not_sent_yet() {
+    let b = TempBundle::new(LATER_STOP).with_file("docent.yaml", CONFIG);
+    let server = TestServer::start(b.path()).await;
+    let mut op = server.operator().await;
+    let talk = ids(&server.trigger("TALK_THEN_MORE", json!({})).await);
+    op.event_where(is("command.started", talk[0])).await;
+    let hush = ids(&server.trigger("HUSH", json!({"interrupt": true})).await)[0];
+    let mut events = op.events_until(is("command.done", hush)).await;
+    if !events.iter().any(is("command.cancelled", talk[2])) {
+        events.extend(op.events_until(is("command.cancelled", talk[2])).await);
+    }
+    assert!(events.iter().any(is("command.cancelled", talk[0])));
+    assert!(
+        !events.iter().any(is("command.sent", talk[2])),
+        "the second part is never said"
+    );
+    server.stop().await;
+}
+
+#[tokio::test]
+async fn an_act_with_a_wait_keeps_its_place_in_the_speech_queue() {
+    let b = TempBundle::new(LATER_STOP).with_file("docent.yaml", CONFIG);
+    let server = TestServer::start(b.path()).await;
+    let mut op = server.operator().await;
+    for _ in 0..20 {
+        op.send(json!({"type": "trigger", "label": "TALK_THEN_MORE"}))
+            .await;
+        op.send(json!({"type": "trigger", "label": "HUSH"})).await;
+    }
+    let mut sent_say = Vec::new();
+    while sent_say.len() < 40 {
+        let e = op
+            .event_where(|e| e["type"] == "command.sent" && e["verb"] == "SAY")
+            .await;
+        if e["arg"] != "Second part" {
+            sent_say.push(e["arg"].as_str().unwrap().to_owned());
+        }
+    }
+    for pair in sent_say.chunks(2) {
+        assert_eq!(pair, ["First part", "Quiet please"]);
+    }
+    server.stop().await;
+}

@@ -193,29 +193,44 @@ async fn an_adapter_is_told_which_of_its_verbs_go_elsewhere() {
 }
 
 #[tokio::test]
-async fn a_started_command_is_off_the_answer_clock() {
+async fn a_started_command_is_off_the_answer_clock_and_the_next_waits_its_turn() {
     let b = bundle("300ms");
     let server = TestServer::start(b.path()).await;
     let mut op = server.operator().await;
+    let mut speech = adapter(&server, &["SAY"]).await;
     let mut lights = adapter(&server, &["LIGHTS"]).await;
-    server.trigger("SHOW", json!({})).await;
-    let long = lights.recv_type("command").await;
-    lights
-        .send(json!({"type": "started", "id": long["id"]}))
+    let t = server.trigger("GREET", json!({})).await;
+    let id = |i: usize| t["commands"][i]["id"].clone();
+    let first_say = speech.recv_type("command").await;
+    assert_eq!(first_say["id"], id(0));
+    speech
+        .send(json!({"type": "started", "id": first_say["id"]}))
         .await;
-    server.trigger("SHOW", json!({})).await;
-    let silent = lights.recv_type("command").await;
-    // The second command's clock runs out; the first, started before, is still running.
+    lights.recv_type("command").await;
+    // The lights adapter never answers: its oldest command fails after 300 ms, then the next.
+    for expected in [id(1), id(3)] {
+        let e = op.event_where(terminal).await;
+        assert_eq!(
+            (e["type"].as_str(), &e["command"]),
+            (Some("command.failed"), &expected),
+            "{e}"
+        );
+    }
+    // Well past 300 ms, the started SAY is still running, and the second SAY, not yet its
+    // turn, is not on the clock either.
+    speech
+        .send(json!({"type": "done", "id": first_say["id"]}))
+        .await;
     let e = op.event_where(terminal).await;
     assert_eq!(
         (e["type"].as_str(), &e["command"]),
-        (Some("command.failed"), &silent["id"])
+        (Some("command.done"), &id(0))
     );
-    lights.send(json!({"type": "done", "id": long["id"]})).await;
     let e = op.event_where(terminal).await;
     assert_eq!(
         (e["type"].as_str(), &e["command"]),
-        (Some("command.done"), &long["id"])
+        (Some("command.failed"), &id(2)),
+        "then its clock runs"
     );
     server.stop().await;
 }

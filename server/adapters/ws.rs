@@ -2,44 +2,112 @@
 //! module, in any language) connected over the websocket with role `adapter`.
 //!
 //! Each command goes, as soon as it is dispatched, to every connected adapter that declared its
-//! verb; they receive commands in dispatch order and must carry them out in that order. The
-//! first `done` completes the command (later answers from other adapters are accepted and
-//! ignored); it fails when every recipient failed or left, or when none answers (`started`,
-//! `done` or `failed`) within the configured time once it is that command's turn: the clock of
-//! a command starts when the previous command of the same verb was answered or started.
+//! verb; each adapter receives its commands in dispatch order and carries them out in that
+//! order. The first `done` completes a command (later answers from other adapters are accepted
+//! and ignored); it fails when every recipient failed, left or timed out.
+//!
+//! The answer clock catches missing or dead adapters, not long work: each connection has one
+//! clock, on the oldest command it still owes an answer for, started when that command became
+//! the oldest. `started` stops it (the adapter has taken the command on; a dead process is then
+//! caught by the websocket's ping timeout); `done` or `failed` moves it to the next command.
 
 use std::collections::{HashMap, VecDeque};
-use std::sync::{Arc, Mutex};
+use std::sync::{Arc, Mutex, Weak};
 use std::time::Duration;
 
-use tokio::sync::{mpsc, oneshot};
+use tokio::sync::Notify;
+use tokio::time::Instant;
+use tokio_util::sync::CancellationToken;
 
 use crate::adapters::{Adapter, AdapterStatus, CancelScope, Command, Outcome, Reply};
-use crate::content::Verb;
 use crate::lifecycle::Lifecycle;
 use crate::sync::lock;
 use crate::ws::outbox::{Frame, Outbox};
 use crate::ws::protocol::{cancel_frame, command_frame};
+
+/// How many settled command ids are remembered for late answers.
+const RECENTLY_SETTLED: usize = 1024;
 
 /// A connected adapter process.
 struct Connection {
     client: u64,
     verbs: Vec<String>,
     outbox: Outbox,
+    /// Commands it owes an answer for, oldest first.
+    owed: VecDeque<u64>,
+    /// When the oldest owed command became the oldest.
+    head_since: Instant,
+    /// Wakes the connection's clock when its oldest owed command changes.
+    wake: Arc<Notify>,
+}
+
+impl Connection {
+    fn owe(&mut self, id: u64) {
+        self.owed.push_back(id);
+        if self.owed.len() == 1 {
+            self.head_since = Instant::now();
+            self.wake.notify_one();
+        }
+    }
+
+    fn forget(&mut self, id: u64) {
+        let was_head = self.owed.front() == Some(&id);
+        self.owed.retain(|&o| o != id);
+        if was_head {
+            self.head_since = Instant::now();
+            self.wake.notify_one();
+        }
+    }
 }
 
 struct Pending {
     reply: Reply,
     recipients: Vec<u64>,
     started: bool,
-    settled: Option<oneshot::Sender<()>>,
 }
 
-/// How many settled command ids are remembered for late answers.
-const RECENTLY_SETTLED: usize = 1024;
+#[derive(Default)]
+struct Registry {
+    connections: Vec<Connection>,
+    pending: HashMap<u64, Pending>,
+    /// Ids of commands settled lately, so that a second adapter's answer is not an error.
+    recently_settled: VecDeque<u64>,
+}
 
-/// A command id and the signal that it was answered.
-type Clocked = (u64, oneshot::Receiver<()>);
+impl Registry {
+    fn connection(&mut self, client: u64) -> Option<&mut Connection> {
+        self.connections.iter_mut().find(|c| c.client == client)
+    }
+
+    /// Takes `client`'s answer to `id`; returns the entry when that settles the command.
+    fn take_answer(&mut self, client: u64, id: u64, outcome: &Outcome) -> Option<Pending> {
+        let entry = self.pending.get_mut(&id)?;
+        entry.recipients.retain(|&c| c != client);
+        if let Some(conn) = self.connection(client) {
+            conn.forget(id);
+        }
+        let entry = self.pending.get(&id)?;
+        if !matches!(outcome, Outcome::Done) && !entry.recipients.is_empty() {
+            return None;
+        }
+        self.settle(id)
+    }
+
+    /// Removes a command from the books; the caller reports its outcome.
+    fn settle(&mut self, id: u64) -> Option<Pending> {
+        let entry = self.pending.remove(&id)?;
+        for &client in &entry.recipients {
+            if let Some(conn) = self.connection(client) {
+                conn.forget(id);
+            }
+        }
+        if self.recently_settled.len() == RECENTLY_SETTLED {
+            self.recently_settled.pop_front();
+        }
+        self.recently_settled.push_back(id);
+        Some(entry)
+    }
+}
 
 /// The registry of adapter connections and the commands they owe an answer for.
 pub struct WsAdapters {
@@ -47,12 +115,7 @@ pub struct WsAdapters {
 }
 
 struct Inner {
-    connections: Mutex<Vec<Connection>>,
-    pending: Mutex<HashMap<u64, Pending>>,
-    /// Ids of commands settled lately, so that a second adapter's answer is not an error.
-    recently_settled: Mutex<VecDeque<u64>>,
-    /// Per verb, the queue of commands whose answer clocks run one after another.
-    clocks: Mutex<HashMap<Verb, mpsc::UnboundedSender<Clocked>>>,
+    registry: Mutex<Registry>,
     timeout: Duration,
     life: Lifecycle,
 }
@@ -66,13 +129,10 @@ pub enum AnswerError {
 }
 
 impl WsAdapters {
-    /// An empty registry; unanswered commands fail after `timeout`.
+    /// An empty registry; commands nobody takes on fail after `timeout`.
     pub fn new(timeout: Duration, life: Lifecycle) -> Self {
         let inner = Inner {
-            connections: Mutex::new(Vec::new()),
-            pending: Mutex::new(HashMap::new()),
-            recently_settled: Mutex::new(VecDeque::with_capacity(RECENTLY_SETTLED)),
-            clocks: Mutex::new(HashMap::new()),
+            registry: Mutex::default(),
             timeout,
             life,
         };
@@ -81,142 +141,139 @@ impl WsAdapters {
         }
     }
 
-    /// Registers a connected adapter serving `verbs`.
+    /// Registers a connected adapter serving `verbs` and starts its answer clock.
     pub fn connect(&self, client: u64, verbs: Vec<String>, outbox: Outbox) {
-        lock(&self.inner.connections).push(Connection {
+        let wake = Arc::new(Notify::new());
+        let conn = Connection {
             client,
             verbs,
             outbox,
-        });
+            owed: VecDeque::new(),
+            head_since: Instant::now(),
+            wake: Arc::clone(&wake),
+        };
+        lock(&self.inner.registry).connections.push(conn);
+        let clock = run_clock(
+            Arc::downgrade(&self.inner),
+            client,
+            wake,
+            self.inner.life.shutdown.clone(),
+        );
+        self.inner.life.spawn(clock);
     }
 
     /// Forgets a connection; commands only it was carrying out fail.
     pub fn disconnect(&self, client: u64) {
-        lock(&self.inner.connections).retain(|c| c.client != client);
-        let owed: Vec<u64> = lock(&self.inner.pending)
+        let mut registry = lock(&self.inner.registry);
+        let Some(at) = registry.connections.iter().position(|c| c.client == client) else {
+            return;
+        };
+        let conn = registry.connections.remove(at);
+        conn.wake.notify_one();
+        let outcome = Outcome::Failed("the adapter disconnected".into());
+        let settled: Vec<Pending> = conn
+            .owed
             .iter()
-            .filter(|(_, p)| p.recipients.contains(&client))
-            .map(|(&id, _)| id)
+            .filter_map(|&id| registry.take_answer(client, id, &outcome))
             .collect();
-        for id in owed {
-            let _ = self.answer(
-                client,
-                id,
-                Outcome::Failed("the adapter disconnected".into()),
-            );
+        drop(registry);
+        for entry in settled {
+            entry.reply.finish(outcome.clone());
         }
     }
 
     /// Takes an adapter's `started` report.
     pub fn started(&self, client: u64, id: u64) -> Result<(), AnswerError> {
-        let mut pending = lock(&self.inner.pending);
-        let Some(entry) = pending
+        let mut registry = lock(&self.inner.registry);
+        let Some(entry) = registry
+            .pending
             .get_mut(&id)
             .filter(|p| p.recipients.contains(&client))
         else {
-            return self.inner.late_answer(id);
+            return late_answer(&registry, id);
         };
-        if !entry.started {
-            entry.started = true;
+        let first = !std::mem::replace(&mut entry.started, true);
+        if let Some(conn) = registry.connection(client) {
+            conn.wake.notify_one();
+        }
+        if first && let Some(entry) = registry.pending.get(&id) {
             entry.reply.started();
-            // The adapter has taken the command on: the answer clock (which catches missing or
-            // dead adapters) stops, and the next command's clock starts. A long drive or
-            // utterance may take as long as it takes; a disconnect or a stop still ends it.
-            if let Some(settled) = entry.settled.take() {
-                let _ = settled.send(());
-            }
         }
         Ok(())
     }
 
     /// Takes an adapter's `done` or `failed` answer.
     pub fn answer(&self, client: u64, id: u64, outcome: Outcome) -> Result<(), AnswerError> {
-        let mut pending = lock(&self.inner.pending);
-        let Some(entry) = pending
-            .get_mut(&id)
-            .filter(|p| p.recipients.contains(&client))
-        else {
-            return self.inner.late_answer(id);
-        };
-        entry.recipients.retain(|&c| c != client);
-        let settles = matches!(outcome, Outcome::Done) || entry.recipients.is_empty();
-        if settles && let Some(entry) = pending.remove(&id) {
-            drop(pending);
-            self.inner.settle(id, entry, outcome);
+        let mut registry = lock(&self.inner.registry);
+        if !registry
+            .pending
+            .get(&id)
+            .is_some_and(|p| p.recipients.contains(&client))
+        {
+            return late_answer(&registry, id);
+        }
+        let settled = registry.take_answer(client, id, &outcome);
+        drop(registry);
+        if let Some(entry) = settled {
+            entry.reply.finish(outcome);
         }
         Ok(())
     }
 }
 
-impl Inner {
-    /// Starts the answer clock of command `id` behind earlier commands of the same verb.
-    fn start_clock(self: &Arc<Self>, verb: &Verb, id: u64, settled: oneshot::Receiver<()>) {
-        let mut clocks = lock(&self.clocks);
-        let queue = clocks.entry(verb.clone()).or_insert_with(|| {
-            let (tx, rx) = mpsc::unbounded_channel();
-            self.life.spawn(run_clock(
-                Arc::downgrade(self),
-                rx,
-                self.life.shutdown.clone(),
-            ));
-            tx
-        });
-        let _ = queue.send((id, settled));
-    }
-
-    fn expire(&self, id: u64) {
-        let mut pending = lock(&self.pending);
-        // A command an adapter has started is no longer on the clock.
-        if pending.get(&id).is_some_and(|p| !p.started)
-            && let Some(entry) = pending.remove(&id)
-        {
-            drop(pending);
-            let reason = format!("no adapter answered within {:?}", self.timeout);
-            self.settle(id, entry, Outcome::Failed(reason));
-        }
-    }
-
-    fn settle(&self, id: u64, mut entry: Pending, outcome: Outcome) {
-        if let Some(settled) = entry.settled.take() {
-            let _ = settled.send(());
-        }
-        entry.reply.finish(outcome);
-        let mut recent = lock(&self.recently_settled);
-        if recent.len() == RECENTLY_SETTLED {
-            recent.pop_front();
-        }
-        recent.push_back(id);
-    }
-
-    /// An answer for a command no longer waiting: fine if another adapter already settled it
-    /// (several adapters may serve one verb), an error otherwise.
-    fn late_answer(&self, id: u64) -> Result<(), AnswerError> {
-        match lock(&self.recently_settled).contains(&id) {
-            true => Ok(()),
-            false => Err(AnswerError::UnknownCommand(id)),
-        }
+/// An answer for a command no longer waiting: fine if it was settled lately (another adapter
+/// answered first, or it was cancelled or timed out), an error otherwise.
+fn late_answer(registry: &Registry, id: u64) -> Result<(), AnswerError> {
+    match registry.recently_settled.contains(&id) {
+        true => Ok(()),
+        false => Err(AnswerError::UnknownCommand(id)),
     }
 }
 
+/// One connection's answer clock: fails the oldest command the connection owes, for that
+/// connection, when it has neither been answered nor started within the timeout.
 async fn run_clock(
-    inner: std::sync::Weak<Inner>,
-    mut queue: mpsc::UnboundedReceiver<Clocked>,
-    shutdown: tokio_util::sync::CancellationToken,
+    inner: Weak<Inner>,
+    client: u64,
+    wake: Arc<Notify>,
+    shutdown: CancellationToken,
 ) {
     loop {
-        let (id, settled) = tokio::select! {
-            next = queue.recv() => match next { Some(next) => next, None => return },
+        let deadline = {
+            let Some(inner) = inner.upgrade() else { return };
+            let mut registry = lock(&inner.registry);
+            let Some(conn) = registry.connection(client) else {
+                return;
+            };
+            let (head, since) = (conn.owed.front().copied(), conn.head_since);
+            match head {
+                Some(id) if registry.pending.get(&id).is_some_and(|p| !p.started) => {
+                    Some((id, since + inner.timeout))
+                }
+                _ => None,
+            }
+        };
+        let expired = async {
+            match deadline {
+                Some((id, at)) => {
+                    tokio::time::sleep_until(at).await;
+                    id
+                }
+                None => std::future::pending().await,
+            }
+        };
+        tokio::select! {
+            () = wake.notified() => continue,
             () = shutdown.cancelled() => return,
-        };
-        let Some(timeout) = inner.upgrade().map(|i| i.timeout) else {
-            return;
-        };
-        let answered = tokio::select! {
-            r = tokio::time::timeout(timeout, settled) => r.is_ok(),
-            () = shutdown.cancelled() => return,
-        };
-        if !answered && let Some(inner) = inner.upgrade() {
-            inner.expire(id);
+            id = expired => {
+                let Some(inner) = inner.upgrade() else { return };
+                let reason = format!("no adapter answered within {:?}", inner.timeout);
+                let outcome = Outcome::Failed(reason);
+                let settled = lock(&inner.registry).take_answer(client, id, &outcome);
+                if let Some(entry) = settled {
+                    entry.reply.finish(outcome);
+                }
+            }
         }
     }
 }
@@ -227,28 +284,49 @@ impl Adapter for WsAdapters {
     }
 
     fn submit(&self, command: Command, reply: Reply) {
+        let id = command.id;
         let verb = command.verb.as_str();
-        let frame: Frame = Frame::from(command_frame(&command));
-        let recipients: Vec<u64> = lock(&self.inner.connections)
-            .iter()
+        let mut registry = lock(&self.inner.registry);
+        let recipients: Vec<u64> = (registry.connections.iter())
             .filter(|c| c.verbs.iter().any(|v| v == verb))
-            .filter(|c| c.outbox.send(frame.clone()))
             .map(|c| c.client)
             .collect();
         if recipients.is_empty() {
+            drop(registry);
             let reason = format!("no adapter for {verb} is connected");
             return reply.finish(Outcome::Failed(reason));
         }
-        let (settled_tx, settled_rx) = oneshot::channel();
-        let id = command.id;
-        let pending = Pending {
-            reply,
-            recipients,
-            started: false,
-            settled: Some(settled_tx),
-        };
-        lock(&self.inner.pending).insert(id, pending);
-        self.inner.start_clock(&command.verb, id, settled_rx);
+        // On the books before the frame goes out, so that a fast answer, a stop or a
+        // disconnect always finds it.
+        let frame = Frame::from(command_frame(&command));
+        registry.pending.insert(
+            id,
+            Pending {
+                reply,
+                recipients: recipients.clone(),
+                started: false,
+            },
+        );
+        let mut unreachable = Vec::new();
+        for &client in &recipients {
+            let Some(conn) = registry.connection(client) else {
+                continue;
+            };
+            conn.owe(id);
+            if !conn.outbox.send(frame.clone()) {
+                unreachable.push(client);
+            }
+        }
+        let outcome =
+            Outcome::Failed("the adapter could not take the command (gone or too slow)".into());
+        let settled: Vec<Pending> = unreachable
+            .into_iter()
+            .filter_map(|client| registry.take_answer(client, id, &outcome))
+            .collect();
+        drop(registry);
+        for entry in settled {
+            entry.reply.finish(outcome.clone());
+        }
     }
 
     fn cancel(&self, scope: CancelScope<'_>, reason: &str) {
@@ -256,8 +334,9 @@ impl Adapter for WsAdapters {
             CancelScope::All => None,
             CancelScope::Verb(v) => Some(vec![v.to_string()]),
         };
-        let frame: Frame = Frame::from(cancel_frame(verbs.as_deref(), reason));
-        for c in lock(&self.inner.connections).iter() {
+        let frame = Frame::from(cancel_frame(verbs.as_deref(), reason));
+        let mut registry = lock(&self.inner.registry);
+        for c in &registry.connections {
             if verbs
                 .as_ref()
                 .is_none_or(|vs| vs.iter().any(|v| c.verbs.contains(v)))
@@ -265,9 +344,7 @@ impl Adapter for WsAdapters {
                 c.outbox.send(frame.clone());
             }
         }
-        let mut pending = lock(&self.inner.pending);
-        let mut ids: Vec<u64> = pending
-            .iter()
+        let mut ids: Vec<u64> = (registry.pending.iter())
             .filter(|(_, p)| match scope {
                 CancelScope::All => true,
                 CancelScope::Verb(v) => &p.reply.command().verb == v,
@@ -276,22 +353,25 @@ impl Adapter for WsAdapters {
             .collect();
         // In dispatch order, so the log reads naturally.
         ids.sort_unstable();
-        let cancelled: Vec<(u64, Pending)> = ids
-            .iter()
-            .filter_map(|&id| Some((id, pending.remove(&id)?)))
+        let cancelled: Vec<Pending> = ids
+            .into_iter()
+            .filter_map(|id| registry.settle(id))
             .collect();
-        drop(pending);
-        for (id, entry) in cancelled {
-            self.inner
-                .settle(id, entry, Outcome::Cancelled(reason.to_owned()));
+        drop(registry);
+        for entry in cancelled {
+            entry.reply.finish(Outcome::Cancelled(reason.to_owned()));
         }
     }
 
     fn status(&self) -> AdapterStatus {
-        let pending = lock(&self.inner.pending);
-        let oldest = pending.keys().min().and_then(|id| pending.get(id));
+        let registry = lock(&self.inner.registry);
+        let oldest = registry
+            .pending
+            .keys()
+            .min()
+            .and_then(|id| registry.pending.get(id));
         AdapterStatus {
-            queued: pending.len(),
+            queued: registry.pending.len(),
             current: oldest.map(|p| p.reply.command().describe()),
         }
     }

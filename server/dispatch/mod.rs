@@ -28,6 +28,7 @@ use crate::events::{ActRef, EventKind, Hub, Source};
 use crate::lifecycle::Lifecycle;
 use crate::sync::lock;
 use choose::Chooser;
+use sequence::Sequence;
 
 /// Resolves acts into commands and sends them to adapters.
 pub struct Dispatcher {
@@ -40,6 +41,8 @@ pub struct Dispatcher {
     next_id: AtomicU64,
     /// Cancelled and replaced by every stop: sequences started before a stop end with it.
     epoch: Mutex<CancellationToken>,
+    /// Cancelled and replaced by every interrupting trigger: sequences drop unsent speech.
+    speech_epoch: Mutex<CancellationToken>,
 }
 
 impl Dispatcher {
@@ -61,6 +64,7 @@ impl Dispatcher {
             context: Mutex::new(DEFAULT_VARIANT.to_owned()),
             next_id: AtomicU64::new(1),
             epoch: Mutex::new(epoch),
+            speech_epoch: Mutex::new(CancellationToken::new()),
         })
     }
 
@@ -78,7 +82,7 @@ impl Dispatcher {
     pub fn trigger(self: &Arc<Self>, req: TriggerRequest) -> Result<Triggered, TriggerError> {
         let bundle = self.bundle.load();
         let Some(&index) = bundle.index.get(&req.label) else {
-            let suggestion = closest(&req.label, bundle.labels()).map(str::to_owned);
+            let suggestion = suggest(&req.label, bundle.labels());
             return Err(self.refuse(
                 &req,
                 TriggerError::UnknownAct {
@@ -146,24 +150,40 @@ impl Dispatcher {
     }
 
     fn start(self: &Arc<Self>, commands: Vec<Command>, act: &ActRef, interrupt: bool) {
-        if interrupt && let Some(speech) = self.router.adapter_for(&Verb::Say) {
-            speech.cancel(
-                CancelScope::Verb(&Verb::Say),
-                &format!("interrupted by act {}", act.label),
-            );
+        if interrupt {
+            self.interrupt_speech(&act.label);
         }
-        if commands.iter().any(|c| c.verb == Verb::DriveStop) {
+        let first_wait = commands.iter().position(|c| c.verb == Verb::Wait);
+        let before_wait = &commands[..first_wait.unwrap_or(commands.len())];
+        // Preempt before sending anything, so the act's own speech survives its DRIVE_STOP.
+        if before_wait.iter().any(|c| c.verb == Verb::DriveStop) {
             self.stop(act.source, &format!("DRIVE_STOP in act {}", act.label));
         }
-        if commands.iter().any(|c| c.verb == Verb::Wait) {
-            let stop = lock(&self.epoch).clone();
-            self.life
-                .spawn(sequence::run_sequence(Arc::clone(self), commands, stop));
-        } else {
-            for command in commands {
-                self.send(command, None);
-            }
+        let stop = self.stop_token();
+        let speech = lock(&self.speech_epoch).clone();
+        Sequence::new(Arc::clone(self), stop, speech, first_wait.is_some()).start(commands);
+    }
+
+    /// Clears queued and current speech, and speech that acts waiting at a `WAIT` would say.
+    fn interrupt_speech(&self, by: &str) {
+        let old = std::mem::replace(&mut *lock(&self.speech_epoch), CancellationToken::new());
+        old.cancel();
+        if let Some(speech) = self.router.adapter_for(&Verb::Say) {
+            speech.cancel(
+                CancelScope::Verb(&Verb::Say),
+                &format!("interrupted by act {by}"),
+            );
         }
+    }
+
+    /// The token the next sequences stop on.
+    pub(crate) fn stop_token(&self) -> CancellationToken {
+        lock(&self.epoch).clone()
+    }
+
+    /// Spawns tracked tasks.
+    pub(crate) fn life(&self) -> &Lifecycle {
+        &self.life
     }
 
     /// Hands one command to its adapter; `waiter` learns its outcome.
@@ -233,8 +253,7 @@ impl Dispatcher {
         if bundle.contexts.iter().any(|c| c == context) {
             return Ok(context.to_owned());
         }
-        let suggestion =
-            closest(context, bundle.contexts.iter().map(String::as_str)).map(str::to_owned);
+        let suggestion = suggest(context, bundle.contexts.iter().map(String::as_str));
         Err(TriggerError::UnknownContext {
             context: context.to_owned(),
             suggestion,
@@ -264,6 +283,17 @@ impl Dispatcher {
     fn next_id(&self) -> u64 {
         self.next_id.fetch_add(1, Ordering::Relaxed)
     }
+}
+
+/// Labels and contexts longer than this get no suggestion: comparing them costs too much for
+/// what a client could send by the thousand.
+const MAX_SUGGESTED_LEN: usize = 128;
+
+/// The closest candidate to `word`, for a "did you mean".
+fn suggest<'a>(word: &str, candidates: impl IntoIterator<Item = &'a str>) -> Option<String> {
+    (word.len() <= MAX_SUGGESTED_LEN)
+        .then(|| closest(word, candidates).map(str::to_owned))
+        .flatten()
 }
 
 fn resolved(command: &Command) -> ResolvedCommand {

@@ -1,6 +1,10 @@
-//! Acts with `WAIT`: the commands before a `WAIT` are sent at once; `WAIT` alone waits until all
-//! of the act's earlier commands are done, `WAIT 2s` pauses; then the rest follows. A stop ends
-//! the sequence and reports its unsent commands as cancelled.
+//! Sending an act's commands in order. Commands before the first `WAIT` go out at once, on the
+//! trigger's own path; the rest run in a task: `WAIT` alone waits until all of the act's
+//! earlier commands have ended, `WAIT 2s` pauses. A stop ends the sequence and reports its
+//! unsent commands as cancelled; so does a failed earlier command at a `WAIT` (the rest would
+//! act on a false premise, e.g. show an exhibit's page although the robot never drove there).
+//! A `DRIVE_STOP` after a `WAIT` preempts everything when it is reached; an interrupting
+//! trigger drops the speech this sequence has not sent yet.
 
 use std::sync::Arc;
 
@@ -13,25 +17,100 @@ use crate::content::{Verb, parse_duration};
 use crate::dispatch::Dispatcher;
 use crate::events::EventKind;
 
-/// Runs `commands` in order, honouring `WAIT`, until done, `stop` is cancelled, or a `WAIT`
-/// finds that an earlier command did not succeed (the rest of the act would then act on a
-/// false premise, e.g. show an exhibit's page although the robot never drove there).
-pub async fn run_sequence(
+/// One act's commands on their way out.
+pub struct Sequence {
     dispatcher: Arc<Dispatcher>,
-    commands: Vec<Command>,
+    /// Cancelled by a stop.
     stop: CancellationToken,
-) {
-    let mut outstanding: Vec<(String, oneshot::Receiver<Outcome>)> = Vec::new();
-    let mut rest = commands.into_iter();
-    let mut abandoned = None;
-    for command in rest.by_ref() {
-        if command.verb != Verb::Wait {
-            let (tx, rx) = oneshot::channel();
-            outstanding.push((command.verb.to_string(), rx));
-            dispatcher.send(command, Some(tx));
-            continue;
+    /// Cancelled by an interrupting trigger: unsent speech is dropped.
+    speech: CancellationToken,
+    /// Outcomes of sent commands, for a later `WAIT` (only kept when the act has one).
+    outstanding: Option<Vec<(String, oneshot::Receiver<Outcome>)>>,
+}
+
+impl Sequence {
+    /// A sequence for an act; `waits` says whether it has a `WAIT`.
+    pub fn new(
+        dispatcher: Arc<Dispatcher>,
+        stop: CancellationToken,
+        speech: CancellationToken,
+        waits: bool,
+    ) -> Self {
+        Sequence {
+            dispatcher,
+            stop,
+            speech,
+            outstanding: waits.then(Vec::new),
         }
-        let hub = dispatcher.hub().clone();
+    }
+
+    /// Sends `commands` up to the first `WAIT`, then hands the rest to a task.
+    pub fn start(mut self, commands: Vec<Command>) {
+        let mut rest = commands.into_iter();
+        while let Some(command) = rest.next() {
+            if command.verb == Verb::Wait {
+                let life = self.dispatcher.life().clone();
+                life.spawn(self.run(command, rest));
+                return;
+            }
+            self.send(command);
+        }
+    }
+
+    fn send(&mut self, command: Command) {
+        if command.verb == Verb::Say && self.speech.is_cancelled() {
+            let reason = "interrupted by a later act before it was said".to_owned();
+            return self.drop_unsent(command, reason);
+        }
+        match &mut self.outstanding {
+            Some(outstanding) => {
+                let (tx, rx) = oneshot::channel();
+                outstanding.push((command.verb.to_string(), rx));
+                self.dispatcher.send(command, Some(tx));
+            }
+            None => self.dispatcher.send(command, None),
+        }
+    }
+
+    fn drop_unsent(&self, command: Command, reason: String) {
+        Reply::new(self.dispatcher.hub().clone(), command, None).finish(Outcome::Cancelled(reason));
+    }
+
+    async fn run(mut self, first_wait: Command, mut rest: std::vec::IntoIter<Command>) {
+        let mut next = Some(first_wait);
+        let abandoned = loop {
+            let Some(command) = next.take().or_else(|| rest.next()) else {
+                return;
+            };
+            if self.stop.is_cancelled() {
+                next = Some(command);
+                break "stopped before it was sent".to_owned();
+            }
+            match command.verb {
+                Verb::Wait => {
+                    if let Err(reason) = self.wait(command).await {
+                        break reason;
+                    }
+                }
+                Verb::DriveStop => {
+                    let act = &command.act;
+                    self.dispatcher
+                        .stop(act.source, &format!("DRIVE_STOP in act {}", act.label));
+                    // This act goes on after its own stop.
+                    self.stop = self.dispatcher.stop_token();
+                    self.send(command);
+                }
+                _ => self.send(command),
+            }
+        };
+        for command in next.into_iter().chain(rest) {
+            self.drop_unsent(command, abandoned.clone());
+        }
+    }
+
+    /// Runs one `WAIT`; on a stop or an earlier failure, why the rest is not sent.
+    async fn wait(&mut self, command: Command) -> Result<(), String> {
+        let hub = self.dispatcher.hub().clone();
         hub.publish(EventKind::CommandSent {
             command: command.id,
             act: Arc::clone(&command.act),
@@ -45,7 +124,11 @@ pub async fn run_sequence(
         // A pause leaves earlier commands outstanding for a later plain WAIT to wait for.
         let earlier = match pause {
             Some(_) => Vec::new(),
-            None => std::mem::take(&mut outstanding),
+            None => self
+                .outstanding
+                .as_mut()
+                .map(std::mem::take)
+                .unwrap_or_default(),
         };
         let waited = async {
             match pause {
@@ -57,29 +140,25 @@ pub async fn run_sequence(
             }
         };
         // A stop cancels the earlier commands too: it must win over "they all ended".
-        let outcome = tokio::select! {
+        let result = tokio::select! {
             biased;
-            () = stop.cancelled() => Err("stopped".to_owned()),
-            result = waited => result,
+            () = self.stop.cancelled() => Err(Outcome::Cancelled("stopped".into())),
+            result = waited => result.map_err(Outcome::Failed),
         };
-        match outcome {
-            Ok(()) => reply.finish(Outcome::Done),
-            Err(reason) if stop.is_cancelled() => {
-                reply.finish(Outcome::Cancelled(reason));
-                abandoned = Some("stopped before it was sent".to_owned());
-                break;
+        match result {
+            Ok(()) => {
+                reply.finish(Outcome::Done);
+                Ok(())
             }
-            Err(reason) => {
-                reply.finish(Outcome::Failed(reason.clone()));
-                abandoned = Some(format!("not sent: {reason}"));
-                break;
+            Err(Outcome::Failed(why)) => {
+                reply.finish(Outcome::Failed(why.clone()));
+                Err(format!("not sent: {why}"))
+            }
+            Err(outcome) => {
+                reply.finish(outcome);
+                Err("stopped before it was sent".to_owned())
             }
         }
-    }
-    let reason = abandoned.unwrap_or_default();
-    for command in rest {
-        let hub = dispatcher.hub().clone();
-        Reply::new(hub, command, None).finish(Outcome::Cancelled(reason.clone()));
     }
 }
 
