@@ -79,31 +79,62 @@ fn unique_path(dir: &Path, stamp: &str) -> PathBuf {
 fn write_all(file: File, mut events: mpsc::UnboundedReceiver<CorpusMsg>) -> io::Result<u64> {
     let mut out = BufWriter::with_capacity(64 * 1024, file);
     let mut written = 0u64;
+    let mut failures = Failures::default();
     let mut last_sync = Instant::now();
     'outer: while let Some(msg) = events.blocking_recv() {
         let mut next = Some(msg);
         // Take whatever else is already queued, then flush once for the whole batch.
         while let Some(msg) = next {
             match msg {
-                CorpusMsg::Event(event) => {
-                    write_line(&mut out, &event)?;
-                    written += 1;
-                }
+                CorpusMsg::Event(event) => match write_line(&mut out, &event) {
+                    Ok(()) => written += 1,
+                    Err(e) => failures.note(&e),
+                },
                 CorpusMsg::Close => break 'outer,
             }
             next = events.try_recv().ok();
         }
-        out.flush()?;
+        if let Err(e) = out.flush() {
+            failures.note(&e);
+        }
         // Flushed lines survive a crash of Docent at once; syncing now and then also bounds
         // what a power cut can take.
         if last_sync.elapsed() >= SYNC_INTERVAL {
-            out.get_ref().sync_data()?;
+            if let Err(e) = out.get_ref().sync_data() {
+                failures.note(&e);
+            }
             last_sync = Instant::now();
         }
     }
     out.flush()?;
     out.get_ref().sync_all()?;
-    Ok(written)
+    match failures.count {
+        0 => Ok(written),
+        n => Err(io::Error::other(format!(
+            "{n} corpus writes failed; see the server log"
+        ))),
+    }
+}
+
+/// Write failures (a full disk, say): the writer keeps going, since space may come back, and
+/// says so loudly but not for every event.
+#[derive(Default)]
+struct Failures {
+    count: u64,
+    reported: Option<Instant>,
+}
+
+impl Failures {
+    fn note(&mut self, error: &io::Error) {
+        self.count += 1;
+        if self
+            .reported
+            .is_none_or(|t| t.elapsed() >= Duration::from_secs(10))
+        {
+            tracing::error!(%error, failures = self.count, "cannot write the corpus log: events are being lost");
+            self.reported = Some(Instant::now());
+        }
+    }
 }
 
 fn write_line(out: &mut impl Write, event: &Event) -> io::Result<()> {

@@ -17,7 +17,7 @@ use crate::content::config::{AdapterKind, SpeechConfig};
 use crate::content::{Bundle, BundleArea, resolve_in_bundle};
 use crate::corpus::CorpusWriter;
 use crate::dispatch::Dispatcher;
-use crate::events::{EventKind, Hub};
+use crate::events::{EventKind, Hub, Source};
 use crate::http::app;
 use crate::lifecycle::Lifecycle;
 use crate::state::AppState;
@@ -151,6 +151,7 @@ pub async fn run(
 ) -> io::Result<()> {
     let Server { state, corpus, .. } = server;
     let life = state.life.clone();
+    let dispatcher = Arc::clone(&state.dispatcher);
     let hub = state.hub.clone();
     let listener = listener.tap_io(|tcp| {
         // Commands are small frames that must go out at once.
@@ -169,6 +170,8 @@ pub async fn run(
     // axum's graceful shutdown does not wait for websocket tasks (tokio-rs/axum#3003).
     life.shutdown.cancel();
     hub.publish(EventKind::ServerStopping);
+    // Every queued or running command ends now, with its outcome in the log.
+    dispatcher.stop(Source::Server, "the server is shutting down");
     life.tracker.close();
     if tokio::time::timeout(SHUTDOWN_GRACE, life.tracker.wait())
         .await

@@ -169,23 +169,14 @@ async fn an_adapter_is_told_which_of_its_verbs_go_elsewhere() {
     );
     let server = TestServer::start(b.path()).await;
     let mut a = adapter(&server, &["LIGHTS", "SAY", "DANCE"]).await;
-    let first = a.recv_type("error").await;
-    assert_eq!(first["code"], "verb-not-routed");
+    let warning = a.recv_type("error").await;
+    assert_eq!(warning["code"], "verb-not-routed");
+    let message = warning["message"].as_str().unwrap();
     assert!(
-        first["message"]
-            .as_str()
-            .unwrap()
-            .starts_with("SAY goes to the log adapter"),
-        "{first}"
+        message.starts_with("SAY goes to the log adapter; DANCE is not a verb of this bundle;"),
+        "{message}"
     );
-    let second = a.recv_type("error").await;
-    assert!(
-        second["message"]
-            .as_str()
-            .unwrap()
-            .starts_with("DANCE is not a verb"),
-        "{second}"
-    );
+    assert!(!message.contains("LIGHTS"), "{message}");
     // Still connected and served for what is routed to it.
     server.trigger("SHOW", json!({})).await;
     assert_eq!(a.recv_type("command").await["verb"], "LIGHTS");
@@ -297,4 +288,31 @@ async fn a_wait_after_a_failed_command_abandons_the_rest_of_the_act() {
         "the page did not change"
     );
     server.stop().await;
+}
+
+#[tokio::test]
+async fn shutdown_settles_what_adapters_owe_and_logs_them_leaving() {
+    let b = bundle("30s");
+    let server = TestServer::start(b.path()).await;
+    let mut lights = adapter(&server, &["LIGHTS"]).await;
+    let t = server.trigger("SHOW", json!({})).await;
+    lights.recv_type("command").await;
+    let log = server.stop().await;
+    let id = &t["commands"][0]["id"];
+    let end = log
+        .iter()
+        .find(|e| &e["command"] == id && terminal(e))
+        .expect("an outcome for the owed command");
+    assert_eq!(
+        (end["type"].as_str(), end["reason"].as_str()),
+        (
+            Some("command.cancelled"),
+            Some("the server is shutting down")
+        )
+    );
+    assert!(
+        log.iter()
+            .any(|e| e["type"] == "client.left" && e["role"] == "adapter")
+    );
+    drop(lights);
 }

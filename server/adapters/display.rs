@@ -107,13 +107,13 @@ impl Adapter for DisplayAdapter {
         };
         // No connected client is fine: the state is kept for the next one.
         let _ = channel.send(Frame::from(command_frame(&command)));
-        let changed = current.clone();
-        drop(current);
         reply.started();
+        // Logged under the display lock, so the log's order of changes is the clients' order.
         self.hub.publish(EventKind::DisplayChanged {
-            page: changed.page,
-            projector: changed.projector,
+            page: current.page.clone(),
+            projector: current.projector.clone(),
         });
+        drop(current);
         reply.finish(Outcome::Done);
     }
 

@@ -74,15 +74,16 @@ pub fn resolve_in_bundle(root: &Path, area: BundleArea, rel: &str) -> Result<Pat
             }
         }
     }
+    // Canonicalizing resolves every symlink; the containment test is on the real location,
+    // and comes before the case check so that no answer tells what exists outside.
+    let canonical = current.canonicalize().map_err(|_| PathError::NotFound)?;
+    if !canonical.starts_with(&area_dir) {
+        return Err(PathError::Outside);
+    }
     if miscased {
         return Err(PathError::Miscased {
             actual: actual_names.join("/"),
         });
-    }
-    // Canonicalizing resolves every symlink; the containment test is on the real location.
-    let canonical = current.canonicalize().map_err(|_| PathError::NotFound)?;
-    if !canonical.starts_with(&area_dir) {
-        return Err(PathError::Outside);
     }
     let metadata = fs::metadata(&canonical).map_err(|_| PathError::NotFound)?;
     if !metadata.is_file() {

@@ -228,9 +228,12 @@ impl Dispatcher {
     /// Changes the current context.
     pub fn set_context(&self, context: &str, source: Source) -> Result<(), TriggerError> {
         let context = self.known_context(&self.bundle.load(), context)?;
-        *lock(&self.context) = context.clone();
+        let mut current = lock(&self.context);
+        *current = context.clone();
+        // Logged under the lock, so the log's last change is the context in force.
         self.hub
             .publish(EventKind::ContextChanged { source, context });
+        drop(current);
         Ok(())
     }
 

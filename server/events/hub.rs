@@ -60,7 +60,7 @@ impl Hub {
         let mut seq = lock(&self.inner.seq);
         // Stamped under the lock so that sequence and monotonic time agree.
         let mono_us = self.inner.started.elapsed().as_micros() as u64;
-        let time = humantime::format_rfc3339_millis(SystemTime::now()).to_string();
+        let time = SystemTime::now();
         *seq += 1;
         let event = Arc::new(Event::new(*seq, time, mono_us, kind));
         // A closed corpus channel means the writer has shut down; nothing is left to log to.

@@ -1,6 +1,7 @@
 //! The event types. Field names here are the corpus format; change them only with a version bump.
 
 use std::sync::{Arc, OnceLock};
+use std::time::SystemTime;
 
 use serde::Serialize;
 
@@ -263,8 +264,9 @@ pub struct Event {
     pub v: u32,
     /// Sequence number, from 1, without gaps within one server run.
     pub seq: u64,
-    /// Wall-clock time, RFC 3339 UTC with milliseconds.
-    pub time: String,
+    /// Wall-clock time, written as RFC 3339 UTC with milliseconds.
+    #[serde(serialize_with = "rfc3339_millis")]
+    pub time: SystemTime,
     /// Microseconds since the server started (monotonic).
     pub mono_us: u64,
     /// What happened.
@@ -277,7 +279,7 @@ pub struct Event {
 
 impl Event {
     /// An event with its stamps.
-    pub fn new(seq: u64, time: String, mono_us: u64, kind: EventKind) -> Self {
+    pub fn new(seq: u64, time: SystemTime, mono_us: u64, kind: EventKind) -> Self {
         Event {
             v: EVENT_FORMAT_VERSION,
             seq,
@@ -295,4 +297,9 @@ impl Event {
             serde_json::to_string(self).unwrap_or_else(|e| format!("{{\"error\":\"{e}\"}}"))
         })
     }
+}
+
+/// Formats the time when the event is serialized (on the corpus thread), not when published.
+fn rfc3339_millis<S: serde::Serializer>(time: &SystemTime, s: S) -> Result<S::Ok, S::Error> {
+    s.collect_str(&humantime::format_rfc3339_millis(*time))
 }

@@ -3,6 +3,7 @@
 
 use axum::Json;
 use axum::body::Bytes;
+use axum::extract::rejection::PathRejection;
 use axum::extract::{Path, State};
 use axum::http::StatusCode;
 use axum::response::IntoResponse;
@@ -113,9 +114,12 @@ fn optional_json<T: for<'de> Deserialize<'de> + Default>(body: &Bytes) -> Result
 /// `POST /api/acts/{label}/trigger`: 202 with the trigger id and resolved commands.
 pub async fn trigger_act(
     State(state): State<AppState>,
-    Path(label): Path<String>,
+    label: Result<Path<String>, PathRejection>,
     body: Bytes,
 ) -> Result<impl IntoResponse, AppError> {
+    let Path(label) = label.map_err(|e| {
+        AppError::bad_request(format!("the act label in the address is not right: {e}"))
+    })?;
     let body: TriggerBody = optional_json(&body)?;
     let request = TriggerRequest {
         context: body.context,
@@ -174,6 +178,15 @@ pub async fn get_state(State(state): State<AppState>) -> Json<Value> {
         "context": state.dispatcher.context(),
         "clients": state.clients(),
     }))
+}
+
+/// A known route with the wrong method: a JSON 405.
+pub async fn method_not_allowed() -> AppError {
+    AppError::new(
+        StatusCode::METHOD_NOT_ALLOWED,
+        "method-not-allowed",
+        "this route does not take that method; see docs/PROTOCOL.md",
+    )
 }
 
 /// Anything else: a JSON 404.

@@ -34,6 +34,7 @@ pub fn app(state: AppState) -> Router {
         .route("/media/{*path}", get(files::serve_media))
         .route("/ws", get(ws_upgrade))
         .fallback(api::not_found)
+        .method_not_allowed_fallback(api::method_not_allowed)
         .layer(RequestBodyLimitLayer::new(MAX_BODY_BYTES))
         .layer(TraceLayer::new_for_http())
         .with_state(state)

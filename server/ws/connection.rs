@@ -94,13 +94,15 @@ async fn serve(socket: WebSocket, state: AppState) {
             Ok(Some(Ok(_))) => {} // pings and pongs
         }
     };
+    if reason == WRITER_ENDED {
+        let writer_end = writer.await.unwrap_or("writer failed");
+        return session.leave(writer_end);
+    }
+    // Leave first: a writer stuck on a client that stopped reading must not delay failing the
+    // commands an adapter owes, or the client.left event, past shutdown.
+    session.leave(reason);
     stop.cancel();
-    let writer_end = writer.await.unwrap_or("writer failed");
-    session.leave(if reason == WRITER_ENDED {
-        writer_end
-    } else {
-        reason
-    });
+    let _ = writer.await;
 }
 
 impl Session {
@@ -263,7 +265,7 @@ impl Session {
         view.display = display;
         self.send(welcome_frame(self.client, role, &view));
         let feed = match (role, display_rx) {
-            (_, Some(rx)) => Some(Feed::Display(rx)),
+            (_, Some(rx)) => Some(Feed::Display(role, rx)),
             (ClientRole::Operator | ClientRole::Dm, None) => {
                 Some(Feed::Events(state.hub.subscribe()))
             }
@@ -295,21 +297,25 @@ impl Session {
         });
     }
 
-    /// Tells an adapter which of its verbs this bundle sends elsewhere: it will not get them.
+    /// Tells an adapter, in one frame, which of its verbs this bundle sends elsewhere: it
+    /// will not get them.
     fn warn_unrouted(&self, verbs: &[String]) {
-        for verb in verbs {
-            let message = match self.state.dispatcher.adapter_for(verb) {
-                Some("ws") => continue,
-                Some(other) => format!(
-                    "{verb} goes to the {other} adapter in this bundle; \
-                     route it to ws in docent.yaml to receive it here"
-                ),
-                None => format!(
-                    "{verb} is not a verb of this bundle; declare it under verbs: in docent.yaml"
-                ),
-            };
-            self.reply_error("verb-not-routed", &message, None, None);
+        let problems: Vec<String> = (verbs.iter())
+            .filter_map(|verb| match self.state.dispatcher.adapter_for(verb) {
+                Some("ws") => None,
+                Some(other) => Some(format!("{verb} goes to the {other} adapter")),
+                None => Some(format!("{verb} is not a verb of this bundle")),
+            })
+            .collect();
+        if problems.is_empty() {
+            return;
         }
+        let message = format!(
+            "{}; route built-in verbs to ws and declare site verbs under verbs: in docent.yaml \
+             to receive them here",
+            problems.join("; ")
+        );
+        self.reply_error("verb-not-routed", &message, None, None);
     }
 
     fn answer(&self, id: u64, outcome: Option<Outcome>) {

@@ -11,20 +11,22 @@ use tokio::sync::broadcast::error::RecvError;
 use tokio::sync::{broadcast, mpsc, oneshot};
 use tokio_util::sync::CancellationToken;
 
-use crate::events::Event;
+use crate::events::{ClientRole, Event};
 use crate::state::AppState;
 use crate::ws::outbox::Frame;
 use crate::ws::protocol::{event_frame, state_frame};
 
 /// A client that cannot take a frame within this time is dropped.
 const WRITE_TIMEOUT: Duration = Duration::from_secs(10);
+/// How long a closing handshake may take.
+const CLOSE_TIMEOUT: Duration = Duration::from_secs(1);
 /// How often an otherwise quiet connection is pinged.
 pub const PING_INTERVAL: Duration = Duration::from_secs(20);
 
 /// What a client receives besides direct answers.
 pub enum Feed {
     /// Display command frames (kiosk, projector).
-    Display(broadcast::Receiver<Frame>),
+    Display(ClientRole, broadcast::Receiver<Frame>),
     /// Every event (operator, dialog manager).
     Events(broadcast::Receiver<Arc<Event>>),
 }
@@ -65,36 +67,45 @@ pub async fn run_writer(
                 Err(end) => break end,
             },
             _ = ping.tick() => {
-                if send(&mut sink, Message::Ping(Default::default())).await.is_err() { break "write failed" }
+                if write(&stop, sink.send(Message::Ping(Default::default()))).await.is_err() { break "write failed" }
                 continue;
             }
             () = stop.cancelled() => break "closed",
         };
-        if feed_only(&mut sink, Message::Text(frame)).await.is_err() {
+        if write(&stop, sink.feed(Message::Text(frame))).await.is_err() {
             break "write failed or timed out";
         }
         // Send whatever else is ready in one flush.
         while let Ok(frame) = queue.try_recv() {
-            if feed_only(&mut sink, Message::Text(frame)).await.is_err() {
+            if write(&stop, sink.feed(Message::Text(frame))).await.is_err() {
                 break 'writing "write failed or timed out";
             }
         }
-        if flush(&mut sink).await.is_err() {
+        if write(&stop, sink.flush()).await.is_err() {
             break "write failed or timed out";
         }
     };
     // Tell the reader loop, which may be waiting on a silent client.
     stop.cancel();
-    let _ = tokio::time::timeout(WRITE_TIMEOUT, sink.close()).await;
+    let _ = tokio::time::timeout(CLOSE_TIMEOUT, sink.close()).await;
     end
 }
 
 async fn next_fed(subscription: &mut Option<Feed>, state: &AppState) -> Result<Frame, WriterEnd> {
     match subscription {
-        Some(Feed::Display(rx)) => match rx.recv().await {
+        Some(Feed::Display(role, rx)) => match rx.recv().await {
             Ok(frame) => Ok(frame),
-            // Fell behind: a fresh snapshot says where things are now.
-            Err(RecvError::Lagged(_)) => Ok(Frame::from(state_frame(&state.state_view()))),
+            // Fell behind: start over from a fresh snapshot and subscription (taken together,
+            // so nothing is missed or replayed), instead of replaying stale pages.
+            Err(RecvError::Lagged(_)) => {
+                let (display, fresh) = state.devices.display.subscribe(*role);
+                if let Some(fresh) = fresh {
+                    *rx = fresh;
+                }
+                let mut view = state.state_view();
+                view.display = display;
+                Ok(Frame::from(state_frame(&view)))
+            }
             Err(RecvError::Closed) => Err("server closing"),
         },
         Some(Feed::Events(rx)) => match rx.recv().await {
@@ -107,23 +118,16 @@ async fn next_fed(subscription: &mut Option<Feed>, state: &AppState) -> Result<F
     }
 }
 
-async fn send(sink: &mut SplitSink<WebSocket, Message>, msg: Message) -> Result<(), ()> {
-    match tokio::time::timeout(WRITE_TIMEOUT, sink.send(msg)).await {
-        Ok(Ok(())) => Ok(()),
-        _ => Err(()),
-    }
-}
-
-async fn feed_only(sink: &mut SplitSink<WebSocket, Message>, msg: Message) -> Result<(), ()> {
-    match tokio::time::timeout(WRITE_TIMEOUT, sink.feed(msg)).await {
-        Ok(Ok(())) => Ok(()),
-        _ => Err(()),
-    }
-}
-
-async fn flush(sink: &mut SplitSink<WebSocket, Message>) -> Result<(), ()> {
-    match tokio::time::timeout(WRITE_TIMEOUT, sink.flush()).await {
-        Ok(Ok(())) => Ok(()),
-        _ => Err(()),
+/// Runs one write with the write timeout, giving up at once when the connection is stopping.
+async fn write<F>(stop: &CancellationToken, write: F) -> Result<(), ()>
+where
+    F: std::future::Future<Output = Result<(), axum::Error>>,
+{
+    tokio::select! {
+        result = tokio::time::timeout(WRITE_TIMEOUT, write) => match result {
+            Ok(Ok(())) => Ok(()),
+            _ => Err(()),
+        },
+        () = stop.cancelled() => Err(()),
     }
 }
