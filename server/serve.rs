@@ -158,20 +158,23 @@ pub async fn run(
         let _ = tcp.set_nodelay(true);
     });
     let stop = life.shutdown.clone();
+    let stopping = Arc::clone(&dispatcher);
     let signal = async move {
         tokio::select! {
-            () = shutdown => stop.cancel(),
+            () = shutdown => {}
             () = stop.cancelled() => {}
         }
+        // Every queued or running command ends first, with its outcome in the log; then
+        // connections and tasks are told to finish.
+        stopping.hub().publish(EventKind::ServerStopping);
+        stopping.stop(Source::Server, "the server is shutting down");
+        stop.cancel();
     };
     let served = axum::serve(listener, app(state))
         .with_graceful_shutdown(signal)
         .await;
     // axum's graceful shutdown does not wait for websocket tasks (tokio-rs/axum#3003).
     life.shutdown.cancel();
-    hub.publish(EventKind::ServerStopping);
-    // Every queued or running command ends now, with its outcome in the log.
-    dispatcher.stop(Source::Server, "the server is shutting down");
     life.tracker.close();
     if tokio::time::timeout(SHUTDOWN_GRACE, life.tracker.wait())
         .await
