@@ -159,9 +159,10 @@ async def serve(url, name, lane_specs):
                         if wanted is None or lane.verbs & set(wanted):
                             lane.cancel(None if wanted is None else set(wanted), frame["reason"])
                 elif kind == "error":
-                    # `unknown-command`: an answer came after Docent had settled the command
-                    # (cancelled or timed out), harmless. `verb-not-routed` (right after the
-                    # welcome): docent.yaml sends that verb elsewhere; check the set-up.
+                    # `unknown-command`: an answer with an id Docent does not know (answers to
+                    # commands it already settled, e.g. cancelled or timed out, are ignored
+                    # without an error). `verb-not-routed` (right after the welcome):
+                    # docent.yaml sends that verb elsewhere; check the set-up.
                     log.warning("Docent says %s: %s", frame["code"], frame["message"])
         finally:
             for lane in lanes:
