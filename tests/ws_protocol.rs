@@ -191,3 +191,23 @@ async fn operators_see_clients_come_and_go_and_can_set_the_context() {
     assert_eq!(event.unwrap()["source"], "operator");
     server.stop().await;
 }
+
+#[tokio::test]
+async fn a_client_that_only_triggers_can_decline_the_event_stream() {
+    let server = fig4().await;
+    let mut quiet = server
+        .client(json!({"type": "hello", "role": "dm", "events": false}))
+        .await;
+    let mut op = server.operator().await;
+    quiet
+        .send(json!({"type": "trigger", "label": "OK", "ref": "one"}))
+        .await;
+    assert_eq!(quiet.recv_type("triggered").await["ref"], "one");
+    op.event("act.triggered").await;
+    quiet
+        .send(json!({"type": "trigger", "label": "OK", "ref": "two"}))
+        .await;
+    // The very next frame is the answer: no events came in between.
+    assert_eq!(quiet.recv().await["type"], "triggered");
+    server.stop().await;
+}

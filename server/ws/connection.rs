@@ -24,6 +24,8 @@ use crate::ws::writer::{Feed, PING_INTERVAL, run_writer};
 /// Frames beyond this size end the connection at the websocket layer; frames between
 /// [`MAX_FRAME_BYTES`] and this get an `error` frame and the connection stays.
 const MAX_MESSAGE_BYTES: usize = 1024 * 1024;
+/// The per-connection read buffer (it grows for a larger frame).
+const READ_BUFFER_BYTES: usize = 4 * 1024;
 /// A client silent for this long (not even answering pings) is dropped.
 const IDLE_TIMEOUT: Duration = Duration::from_secs(3 * PING_INTERVAL.as_secs());
 
@@ -34,11 +36,22 @@ const WRITER_ENDED: &str = "writer ended";
 pub async fn ws_upgrade(ws: WebSocketUpgrade, State(state): State<AppState>) -> Response {
     ws.max_message_size(MAX_MESSAGE_BYTES)
         .max_frame_size(MAX_MESSAGE_BYTES)
+        // tungstenite reads into a 128 KiB buffer per connection by default; protocol frames
+        // are small and a kiosk fleet is many idle connections.
+        .read_buffer_size(READ_BUFFER_BYTES)
         .on_upgrade(move |socket| {
             // axum spawns this itself; tracking it lets shutdown wait for the client.left event.
             let tracker = state.life.tracker.clone();
             tracker.track_future(serve(socket, state))
         })
+}
+
+/// What a `hello` frame says.
+struct Hello {
+    role: ClientRole,
+    verbs: Vec<String>,
+    name: Option<String>,
+    events: bool,
 }
 
 struct Session {
@@ -141,7 +154,13 @@ impl Session {
                 verbs,
                 name,
                 token: _,
-            } => self.hello(role, verbs, name),
+                events,
+            } => self.hello(Hello {
+                role,
+                verbs,
+                name,
+                events,
+            }),
             ClientFrame::Trigger {
                 label,
                 context,
@@ -241,7 +260,13 @@ impl Session {
         });
     }
 
-    fn hello(&mut self, role: ClientRole, verbs: Vec<String>, name: Option<String>) {
+    fn hello(&mut self, hello: Hello) {
+        let Hello {
+            role,
+            verbs,
+            name,
+            events,
+        } = hello;
         if self.role.is_some() {
             return self.reply_error(
                 "already-introduced",
@@ -266,7 +291,7 @@ impl Session {
         self.send(welcome_frame(self.client, role, &view));
         let feed = match (role, display_rx) {
             (_, Some(rx)) => Some(Feed::Display(role, rx)),
-            (ClientRole::Operator | ClientRole::Dm, None) => {
+            (ClientRole::Operator | ClientRole::Dm, None) if events => {
                 Some(Feed::Events(state.hub.subscribe()))
             }
             _ => None,

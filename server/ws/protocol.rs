@@ -30,6 +30,10 @@ pub enum ClientFrame {
         /// A credential (operator and dialog-manager roles; checked from a later version).
         #[serde(default)]
         token: Option<String>,
+        /// Whether an operator or dialog manager wants the event stream (default true); a
+        /// client that only triggers can say false and save both sides the traffic.
+        #[serde(default = "yes")]
+        events: bool,
     },
     /// Trigger an act.
     Trigger {
@@ -77,6 +81,10 @@ pub enum ClientFrame {
         #[serde(default)]
         reason: Option<String>,
     },
+}
+
+fn yes() -> bool {
+    true
 }
 
 /// The state a client gets on `welcome` and after falling behind.
