@@ -1,0 +1,63 @@
+#!/usr/bin/env bash
+# Runs the shared side-by-side harness (../shared/bench/run.sh: a bare tokio-tungstenite relay,
+# the floor; axum; Node ws; Flask-SocketIO) with Docent as one more target, in two
+# configurations, and saves each run's RESULTS.md as bench/results/compare-CONFIG-STAMP.md:
+#
+#   kiosk       bundle bench/bundles/kiosk: OK → DISPLAY_PAGE; wsload's subscribers are kiosks
+#   ws-adapter  bundle bench/bundles/ws-adapter: OK → SAY; wsload's subscribers are adapters
+#               serving SAY (they never answer `done`, which does not change the latency)
+#
+# wsload's senders say hello as operators in both. The shared folder is never written to: it is
+# copied to a scratch folder (COMPARE_DIR, default /tmp/docent-compare) and run there; its Node
+# and Python dependencies are installed once into that copy.
+#
+#   bench/compare.sh                              # ~10 min: two shared runs
+#   CONFIGS=kiosk bench/compare.sh                # one configuration
+#   ROUNDS=5 TARGETS="raw-tungstenite docent" bench/compare.sh
+set -euo pipefail
+cd "$(dirname "$0")/.."
+ROOT=$PWD
+SHARED=${SHARED_BENCH:-$ROOT/../shared/bench}
+SCRATCH=${COMPARE_DIR:-/tmp/docent-compare}
+CONFIGS=${CONFIGS:-kiosk ws-adapter}
+STAMP=$(date -u +%Y%m%d-%H%M)
+[[ -x $SHARED/run.sh ]] || { echo "no shared harness at $SHARED (set SHARED_BENCH)" >&2; exit 1; }
+
+echo "== build Docent (release)" >&2
+cargo build --release --quiet -p docent
+mkdir -p "$SCRATCH/bench" bench/results
+# A copy of the binary, so that a rebuild in the work tree cannot swap it during the run.
+cp target/release/docent "$SCRATCH/docent"
+tar -C "$SHARED" --exclude=./results --exclude=./RESULTS.md \
+  --exclude=./relays/node-ws/node_modules --exclude=./relays/python-socketio/.venv \
+  -cf - . | tar -C "$SCRATCH/bench" -xf -
+chmod -R u+w "$SCRATCH/bench"
+export CARGO_TARGET_DIR=${CARGO_TARGET_DIR:-/tmp/bench-target}
+
+TRIGGER='{"type":"trigger","label":"{label}","ref":"{ref}"}'
+OPERATOR='{"type":"hello","role":"operator"}'
+for config in $CONFIGS; do
+  case $config in
+    kiosk) hello='{"type":"hello","role":"kiosk"}' ;;
+    ws-adapter) hello='{"type":"hello","role":"adapter","verbs":["SAY"]}' ;;
+    *) echo "unknown configuration: $config (kiosk or ws-adapter)" >&2; exit 1 ;;
+  esac
+  corpus=$SCRATCH/corpus-$config
+  rm -rf "$corpus"
+  export DOCENT_CMD="$SCRATCH/docent serve $ROOT/bench/bundles/$config --listen 127.0.0.1:{port} --corpus $corpus"
+  # Shell words, eval'd by the shared run.sh.
+  export DOCENT_LOAD="--trigger-template '$TRIGGER' --hello '$hello' --sender-hello '$OPERATOR' --match-field ref --match-if type=command"
+  echo "== shared harness with Docent, configuration $config" >&2
+  "$SCRATCH/bench/run.sh"
+  out=bench/results/compare-$config-$STAMP.md
+  {
+    echo "<!-- bench/compare.sh, configuration $config."
+    echo "     docent: $DOCENT_CMD"
+    echo "     wsload flags for docent: $DOCENT_LOAD -->"
+    echo
+    cat "$SCRATCH/bench/RESULTS.md"
+  } >"$out"
+  cp "$SCRATCH/bench/results/docent.log" "bench/results/compare-$config-$STAMP.docent.log" 2>/dev/null || true
+  rm -rf "$corpus"
+  echo "== saved $out" >&2
+done
