@@ -7,7 +7,7 @@
 #   ws-adapter  bundle bench/bundles/ws-adapter: OK → SAY; wsload's subscribers are adapters
 #               serving SAY (they never answer `done`, which does not change the latency)
 #
-# wsload's senders say hello as operators in both. The shared folder is never written to: it is
+# wsload's senders say hello as operators (declining events) in both. The shared folder is never written to: it is
 # copied to a scratch folder (COMPARE_DIR, default /tmp/docent-compare) and run there; its Node
 # and Python dependencies are installed once into that copy.
 #
@@ -35,7 +35,8 @@ chmod -R u+w "$SCRATCH/bench"
 export CARGO_TARGET_DIR=${CARGO_TARGET_DIR:-/tmp/bench-target}
 
 TRIGGER='{"type":"trigger","label":"{label}","ref":"{ref}"}'
-OPERATOR='{"type":"hello","role":"operator"}'
+# Senders only trigger, as the floor's do: they decline the event stream an operator gets.
+OPERATOR='{"type":"hello","role":"operator","events":false}'
 for config in $CONFIGS; do
   case $config in
     kiosk) hello='{"type":"hello","role":"kiosk"}' ;;

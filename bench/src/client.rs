@@ -34,7 +34,10 @@ impl Role {
     /// The `hello` frame for this role.
     pub fn hello(self) -> &'static str {
         match self {
-            Role::Operator => r#"{"type":"hello","role":"operator","name":"docent-bench"}"#,
+            // Senders only trigger, like the floor's: they decline the event stream.
+            Role::Operator => {
+                r#"{"type":"hello","role":"operator","name":"docent-bench","events":false}"#
+            }
             Role::SayAdapter => {
                 r#"{"type":"hello","role":"adapter","verbs":["SAY"],"name":"docent-bench"}"#
             }

@@ -89,6 +89,8 @@ class Lane:
         while True:
             frame = await self.queue.get()
             cid = frame["id"]
+            # `started` stops this connection's answer clock (adapters.timeout): the command
+            # may then take as long as it needs.
             await self.send({"type": "started", "id": cid})
             task = asyncio.create_task(run_command(frame["verb"], frame.get("arg")))
             self.current = (cid, task)
@@ -160,9 +162,9 @@ async def serve(url, name, lane_specs):
                             lane.cancel(None if wanted is None else set(wanted), frame["reason"])
                 elif kind == "error":
                     # `unknown-command`: an answer with an id Docent does not know (answers to
-                    # commands it already settled, e.g. cancelled or timed out, are ignored
-                    # without an error). `verb-not-routed` (right after the welcome):
-                    # docent.yaml sends that verb elsewhere; check the set-up.
+                    # commands it settled lately, e.g. cancelled or timed out, are ignored
+                    # without an error). `verb-not-routed` (once, right after the welcome):
+                    # docent.yaml sends some of our verbs elsewhere; check the set-up.
                     log.warning("Docent says %s: %s", frame["code"], frame["message"])
         finally:
             for lane in lanes:

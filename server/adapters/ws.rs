@@ -224,7 +224,8 @@ impl WsAdapters {
 /// An answer for a command no longer waiting: fine if it was settled lately (another adapter
 /// answered first, or it was cancelled or timed out), an error otherwise.
 fn late_answer(registry: &Registry, id: u64) -> Result<(), AnswerError> {
-    match registry.recently_settled.contains(&id) {
+    // Still pending for others (this adapter timed out on it, say), or settled lately.
+    match registry.pending.contains_key(&id) || registry.recently_settled.contains(&id) {
         true => Ok(()),
         false => Err(AnswerError::UnknownCommand(id)),
     }
