@@ -7,7 +7,7 @@ use std::time::Duration;
 use axum::extract::ws::{Message, WebSocket};
 use futures_util::SinkExt;
 use futures_util::stream::SplitSink;
-use tokio::sync::broadcast::error::RecvError;
+use tokio::sync::broadcast::error::{RecvError, TryRecvError};
 use tokio::sync::{broadcast, mpsc, oneshot};
 use tokio_util::sync::CancellationToken;
 
@@ -18,6 +18,8 @@ use crate::ws::protocol::{event_frame, state_frame};
 
 /// A client that cannot take a frame within this time is dropped.
 const WRITE_TIMEOUT: Duration = Duration::from_secs(10);
+/// Most frames written before one flush.
+const MAX_BATCH: usize = 64;
 /// How long a closing handshake may take.
 const CLOSE_TIMEOUT: Duration = Duration::from_secs(1);
 /// How often an otherwise quiet connection is pinged.
@@ -75,11 +77,22 @@ pub async fn run_writer(
         if write(&stop, sink.feed(Message::Text(frame))).await.is_err() {
             break "write failed or timed out";
         }
-        // Send whatever else is ready in one flush.
-        while let Ok(frame) = queue.try_recv() {
+        // Send whatever else is ready, answers and fed frames alike, in one flush: one
+        // system call per batch instead of one per frame.
+        let mut batch = 0;
+        while batch < MAX_BATCH {
+            let frame = match queue.try_recv() {
+                Ok(frame) => frame,
+                Err(_) => match try_next_fed(&mut subscription, &state) {
+                    Some(Ok(frame)) => frame,
+                    Some(Err(end)) => break 'writing end,
+                    None => break,
+                },
+            };
             if write(&stop, sink.feed(Message::Text(frame))).await.is_err() {
                 break 'writing "write failed or timed out";
             }
+            batch += 1;
         }
         if write(&stop, sink.flush()).await.is_err() {
             break "write failed or timed out";
@@ -91,30 +104,87 @@ pub async fn run_writer(
     end
 }
 
+/// What a subscription's receiver gave.
+enum Got<T> {
+    Item(T),
+    Lagged,
+    Closed,
+}
+
+impl<T> From<Result<T, RecvError>> for Got<T> {
+    fn from(r: Result<T, RecvError>) -> Self {
+        match r {
+            Ok(item) => Got::Item(item),
+            Err(RecvError::Lagged(_)) => Got::Lagged,
+            Err(RecvError::Closed) => Got::Closed,
+        }
+    }
+}
+
+/// The next frame of the subscription, waiting for it.
 async fn next_fed(subscription: &mut Option<Feed>, state: &AppState) -> Result<Frame, WriterEnd> {
     match subscription {
-        Some(Feed::Display(role, rx)) => match rx.recv().await {
-            Ok(frame) => Ok(frame),
-            // Fell behind: start over from a fresh snapshot and subscription (taken together,
-            // so nothing is missed or replayed), instead of replaying stale pages.
-            Err(RecvError::Lagged(_)) => {
-                let (display, fresh) = state.devices.display.subscribe(*role);
-                if let Some(fresh) = fresh {
-                    *rx = fresh;
-                }
-                let mut view = state.state_view();
-                view.display = display;
-                Ok(Frame::from(state_frame(&view)))
-            }
-            Err(RecvError::Closed) => Err("server closing"),
-        },
-        Some(Feed::Events(rx)) => match rx.recv().await {
-            Ok(event) => Ok(Frame::from(event_frame(&event))),
-            // An event stream with holes would mislead an operator: drop them; they reconnect.
-            Err(RecvError::Lagged(_)) => Err("too slow: fell behind the event stream"),
-            Err(RecvError::Closed) => Err("server closing"),
-        },
+        Some(Feed::Display(role, rx)) => {
+            let got = rx.recv().await.into();
+            display_frame(*role, rx, state, got)
+        }
+        Some(Feed::Events(rx)) => event_frame_of(rx.recv().await.into()),
         None => std::future::pending().await,
+    }
+}
+
+/// The next frame of the subscription if one is ready.
+fn try_next_fed(
+    subscription: &mut Option<Feed>,
+    state: &AppState,
+) -> Option<Result<Frame, WriterEnd>> {
+    fn got<T>(r: Result<T, TryRecvError>) -> Option<Got<T>> {
+        match r {
+            Ok(item) => Some(Got::Item(item)),
+            Err(TryRecvError::Empty) => None,
+            Err(TryRecvError::Lagged(_)) => Some(Got::Lagged),
+            Err(TryRecvError::Closed) => Some(Got::Closed),
+        }
+    }
+    match subscription {
+        Some(Feed::Display(role, rx)) => {
+            let next = got(rx.try_recv())?;
+            Some(display_frame(*role, rx, state, next))
+        }
+        Some(Feed::Events(rx)) => Some(event_frame_of(got(rx.try_recv())?)),
+        None => None,
+    }
+}
+
+fn display_frame(
+    role: ClientRole,
+    rx: &mut broadcast::Receiver<Frame>,
+    state: &AppState,
+    got: Got<Frame>,
+) -> Result<Frame, WriterEnd> {
+    match got {
+        Got::Item(frame) => Ok(frame),
+        // Fell behind: start over from a fresh snapshot and subscription (taken together, so
+        // nothing is missed or replayed), instead of replaying stale pages.
+        Got::Lagged => {
+            let (display, fresh) = state.devices.display.subscribe(role);
+            if let Some(fresh) = fresh {
+                *rx = fresh;
+            }
+            let mut view = state.state_view();
+            view.display = display;
+            Ok(Frame::from(state_frame(&view)))
+        }
+        Got::Closed => Err("server closing"),
+    }
+}
+
+fn event_frame_of(got: Got<Arc<Event>>) -> Result<Frame, WriterEnd> {
+    match got {
+        Got::Item(event) => Ok(Frame::from(event_frame(&event))),
+        // An event stream with holes would mislead an operator: drop them; they reconnect.
+        Got::Lagged => Err("too slow: fell behind the event stream"),
+        Got::Closed => Err("server closing"),
     }
 }
 
