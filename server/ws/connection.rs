@@ -14,6 +14,7 @@ use crate::adapters::Outcome;
 use crate::dispatch::TriggerRequest;
 use crate::events::{ClientRole, EventKind};
 use crate::state::{AppState, ClientInfo};
+use crate::ws::diagnose::diagnose;
 use crate::ws::outbox::{Frame, OUTBOX_CAPACITY, Outbox};
 use crate::ws::protocol::{
     ClientFrame, MAX_FRAME_BYTES, context_frame, error_frame, stopped_frame, triggered_frame,
@@ -371,39 +372,3 @@ impl Session {
         });
     }
 }
-
-/// Why a text frame could not be read: an error code, a message and the frame's `ref` if any.
-fn diagnose(text: &str, error: &serde_json::Error) -> (&'static str, String, Option<String>) {
-    let Ok(value) = serde_json::from_str::<serde_json::Value>(text) else {
-        return (
-            "malformed-json",
-            format!("the frame is not valid JSON: {error}"),
-            None,
-        );
-    };
-    let reference = value.get("ref").and_then(|r| r.as_str()).map(str::to_owned);
-    match value.get("type").and_then(|t| t.as_str()) {
-        None => (
-            "missing-type",
-            "every frame needs a \"type\" field".into(),
-            reference,
-        ),
-        Some(t) if !KNOWN_TYPES.contains(&t) => {
-            let known = KNOWN_TYPES.join(", ");
-            (
-                "unknown-type",
-                format!("unknown frame type {t:?}; known types: {known}"),
-                reference,
-            )
-        }
-        Some(t) => (
-            "bad-frame",
-            format!("a {t:?} frame is not right: {error}"),
-            reference,
-        ),
-    }
-}
-
-const KNOWN_TYPES: [&str; 7] = [
-    "hello", "trigger", "stop", "context", "started", "done", "failed",
-];

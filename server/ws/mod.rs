@@ -6,6 +6,7 @@
 //! client is dropped instead of slowing others.
 
 mod connection;
+mod diagnose;
 pub mod outbox;
 pub mod protocol;
 mod writer;
