@@ -148,7 +148,7 @@ fn serve(bundle_dir: &Path, listen: SocketAddr, options: ServeOptions) -> anyhow
         // A closed stdout (a supervisor that stopped reading) must not stop the server.
         let _ = writeln!(
             std::io::stdout(),
-            "Docent is serving {}\n  home page:   http://{addr}/pages/{home}\n  trigger API: http://{addr}/api/acts  (docs/PROTOCOL.md)\n  websocket:   ws://{addr}/ws\n  corpus log:  {}",
+            "Docent is serving {}\n  kiosk:       http://{addr}/\n  projector:   http://{addr}/projector\n  home page:   http://{addr}/pages/{home}\n  trigger API: http://{addr}/api/acts  (docs/PROTOCOL.md)\n  websocket:   ws://{addr}/ws\n  corpus log:  {}",
             bundle_dir.display(),
             server.corpus_path().display()
         );

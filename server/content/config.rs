@@ -107,6 +107,41 @@ pub struct DisplayConfig {
     pub adapter: AdapterKind,
 }
 
+/// The touchscreen shell's behaviour (`kiosk:` in `docent.yaml`).
+#[derive(Clone, Debug, PartialEq)]
+pub struct KioskConfig {
+    /// Time without touch after which the shell returns home; zero disables it.
+    pub idle: Duration,
+    /// Act triggered when the idle time runs out, if any (checked to exist at load time).
+    pub idle_act: Option<String>,
+}
+
+/// What the projector shows once a video has ended (`projector: after_video:`).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum AfterVideo {
+    /// Back to black (the default).
+    Black,
+    /// Keep the last frame on screen.
+    Hold,
+}
+
+impl AfterVideo {
+    /// The word used in `docent.yaml` and handed to the projector page.
+    pub fn as_str(self) -> &'static str {
+        match self {
+            AfterVideo::Black => "black",
+            AfterVideo::Hold => "hold",
+        }
+    }
+}
+
+/// The projector shell's behaviour (`projector:` in `docent.yaml`).
+#[derive(Clone, Debug, PartialEq)]
+pub struct ProjectorConfig {
+    /// What stays on screen after a video.
+    pub after_video: AfterVideo,
+}
+
 /// Everything `docent.yaml` can set, with defaults filled in.
 #[derive(Clone, Debug, PartialEq)]
 pub struct SiteConfig {
@@ -120,6 +155,10 @@ pub struct SiteConfig {
     pub drive: DriveConfig,
     /// Display settings.
     pub display: DisplayConfig,
+    /// Touchscreen shell settings.
+    pub kiosk: KioskConfig,
+    /// Projector shell settings.
+    pub projector: ProjectorConfig,
     /// How long a ws adapter may take to answer a command once it is its turn.
     pub adapter_timeout: Duration,
     /// Site-declared verbs, by name (upper case).
@@ -144,6 +183,13 @@ impl Default for SiteConfig {
             },
             display: DisplayConfig {
                 adapter: AdapterKind::Display,
+            },
+            kiosk: KioskConfig {
+                idle: Duration::from_secs(120),
+                idle_act: None,
+            },
+            projector: ProjectorConfig {
+                after_video: AfterVideo::Black,
             },
             adapter_timeout: Duration::from_secs(30),
             verbs: BTreeMap::new(),

@@ -12,6 +12,7 @@ use crate::content::duration::parse_duration;
 use crate::content::model::{Located, Verb};
 
 mod reader;
+mod screens;
 
 use reader::Reader;
 
@@ -22,12 +23,22 @@ pub(crate) struct ConfigFile {
     pub config: SiteConfig,
     /// The home page when set explicitly, with its place (a missing one is then an error).
     pub home: Option<Located<String>>,
+    /// The act to trigger when the kiosk goes idle, with its place (checked to exist later).
+    pub idle_act: Option<Located<String>>,
     /// Problems found.
     pub diagnostics: Vec<Diagnostic>,
 }
 
 const TOP_KEYS: &[&str] = &[
-    "home", "contexts", "speech", "display", "drive", "adapters", "verbs",
+    "home",
+    "contexts",
+    "speech",
+    "display",
+    "drive",
+    "adapters",
+    "kiosk",
+    "projector",
+    "verbs",
 ];
 const HOME_USAGE: &str = "`home` names the page under pages/ the kiosk starts on, e.g. \
                           `home: index.html`.";
@@ -109,6 +120,8 @@ impl Reader {
                     }
                 }
                 "drive" => self.drive(value, config),
+                "kiosk" => out.idle_act = self.kiosk(value, config),
+                "projector" => self.projector(value, config),
                 "adapters" => {
                     for (_, value) in self.entries(value, &["timeout"], "adapters") {
                         let parse = |t: &str| parse_duration(t).filter(|d| !d.is_zero());

@@ -61,6 +61,7 @@ pub fn load_bundle(root: &Path) -> LoadReport {
     let mut merged = merge_acts(files, &checker, &config, &mut diagnostics);
     check_pages(&root, &mut merged, &mut diagnostics);
     check_home(&checker, &config, settings.home.as_ref(), &mut diagnostics);
+    check_idle_act(&merged, settings.idle_act.as_ref(), &mut diagnostics);
     let contexts = contexts(&config, &merged.acts);
     diagnostics.sort_by(|a, b| (&a.file, a.line, a.column).cmp(&(&b.file, b.line, b.column)));
     let errors = diagnostics.iter().filter(|d| d.is_error()).count();
@@ -299,6 +300,22 @@ fn check_pages(root: &Path, merged: &mut Merged, out: &mut Vec<Diagnostic>) {
     }
     let labels: BTreeSet<String> = references.into_iter().map(|r| r.value).collect();
     merged.page_acts = labels.into_iter().collect();
+}
+
+/// The act `kiosk: idle_act:` names must exist.
+fn check_idle_act(merged: &Merged, idle_act: Option<&Located<String>>, out: &mut Vec<Diagnostic>) {
+    let Some(Located { value, pos }) = idle_act else {
+        return;
+    };
+    if merged.index.contains_key(value) || merged.unread_labels.contains(value) {
+        return;
+    }
+    let hint = did_you_mean(value, merged.index.keys().map(String::as_str));
+    let message = format!(
+        "The kiosk triggers the act `{value}` when it goes idle, but no act has that label.\
+         {hint} Fix `idle_act` in docent.yaml or add the act."
+    );
+    out.push(Diagnostic::error("unknown-act", pos, message));
 }
 
 /// A home page set in docent.yaml must exist; the default one only earns a warning.

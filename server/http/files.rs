@@ -1,9 +1,12 @@
 //! `/pages/...` and `/media/...`: files of the bundle being served. The path is checked by
 //! [`resolve_in_bundle`] (no `..`, no absolute paths, exact case, no symlink leading out),
-//! then served by tower-http's `ServeFile` (content type, ranges for video seeking).
+//! then served by tower-http's `ServeFile` (content type, ranges for video seeking). HTML pages
+//! under `/pages/` are the exception: the server adds the page script (`docent-page.js`, the
+//! `data-act` taps and the `docent` JS API) to them, so authors include nothing themselves.
 
 use axum::extract::rejection::PathRejection;
 use axum::extract::{Path, Request, State};
+use axum::http::header;
 use axum::response::{IntoResponse, Response};
 use tower::ServiceExt;
 use tower_http::services::ServeFile;
@@ -60,8 +63,99 @@ async fn serve(
             return AppError::not_found(message).into_response();
         }
     };
+    if area == BundleArea::Pages && is_html(&file) {
+        match serve_html(&file).await {
+            Ok(Some(response)) => return response,
+            Ok(None) => {} // Too large to rewrite: served as it is.
+            Err(e) => return AppError::internal(e).into_response(),
+        }
+    }
     match ServeFile::new(file).oneshot(req).await {
         Ok(response) => response.into_response(),
         Err(e) => AppError::internal(e).into_response(),
+    }
+}
+
+/// The tag added to every HTML page under `/pages/`.
+const PAGE_SCRIPT: &[u8] = b"<script type=\"module\" src=\"/static/docent-page.js\"></script>";
+
+/// HTML pages larger than this are served untouched (no page script) rather than read whole.
+const MAX_REWRITTEN_BYTES: u64 = 16 * 1024 * 1024;
+
+fn is_html(file: &std::path::Path) -> bool {
+    file.extension()
+        .and_then(|e| e.to_str())
+        .is_some_and(|e| e.eq_ignore_ascii_case("html") || e.eq_ignore_ascii_case("htm"))
+}
+
+/// The page with the page script added, or `None` when it is too large to rewrite.
+async fn serve_html(file: &std::path::Path) -> std::io::Result<Option<Response>> {
+    if tokio::fs::metadata(file).await?.len() > MAX_REWRITTEN_BYTES {
+        return Ok(None);
+    }
+    let page = tokio::fs::read(file).await?;
+    let headers = [
+        // No charset: the page's own `<meta charset>` decides, as it would from ServeFile.
+        (header::CONTENT_TYPE, "text/html"),
+        (header::CACHE_CONTROL, "no-cache"),
+    ];
+    Ok(Some((headers, with_page_script(&page)).into_response()))
+}
+
+/// Inserts [`PAGE_SCRIPT`] right after the `<head>` tag, else after the doctype, else first.
+pub(crate) fn with_page_script(page: &[u8]) -> Vec<u8> {
+    let at = tag_end(page, b"<head")
+        .or_else(|| tag_end(page, b"<!doctype"))
+        .unwrap_or(0);
+    let mut out = Vec::with_capacity(page.len() + PAGE_SCRIPT.len());
+    out.extend_from_slice(&page[..at]);
+    out.extend_from_slice(PAGE_SCRIPT);
+    out.extend_from_slice(&page[at..]);
+    out
+}
+
+/// The index just past the `>` of the first tag named `name` (ASCII case-insensitive),
+/// not matching longer names (`<head` is not `<header`).
+fn tag_end(page: &[u8], name: &[u8]) -> Option<usize> {
+    let mut from = 0;
+    while let Some(found) = page
+        .get(from..)?
+        .windows(name.len())
+        .position(|w| w.eq_ignore_ascii_case(name))
+    {
+        let after = from + found + name.len();
+        match page.get(after) {
+            Some(b'>' | b' ' | b'\t' | b'\n' | b'\r' | b'/') => {
+                let close = page.get(after..)?.iter().position(|b| *b == b'>')?;
+                return Some(after + close + 1);
+            }
+            _ => from = after,
+        }
+    }
+    None
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn inject(page: &str) -> String {
+        String::from_utf8(with_page_script(page.as_bytes())).expect("utf-8")
+    }
+
+    #[test]
+    fn the_page_script_goes_right_after_head_or_the_doctype_or_first() {
+        let tag = std::str::from_utf8(PAGE_SCRIPT).expect("utf-8");
+        assert_eq!(
+            inject("<!DOCTYPE html><header></header><HEAD lang=x><title>t</title>"),
+            format!("<!DOCTYPE html><header></header><HEAD lang=x>{tag}<title>t</title>")
+        );
+        assert_eq!(
+            inject("<!doctype html>\n<title>home</title>"),
+            format!("<!doctype html>{tag}\n<title>home</title>")
+        );
+        assert_eq!(inject("<p>hi</p>"), format!("{tag}<p>hi</p>"));
+        assert_eq!(inject(""), tag);
+        assert_eq!(inject("<head"), format!("{tag}<head"));
     }
 }

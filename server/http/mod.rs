@@ -2,11 +2,15 @@
 //!
 //! - `api`: the trigger API (`/api/...`, `/healthz`).
 //! - `files`: bundle files under `/pages/` and `/media/`, never outside the bundle.
+//! - `shells`: the kiosk (`/`) and projector (`/projector`) pages, askama templates.
+//! - `static_files`: `/static/...`, the shells' scripts and styles, embedded in the binary.
 //! - `error`: [`AppError`], the one error type at the HTTP edge.
 
 mod api;
 mod error;
 mod files;
+mod shells;
+mod static_files;
 
 use axum::Router;
 use axum::routing::{get, post};
@@ -24,6 +28,9 @@ const MAX_BODY_BYTES: usize = 64 * 1024;
 /// The whole route table.
 pub fn app(state: AppState) -> Router {
     Router::new()
+        .route("/", get(shells::kiosk))
+        .route("/projector", get(shells::projector))
+        .route("/static/{*path}", get(static_files::serve_static))
         .route("/healthz", get(api::health))
         .route("/api/acts", get(api::list_acts))
         .route("/api/acts/{label}/trigger", post(api::trigger_act))

@@ -1,0 +1,140 @@
+//! The two browser shells the server renders itself: the touchscreen kiosk at `/` and the
+//! projector at `/projector`. Each is an askama template in `pages/`; its struct's fields are
+//! everything the page's script needs (handed over as `data-` attributes on `<body>`).
+
+use askama::Template;
+use axum::extract::State;
+use axum::http::header;
+use axum::response::{IntoResponse, Response};
+
+use crate::content::config::SiteConfig;
+use crate::http::AppError;
+use crate::state::AppState;
+
+/// The websocket every shell connects to.
+const WS_PATH: &str = "/ws";
+
+/// `pages/kiosk/shell.html`: the touchscreen shell.
+#[derive(Template)]
+#[template(path = "kiosk/shell.html")]
+pub struct KioskShell<'a> {
+    /// Websocket path, e.g. `/ws`.
+    pub ws_path: &'a str,
+    /// Where content pages are served, with a trailing slash: `/pages/`.
+    pub pages_path: &'a str,
+    /// The bundle's home page, relative to `pages/`.
+    pub home: &'a str,
+    /// Milliseconds without touch before returning home; 0 disables.
+    pub idle_ms: u128,
+    /// The act triggered on going idle, if any.
+    pub idle_act: Option<&'a str>,
+}
+
+impl<'a> KioskShell<'a> {
+    /// The shell for a bundle with these settings.
+    pub fn new(config: &'a SiteConfig) -> Self {
+        KioskShell {
+            ws_path: WS_PATH,
+            pages_path: "/pages/",
+            home: &config.home,
+            idle_ms: config.kiosk.idle.as_millis(),
+            idle_act: config.kiosk.idle_act.as_deref(),
+        }
+    }
+}
+
+/// `pages/projector/projector.html`: the projector shell.
+#[derive(Template)]
+#[template(path = "projector/projector.html")]
+pub struct ProjectorShell<'a> {
+    /// Websocket path, e.g. `/ws`.
+    pub ws_path: &'a str,
+    /// Where media files are served, with a trailing slash: `/media/`.
+    pub media_path: &'a str,
+    /// `black` or `hold`: what stays on screen after a video.
+    pub after_video: &'a str,
+}
+
+impl<'a> ProjectorShell<'a> {
+    /// The shell for a bundle with these settings.
+    pub fn new(config: &'a SiteConfig) -> Self {
+        ProjectorShell {
+            ws_path: WS_PATH,
+            media_path: "/media/",
+            after_video: config.projector.after_video.as_str(),
+        }
+    }
+}
+
+/// `GET /`: the kiosk shell.
+pub async fn kiosk(State(state): State<AppState>) -> Response {
+    let bundle = state.dispatcher.bundle();
+    html(KioskShell::new(&bundle.config).render())
+}
+
+/// `GET /projector`: the projector shell.
+pub async fn projector(State(state): State<AppState>) -> Response {
+    let bundle = state.dispatcher.bundle();
+    html(ProjectorShell::new(&bundle.config).render())
+}
+
+fn html(rendered: askama::Result<String>) -> Response {
+    match rendered {
+        Ok(page) => (
+            [
+                (header::CONTENT_TYPE, "text/html; charset=utf-8"),
+                (header::CACHE_CONTROL, "no-cache"),
+            ],
+            page,
+        )
+            .into_response(),
+        Err(e) => AppError::internal(e).into_response(),
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use std::time::Duration;
+
+    use super::*;
+    use crate::content::config::AfterVideo;
+
+    #[test]
+    fn the_kiosk_shell_carries_its_contract() {
+        let mut config = SiteConfig {
+            home: "start \"page\".html".to_owned(),
+            ..SiteConfig::default()
+        };
+        config.kiosk.idle = Duration::from_secs(90);
+        config.kiosk.idle_act = Some("INVITE".to_owned());
+        let page = KioskShell::new(&config).render().expect("renders");
+        assert!(page.starts_with("<!doctype html>"), "{page}");
+        assert!(page.contains(r#"data-ws="/ws""#), "{page}");
+        assert!(page.contains(r#"data-pages="/pages/""#), "{page}");
+        assert!(
+            page.contains(r#"data-home="start &#34;page&#34;.html""#),
+            "{page}"
+        );
+        assert!(page.contains(r#"data-idle-ms="90000""#), "{page}");
+        assert!(page.contains(r#"data-idle-act="INVITE""#), "{page}");
+        assert!(page.contains(r#"src="/static/kiosk.js""#), "{page}");
+        assert_eq!(page.matches("<iframe").count(), 2);
+
+        config.kiosk.idle_act = None;
+        let page = KioskShell::new(&config).render().expect("renders");
+        assert!(!page.contains("data-idle-act"), "{page}");
+    }
+
+    #[test]
+    fn the_projector_shell_carries_its_contract() {
+        let mut config = SiteConfig::default();
+        let page = ProjectorShell::new(&config).render().expect("renders");
+        assert!(page.contains(r#"data-ws="/ws""#), "{page}");
+        assert!(page.contains(r#"data-media="/media/""#), "{page}");
+        assert!(page.contains(r#"data-after-video="black""#), "{page}");
+        assert!(page.contains(r#"src="/static/projector.js""#), "{page}");
+        config.projector.after_video = AfterVideo::Hold;
+        let page = ProjectorShell::new(&config).render().expect("renders");
+        assert!(page.contains(r#"data-after-video="hold""#), "{page}");
+    }
+}

@@ -1,0 +1,158 @@
+// kiosk.js: the touchscreen shell. Shows the page Docent says (welcome, DISPLAY_PAGE commands,
+// state frames) in two stacked iframes: the next page loads in the hidden one and is revealed
+// once loaded, so a swap never flashes white; the old page is then unloaded, which ends its
+// timers. Returns home after the configured idle time without touch (and may trigger the idle
+// act), and offers `window.docentShell` to the page script (docent-page.js).
+
+import { encodePath, keepConnected } from "./socket.js";
+
+const TRIGGER_ANSWER_TIMEOUT_MS = 10_000;
+const IDLE_CHECK_MS = 1_000;
+
+const config = document.body.dataset;
+const pagesPath = config.pages || "/pages/";
+const home = config.home || "index.html";
+const idleMs = Number(config.idleMs) || 0;
+const idleAct = config.idleAct || null;
+
+const frames = [...document.querySelectorAll("iframe.docent-frame")];
+let front = 0; // index of the frame on show
+let wanted = null; // the page shown or being loaded
+let lastActivity = performance.now();
+let idle = false;
+
+const listeners = new Map(); // frame or event type -> Set of functions
+const pending = new Map(); // trigger ref -> resolve function
+let refCount = 0;
+
+function emit(type, value) {
+  for (const fn of listeners.get(type) ?? []) {
+    try {
+      fn(value);
+    } catch (error) {
+      console.error(`docent: a "${type}" listener failed`, error);
+    }
+  }
+}
+
+function activity() {
+  lastActivity = performance.now();
+  idle = false;
+}
+
+/** Shows `page` (relative to pages/), unless it is already shown or on its way. */
+function show(page) {
+  if (!page || page === wanted) return;
+  wanted = page;
+  const old = frames[front];
+  const next = frames[1 - front];
+  next.onload = () => {
+    if (wanted !== page) return; // overtaken by a later page
+    next.onload = null;
+    watchActivity(next);
+    next.classList.add("shown");
+    next.removeAttribute("aria-hidden");
+    old.classList.remove("shown");
+    old.setAttribute("aria-hidden", "true");
+    old.onload = null;
+    old.src = "about:blank"; // unloads the old page: its timers and listeners end with it
+    front = 1 - front;
+    emit("page", { page });
+  };
+  next.src = pagesPath + encodePath(page);
+}
+
+/** Touches inside a page do not reach the shell's document: listen in the frame too. */
+function watchActivity(frame) {
+  try {
+    for (const type of ["pointerdown", "keydown", "wheel"]) {
+      frame.contentWindow.addEventListener(type, activity, { capture: true, passive: true });
+    }
+  } catch (error) {
+    console.warn("docent: cannot watch touches in the page", error);
+  }
+}
+
+function showState(state) {
+  const page = state?.display?.page;
+  if (page) show(page);
+}
+
+const socket = keepConnected({
+  path: config.ws || "/ws",
+  role: "kiosk",
+  name: "kiosk",
+  onOnline: (online) => {
+    if (!online) {
+      for (const [ref, resolve] of pending) {
+        resolve({ type: "error", code: "disconnected", message: "the connection to Docent was lost", ref });
+      }
+      pending.clear();
+    }
+    emit("connection", { online });
+  },
+  onFrame: (frame) => {
+    if (frame.type === "welcome" || frame.type === "state") {
+      showState(frame.state);
+    } else if (frame.type === "command" && frame.verb === "DISPLAY_PAGE") {
+      // A page change by the robot counts as activity: a tour is not an idle kiosk.
+      activity();
+      show(frame.arg);
+    } else if ((frame.type === "triggered" || frame.type === "error") && pending.has(frame.ref)) {
+      pending.get(frame.ref)(frame);
+      pending.delete(frame.ref);
+    }
+    emit(frame.type, frame);
+  },
+});
+
+/**
+ * The shell's API for the page script.
+ * trigger(label, {context, interrupt}) resolves with the `triggered` or `error` frame.
+ * on(type, fn) listens to server frames by type (`command`, `triggered`, `state`, ...) and to
+ * `page` ({page}) and `connection` ({online}); it returns a function that stops listening.
+ */
+window.docentShell = {
+  trigger(label, { context = null, interrupt = false } = {}) {
+    activity();
+    const ref = `kiosk-${Date.now().toString(36)}-${++refCount}`;
+    const frame = { type: "trigger", label: String(label), ref };
+    if (context) frame.context = String(context);
+    if (interrupt) frame.interrupt = true;
+    return new Promise((resolve) => {
+      if (!socket.send(frame)) {
+        resolve({ type: "error", code: "offline", message: "not connected to Docent", ref });
+        return;
+      }
+      pending.set(ref, resolve);
+      setTimeout(() => {
+        if (!pending.delete(ref)) return;
+        resolve({ type: "error", code: "timeout", message: "Docent did not answer", ref });
+      }, TRIGGER_ANSWER_TIMEOUT_MS);
+    });
+  },
+  on(type, fn) {
+    if (!listeners.has(type)) listeners.set(type, new Set());
+    listeners.get(type).add(fn);
+    return () => listeners.get(type)?.delete(fn);
+  },
+};
+
+// Idle: back home after `idleMs` without touch; then the idle act, if one is configured.
+if (idleMs > 0) {
+  setInterval(() => {
+    if (idle || performance.now() - lastActivity < idleMs) return;
+    idle = true;
+    if (wanted === home) return; // already home: nothing to do, nothing to send
+    show(home);
+    if (idleAct) window.docentShell.trigger(idleAct);
+    idle = true; // the trigger above counted as activity
+  }, IDLE_CHECK_MS);
+}
+
+for (const type of ["pointerdown", "keydown", "wheel"]) {
+  addEventListener(type, activity, { capture: true, passive: true });
+}
+for (const type of ["contextmenu", "selectstart", "dragstart", "gesturestart"]) {
+  addEventListener(type, (event) => event.preventDefault(), { capture: true });
+}

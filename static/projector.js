@@ -1,0 +1,93 @@
+// projector.js: the projector shell. Black while nothing is projected; a PROJECT command shows
+// /media/<file> full screen: an image, or a video played with its sound. When a video ends the
+// screen goes black again, or holds the last frame (`projector: after_video: hold`).
+
+import { encodePath, keepConnected } from "./socket.js";
+
+const IMAGES = new Set(["png", "jpg", "jpeg", "gif", "webp", "svg"]);
+const VIDEOS = new Set(["webm", "mp4", "ogv"]);
+
+const config = document.body.dataset;
+const mediaPath = config.media || "/media/";
+const holdAfterVideo = config.afterVideo === "hold";
+const stage = document.getElementById("docent-stage");
+
+let projected = null; // the file on show or loading; null is black
+const ended = new Set(); // videos that played to their end (not replayed by a reconnect)
+
+/** Replaces what is on the stage by `element` once it is ready to be seen. */
+function reveal(element, file) {
+  if (projected !== file) {
+    element.remove();
+    return;
+  }
+  element.classList.remove("loading");
+  for (const other of [...stage.children]) {
+    if (other !== element) other.remove();
+  }
+}
+
+function black() {
+  stage.replaceChildren();
+}
+
+function project(file, { again = true } = {}) {
+  if (!again && file === projected) return;
+  if (!again && file && ended.has(file)) return; // a welcome after a reconnect: it is over
+  projected = file ?? null;
+  if (!file) return black();
+  ended.delete(file);
+  const extension = file.split(".").pop().toLowerCase();
+  const src = mediaPath + encodePath(file);
+  if (IMAGES.has(extension)) {
+    const image = new Image();
+    image.className = "docent-media loading";
+    image.alt = "";
+    image.onload = () => reveal(image, file);
+    image.onerror = () => console.error(`docent: cannot show ${src}`);
+    stage.append(image);
+    image.src = src;
+  } else if (VIDEOS.has(extension)) {
+    const video = document.createElement("video");
+    video.className = "docent-media loading";
+    video.autoplay = true;
+    video.playsInline = true;
+    video.addEventListener("loadeddata", () => reveal(video, file), { once: true });
+    video.addEventListener("error", () => console.error(`docent: cannot play ${src}`));
+    video.addEventListener("ended", () => {
+      ended.add(file);
+      if (!holdAfterVideo && projected === file) {
+        projected = null;
+        black();
+      }
+    });
+    stage.append(video);
+    video.src = src;
+    video.play().catch((error) => {
+      // Without the kiosk launcher's autoplay flag, a browser only plays muted videos.
+      console.warn("docent: the browser refused to play with sound; playing muted", error);
+      video.muted = true;
+      video.play().catch((e) => console.error(`docent: cannot play ${src}`, e));
+    });
+  } else {
+    console.warn(`docent: the projector shows images and videos only, not ${file}`);
+    black();
+  }
+}
+
+keepConnected({
+  path: config.ws || "/ws",
+  role: "projector",
+  name: "projector",
+  onFrame: (frame) => {
+    if (frame.type === "welcome" || frame.type === "state") {
+      project(frame.state?.display?.projector ?? null, { again: false });
+    } else if (frame.type === "command" && frame.verb === "PROJECT") {
+      project(frame.arg ?? null);
+    }
+  },
+});
+
+for (const type of ["contextmenu", "selectstart", "dragstart"]) {
+  addEventListener(type, (event) => event.preventDefault(), { capture: true });
+}
