@@ -1,21 +1,42 @@
 #!/usr/bin/env bash
-# Installs what Docent's tests need from Debian, only when it is missing (idempotent):
-#   espeak-ng  real speech synthesis, verified through WAV output on machines without sound.
-# Runs as root or through sudo. Called by scripts/test.sh; safe to run by hand.
+# Installs what Docent's tests need, only when it is missing (idempotent, silent when all is there):
+#   espeak-ng          real speech synthesis, verified through WAV output on machines without sound;
+#   chromium           Debian's headless browser for the browser tests in tests/e2e (never a
+#                      browser download of Playwright's own: playwright-core drives /usr/bin/chromium);
+#   fonts-dejavu-core  the font the pages and screenshots are drawn with;
+#   tests/e2e npm packages (playwright-core, ws), with `npm ci` from package-lock.json when
+#                      node_modules is missing or older than the lock file.
+# Debian packages need root or sudo (one `apt-get update` per run at most); npm needs Node 20.
+# Called by scripts/test.sh; safe to run by hand.
 set -euo pipefail
+cd "$(dirname "$0")/.."
 
 packages=()
 command -v espeak-ng >/dev/null 2>&1 || packages+=(espeak-ng)
-
-if [ ${#packages[@]} -eq 0 ]; then
-  exit 0
-fi
+[ -x /usr/bin/chromium ] || packages+=(chromium)
+dpkg-query -W -f='${Status}' fonts-dejavu-core 2>/dev/null | grep -q 'ok installed' ||
+  packages+=(fonts-dejavu-core)
 
 as_root() {
   if [ "$(id -u)" -eq 0 ]; then "$@"; else sudo "$@"; fi
 }
 
-echo "installing test dependencies: ${packages[*]}" >&2
-export DEBIAN_FRONTEND=noninteractive
-as_root apt-get update -qq
-as_root apt-get install -y -qq --no-install-recommends "${packages[@]}" >/dev/null
+if [ ${#packages[@]} -gt 0 ]; then
+  echo "installing test dependencies: ${packages[*]}" >&2
+  export DEBIAN_FRONTEND=noninteractive
+  as_root apt-get update -qq
+  as_root apt-get install -y -qq --no-install-recommends "${packages[@]}" >/dev/null
+fi
+
+# The browser tests' npm packages. npm writes node_modules/.package-lock.json on every install,
+# so a lock file newer than it means package-lock.json changed since the last install.
+e2e=tests/e2e
+if [ ! -f "$e2e/node_modules/.package-lock.json" ] ||
+  [ "$e2e/package-lock.json" -nt "$e2e/node_modules/.package-lock.json" ]; then
+  if ! command -v npm >/dev/null 2>&1; then
+    echo "install-test-deps: npm (Node 20) is needed for the browser tests in $e2e" >&2
+    exit 1
+  fi
+  echo "installing test dependencies: npm packages of $e2e" >&2
+  (cd "$e2e" && npm ci --no-audit --no-fund --loglevel=error >/dev/null)
+fi

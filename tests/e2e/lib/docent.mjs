@@ -1,0 +1,182 @@
+// The real `docent` binary as a child process, plus temporary bundles and the corpus log.
+//
+// `startDocent` runs `docent serve BUNDLE --listen 127.0.0.1:PORT --corpus TMP`, waits for the
+// start-up lines it prints on stdout (the "websocket:" line gives the address) and keeps draining
+// stdout and stderr so the server never blocks on a full pipe; the output is kept for failure
+// messages. `stop()` sends SIGTERM and waits for the graceful exit, which flushes the corpus log.
+// The binary is $DOCENT_BIN, or target/debug/docent in the repository (built by `cargo test`).
+
+import { spawn } from 'node:child_process';
+import fs from 'node:fs';
+import net from 'node:net';
+import os from 'node:os';
+import path from 'node:path';
+import { fileURLToPath } from 'node:url';
+
+/** The repository root. */
+export const REPO = path.resolve(path.dirname(fileURLToPath(import.meta.url)), '../../..');
+
+/** How long one wait may take before a test fails: a deadline, never a pause. */
+export const DEADLINE_MS = 20_000;
+
+/** The docent binary the tests run. */
+export function docentBin() {
+  return process.env.DOCENT_BIN ? path.resolve(process.env.DOCENT_BIN) : path.join(REPO, 'target/debug/docent');
+}
+
+/** A new temporary folder, removed by `removeTemp`. */
+export function tempDir(prefix = 'docent-e2e-') {
+  return fs.mkdtempSync(path.join(os.tmpdir(), prefix));
+}
+
+/** Removes a folder made by `tempDir` (or a bundle copy). */
+export function removeTemp(dir) {
+  if (dir) fs.rmSync(dir, { recursive: true, force: true });
+}
+
+/**
+ * Copies a shipped bundle (`dialogs/NAME`) into a temporary folder and writes `files` over it,
+ * e.g. `{'docent.yaml': '...'}`. Returns the copy's path.
+ */
+export function copyBundle(name, files = {}) {
+  const dir = tempDir(`docent-e2e-${path.basename(name)}-`);
+  fs.cpSync(path.join(REPO, 'dialogs', name), dir, { recursive: true });
+  writeFiles(dir, files);
+  return dir;
+}
+
+/** A bundle made of `files` only (relative path to contents) in a temporary folder. */
+export function makeBundle(files) {
+  const dir = tempDir('docent-e2e-bundle-');
+  fs.mkdirSync(path.join(dir, 'pages'));
+  fs.mkdirSync(path.join(dir, 'media'));
+  writeFiles(dir, files);
+  return dir;
+}
+
+function writeFiles(dir, files) {
+  for (const [rel, contents] of Object.entries(files)) {
+    const file = path.join(dir, rel);
+    fs.mkdirSync(path.dirname(file), { recursive: true });
+    fs.writeFileSync(file, contents);
+  }
+}
+
+/** A TCP port on 127.0.0.1 that was free a moment ago (bound to 0, then closed). */
+export function freePort() {
+  return new Promise((resolve, reject) => {
+    const server = net.createServer();
+    server.once('error', reject);
+    server.listen(0, '127.0.0.1', () => {
+      const { port } = server.address();
+      server.close(() => resolve(port));
+    });
+  });
+}
+
+/**
+ * Starts `docent serve` on `bundle` (a path). Options: `port` (default 0: any free port),
+ * `corpus` (a folder; default a new temporary one), `args` (more command-line arguments).
+ */
+export async function startDocent(bundle, { port = 0, corpus, args = [] } = {}) {
+  const corpusDir = corpus ?? tempDir('docent-e2e-corpus-');
+  const bin = docentBin();
+  if (!fs.existsSync(bin)) {
+    throw new Error(`no docent binary at ${bin}: run \`cargo build\` first or set DOCENT_BIN`);
+  }
+  const child = spawn(
+    bin,
+    ['serve', bundle, '--listen', `127.0.0.1:${port}`, '--corpus', corpusDir, '--seed', '1', ...args],
+    { stdio: ['ignore', 'pipe', 'pipe'], env: { ...process.env, RUST_LOG: process.env.RUST_LOG ?? 'docent=warn' } },
+  );
+  let output = '';
+  const keep = (chunk) => {
+    output += chunk;
+    if (output.length > 64_000) output = output.slice(-32_000);
+  };
+  child.stdout.setEncoding('utf8');
+  child.stderr.setEncoding('utf8');
+  child.stderr.on('data', keep);
+  const exited = new Promise((resolve) => child.once('exit', (code, signal) => resolve({ code, signal })));
+
+  const started = new Promise((resolve, reject) => {
+    let stdout = '';
+    const onData = (chunk) => {
+      keep(chunk);
+      stdout += chunk;
+      const ws = /^\s*websocket:\s+(ws:\/\/\S+)$/m.exec(stdout);
+      const corpusLog = /^\s*corpus log:\s+(.+)$/m.exec(stdout);
+      if (ws && corpusLog) {
+        // Keep draining: the server must never block on a full stdout pipe.
+        child.stdout.off('data', onData);
+        child.stdout.on('data', keep);
+        resolve({ wsUrl: ws[1], corpusFile: corpusLog[1].trim() });
+      }
+    };
+    child.stdout.on('data', onData);
+    exited.then(({ code, signal }) =>
+      reject(new Error(`docent exited (${code ?? signal}) before it was serving:\n${output}`)),
+    );
+  });
+  const { wsUrl, corpusFile } = await withDeadline(started, DEADLINE_MS, () => {
+    child.kill('SIGKILL');
+    return `docent did not print its addresses within ${DEADLINE_MS} ms:\n${output}`;
+  });
+  const base = wsUrl.replace(/^ws:/, 'http:').replace(/\/ws$/, '');
+
+  let stopping = null;
+  return {
+    base,
+    wsUrl,
+    corpusDir,
+    corpusFile,
+    port: Number(new URL(base).port),
+    process: child,
+    output: () => output,
+    /** GET or POST a JSON route, e.g. `api('/api/state')`, `api('/api/acts/X/trigger', {})`. */
+    async api(route, body) {
+      const res = await fetch(base + route, body === undefined ? {} : { method: 'POST', body: JSON.stringify(body) });
+      const json = await res.json();
+      if (!res.ok) throw new Error(`${route}: ${res.status} ${JSON.stringify(json)}`);
+      return json;
+    },
+    /** Triggers an act over HTTP. */
+    trigger(label, body = {}) {
+      return this.api(`/api/acts/${encodeURIComponent(label)}/trigger`, body);
+    },
+    /** SIGTERM, then waits for the exit (SIGKILL after the deadline). Returns the exit status. */
+    stop() {
+      stopping ??= (async () => {
+        if (child.exitCode === null && child.signalCode === null) child.kill('SIGTERM');
+        return withDeadline(exited, DEADLINE_MS, () => {
+          child.kill('SIGKILL');
+          return `docent did not exit within ${DEADLINE_MS} ms of SIGTERM:\n${output}`;
+        });
+      })();
+      return stopping;
+    },
+  };
+}
+
+/** The events of a corpus log file, in order (a torn last line of a killed run is skipped). */
+export function corpusEvents(file) {
+  const lines = fs.readFileSync(file, 'utf8').split('\n').filter(Boolean);
+  const events = [];
+  for (const [i, line] of lines.entries()) {
+    try {
+      events.push(JSON.parse(line));
+    } catch (e) {
+      if (i !== lines.length - 1) throw e;
+    }
+  }
+  return events;
+}
+
+/** Resolves like `promise`, or rejects with `message()` once `ms` have passed. */
+export function withDeadline(promise, ms, message) {
+  let timer;
+  const deadline = new Promise((_, reject) => {
+    timer = setTimeout(() => reject(new Error(typeof message === 'function' ? message() : message)), ms);
+  });
+  return Promise.race([promise, deadline]).finally(() => clearTimeout(timer));
+}
