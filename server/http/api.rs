@@ -180,6 +180,12 @@ pub async fn get_state(State(state): State<AppState>) -> Json<Value> {
     }))
 }
 
+/// `GET /favicon.ico`: browsers ask every top-level page's server for one; there is none, and
+/// saying so with 204 keeps a 404 out of the kiosk's console.
+pub async fn no_favicon() -> StatusCode {
+    StatusCode::NO_CONTENT
+}
+
 /// A known route with the wrong method: a JSON 405.
 pub async fn method_not_allowed() -> AppError {
     AppError::new(

@@ -31,6 +31,7 @@ pub fn app(state: AppState) -> Router {
         .route("/", get(shells::kiosk))
         .route("/projector", get(shells::projector))
         .route("/static/{*path}", get(static_files::serve_static))
+        .route("/favicon.ico", get(api::no_favicon))
         .route("/healthz", get(api::health))
         .route("/api/acts", get(api::list_acts))
         .route("/api/acts/{label}/trigger", post(api::trigger_act))

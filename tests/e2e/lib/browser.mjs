@@ -36,32 +36,22 @@ export function newTouchContext(browser) {
   return browser.newContext({ viewport: VIEWPORT, hasTouch: true });
 }
 
-// The browser itself asks every top-level page's server for /favicon.ico; no page asked for it,
-// and Docent has none to give (its 404 is logged as a console error).
-const isFavicon = (url) => {
-  try {
-    return new URL(url).pathname === '/favicon.ico';
-  } catch {
-    return false;
-  }
-};
-
 /**
  * Records the problems of `page` and its frames: console errors, uncaught exceptions, failed
- * requests and HTTP answers of 400 or more (except the browser's own favicon request). The
+ * requests and HTTP answers of 400 or more (Docent answers the browser's own favicon request). The
  * returned array lists them as sentences.
  */
 export function watchProblems(page) {
   const problems = [];
   page.on('console', (msg) => {
-    if (msg.type() === 'error' && !isFavicon(msg.location().url)) {
+    if (msg.type() === 'error') {
       problems.push(`console error: ${msg.text()} (${msg.location().url})`);
     }
   });
   page.on('pageerror', (err) => problems.push(`uncaught exception: ${err.message}`));
   page.on('requestfailed', (req) => problems.push(`request failed: ${req.url()} (${req.failure()?.errorText})`));
   page.on('response', (res) => {
-    if (res.status() >= 400 && !isFavicon(res.url())) problems.push(`HTTP ${res.status()}: ${res.url()}`);
+    if (res.status() >= 400) problems.push(`HTTP ${res.status()}: ${res.url()}`);
   });
   return problems;
 }
