@@ -309,7 +309,8 @@ card_punch_video() {
 }
 
 # ---------------------------------------------------------------------------------------------
-# poster-presenter: the poster, one projector highlight per section, thumbnails for the pages.
+# poster-presenter: the poster and thumbnails for the pages (the acts light each section with
+# HIGHLIGHT, so the projector needs no images).
 # Poster: 848 x 1200 (A-series portrait). Title bar, then four sections in a 2 x 2 grid.
 POSTER_W=848 POSTER_H=1200
 TITLE_RECT="24 24 800 160"
@@ -397,15 +398,6 @@ poster() {
     save_png poster-presenter/media/poster.png
 }
 
-# A projector image: black, with a white patch 8 px larger than the given area on each side.
-highlight() { # highlight FILE "X Y W H"
-    local x y w h
-    read -r x y w h <<<"$2"
-    canvas $POSTER_W $POSTER_H black
-    box $((x - 8)) $((y - 8)) $((w + 16)) $((h + 16)) white
-    save_png "$1" gray
-}
-
 # Poster thumbnails for the pages: 3/8 of the size, the current section framed in orange.
 thumbnail() { # thumbnail FILE ["X Y W H"]
     local chain="scale=318:450:flags=area" x y w h
@@ -421,14 +413,10 @@ thumbnail() { # thumbnail FILE ["X Y W H"]
 
 poster_presenter() {
     poster
-    highlight poster-presenter/media/highlight-title.png "$TITLE_RECT"
     local n
     for n in 1 2 3 4; do
-        highlight "poster-presenter/media/highlight-$n.png" "${SECTION_RECTS[n - 1]}"
         thumbnail "poster-presenter/pages/images/poster-section-$n.png" "${SECTION_RECTS[n - 1]}"
     done
-    canvas $POSTER_W $POSTER_H black
-    save_png poster-presenter/media/blank.png gray
     thumbnail poster-presenter/pages/images/poster.png
 }
 

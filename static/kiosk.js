@@ -18,6 +18,7 @@ const idleAct = config.idleAct || null;
 const frames = [...document.querySelectorAll("iframe.docent-frame")];
 let front = 0; // index of the frame on show
 let wanted = null; // the page shown or being loaded
+let serverPage = null; // the page the server's display state names
 let lastActivity = performance.now();
 let idle = false;
 
@@ -75,7 +76,27 @@ function watchActivity(frame) {
 
 function showState(state) {
   const page = state?.display?.page;
+  serverPage = page ?? null;
   if (page) show(page);
+}
+
+/**
+ * A page reached here without the server (a link, the idle return home) is reported, so the
+ * server's display state, its log and a reconnecting kiosk agree with the screen.
+ */
+function reportShown(frame) {
+  let page;
+  try {
+    const path = decodeURIComponent(frame.contentWindow.location.pathname);
+    if (!path.startsWith(pagesPath)) return;
+    page = path.slice(pagesPath.length);
+  } catch {
+    return;
+  }
+  if (!frame.classList.contains("shown") && page !== wanted) return;
+  if (page === serverPage) return;
+  serverPage = page;
+  socket.send({ type: "page", page });
 }
 
 const socket = keepConnected({
@@ -97,6 +118,7 @@ const socket = keepConnected({
     } else if (frame.type === "command" && frame.verb === "DISPLAY_PAGE") {
       // A page change by the robot counts as activity: a tour is not an idle kiosk.
       activity();
+      serverPage = frame.arg;
       show(frame.arg);
     } else if ((frame.type === "triggered" || frame.type === "error") && pending.has(frame.ref)) {
       pending.get(frame.ref)(frame);
@@ -156,3 +178,5 @@ for (const type of ["pointerdown", "keydown", "wheel"]) {
 for (const type of ["contextmenu", "selectstart", "dragstart", "gesturestart"]) {
   addEventListener(type, (event) => event.preventDefault(), { capture: true });
 }
+
+for (const frame of frames) frame.addEventListener("load", () => reportShown(frame));

@@ -1,6 +1,10 @@
 // projector.js: the projector shell. Black while nothing is projected; a PROJECT command shows
 // /media/<file> full screen: an image, or a video played with its sound. When a video ends the
 // screen goes black again, or holds the last frame (`projector: after_video: hold`).
+// A HIGHLIGHT command hides any image or video and lights its areas in white on black, each
+// `left top width height` in fractions of the screen, `ellipse` for an oval, several areas
+// separated by `;` (checked by `docent check`); HIGHLIGHT alone, or a PROJECT, clears them.
+// The soft edge is `projector: highlight_edge` (a fraction of the width), as a blur.
 
 import { encodePath, keepConnected } from "./socket.js";
 
@@ -11,8 +15,11 @@ const config = document.body.dataset;
 const mediaPath = config.media || "/media/";
 const holdAfterVideo = config.afterVideo === "hold";
 const stage = document.getElementById("docent-stage");
+const edge = Number.parseFloat(config.highlightEdge);
+stage.style.setProperty("--highlight-edge", Number.isFinite(edge) ? String(edge) : "0.02");
 
 let projected = null; // the file on show or loading; null is black
+let highlighted = null; // the HIGHLIGHT argument on show; null is none
 const ended = new Set(); // videos that played to their end (not replayed by a reconnect)
 
 /** Replaces what is on the stage by `element` once it is ready to be seen. */
@@ -31,7 +38,45 @@ function black() {
   stage.replaceChildren();
 }
 
+/** The areas of a HIGHLIGHT argument; words that are not an area are skipped. */
+function parseAreas(arg) {
+  const areas = [];
+  for (const part of (arg ?? "").split(";")) {
+    const words = part.trim().split(/\s+/).filter(Boolean);
+    const numbers = words.slice(0, 4).map(Number);
+    if (numbers.length < 4 || numbers.some((n) => !Number.isFinite(n))) continue;
+    const [left, top, width, height] = numbers;
+    areas.push({ left, top, width, height, ellipse: words[4] === "ellipse" });
+  }
+  return areas;
+}
+
+/** Lights the areas of `arg` on black, hiding any image or video; null or "" clears. */
+function highlight(arg, { again = true } = {}) {
+  const wanted = arg || null;
+  if (!again && wanted === highlighted && projected === null) return;
+  projected = null;
+  highlighted = wanted;
+  stage.replaceChildren(
+    ...parseAreas(wanted).map(({ left, top, width, height, ellipse }) => {
+      const area = document.createElement("div");
+      area.className = ellipse ? "docent-highlight ellipse" : "docent-highlight";
+      Object.assign(area.style, {
+        left: `${left * 100}%`,
+        top: `${top * 100}%`,
+        width: `${width * 100}%`,
+        height: `${height * 100}%`,
+      });
+      return area;
+    }),
+  );
+}
+
 function project(file, { again = true } = {}) {
+  if (highlighted !== null) {
+    highlighted = null;
+    for (const area of stage.querySelectorAll(".docent-highlight")) area.remove();
+  }
   if (!again && file === projected) return;
   if (!again && file && ended.has(file)) return; // a welcome after a reconnect: it is over
   projected = file ?? null;
@@ -81,9 +126,13 @@ keepConnected({
   name: "projector",
   onFrame: (frame) => {
     if (frame.type === "welcome" || frame.type === "state") {
-      project(frame.state?.display?.projector ?? null, { again: false });
+      const display = frame.state?.display ?? {};
+      if (display.highlight) highlight(display.highlight, { again: false });
+      else project(display.projector ?? null, { again: false });
     } else if (frame.type === "command" && frame.verb === "PROJECT") {
       project(frame.arg ?? null);
+    } else if (frame.type === "command" && frame.verb === "HIGHLIGHT") {
+      highlight(frame.arg ?? null);
     }
   },
 });

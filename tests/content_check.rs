@@ -297,6 +297,64 @@ fn verbs_and_arguments_are_checked() {
 }
 
 #[test]
+fn highlight_areas_are_checked_number_by_number() {
+    let acts = yaml(&[
+        "- Label: A",
+        "  Cmds:",
+        "    - HIGHLIGHT 0.10 0.20 0.35 0.25",
+        "    - HIGHLIGHT 0.1 0.1 0.2 0.2; 0.5 0.5 0.3 0.3 ellipse",
+        "    - HIGHLIGHT",
+        "    - HIGHLIGHT 0.10 0.20 1.35 0.25",
+        "    - HIGHLIGHT 0.8 0.2 0.3 0.25",
+        "    - HIGHLIGHT 0.1 0.2 0.3",
+        "    - HIGHLIGHT 0 0 1 1; 0.5 half 0.1 0.1",
+        "    - \"HIGHLIGHT 0.1 0.2 0.3 0.4 circle\"",
+        "    - HIGHLIGHT 0.1 0.2 0.3 0.4;",
+    ]);
+    let dir = bundle(&[("acts.yaml", &acts)]);
+    let report = check(dir.path());
+    assert_eq!(
+        places(&report),
+        [
+            ("bad-argument", "acts.yaml:6:27".to_owned()),
+            ("bad-argument", "acts.yaml:7:25".to_owned()),
+            ("bad-argument", "acts.yaml:8:17".to_owned()),
+            ("bad-argument", "acts.yaml:9:30".to_owned()),
+            ("bad-argument", "acts.yaml:10:34".to_owned()),
+            ("bad-argument", "acts.yaml:11:32".to_owned()),
+        ]
+    );
+    let messages: Vec<&str> = report
+        .diagnostics
+        .iter()
+        .map(|d| d.message.as_str())
+        .collect();
+    assert!(
+        messages[0].contains("The width `1.35` must be a fraction"),
+        "{}",
+        messages[0]
+    );
+    assert!(
+        messages[1].contains("past the right edge"),
+        "{}",
+        messages[1]
+    );
+    assert!(messages[2].contains("Found 3 value(s)"), "{}", messages[2]);
+    assert!(
+        messages[3].contains("`half` is not a number"),
+        "{}",
+        messages[3]
+    );
+    assert!(
+        messages[4].contains("`circle` is not a shape"),
+        "{}",
+        messages[4]
+    );
+    assert!(messages[5].contains("no area between"), "{}", messages[5]);
+    assert_plain(&report);
+}
+
+#[test]
 fn site_verbs_follow_their_argument_rule_and_waypoints_their_bounds() {
     let config = yaml(&[
         "drive:",

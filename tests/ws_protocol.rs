@@ -211,3 +211,31 @@ async fn a_client_that_only_triggers_can_decline_the_event_stream() {
     assert_eq!(quiet.recv().await["type"], "triggered");
     server.stop().await;
 }
+
+#[tokio::test]
+async fn a_kiosk_reports_pages_it_shows_on_its_own() {
+    let server = fig4().await;
+    let mut op = server.operator().await;
+    let mut kiosk = server
+        .client(json!({"type": "hello", "role": "kiosk"}))
+        .await;
+    kiosk
+        .send(json!({"type": "page", "page": "Welcome/Welcome.html"}))
+        .await;
+    let changed = op.event("display.changed").await;
+    assert_eq!(changed["page"], "Welcome/Welcome.html");
+    let (_, state) = server.get("/api/state").await;
+    assert_eq!(state["display"]["page"], "Welcome/Welcome.html");
+    for page in ["../acts.yaml", "nowhere.html"] {
+        kiosk.send(json!({"type": "page", "page": page})).await;
+        assert_eq!(
+            kiosk.recv_type("error").await["code"],
+            "unknown-page",
+            "{page}"
+        );
+    }
+    op.send(json!({"type": "page", "page": "Welcome/Welcome.html"}))
+        .await;
+    assert_eq!(op.recv_type("error").await["code"], "forbidden");
+    server.stop().await;
+}

@@ -1,5 +1,5 @@
-//! The `display` adapter: `DISPLAY_PAGE` and `PROJECT` change the server's display state and go
-//! to every connected kiosk or projector client. A client that connects later gets the current
+//! The `display` adapter: `DISPLAY_PAGE`, `PROJECT` and `HIGHLIGHT` change the server's display
+//! state and go to every connected kiosk or projector client. A client that connects later gets the current
 //! state at once, taken under the same lock as changes, so it neither misses nor repeats one.
 
 use std::sync::{Arc, Mutex};
@@ -24,6 +24,8 @@ pub struct Display {
     pub page: Option<String>,
     /// File under `media/` on the projector; `None` is black.
     pub projector: Option<String>,
+    /// The `HIGHLIGHT` argument lit on the projector instead of a file; `None` when cleared.
+    pub highlight: Option<String>,
 }
 
 /// The display state and the channels to display clients. Shared by the adapter and the
@@ -41,6 +43,7 @@ impl DisplayState {
             current: Mutex::new(Display {
                 page: home,
                 projector: None,
+                highlight: None,
             }),
             kiosk: broadcast::channel(DISPLAY_CHANNEL_CAPACITY).0,
             projector: broadcast::channel(DISPLAY_CHANNEL_CAPACITY).0,
@@ -62,6 +65,17 @@ impl DisplayState {
             _ => None,
         };
         (current.clone(), rx)
+    }
+
+    /// A kiosk shows `page` on its own: the state follows (and the log says so) without
+    /// sending anything to display clients.
+    pub fn page_shown(&self, page: String, hub: &Hub) {
+        let mut current = self.lock();
+        if current.page.as_deref() == Some(page.as_str()) {
+            return;
+        }
+        current.page = Some(page);
+        hub.publish(display_changed(&current));
     }
 
     fn lock(&self) -> std::sync::MutexGuard<'_, Display> {
@@ -95,8 +109,15 @@ impl Adapter for DisplayAdapter {
                 current.page = arg;
                 &self.state.kiosk
             }
+            // The projector shows a file or highlights, never both: each replaces the other.
             Verb::Project => {
                 current.projector = arg;
+                current.highlight = None;
+                &self.state.projector
+            }
+            Verb::Highlight => {
+                current.highlight = arg;
+                current.projector = None;
                 &self.state.projector
             }
             _ => {
@@ -112,6 +133,7 @@ impl Adapter for DisplayAdapter {
         self.hub.publish(EventKind::DisplayChanged {
             page: current.page.clone(),
             projector: current.projector.clone(),
+            highlight: current.highlight.clone(),
         });
         drop(current);
         reply.finish(Outcome::Done);
@@ -123,5 +145,14 @@ impl Adapter for DisplayAdapter {
 
     fn status(&self) -> AdapterStatus {
         AdapterStatus::default()
+    }
+}
+
+/// The event that says what `display` now shows.
+fn display_changed(display: &Display) -> EventKind {
+    EventKind::DisplayChanged {
+        page: display.page.clone(),
+        projector: display.projector.clone(),
+        highlight: display.highlight.clone(),
     }
 }

@@ -68,7 +68,7 @@ impl Devices {
         };
         let mut routes: HashMap<Verb, Arc<dyn Adapter>> = HashMap::new();
         routes.insert(Verb::Say, pick(speech));
-        for verb in [Verb::DisplayPage, Verb::Project] {
+        for verb in [Verb::DisplayPage, Verb::Project, Verb::Highlight] {
             routes.insert(verb, pick(config.display.adapter));
         }
         for verb in [Verb::SetWaypoint, Verb::DriveStart, Verb::DriveStop] {
@@ -146,6 +146,7 @@ mod tests {
             Verb::Say,
             Verb::DisplayPage,
             Verb::Project,
+            Verb::Highlight,
             Verb::SetWaypoint,
             Verb::DriveStart,
             Verb::DriveStop,
@@ -153,7 +154,9 @@ mod tests {
         ];
         assert_eq!(
             names(&router, &verbs),
-            ["log", "display", "display", "sim", "sim", "sim", "none"]
+            [
+                "log", "display", "display", "display", "sim", "sim", "sim", "none"
+            ]
         );
         let all: Vec<&str> = router.adapters().iter().map(|a| a.name()).collect();
         assert_eq!(all, ["display", "log", "sim"]);
@@ -184,6 +187,7 @@ mod tests {
         let verbs = [
             Verb::Say,
             Verb::Project,
+            Verb::Highlight,
             Verb::DriveStop,
             Verb::Site("LIGHTS".into()),
             Verb::Site("ARM".into()),
@@ -191,7 +195,7 @@ mod tests {
         ];
         assert_eq!(
             names(&router, &verbs),
-            ["ws", "ws", "ws", "log", "ws", "none"]
+            ["ws", "ws", "ws", "ws", "log", "ws", "none"]
         );
         assert!(
             devices.drive.is_none(),

@@ -12,6 +12,7 @@ use std::sync::Arc;
 use crate::content::config::{ArgRule, SiteConfig};
 use crate::content::diagnostic::Diagnostic;
 use crate::content::duration::parse_duration;
+use crate::content::highlight::{parse_highlight, words_with_offsets};
 use crate::content::model::{CommandSpec, Located, Pos, Verb};
 use crate::content::paths::{BundleArea, PathError, list_files, resolve_in_bundle};
 use crate::content::suggest::{closest, did_you_mean};
@@ -169,6 +170,13 @@ impl<'a> CommandChecker<'a> {
             }
             (Verb::SetWaypoint, _) => {
                 self.check_waypoint(arg.unwrap_or(""), cmd, arg_start, out);
+                None
+            }
+            (Verb::Highlight, Some(areas)) => {
+                for problem in parse_highlight(areas).err().unwrap_or_default() {
+                    let pos = offset_pos(cmd, arg_start + problem.offset);
+                    out.push(Diagnostic::error("bad-argument", &pos, problem.message));
+                }
                 None
             }
             (Verb::DriveStart | Verb::DriveStop, Some(extra)) => Some((
@@ -347,21 +355,6 @@ fn media_format(file: &str, pos: &Pos, out: &mut Vec<Diagnostic>) {
     ));
 }
 
-/// The words of `s` with their byte offsets, shifted by `base`.
-fn words_with_offsets(s: &str, base: usize) -> Vec<(usize, &str)> {
-    let mut words = Vec::new();
-    let mut rest = s;
-    let mut offset = base;
-    while let Some(start) = rest.find(|c: char| !c.is_whitespace()) {
-        let tail = &rest[start..];
-        let end = tail.find(char::is_whitespace).unwrap_or(tail.len());
-        words.push((offset + start, &tail[..end]));
-        offset += start + end;
-        rest = &tail[end..];
-    }
-    words
-}
-
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -437,11 +430,25 @@ mod tests {
     }
 
     #[test]
-    fn words_keep_their_byte_offsets() {
+    fn highlight_problems_point_at_the_bad_number() {
+        let (spec, problems) = check(&command("HIGHLIGHT 0.1 0.2 0.35 0.25 ellipse", 7, Some(1)));
+        assert_eq!(spec.map(|s| s.verb), Some(Verb::Highlight));
+        assert!(problems.is_empty(), "{problems:?}");
+        let (spec, problems) = check(&command("HIGHLIGHT", 7, Some(1)));
+        assert_eq!(spec.and_then(|s| s.arg), None, "no argument clears");
+        assert!(problems.is_empty(), "{problems:?}");
+        // Column 7 is the quote; the argument starts at column 18.
         assert_eq!(
-            words_with_offsets(" 1  2.5\t3", 10),
-            [(11, "1"), (14, "2.5"), (18, "3")]
+            check(&command("HIGHLIGHT 0.1 0.2 1.35 0.25", 7, Some(1))),
+            (None, vec![("bad-argument", 26)])
         );
-        assert!(words_with_offsets("   ", 0).is_empty());
+        assert_eq!(
+            check(&command("HIGHLIGHT 0 0 1 1; 0.5 0.5 0.25 0.75", 7, Some(1))).1,
+            [("bad-argument", 40)]
+        );
+        assert_eq!(
+            check(&command("HIGHLIGHT 0.1 0.2 0.3", 7, None)).1,
+            [("bad-argument", 7)]
+        );
     }
 }

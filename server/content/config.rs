@@ -140,6 +140,8 @@ impl AfterVideo {
 pub struct ProjectorConfig {
     /// What stays on screen after a video.
     pub after_video: AfterVideo,
+    /// The soft edge of `HIGHLIGHT` areas, as a fraction of the projected width (0 to 0.5).
+    pub highlight_edge: f64,
 }
 
 /// Everything `docent.yaml` can set, with defaults filled in.
@@ -190,6 +192,7 @@ impl Default for SiteConfig {
             },
             projector: ProjectorConfig {
                 after_video: AfterVideo::Black,
+                highlight_edge: 0.02,
             },
             adapter_timeout: Duration::from_secs(30),
             verbs: BTreeMap::new(),

@@ -12,6 +12,7 @@
 //! - `pages`: finding `data-act` labels in HTML pages.
 //! - `paths`: resolving a relative path inside the bundle (shared with the HTTP file routes).
 //! - `duration`: `2s`, `500ms`, `1.5m`.
+//! - `highlight`: the areas of a `HIGHLIGHT` argument.
 //! - `suggest`: "did you mean" for labels, keys, verbs and file names.
 //! - `load`: putting it together: `load_bundle`.
 
@@ -23,6 +24,7 @@ mod acts_file;
 mod commands;
 mod config_file;
 mod duration;
+mod highlight;
 mod load;
 mod pages;
 mod paths;

@@ -80,8 +80,8 @@ pub struct Variant {
     pub alternatives: Vec<Located<String>>,
 }
 
-/// The closed set of built-in verbs (paper, Table 1, plus `WAIT` and `HIGHLIGHT`-like later
-/// additions); verbs a site declares in `docent.yaml` are [`Verb::Site`].
+/// The closed set of built-in verbs (paper, Table 1, plus `WAIT` and `HIGHLIGHT`); verbs a
+/// site declares in `docent.yaml` are [`Verb::Site`].
 #[derive(Clone, Debug, PartialEq, Eq, Hash, PartialOrd, Ord)]
 pub enum Verb {
     /// `SAY text`: speak the text.
@@ -98,15 +98,19 @@ pub enum Verb {
     DriveStop,
     /// `WAIT` (until the act's earlier commands are done) or `WAIT 2s` (pause).
     Wait,
+    /// `HIGHLIGHT left top width height [ellipse]; ...`: light areas of the projected image in
+    /// white on black; `HIGHLIGHT` alone turns the light off.
+    Highlight,
     /// A verb declared in `docent.yaml`, routed with its argument to the adapter named there.
     Site(Arc<str>),
 }
 
 impl Verb {
     /// Every built-in verb, in the order the docs list them.
-    pub const BUILT_IN: [Verb; 7] = [
+    pub const BUILT_IN: [Verb; 8] = [
         Verb::Say,
         Verb::Project,
+        Verb::Highlight,
         Verb::DisplayPage,
         Verb::SetWaypoint,
         Verb::DriveStart,
@@ -124,6 +128,7 @@ impl Verb {
             Verb::DriveStart => "DRIVE_START",
             Verb::DriveStop => "DRIVE_STOP",
             Verb::Wait => "WAIT",
+            Verb::Highlight => "HIGHLIGHT",
             Verb::Site(name) => name,
         }
     }

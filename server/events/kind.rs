@@ -195,6 +195,8 @@ pub enum EventKind {
         page: Option<String>,
         /// File under `media/` on the projector.
         projector: Option<String>,
+        /// The `HIGHLIGHT` areas lit on the projector, as written; `None` when cleared.
+        highlight: Option<String>,
     },
     /// The drive base's pose.
     #[serde(rename = "pose")]

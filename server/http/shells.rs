@@ -53,6 +53,8 @@ pub struct ProjectorShell<'a> {
     pub media_path: &'a str,
     /// `black` or `hold`: what stays on screen after a video.
     pub after_video: &'a str,
+    /// The soft edge of highlights, a fraction of the projected width.
+    pub highlight_edge: f64,
 }
 
 impl<'a> ProjectorShell<'a> {
@@ -62,6 +64,7 @@ impl<'a> ProjectorShell<'a> {
             ws_path: WS_PATH,
             media_path: "/media/",
             after_video: config.projector.after_video.as_str(),
+            highlight_edge: config.projector.highlight_edge,
         }
     }
 }
@@ -132,9 +135,12 @@ mod tests {
         assert!(page.contains(r#"data-ws="/ws""#), "{page}");
         assert!(page.contains(r#"data-media="/media/""#), "{page}");
         assert!(page.contains(r#"data-after-video="black""#), "{page}");
+        assert!(page.contains(r#"data-highlight-edge="0.02""#), "{page}");
         assert!(page.contains(r#"src="/static/projector.js""#), "{page}");
         config.projector.after_video = AfterVideo::Hold;
+        config.projector.highlight_edge = 0.0;
         let page = ProjectorShell::new(&config).render().expect("renders");
         assert!(page.contains(r#"data-after-video="hold""#), "{page}");
+        assert!(page.contains(r#"data-highlight-edge="0""#), "{page}");
     }
 }

@@ -11,6 +11,7 @@ use tokio::sync::oneshot;
 use tokio_util::sync::CancellationToken;
 
 use crate::adapters::Outcome;
+use crate::content::{BundleArea, resolve_in_bundle};
 use crate::dispatch::TriggerRequest;
 use crate::events::{ClientRole, EventKind};
 use crate::state::{AppState, ClientInfo};
@@ -219,6 +220,7 @@ impl Session {
                     ),
                 }
             }
+            ClientFrame::Page { page } => self.page_shown(page),
             ClientFrame::Started { id } => self.answer(id, None),
             ClientFrame::Done { id } => self.answer(id, Some(Outcome::Done)),
             ClientFrame::Failed { id, reason } => {
@@ -247,6 +249,20 @@ impl Session {
                 None
             }
         }
+    }
+
+    /// A kiosk reports a page it shows on its own, so the server's display state (what a
+    /// reconnecting kiosk is sent back to, what the log says) stays true.
+    fn page_shown(&self, page: String) {
+        if self.allowed(&[ClientRole::Kiosk], None).is_none() {
+            return;
+        }
+        let root = &self.state.dispatcher.bundle().root;
+        if resolve_in_bundle(root, BundleArea::Pages, &page).is_err() {
+            let message = format!("{page:?} is not a page of this bundle");
+            return self.reply_error("unknown-page", &message, None, None);
+        }
+        self.state.devices.display.page_shown(page, &self.state.hub);
     }
 
     /// Records a trigger this client's role may not make.

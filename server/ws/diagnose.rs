@@ -34,6 +34,6 @@ pub fn diagnose(text: &str, error: &serde_json::Error) -> (&'static str, String,
 }
 
 /// Every frame type a client may send.
-const KNOWN_TYPES: [&str; 7] = [
-    "hello", "trigger", "stop", "context", "started", "done", "failed",
+const KNOWN_TYPES: [&str; 8] = [
+    "hello", "trigger", "stop", "context", "page", "started", "done", "failed",
 ];

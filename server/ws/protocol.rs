@@ -63,6 +63,11 @@ pub enum ClientFrame {
         #[serde(default, rename = "ref")]
         reference: Option<String>,
     },
+    /// A kiosk shows another page of the bundle on its own (a link, the idle return home).
+    Page {
+        /// The page, relative to `pages/`.
+        page: String,
+    },
     /// An adapter began a command.
     Started {
         /// Command id.

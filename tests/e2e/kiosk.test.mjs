@@ -220,3 +220,21 @@ test('after the idle time without a touch the kiosk returns to the home page', {
     removeTemp(bundle);
   }
 });
+test('the idle return home is known to the server: display state and corpus log', { timeout: 60_000 }, async () => {
+  // Otherwise GET /api/state and the corpus say the kiosk still shows other.html, and a
+  // reconnecting kiosk would be sent back there.
+  const bundle = idleBundle();
+  try {
+    await withKiosk(bundle, async (kiosk) => {
+      await idleReturn(kiosk);
+      await kiosk.operator.waitForEvent((e) => e.type === 'display.changed' && e.page === 'index.html', {
+        timeout: 5_000,
+        what: 'the server publishing display.changed to index.html after the idle return',
+      });
+      const state = await kiosk.server.api('/api/state');
+      assert.equal(state.display.page, 'index.html');
+    });
+  } finally {
+    removeTemp(bundle);
+  }
+});

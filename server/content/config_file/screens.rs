@@ -1,5 +1,6 @@
 //! The `kiosk:` and `projector:` sections of `docent.yaml`: how the touchscreen and projector
-//! shells behave (idle return home, idle act, what follows a video). Whether the idle act
+//! shells behave (idle return home, idle act, what follows a video, the soft edge of
+//! highlights). Whether the idle act
 //! exists is checked later, with the acts (`load.rs`).
 
 use crate::content::acts_file::yaml::Node;
@@ -12,6 +13,9 @@ use super::Reader;
 const IDLE_USAGE: &str = "`idle` is how long the touchscreen waits without a touch before it \
                           returns to the home page: a length of time with its unit, e.g. \
                           `idle: 2m` or `idle: 90s`; `idle: 0s` turns it off.";
+const HIGHLIGHT_EDGE_USAGE: &str = "`highlight_edge` is how soft the edge of a HIGHLIGHT area \
+                                    is, as a fraction of the projected width: a number from 0 \
+                                    (a sharp edge) to 0.5, e.g. `highlight_edge: 0.02`.";
 const IDLE_ACT_USAGE: &str = "`idle_act` is the label of the act to trigger when the \
                               touchscreen goes idle, e.g. `idle_act: INVITE`.";
 
@@ -44,7 +48,14 @@ impl Reader {
 
     /// Reads `projector:` into `config.projector`.
     pub(super) fn projector(&mut self, node: &Node, config: &mut SiteConfig) {
-        for (_, value) in self.entries(node, &["after_video"], "projector") {
+        for (key, value) in self.entries(node, &["after_video", "highlight_edge"], "projector") {
+            if key == "highlight_edge" {
+                let edge = |t: &str| t.parse::<f64>().ok().filter(|e| (0.0..=0.5).contains(e));
+                if let Some(edge) = self.setting(value, HIGHLIGHT_EDGE_USAGE, edge) {
+                    config.projector.highlight_edge = edge;
+                }
+                continue;
+            }
             let options = [("black", AfterVideo::Black), ("hold", AfterVideo::Hold)];
             if let Some(after) = self.choice(value, "projector's `after_video`", &options) {
                 config.projector.after_video = after;
@@ -78,6 +89,32 @@ mod tests {
             ("INVITE", 3, 13)
         );
         assert_eq!(file.config.projector.after_video, AfterVideo::Hold);
+        assert_eq!(file.config.projector.highlight_edge, 0.02);
+    }
+
+    #[test]
+    fn the_highlight_edge_is_a_fraction_up_to_a_half() {
+        let edge = |text: &str| parse(text).config.projector.highlight_edge;
+        assert_eq!(edge("projector: { highlight_edge: 0.05 }\n"), 0.05);
+        assert_eq!(edge("projector: { highlight_edge: 0 }\n"), 0.0);
+        assert_eq!(edge("projector: { highlight_edge: 0.5 }\n"), 0.5);
+        for bad in ["0.6", "-0.01", "soft", "2%", ".nan"] {
+            let file = parse(&format!("projector:\n  highlight_edge: {bad}\n"));
+            let located: Vec<_> = file
+                .diagnostics
+                .iter()
+                .map(|d| (d.code, d.line, d.column))
+                .collect();
+            assert_eq!(located, [("config-bad-value", 2, 19)], "{bad}");
+            assert!(
+                file.diagnostics[0]
+                    .message
+                    .contains("from 0 (a sharp edge) to 0.5"),
+                "{bad}: {}",
+                file.diagnostics[0].message
+            );
+            assert_eq!(file.config.projector.highlight_edge, 0.02, "default kept");
+        }
     }
 
     #[test]
