@@ -5,6 +5,7 @@
 // act), and offers `window.docentShell` to the page script (docent-page.js).
 
 import { encodePath, keepConnected } from "./socket.js";
+import { startBrowserSpeech } from "./speech.js";
 
 const TRIGGER_ANSWER_TIMEOUT_MS = 10_000;
 const IDLE_CHECK_MS = 1_000;
@@ -180,3 +181,7 @@ for (const type of ["contextmenu", "selectstart", "dragstart", "gesturestart"]) 
 }
 
 for (const frame of frames) frame.addEventListener("load", () => reportShown(frame));
+
+if (config.speech === "browser") {
+  startBrowserSpeech({ path: config.ws || "/ws", voice: config.voice, wpm: Number(config.rate) });
+}

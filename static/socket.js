@@ -11,10 +11,11 @@ const OFFLINE_BANNER_AFTER_MS = 3_000;
 /**
  * Opens the socket and keeps it open.
  * @param {{path: string, role: string, name?: string,
- *          onFrame: (frame: object) => void, onOnline?: (online: boolean) => void}} options
+ *          hello?: object, onFrame: (frame: object) => void,
+ *          onOnline?: (online: boolean) => void}} options (`hello`: extra fields, e.g. verbs)
  * @returns {{send: (frame: object) => boolean}} `send` is false when not connected.
  */
-export function keepConnected({ path, role, name = null, onFrame, onOnline = () => {} }) {
+export function keepConnected({ path, role, name = null, hello = {}, onFrame, onOnline = () => {} }) {
   const url = new URL(path, location.href);
   url.protocol = url.protocol === "https:" ? "wss:" : "ws:";
   const banner = document.getElementById("docent-offline");
@@ -37,7 +38,7 @@ export function keepConnected({ path, role, name = null, onFrame, onOnline = () 
   const open = () => {
     const ws = new WebSocket(url);
     socket = ws;
-    ws.onopen = () => ws.send(JSON.stringify({ type: "hello", role, name }));
+    ws.onopen = () => ws.send(JSON.stringify({ ...hello, type: "hello", role, name }));
     ws.onmessage = (message) => {
       let frame;
       try {

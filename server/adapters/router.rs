@@ -22,8 +22,10 @@ pub struct Devices {
     pub drive: Option<Arc<DriveSim>>,
     /// External adapter connections.
     pub ws: Arc<WsAdapters>,
-    /// The speech adapter actually used (`espeak`, `log` or `ws`).
+    /// The speech adapter actually used (`espeak`, `log`, `ws` or `browser`).
     pub speech: AdapterKind,
+    /// The name of the adapter that carries out `SAY` (`browser` speech runs as `ws`).
+    pub speech_adapter: &'static str,
 }
 
 impl Devices {
@@ -58,7 +60,8 @@ impl Devices {
             match kind {
                 AdapterKind::Espeak => espeak.clone().unwrap_or_else(|| log.clone()),
                 AdapterKind::Log => log.clone(),
-                AdapterKind::Ws => ws.clone(),
+                // The kiosk shell serves browser speech as a websocket adapter.
+                AdapterKind::Ws | AdapterKind::Browser => ws.clone(),
                 AdapterKind::Display => display_adapter.clone(),
                 AdapterKind::DriveSim => match &drive {
                     Some(d) => d.clone(),
@@ -77,12 +80,14 @@ impl Devices {
         for (name, site) in &config.verbs {
             routes.insert(Verb::Site(name.as_str().into()), pick(site.adapter));
         }
+        let speech_adapter = pick(speech).name();
         (
             Devices {
                 display,
                 drive,
                 ws,
                 speech,
+                speech_adapter,
             },
             Router::new(routes),
         )

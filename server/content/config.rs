@@ -15,6 +15,9 @@ pub enum AdapterKind {
     Log,
     /// `ws`: external adapter processes connected over the websocket.
     Ws,
+    /// `browser`: speech by the kiosk page itself (Web Speech API); the shell connects as a
+    /// websocket adapter for `SAY`.
+    Browser,
     /// `display`: the server's display state, pushed to kiosk and projector clients.
     Display,
     /// `sim`: the built-in simulated drive base.
@@ -28,6 +31,7 @@ impl AdapterKind {
             AdapterKind::Espeak => "espeak",
             AdapterKind::Log => "log",
             AdapterKind::Ws => "ws",
+            AdapterKind::Browser => "browser",
             AdapterKind::Display => "display",
             AdapterKind::DriveSim => "sim",
         }

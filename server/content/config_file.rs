@@ -144,6 +144,7 @@ impl Reader {
                         ("espeak", AdapterKind::Espeak),
                         ("log", AdapterKind::Log),
                         ("ws", AdapterKind::Ws),
+                        ("browser", AdapterKind::Browser),
                     ];
                     speech.adapter = self
                         .choice(value, "speech adapter", &kinds)

@@ -163,7 +163,7 @@ pub async fn put_context(
 /// `GET /api/state`: display, pose, speech, queues, context and connected clients.
 pub async fn get_state(State(state): State<AppState>) -> Json<Value> {
     let adapters = state.dispatcher.adapter_status();
-    let speaking = (adapters.get(state.devices.speech.as_str())).and_then(|s| {
+    let speaking = (adapters.get(state.devices.speech_adapter)).and_then(|s| {
         s.current
             .as_deref()?
             .strip_prefix("SAY ")

@@ -7,7 +7,7 @@ use axum::extract::State;
 use axum::http::header;
 use axum::response::{IntoResponse, Response};
 
-use crate::content::config::SiteConfig;
+use crate::content::config::{AdapterKind, SiteConfig};
 use crate::http::AppError;
 use crate::state::AppState;
 
@@ -28,6 +28,12 @@ pub struct KioskShell<'a> {
     pub idle_ms: u128,
     /// The act triggered on going idle, if any.
     pub idle_act: Option<&'a str>,
+    /// Whether the kiosk speaks `SAY` itself (`speech: {adapter: browser}`).
+    pub browser_speech: bool,
+    /// Voice (a language tag or voice name) for browser speech.
+    pub voice: &'a str,
+    /// Words per minute for browser speech.
+    pub rate: u32,
 }
 
 impl<'a> KioskShell<'a> {
@@ -39,6 +45,9 @@ impl<'a> KioskShell<'a> {
             home: &config.home,
             idle_ms: config.kiosk.idle.as_millis(),
             idle_act: config.kiosk.idle_act.as_deref(),
+            browser_speech: config.speech.adapter == Some(AdapterKind::Browser),
+            voice: &config.speech.voice,
+            rate: config.speech.rate_wpm,
         }
     }
 }

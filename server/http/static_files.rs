@@ -15,6 +15,7 @@ const CSS: &str = "text/css; charset=utf-8";
 const FILES: &[(&str, &str, &str)] = &[
     ("kiosk.js", JS, include_str!("../../static/kiosk.js")),
     ("socket.js", JS, include_str!("../../static/socket.js")),
+    ("speech.js", JS, include_str!("../../static/speech.js")),
     ("kiosk.css", CSS, include_str!("../../static/kiosk.css")),
     (
         "docent-page.js",
