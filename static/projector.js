@@ -5,6 +5,9 @@
 // `left top width height` in fractions of the screen, `ellipse` for an oval, several areas
 // separated by `;` (checked by `docent check`); HIGHLIGHT alone, or a PROJECT, clears them.
 // The soft edge is `projector: highlight_edge` (a fraction of the width), as a blur.
+// A video projected by a PROJECT command is answered with the command's id: `done` when it
+// ends, `failed` on a media error, so that the server's WAIT can follow the film. Ids belong to
+// one connection: after a reconnect the server has already settled them, so they are dropped.
 
 import { encodePath, keepConnected } from "./socket.js";
 
@@ -21,6 +24,14 @@ stage.style.setProperty("--highlight-edge", Number.isFinite(edge) ? String(edge)
 let projected = null; // the file on show or loading; null is black
 let highlighted = null; // the HIGHLIGHT argument on show; null is none
 const ended = new Set(); // videos that played to their end (not replayed by a reconnect)
+let connection = 0; // counts welcomes: a command id is answered only on its own connection
+let link = null; // the socket, set once connected
+
+/** Answers the PROJECT command `id` (from connection `from`), if there is one to answer. */
+function answer(id, from, frame) {
+  if (id == null || from !== connection || !link) return;
+  link.send({ ...frame, id });
+}
 
 /** Replaces what is on the stage by `element` once it is ready to be seen. */
 function reveal(element, file) {
@@ -72,7 +83,7 @@ function highlight(arg, { again = true } = {}) {
   );
 }
 
-function project(file, { again = true } = {}) {
+function project(file, { again = true, id = null } = {}) {
   if (highlighted !== null) {
     highlighted = null;
     for (const area of stage.querySelectorAll(".docent-highlight")) area.remove();
@@ -94,12 +105,24 @@ function project(file, { again = true } = {}) {
     image.src = src;
   } else if (VIDEOS.has(extension)) {
     const video = document.createElement("video");
+    const from = connection;
+    let answered = false;
+    const settle = (frame) => {
+      if (answered) return;
+      answered = true;
+      answer(id, from, frame);
+    };
+    const fail = (reason) => settle({ type: "failed", reason });
     video.className = "docent-media loading";
     video.autoplay = true;
     video.playsInline = true;
     video.addEventListener("loadeddata", () => reveal(video, file), { once: true });
-    video.addEventListener("error", () => console.error(`docent: cannot play ${src}`));
+    video.addEventListener("error", () => {
+      console.error(`docent: cannot play ${src}`);
+      fail(`the projector cannot play ${file} (media error ${video.error?.code ?? "unknown"})`);
+    });
     video.addEventListener("ended", () => {
+      settle({ type: "done" });
       ended.add(file);
       if (!holdAfterVideo && projected === file) {
         projected = null;
@@ -112,7 +135,10 @@ function project(file, { again = true } = {}) {
       // Without the kiosk launcher's autoplay flag, a browser only plays muted videos.
       console.warn("docent: the browser refused to play with sound; playing muted", error);
       video.muted = true;
-      video.play().catch((e) => console.error(`docent: cannot play ${src}`, e));
+      video.play().catch((e) => {
+        console.error(`docent: cannot play ${src}`, e);
+        if (video.error == null) fail(`the projector cannot play ${file}: ${e}`);
+      });
     });
   } else {
     console.warn(`docent: the projector shows images and videos only, not ${file}`);
@@ -120,17 +146,18 @@ function project(file, { again = true } = {}) {
   }
 }
 
-keepConnected({
+link = keepConnected({
   path: config.ws || "/ws",
   role: "projector",
   name: "projector",
   onFrame: (frame) => {
+    if (frame.type === "welcome") connection += 1;
     if (frame.type === "welcome" || frame.type === "state") {
       const display = frame.state?.display ?? {};
       if (display.highlight) highlight(display.highlight, { again: false });
       else project(display.projector ?? null, { again: false });
     } else if (frame.type === "command" && frame.verb === "PROJECT") {
-      project(frame.arg ?? null);
+      project(frame.arg ?? null, { id: frame.id ?? null });
     } else if (frame.type === "command" && frame.verb === "HIGHLIGHT") {
       highlight(frame.arg ?? null);
     }

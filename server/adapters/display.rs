@@ -1,7 +1,15 @@
 //! The `display` adapter: `DISPLAY_PAGE`, `PROJECT` and `HIGHLIGHT` change the server's display
 //! state and go to every connected kiosk or projector client. A client that connects later gets the current
 //! state at once, taken under the same lock as changes, so it neither misses nor repeats one.
+//!
+//! A `PROJECT` of a video (by its extension, the list `static/projector.js` plays) is done
+//! when a projector client reports the film's end (`done`, or `failed` on a media error), so a
+//! `WAIT` can sequence speech after it. The first answer from any projector settles it. With
+//! no projector connected it is done at once: there is no film to wait for. A later `PROJECT`
+//! or `HIGHLIGHT`, or a stop, cancels the one still playing; the last projector leaving fails
+//! it. Images, highlights and pages are done at once.
 
+use std::collections::{BTreeMap, HashSet};
 use std::sync::{Arc, Mutex};
 
 use serde::Serialize;
@@ -13,6 +21,18 @@ use crate::events::{ClientRole, EventKind, Hub};
 use crate::sync::lock;
 use crate::ws::outbox::Frame;
 use crate::ws::protocol::command_frame;
+
+/// File extensions the projector plays as videos (as in `static/projector.js`).
+const VIDEO_EXTENSIONS: [&str; 3] = ["webm", "mp4", "ogv"];
+
+/// Whether the projector plays `file` as a video, by its extension.
+pub fn is_video(file: &str) -> bool {
+    file.rsplit_once('.').is_some_and(|(_, ext)| {
+        VIDEO_EXTENSIONS
+            .iter()
+            .any(|video| ext.eq_ignore_ascii_case(video))
+    })
+}
 
 /// How many display frames a slow client may fall behind before it is resynchronised.
 const DISPLAY_CHANNEL_CAPACITY: usize = 256;
@@ -34,6 +54,16 @@ pub struct DisplayState {
     current: Mutex<Display>,
     kiosk: broadcast::Sender<Frame>,
     projector: broadcast::Sender<Frame>,
+    /// Connected projector clients and the video commands they are playing. Locked after
+    /// `current` when both are needed; no reply is finished under it.
+    films: Mutex<Films>,
+}
+
+/// Projector clients and the `PROJECT` commands of videos waiting for their end.
+#[derive(Default)]
+struct Films {
+    projectors: HashSet<u64>,
+    playing: BTreeMap<u64, Reply>,
 }
 
 impl DisplayState {
@@ -47,7 +77,49 @@ impl DisplayState {
             }),
             kiosk: broadcast::channel(DISPLAY_CHANNEL_CAPACITY).0,
             projector: broadcast::channel(DISPLAY_CHANNEL_CAPACITY).0,
+            films: Mutex::default(),
         }
+    }
+
+    /// A projector client said hello: videos projected from now on wait for its answer.
+    pub fn projector_joined(&self, client: u64) {
+        lock(&self.films).projectors.insert(client);
+    }
+
+    /// A projector client left; when it was the last one, the videos still playing fail.
+    pub fn projector_left(&self, client: u64) {
+        let orphans = {
+            let mut films = lock(&self.films);
+            films.projectors.remove(&client);
+            match films.projectors.is_empty() {
+                true => std::mem::take(&mut films.playing),
+                false => BTreeMap::new(),
+            }
+        };
+        for reply in orphans.into_values() {
+            reply.finish(Outcome::Failed("the projector disconnected".into()));
+        }
+    }
+
+    /// A projector's answer to the video command `id`: `done` at the film's end, `failed` on a
+    /// media error. An answer for a command no longer playing (another projector answered,
+    /// or it was replaced or stopped) is ignored.
+    pub fn answer(&self, client: u64, id: u64, outcome: Outcome) {
+        let reply = {
+            let mut films = lock(&self.films);
+            if !films.projectors.contains(&client) {
+                return;
+            }
+            films.playing.remove(&id)
+        };
+        if let Some(reply) = reply {
+            reply.finish(outcome);
+        }
+    }
+
+    /// Takes the video commands still playing (all of them, or only `PROJECT`s: the same).
+    fn take_playing(&self) -> BTreeMap<u64, Reply> {
+        std::mem::take(&mut lock(&self.films).playing)
     }
 
     /// The current display.
@@ -103,6 +175,7 @@ impl Adapter for DisplayAdapter {
 
     fn submit(&self, command: Command, reply: Reply) {
         let arg = command.arg.as_deref().map(str::to_owned);
+        let video = command.verb == Verb::Project && arg.as_deref().is_some_and(is_video);
         let mut current = self.state.lock();
         let channel = match command.verb {
             Verb::DisplayPage => {
@@ -126,25 +199,51 @@ impl Adapter for DisplayAdapter {
                 return reply.finish(Outcome::Failed(reason));
             }
         };
+        reply.started();
+        // A new projection ends a film still playing; a film waits for a projector's answer,
+        // on the books before the frame goes out so that a fast answer finds it.
+        let mut replaced = BTreeMap::new();
+        let mut reply = Some(reply);
+        if command.verb != Verb::DisplayPage {
+            let mut films = lock(&self.state.films);
+            replaced = std::mem::take(&mut films.playing);
+            if video
+                && !films.projectors.is_empty()
+                && let Some(reply) = reply.take()
+            {
+                films.playing.insert(command.id, reply);
+            }
+        }
         // No connected client is fine: the state is kept for the next one.
         let _ = channel.send(Frame::from(command_frame(&command)));
-        reply.started();
         // Logged under the display lock, so the log's order of changes is the clients' order.
-        self.hub.publish(EventKind::DisplayChanged {
-            page: current.page.clone(),
-            projector: current.projector.clone(),
-            highlight: current.highlight.clone(),
-        });
+        self.hub.publish(display_changed(&current));
         drop(current);
-        reply.finish(Outcome::Done);
+        let reason = format!("replaced by a later {}", command.verb);
+        for earlier in replaced.into_values() {
+            earlier.finish(Outcome::Cancelled(reason.clone()));
+        }
+        if let Some(reply) = reply {
+            reply.finish(Outcome::Done);
+        }
     }
 
-    fn cancel(&self, _scope: CancelScope<'_>, _reason: &str) {
-        // Nothing is ever queued here.
+    fn cancel(&self, scope: CancelScope<'_>, reason: &str) {
+        // Only films waiting for their end are ever outstanding here; all are PROJECTs.
+        if matches!(scope, CancelScope::Verb(verb) if *verb != Verb::Project) {
+            return;
+        }
+        for reply in self.state.take_playing().into_values() {
+            reply.finish(Outcome::Cancelled(reason.to_owned()));
+        }
     }
 
     fn status(&self) -> AdapterStatus {
-        AdapterStatus::default()
+        let films = lock(&self.state.films);
+        AdapterStatus {
+            queued: films.playing.len(),
+            current: (films.playing.values().next()).map(|r| r.command().describe()),
+        }
     }
 }
 

@@ -303,6 +303,9 @@ impl Session {
         self.role = Some(role);
         let state = &self.state;
         let (display, display_rx) = state.devices.display.subscribe(role);
+        if role == ClientRole::Projector {
+            state.devices.display.projector_joined(self.client);
+        }
         let mut view = state.state_view();
         view.display = display;
         self.send(welcome_frame(self.client, role, &view));
@@ -361,7 +364,15 @@ impl Session {
     }
 
     fn answer(&self, id: u64, outcome: Option<Outcome>) {
-        if self.allowed(&[ClientRole::Adapter], None).is_none() {
+        let roles = [ClientRole::Adapter, ClientRole::Projector];
+        if self.allowed(&roles, None) == Some(ClientRole::Projector) {
+            // A projector answers for the videos it plays; `started` adds nothing there.
+            if let Some(outcome) = outcome {
+                self.state.devices.display.answer(self.client, id, outcome);
+            }
+            return;
+        }
+        if self.role != Some(ClientRole::Adapter) {
             return;
         }
         let ws = &self.state.devices.ws;
@@ -378,6 +389,9 @@ impl Session {
         let Some(role) = self.role else { return };
         if role == ClientRole::Adapter {
             self.state.devices.ws.disconnect(self.client);
+        }
+        if role == ClientRole::Projector {
+            self.state.devices.display.projector_left(self.client);
         }
         self.state.client_left(self.client);
         let reason = reason.to_owned();
