@@ -7,6 +7,7 @@ use std::process::ExitCode;
 
 use anyhow::Context;
 use clap::{Parser, Subcommand, ValueEnum};
+use docent::content::config::AdapterKind;
 use docent::content::{Diagnostic, load_bundle};
 use docent::serve::{ServeOptions, Server, run};
 use tokio::net::TcpListener;
@@ -38,6 +39,9 @@ enum Cmd {
         /// Write speech as WAV files into this folder instead of playing it (no sound card).
         #[arg(long, value_name = "DIR")]
         speech_wav: Option<PathBuf>,
+        /// For authors: speak in the browser and open the kiosk and projector side by side.
+        #[arg(long)]
+        preview: bool,
     },
     /// Check a bundle and list every problem with its file, line and column.
     Check {
@@ -47,6 +51,15 @@ enum Cmd {
         #[arg(long, value_enum, default_value_t = Format::Text)]
         format: Format,
     },
+}
+
+/// How `serve` presents the bundle.
+#[derive(Clone, Copy, PartialEq, Eq)]
+enum Mode {
+    /// On the robot or kiosk: speech as the bundle says.
+    Robot,
+    /// On an author's desktop: browser speech, both screens in one window.
+    Preview,
 }
 
 #[derive(Clone, Copy, ValueEnum)]
@@ -67,13 +80,15 @@ fn main() -> ExitCode {
             seed,
             corpus,
             speech_wav,
+            preview,
         } => {
             let options = ServeOptions {
                 seed,
                 corpus_dir: corpus,
                 speech_wav,
             };
-            serve(&bundle, listen, options)
+            let mode = if preview { Mode::Preview } else { Mode::Robot };
+            serve(&bundle, listen, options, mode)
         }
     };
     match result {
@@ -116,7 +131,12 @@ fn counts(diagnostics: &[Diagnostic]) -> (usize, usize) {
     (errors, diagnostics.len() - errors)
 }
 
-fn serve(bundle_dir: &Path, listen: SocketAddr, options: ServeOptions) -> anyhow::Result<ExitCode> {
+fn serve(
+    bundle_dir: &Path,
+    listen: SocketAddr,
+    options: ServeOptions,
+    mode: Mode,
+) -> anyhow::Result<ExitCode> {
     tracing_subscriber::fmt()
         .with_env_filter(
             tracing_subscriber::EnvFilter::try_from_default_env()
@@ -126,7 +146,7 @@ fn serve(bundle_dir: &Path, listen: SocketAddr, options: ServeOptions) -> anyhow
         .init();
     let report = load_bundle(bundle_dir);
     print_diagnostics(&report.diagnostics);
-    let Some(bundle) = report.bundle else {
+    let Some(mut bundle) = report.bundle else {
         let (errors, _) = counts(&report.diagnostics);
         eprintln!(
             "docent: {} has {errors} error(s); fix them and start again",
@@ -134,6 +154,11 @@ fn serve(bundle_dir: &Path, listen: SocketAddr, options: ServeOptions) -> anyhow
         );
         return Ok(ExitCode::FAILURE);
     };
+    if mode == Mode::Preview {
+        // An author's desktop has a browser that can speak; the bundle's robot speech stays
+        // untouched on disk.
+        bundle.config.speech.adapter = Some(AdapterKind::Browser);
+    }
     let home = bundle.config.home.clone();
     let runtime = tokio::runtime::Runtime::new().context("starting the async runtime")?;
     runtime.block_on(async move {
@@ -152,11 +177,33 @@ fn serve(bundle_dir: &Path, listen: SocketAddr, options: ServeOptions) -> anyhow
             bundle_dir.display(),
             server.corpus_path().display()
         );
+        if mode == Mode::Preview {
+            open_preview(&format!("http://{addr}/preview"));
+        }
         run(listener, server, shutdown_signal())
             .await
             .context("serving")?;
         anyhow::Ok(ExitCode::SUCCESS)
     })
+}
+
+/// Prints the preview address and opens it in the desktop's browser when there is one.
+fn open_preview(url: &str) {
+    let _ = writeln!(
+        std::io::stdout(),
+        "  preview:     {url}  (speech in the browser)"
+    );
+    let opened = std::process::Command::new("xdg-open")
+        .arg(url)
+        .stdout(std::process::Stdio::null())
+        .stderr(std::process::Stdio::null())
+        .spawn();
+    if opened.is_err() {
+        let _ = writeln!(
+            std::io::stdout(),
+            "  open it in a browser to preview the bundle"
+        );
+    }
 }
 
 /// Completes on Ctrl-C or SIGTERM.

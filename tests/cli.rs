@@ -110,3 +110,49 @@ fn a_missing_bundle_folder_is_a_clear_error() {
         "{out}"
     );
 }
+
+#[test]
+fn preview_serves_both_screens_and_speaks_in_the_browser() {
+    use std::io::{BufRead, BufReader};
+    let mut child = Command::new(env!("CARGO_BIN_EXE_docent"))
+        .args([
+            "serve",
+            "dialogs/paper-fig4",
+            "--listen",
+            "127.0.0.1:0",
+            "--preview",
+            "--corpus",
+        ])
+        .arg(tempfile::tempdir().unwrap().keep())
+        .current_dir(repo())
+        .env("PATH", "/nonexistent") // no xdg-open: the preview is only printed
+        .stdout(std::process::Stdio::piped())
+        .stderr(std::process::Stdio::null())
+        .spawn()
+        .unwrap();
+    let lines: Vec<String> = BufReader::new(child.stdout.take().unwrap())
+        .lines()
+        .map_while(Result::ok)
+        .take_while(|l| !l.contains("open it in a browser"))
+        .collect();
+    let preview = lines
+        .iter()
+        .find(|l| l.trim().starts_with("preview:"))
+        .expect("a preview line");
+    let url = preview.split_whitespace().nth(1).unwrap().to_owned();
+    let page = reqwest::blocking_get(&url);
+    assert!(page.contains("<iframe src=\"/\""), "{page}");
+    assert!(page.contains("<iframe src=\"/projector\""), "{page}");
+    let kiosk = reqwest::blocking_get(&url.replace("/preview", "/"));
+    assert!(kiosk.contains("data-speech=\"browser\""), "{kiosk}");
+    child.kill().unwrap();
+    child.wait().unwrap();
+}
+
+mod reqwest {
+    /// A GET with a fresh runtime (this test is synchronous).
+    pub fn blocking_get(url: &str) -> String {
+        let rt = tokio::runtime::Runtime::new().unwrap();
+        rt.block_on(async { ::reqwest::get(url).await.unwrap().text().await.unwrap() })
+    }
+}

@@ -30,6 +30,7 @@ pub fn app(state: AppState) -> Router {
     Router::new()
         .route("/", get(shells::kiosk))
         .route("/projector", get(shells::projector))
+        .route("/preview", get(shells::preview))
         .route("/static/{*path}", get(static_files::serve_static))
         .route("/favicon.ico", get(api::no_favicon))
         .route("/healthz", get(api::health))

@@ -78,6 +78,37 @@ impl<'a> ProjectorShell<'a> {
     }
 }
 
+/// `pages/preview/preview.html`: the kiosk and the projector side by side, for authors.
+#[derive(Template)]
+#[template(path = "preview/preview.html")]
+pub struct PreviewPage {
+    /// The touchscreen's width in CSS pixels.
+    pub kiosk_width: u32,
+    /// The touchscreen's height.
+    pub kiosk_height: u32,
+    /// The projector's width in CSS pixels.
+    pub projector_width: u32,
+    /// The projector's height.
+    pub projector_height: u32,
+}
+
+impl Default for PreviewPage {
+    /// The sizes the examples are made for: a 1280x800 touchscreen, a 1280x720 projector.
+    fn default() -> Self {
+        PreviewPage {
+            kiosk_width: 1280,
+            kiosk_height: 800,
+            projector_width: 1280,
+            projector_height: 720,
+        }
+    }
+}
+
+/// `GET /preview`: both screens in one window (`docent serve --preview` opens it).
+pub async fn preview() -> Response {
+    html(PreviewPage::default().render())
+}
+
 /// `GET /`: the kiosk shell.
 pub async fn kiosk(State(state): State<AppState>) -> Response {
     let bundle = state.dispatcher.bundle();
@@ -110,6 +141,22 @@ mod tests {
 
     use super::*;
     use crate::content::config::AfterVideo;
+
+    #[test]
+    fn the_preview_shows_both_screens_at_their_sizes() {
+        let page = PreviewPage::default().render().expect("renders");
+        assert!(
+            page.contains(r#"<iframe src="/" title="touchscreen" width="1280" height="800">"#),
+            "{page}"
+        );
+        assert!(
+            page.contains(
+                r#"<iframe src="/projector" title="projector" width="1280" height="720">"#
+            ),
+            "{page}"
+        );
+        assert!(page.contains(r#"src="/static/preview.js""#), "{page}");
+    }
 
     #[test]
     fn the_kiosk_shell_carries_its_contract() {

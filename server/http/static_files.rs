@@ -16,7 +16,9 @@ const FILES: &[(&str, &str, &str)] = &[
     ("kiosk.js", JS, include_str!("../../static/kiosk.js")),
     ("socket.js", JS, include_str!("../../static/socket.js")),
     ("speech.js", JS, include_str!("../../static/speech.js")),
+    ("preview.js", JS, include_str!("../../static/preview.js")),
     ("kiosk.css", CSS, include_str!("../../static/kiosk.css")),
+    ("preview.css", CSS, include_str!("../../static/preview.css")),
     (
         "docent-page.js",
         JS,
