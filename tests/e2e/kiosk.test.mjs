@@ -98,10 +98,14 @@ test('after a server restart on the same port the kiosk shows the page the serve
     await server.trigger('SHOW_MAP');
     await waitForShownPage(page, 'map.html');
 
+    assert.equal(await page.locator('#docent-offline').isVisible(), false, 'offline banner while connected');
     await server.stop();
+    // Only after a few seconds without a connection does the kiosk say it is offline.
+    await page.locator('#docent-offline').waitFor({ state: 'visible', timeout: 15_000 });
     server = await startDocent(bundle, { port });
     // A new run starts on the home page; the shell still shows the map until it reconnects.
     await waitForShownPage(page, 'index.html', { timeout: 30_000 });
+    await page.locator('#docent-offline').waitFor({ state: 'hidden', timeout: 15_000 });
     // And it is connected again: a display command reaches it.
     await server.trigger('SHOW_SCHEDULE');
     await waitForShownPage(page, 'schedule.html');
