@@ -80,6 +80,34 @@ test('a video plays on the projector and its end, reported as command.done, lets
   }
 });
 
+test('with after_video: hold the projector keeps the last frame when a film ends; by default it goes black', { timeout: 90_000 }, async () => {
+  const clip = path.join(REPO, 'dialogs/museum-tour/media/card-punch.webm');
+  for (const [setting, kept] of [['hold', true], ['black', false]]) {
+    const bundle = makeBundle({
+      'docent.yaml': `speech: {adapter: log}\nprojector: {after_video: ${setting}}\n`,
+      'acts.yaml': '- Label: FILM\n  Cmds: [PROJECT card-punch.webm]\n',
+      'pages/index.html': '<!DOCTYPE html><title>home</title>',
+    });
+    fs.copyFileSync(clip, path.join(bundle, 'media/card-punch.webm'));
+    try {
+      await withServer(bundle, async ({ server, page, operator }) => {
+        await openProjector(page, server, operator);
+        const [project] = commandIds(await server.trigger('FILM'));
+        await operator.waitForEvent((e) => e.type === 'command.done' && e.command === project);
+        // The page answered done from the video's `ended`; what it shows now is settled.
+        await page.waitForFunction(() => document.querySelector('video')?.ended ?? true, null, { timeout: 10_000 });
+        const shown = await page.evaluate(() => {
+          const video = document.querySelector('video');
+          return Boolean(video && video.isConnected && getComputedStyle(video).display !== 'none' && !video.hidden);
+        });
+        assert.equal(shown, kept, `after_video: ${setting}`);
+      });
+    } finally {
+      removeTemp(bundle);
+    }
+  }
+});
+
 /**
  * The size of a PNG and the RGB colour of each of `points` (`[x, y]`), decoded by the browser in
  * `page` (a canvas drawing the PNG as a data URL).
