@@ -9,20 +9,10 @@ import fs from 'node:fs';
 import path from 'node:path';
 import { test } from 'node:test';
 
-import { chromium } from 'playwright-core';
-
-import { VIEWPORT } from './lib/browser.mjs';
+import { launchBrowser, VIEWPORT } from './lib/browser.mjs';
 import { REPO, startDocent } from './lib/docent.mjs';
 import { openShell } from './lib/kiosk.mjs';
 
-const BASE_ARGS = [
-  '--no-sandbox',
-  '--disable-gpu',
-  '--disable-background-networking',
-  '--disable-component-update',
-  '--no-first-run',
-  '--disable-sync',
-];
 
 /** Pinches out at the middle of `page` with the mouse-source gesture that zooms a desktop page. */
 async function pinch(context, page) {
@@ -37,11 +27,7 @@ async function pinch(context, page) {
 }
 
 async function withBrowser(extraArgs, body) {
-  const browser = await chromium.launch({
-    executablePath: process.env.CHROMIUM_BIN ?? '/usr/bin/chromium',
-    headless: true,
-    args: [...BASE_ARGS, ...extraArgs],
-  });
+  const browser = await launchBrowser(extraArgs);
   try {
     const context = await browser.newContext({ viewport: VIEWPORT, hasTouch: true });
     await body(context);

@@ -22,12 +22,12 @@ const ARGS = [
   '--autoplay-policy=no-user-gesture-required',
 ];
 
-/** Launches one headless Chromium. Close it with `browser.close()`. */
-export function launchBrowser() {
+/** Launches one headless Chromium, with `extraArgs` if any. Close it with `browser.close()`. */
+export function launchBrowser(extraArgs = []) {
   return chromium.launch({
     executablePath: process.env.CHROMIUM_BIN ?? '/usr/bin/chromium',
     headless: true,
-    args: ARGS,
+    args: [...ARGS, ...extraArgs],
   });
 }
 
