@@ -4,6 +4,8 @@
 
 #![allow(dead_code)] // Each test binary uses a different part of the helpers.
 
+pub mod check;
+
 use std::path::{Path, PathBuf};
 use std::time::Duration;
 

@@ -1,0 +1,70 @@
+//! Helpers for the `docent check` tests: temporary bundles and ways to look at diagnostics.
+
+#![allow(dead_code)] // Each test binary uses a different part of the helpers.
+
+use std::fs;
+use std::path::Path;
+
+use docent::content::{Diagnostic, LoadReport, load_bundle};
+
+/// Lines joined into a file, one element a line: line numbers in assertions are indexes + 1.
+pub fn yaml(lines: &[&str]) -> String {
+    lines.iter().map(|l| format!("{l}\n")).collect()
+}
+
+/// A bundle in a temporary folder: `pages/index.html`, an empty `media/`, and `files`.
+pub fn bundle(files: &[(&str, &str)]) -> tempfile::TempDir {
+    let dir = tempfile::tempdir().expect("temp dir");
+    fs::create_dir_all(dir.path().join("pages")).expect("pages");
+    fs::create_dir_all(dir.path().join("media")).expect("media");
+    fs::write(
+        dir.path().join("pages/index.html"),
+        "<!doctype html><title>home</title>",
+    )
+    .expect("home");
+    for (rel, contents) in files {
+        let path = dir.path().join(rel);
+        fs::create_dir_all(path.parent().expect("parent")).expect("folders");
+        fs::write(path, contents).expect("write file");
+    }
+    dir
+}
+
+pub fn check(dir: &Path) -> LoadReport {
+    load_bundle(dir)
+}
+
+/// (code, file:line:column) of every diagnostic.
+pub fn places(report: &LoadReport) -> Vec<(&'static str, String)> {
+    report
+        .diagnostics
+        .iter()
+        .map(|d| (d.code, format!("{}:{}:{}", d.file, d.line, d.column)))
+        .collect()
+}
+
+pub fn only<'r>(report: &'r LoadReport, code: &str) -> Vec<&'r Diagnostic> {
+    report
+        .diagnostics
+        .iter()
+        .filter(|d| d.code == code)
+        .collect()
+}
+
+/// Messages are for museum staff: no Rust or parser vocabulary.
+pub fn assert_plain(report: &LoadReport) {
+    for d in &report.diagnostics {
+        for jargon in [
+            "Option<",
+            "String",
+            "scalar",
+            "serde",
+            "struct",
+            "invalid type",
+            "u32",
+            "f64",
+        ] {
+            assert!(!d.message.contains(jargon), "{d} uses `{jargon}`");
+        }
+    }
+}
