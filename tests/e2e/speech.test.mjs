@@ -25,20 +25,24 @@ const bundle = () =>
     'pages/index.html': '<!DOCTYPE html><html lang="en"><head><meta charset="utf-8"><title>home</title></head><body><p>home</p></body></html>',
   });
 
-/** A stand-in for speechSynthesis that "speaks" each utterance in 20 ms and records it. */
+/**
+ * A stand-in for speechSynthesis that records each utterance and "speaks" it at once: start and
+ * end fire asynchronously (after the caller returns), as a real synthesizer's do.
+ */
 function fakeSpeech() {
   window.__spoken = [];
+  const later = (fn) => Promise.resolve().then(fn);
   const synth = {
     getVoices: () => [],
     cancel() {},
     speak(u) {
-      setTimeout(() => {
+      later(() => {
         u.onstart?.();
-        setTimeout(() => {
+        later(() => {
           window.__spoken.push({ text: u.text, lang: u.lang, rate: u.rate });
           u.onend?.();
-        }, 20);
-      }, 1);
+        });
+      });
     },
   };
   Object.defineProperty(window, 'speechSynthesis', { value: synth, configurable: true });
