@@ -16,7 +16,7 @@ use crate::content::suggest::closest;
 mod values;
 pub(in crate::content) mod yaml;
 
-use values::{read_alternatives, read_commands, read_label};
+use values::{read_alternatives, read_commands, read_group, read_key, read_label};
 use yaml::{Kind, Node, Recovery};
 
 /// One act as written, before labels are compared across files and commands are checked.
@@ -28,6 +28,10 @@ pub(crate) struct WrittenAct {
     pub variants: Vec<Variant>,
     /// Command strings in written order.
     pub commands: Vec<WrittenCommand>,
+    /// The console group (`Group:`), when written and usable.
+    pub group: Option<String>,
+    /// The console shortcut (`Key:`), upper case, with the place of its value.
+    pub key: Option<Located<char>>,
 }
 
 /// Everything read from one acts file.
@@ -42,7 +46,7 @@ pub(crate) struct ActsFile {
 }
 
 /// The keys an act may have besides `Text...` variants, for suggestions.
-const KEYS: [&str; 3] = ["Label", DEFAULT_VARIANT, "Cmds"];
+const KEYS: [&str; 5] = ["Label", DEFAULT_VARIANT, "Cmds", "Group", "Key"];
 
 /// Reads the acts file `file` (named relative to the bundle root) from its bytes.
 pub(crate) fn read_acts_file(file: &Arc<str>, bytes: &[u8]) -> ActsFile {
@@ -121,6 +125,8 @@ fn read_act(node: &Node, out: &mut Vec<Diagnostic>) -> Option<WrittenAct> {
         label: None,
         variants: Vec::new(),
         commands: Vec::new(),
+        group: None,
+        key: None,
     };
     let mut seen: Vec<(&str, &Pos)> = Vec::new();
     let mut wrote_content = false;
@@ -148,6 +154,8 @@ fn read_act(node: &Node, out: &mut Vec<Diagnostic>) -> Option<WrittenAct> {
         seen.push((name, &key.pos));
         match name {
             "Label" => act.label = read_label(value, out),
+            "Group" => act.group = read_group(value, out),
+            "Key" => act.key = read_key(value, out),
             "Cmds" => {
                 wrote_content |= match &value.kind {
                     Kind::Null => false,
@@ -231,7 +239,8 @@ fn unknown_key_message(name: &str) -> String {
     let hint = suggestion.map_or_else(String::new, |s| format!(" Did you mean `{s}`?"));
     format!(
         "`{name}` is not a key Docent knows.{hint} An act has `Label`, `Text` (and variants \
-         starting with `Text`, such as `TextGroup`) and `Cmds`; upper and lower case matter."
+         starting with `Text`, such as `TextGroup`), `Cmds`, and for the operator console \
+         `Group` and `Key`; upper and lower case matter."
     )
 }
 
@@ -286,6 +295,10 @@ mod tests {
         assert!(unknown_key_message("textGroup").contains("Did you mean `TextGroup`?"));
         assert!(unknown_key_message("TEXTCHILD").contains("Did you mean `TextChild`?"));
         assert!(unknown_key_message("Lable").contains("Did you mean `Label`?"));
+        assert!(unknown_key_message("Grup").contains("Did you mean `Group`?"));
+        assert!(unknown_key_message("group").contains("Did you mean `Group`?"));
+        assert!(unknown_key_message("key").contains("Did you mean `Key`?"));
+        assert!(unknown_key_message("Keys").contains("Did you mean `Key`?"));
         assert!(!unknown_key_message("Colour").contains("Did you mean"));
     }
 

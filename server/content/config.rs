@@ -3,6 +3,7 @@
 //! Documented for people in `docs/CONFIG.md`.
 
 use std::collections::BTreeMap;
+use std::fmt;
 use std::time::Duration;
 
 /// Which adapter serves a verb. The route table is built from these, never from `match` arms
@@ -148,6 +149,99 @@ pub struct ProjectorConfig {
     pub highlight_edge: f64,
 }
 
+/// A secret that grants a role (the operator's or the dialog manager's token). Its `Debug`
+/// prints `Credential(***)`, so settings can be logged without leaking it; read it with
+/// [`Credential::expose`] only where it is compared or shown to the person starting Docent.
+#[derive(Clone, Eq)]
+pub struct Credential(String);
+
+/// Why a text cannot be a credential.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, thiserror::Error)]
+pub enum WeakCredential {
+    /// Fewer than [`Credential::MIN_CHARS`] characters.
+    #[error("it has {0} characters, and at least 16 are needed so it cannot be guessed")]
+    TooShort(usize),
+    /// A space, a control character or a character outside plain ASCII.
+    #[error(
+        "it may hold only letters, digits and punctuation: no spaces and no accented letters, \
+         because it travels in an HTTP header"
+    )]
+    NotPlain,
+}
+
+impl Credential {
+    /// The fewest characters a credential may have.
+    pub const MIN_CHARS: usize = 16;
+
+    /// The credential `text`: at least 16 visible ASCII characters (no whitespace).
+    pub fn new(text: impl Into<String>) -> Result<Self, WeakCredential> {
+        let text = text.into();
+        if !text.chars().all(|c| c.is_ascii_graphic()) {
+            return Err(WeakCredential::NotPlain);
+        }
+        if text.len() < Self::MIN_CHARS {
+            return Err(WeakCredential::TooShort(text.len()));
+        }
+        Ok(Credential(text))
+    }
+
+    /// The secret itself.
+    pub fn expose(&self) -> &str {
+        &self.0
+    }
+}
+
+impl PartialEq for Credential {
+    /// Compares every byte whatever the first difference, so timing tells little.
+    fn eq(&self, other: &Self) -> bool {
+        let (a, b) = (self.0.as_bytes(), other.0.as_bytes());
+        a.len() == b.len() && a.iter().zip(b).fold(0u8, |diff, (x, y)| diff | (x ^ y)) == 0
+    }
+}
+
+impl fmt::Debug for Credential {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        f.write_str("Credential(***)")
+    }
+}
+
+/// Credentials set in `docent.yaml` (`access:`). The environment variables
+/// `DOCENT_OPERATOR_TOKEN` and `DOCENT_DM_TOKEN` take precedence (decided at serve time).
+#[derive(Clone, Debug, Default, PartialEq)]
+pub struct AccessSettings {
+    /// The operator console's token (`access: operator_token:`).
+    pub operator_token: Option<Credential>,
+    /// The dialog manager's token (`access: dm_token:`).
+    pub dm_token: Option<Credential>,
+}
+
+/// Where the operator console gets its camera picture (`operator: camera:`).
+#[derive(Clone, Debug, Default, PartialEq, Eq)]
+pub enum Camera {
+    /// `webrtc` (the default): the kiosk's own camera, over WebRTC signalled through Docent.
+    #[default]
+    WebRtc,
+    /// `none`: no camera view.
+    None,
+    /// An `http://` or `https://` URL of an MJPEG stream the console shows as is.
+    Url(String),
+}
+
+/// The operator console's settings (`operator:` in `docent.yaml`).
+#[derive(Clone, Debug, Default, PartialEq)]
+pub struct OperatorConfig {
+    /// The map picture, bundle-relative (`pages/images/map.png`), spanning `drive.bounds`.
+    /// Checked to exist under `pages/` or `media/`; `None` when not set.
+    pub map: Option<String>,
+    /// The camera view.
+    pub camera: Camera,
+    /// Situations the operator can mark (Alt+Shift+1..9), at most 9, in written order.
+    pub situations: Vec<String>,
+    /// Visitor group (`single`, `group`, `children`) to the context it switches to. Groups
+    /// not written get `Text`, `TextGroup`, `TextChild` when the bundle has that context.
+    pub visitor_groups: BTreeMap<String, String>,
+}
+
 /// Everything `docent.yaml` can set, with defaults filled in.
 #[derive(Clone, Debug, PartialEq)]
 pub struct SiteConfig {
@@ -169,6 +263,10 @@ pub struct SiteConfig {
     pub adapter_timeout: Duration,
     /// Site-declared verbs, by name (upper case).
     pub verbs: BTreeMap<String, SiteVerb>,
+    /// Credentials from `access:` (none by default).
+    pub access: AccessSettings,
+    /// Operator console settings.
+    pub operator: OperatorConfig,
 }
 
 impl Default for SiteConfig {
@@ -200,6 +298,54 @@ impl Default for SiteConfig {
             },
             adapter_timeout: Duration::from_secs(30),
             verbs: BTreeMap::new(),
+            access: AccessSettings::default(),
+            operator: OperatorConfig::default(),
         }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn a_credential_never_shows_in_debug_output() {
+        let token = Credential::new("s3cret-s3cret-s3cret").expect("strong enough");
+        assert_eq!(format!("{token:?}"), "Credential(***)");
+        let access = AccessSettings {
+            operator_token: Some(token.clone()),
+            dm_token: None,
+        };
+        assert!(!format!("{access:?}").contains("s3cret"));
+        assert_eq!(token.expose(), "s3cret-s3cret-s3cret");
+    }
+
+    #[test]
+    fn a_credential_has_16_visible_ascii_characters_or_more() {
+        assert_eq!(Credential::new("short"), Err(WeakCredential::TooShort(5)));
+        assert!(Credential::new("a".repeat(16)).is_ok());
+        assert_eq!(
+            Credential::new("a".repeat(15)),
+            Err(WeakCredential::TooShort(15))
+        );
+        for bad in [
+            "sixteen chars ok!",
+            "tab\tinside-the-token",
+            "caf\u{e9}-caf\u{e9}-caf\u{e9}-x",
+        ] {
+            assert_eq!(
+                Credential::new(bad),
+                Err(WeakCredential::NotPlain),
+                "{bad:?}"
+            );
+        }
+    }
+
+    #[test]
+    fn credentials_compare_by_content() {
+        let a = Credential::new("0123456789abcdef").expect("ok");
+        assert_eq!(a, Credential::new("0123456789abcdef").expect("ok"));
+        assert_ne!(a, Credential::new("0123456789abcdeF").expect("ok"));
+        assert_ne!(a, Credential::new("0123456789abcdef0").expect("ok"));
     }
 }

@@ -11,6 +11,8 @@ use crate::content::diagnostic::Diagnostic;
 use crate::content::duration::parse_duration;
 use crate::content::model::{Located, Verb};
 
+mod access;
+pub(crate) mod operator;
 mod reader;
 mod screens;
 
@@ -25,6 +27,11 @@ pub(crate) struct ConfigFile {
     pub home: Option<Located<String>>,
     /// The act to trigger when the kiosk goes idle, with its place (checked to exist later).
     pub idle_act: Option<Located<String>>,
+    /// The operator console's map as written (`pages/...`), with its place (checked later).
+    pub map: Option<Located<String>>,
+    /// Visitor groups given a context explicitly, with the context's place (checked later
+    /// against the bundle's contexts, which also decide the defaults).
+    pub visitor_groups: Vec<(&'static str, Located<String>)>,
     /// Problems found.
     pub diagnostics: Vec<Diagnostic>,
 }
@@ -39,6 +46,8 @@ const TOP_KEYS: &[&str] = &[
     "kiosk",
     "projector",
     "verbs",
+    "access",
+    "operator",
 ];
 const HOME_USAGE: &str = "`home` names the page under pages/ the kiosk starts on, e.g. \
                           `home: index.html`.";
@@ -97,8 +106,8 @@ fn positive(text: &str) -> Option<f64> {
 
 impl Reader {
     fn top_level(&mut self, root: &Node, out: &mut ConfigFile) {
-        let config = &mut out.config;
         for (key, value) in self.entries(root, TOP_KEYS, "docent.yaml") {
+            let config = &mut out.config;
             match key {
                 "home" => {
                     if let Some(home) = self.setting(value, HOME_USAGE, |t| Some(t.to_owned())) {
@@ -130,6 +139,8 @@ impl Reader {
                         }
                     }
                 }
+                "access" => self.access(value, &mut config.access),
+                "operator" => self.operator(value, out),
                 _ => self.verbs(value, config),
             }
         }

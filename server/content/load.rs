@@ -14,6 +14,7 @@ use crate::content::config::SiteConfig;
 use crate::content::config_file::{ConfigFile, parse_config};
 use crate::content::diagnostic::Diagnostic;
 use crate::content::model::{Act, Bundle, DEFAULT_VARIANT, Located, Pos, Variant};
+use crate::content::operator_check::{KeyBindings, check_map, visitor_groups};
 use crate::content::pages::page_act_references;
 use crate::content::paths::{BundleArea, PathError};
 use crate::content::suggest::did_you_mean;
@@ -56,13 +57,16 @@ pub fn load_bundle(root: &Path) -> LoadReport {
     let settings = read_settings(&root, &mut diagnostics);
     let names = acts_file_names(&root, &mut diagnostics);
     let files = read_acts_files(&root, &names, &mut diagnostics);
-    let config = settings.config;
+    let mut config = settings.config;
     let checker = CommandChecker::new(&root, &config);
     let mut merged = merge_acts(files, &checker, &config, &mut diagnostics);
     check_pages(&root, &mut merged, &mut diagnostics);
     check_home(&checker, &config, settings.home.as_ref(), &mut diagnostics);
     check_idle_act(&merged, settings.idle_act.as_ref(), &mut diagnostics);
+    check_map(&checker, &config, settings.map.as_ref(), &mut diagnostics);
     let contexts = contexts(&config, &merged.acts);
+    config.operator.visitor_groups =
+        visitor_groups(&contexts, &settings.visitor_groups, &mut diagnostics);
     diagnostics.sort_by(|a, b| (&a.file, a.line, a.column).cmp(&(&b.file, b.line, b.column)));
     let errors = diagnostics.iter().filter(|d| d.is_error()).count();
     tracing::debug!(
@@ -206,6 +210,7 @@ fn merge_acts(
     out: &mut Vec<Diagnostic>,
 ) -> Merged {
     let mut merged = Merged::default();
+    let mut keys = KeyBindings::default();
     // Later places of each label used more than once, reported at the first place at the end.
     let mut again: Vec<(usize, Pos)> = Vec::new();
     for mut file in files {
@@ -216,7 +221,8 @@ fn merge_acts(
                 label: Some(label),
                 variants,
                 commands,
-                ..
+                group,
+                key,
             } = written
             else {
                 continue;
@@ -237,12 +243,17 @@ fn merge_acts(
                 again.push((first, label.pos));
                 continue;
             }
+            if let Some(key) = &key {
+                keys.bind(&label.value, key, out);
+            }
             merged.index.insert(label.value.clone(), merged.acts.len());
             merged.acts.push(Act {
                 label: label.value,
                 pos: label.pos,
                 variants,
                 commands,
+                group,
+                key: key.map(|k| k.value),
             });
         }
     }
@@ -381,6 +392,8 @@ mod tests {
             pos,
             variants,
             commands: Vec::new(),
+            group: None,
+            key: None,
         }
     }
 

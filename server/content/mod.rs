@@ -13,6 +13,8 @@
 //! - `paths`: resolving a relative path inside the bundle (shared with the HTTP file routes).
 //! - `duration`: `2s`, `500ms`, `1.5m`.
 //! - `highlight`: the areas of a `HIGHLIGHT` argument.
+//! - `operator_check`: what the operator console uses (act keys, map, visitor groups),
+//!   checked against the whole bundle.
 //! - `suggest`: "did you mean" for labels, keys, verbs and file names.
 //! - `load`: putting it together: `load_bundle`.
 
@@ -26,6 +28,7 @@ mod config_file;
 mod duration;
 mod highlight;
 mod load;
+mod operator_check;
 mod pages;
 mod paths;
 mod suggest;

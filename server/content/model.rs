@@ -60,9 +60,32 @@ pub struct Act {
     pub variants: Vec<Variant>,
     /// The act's commands in the order written, without the implicit SAY.
     pub commands: Vec<Located<CommandSpec>>,
+    /// The operator console's group for the act (`Group:`), when written. See
+    /// [`Act::group_name`] for the group shown when it is not.
+    pub group: Option<String>,
+    /// The console shortcut (`Key:`): `A`-`Z` or `0`-`9`, stored upper case. Alt+key fires
+    /// the act; no two acts of a bundle share a key.
+    pub key: Option<char>,
 }
 
 impl Act {
+    /// The console group: `Group` when written, else the acts file's name without its
+    /// extension (`smalltalk` for `smalltalk.yaml`).
+    pub fn group_name(&self) -> &str {
+        if let Some(group) = &self.group {
+            return group;
+        }
+        let file = self.pos.file.rsplit('/').next().unwrap_or_default();
+        match file.rsplit_once('.') {
+            Some((stem, ext))
+                if ext.eq_ignore_ascii_case("yaml") || ext.eq_ignore_ascii_case("yml") =>
+            {
+                stem
+            }
+            _ => file,
+        }
+    }
+
     /// The variant named `name`, if the act has it.
     pub fn variant(&self, name: &str) -> Option<&Variant> {
         self.variants.iter().find(|v| v.name == name)
@@ -180,5 +203,30 @@ impl Bundle {
     /// Every label, in loaded order.
     pub fn labels(&self) -> impl Iterator<Item = &str> {
         self.acts.iter().map(|a| a.label.as_str())
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn act(file: &str, group: Option<&str>) -> Act {
+        Act {
+            label: "A".to_owned(),
+            pos: Pos::new(file, 1, 10),
+            variants: Vec::new(),
+            commands: Vec::new(),
+            group: group.map(str::to_owned),
+            key: None,
+        }
+    }
+
+    #[test]
+    fn the_console_group_defaults_to_the_acts_file_name() {
+        assert_eq!(act("smalltalk.yaml", None).group_name(), "smalltalk");
+        assert_eq!(act("tour.yml", None).group_name(), "tour");
+        assert_eq!(act("Tour.YAML", None).group_name(), "Tour");
+        assert_eq!(act("notes.txt", None).group_name(), "notes.txt");
+        assert_eq!(act("tour.yaml", Some("Stop 1")).group_name(), "Stop 1");
     }
 }

@@ -39,6 +39,84 @@ pub(super) fn read_label(value: &Node, out: &mut Vec<Diagnostic>) -> Option<Loca
     })
 }
 
+/// The console group: a name, trimmed; `None` after reporting an empty or shapeless one.
+pub(super) fn read_group(value: &Node, out: &mut Vec<Diagnostic>) -> Option<String> {
+    match &value.kind {
+        Kind::Str { value: text, .. } if !text.trim().is_empty() => Some(text.trim().to_owned()),
+        Kind::Guessed(text) => {
+            out.push(unquoted_warning(value, text));
+            Some(text.clone())
+        }
+        Kind::Str { .. } | Kind::Null => {
+            let message = "`Group` is empty. Write the name of the group the operator console \
+                           shows this act in, e.g. `Group: Small talk`, or remove the line (the \
+                           act is then shown under its file's name).";
+            out.push(Diagnostic::error("bad-value", &value.pos, message));
+            None
+        }
+        _ => {
+            let message = format!(
+                "A group must be a single name such as `Small talk`, but this one is {}.",
+                value.describe()
+            );
+            out.push(Diagnostic::error("bad-value", &value.pos, message));
+            None
+        }
+    }
+}
+
+/// The console shortcut: one letter `A`-`Z` (either case, stored upper case) or digit; `None`
+/// after reporting a `bad-key`.
+pub(super) fn read_key(value: &Node, out: &mut Vec<Diagnostic>) -> Option<Located<char>> {
+    const USAGE: &str = "Write one letter (A to Z) or digit (0 to 9), e.g. `Key: W`: the \
+                         operator console then fires this act with Alt+W.";
+    let message = match value.as_text().map(str::trim) {
+        Some(text) => {
+            let mut chars = text.chars();
+            match (chars.next(), chars.next()) {
+                (Some(c), None) if c.is_ascii_alphanumeric() => {
+                    return Some(Located {
+                        value: c.to_ascii_uppercase(),
+                        pos: value.pos.clone(),
+                    });
+                }
+                (None, _) => format!("`Key` is empty. {USAGE} Or remove the line."),
+                _ => match modified_key(text) {
+                    Some(c) => format!(
+                        "Write only the letter or digit, without Alt or other keys: `Key: {c}`. \
+                         The operator console adds Alt itself (Alt+{c})."
+                    ),
+                    None => format!("`{text}` is not one letter or digit. {USAGE}"),
+                },
+            }
+        }
+        None if matches!(value.kind, Kind::Null) => {
+            format!("`Key` is empty. {USAGE} Or remove the line.")
+        }
+        None => format!(
+            "A key must be one letter or digit, but this one is {}. {USAGE}",
+            value.describe()
+        ),
+    };
+    out.push(Diagnostic::error("bad-key", &value.pos, message));
+    None
+}
+
+/// The letter or digit of a written combination such as `Alt+W`, `alt-w` or `Ctrl W`.
+fn modified_key(text: &str) -> Option<char> {
+    let (modifiers, last) = text.rsplit_once(['+', '-', ' '])?;
+    let mut chars = last.chars();
+    let (Some(c), None) = (chars.next(), chars.next()) else {
+        return None;
+    };
+    let named = ["alt", "ctrl", "control", "shift", "altgr", "meta"];
+    let modifiers_named = modifiers
+        .split(['+', '-', ' '])
+        .filter(|m| !m.is_empty())
+        .all(|m| named.contains(&m.to_ascii_lowercase().as_str()));
+    (c.is_ascii_alphanumeric() && modifiers_named).then(|| c.to_ascii_uppercase())
+}
+
 /// The alternatives of one variant; a single string counts as a list of one.
 pub(super) fn read_alternatives(
     key: &str,
