@@ -1,0 +1,167 @@
+// actlist.js: the act buttons. Without a search: favourites, recently used, then every act by
+// group. With a search: the matches, best first, the first one chosen, each showing the text
+// that matched with the query's words marked. Up/Down move the choice; a click fires (Shift
+// interrupts current speech); the star keeps an act among the favourites.
+
+import { groupActs, textsFor } from "./acts.js";
+import { h, shorten } from "./dom.js";
+import { highlight, indexActs, search } from "./search.js";
+import * as store from "./store.js";
+
+/**
+ * @param {{element: HTMLElement, count: HTMLElement,
+ *          onFire: (act: object, options: {interrupt: boolean}) => void,
+ *          onPreview: (act: object|null) => void}} options `onPreview` gets the act to show
+ *          (hovered, focused or chosen) whenever that changes.
+ */
+export function createActList({ element, count, onFire, onPreview }) {
+  let acts = [];
+  let byLabel = new Map();
+  let index = [];
+  let context = "Text";
+  let query = "";
+  let rows = []; // [{act, button}] in screen order
+  let chosen = -1;
+  let hovered = null;
+
+  const shownAct = () => hovered ?? rows[chosen]?.act ?? null;
+  const tellPreview = () => onPreview(shownAct());
+
+  function button(act, match) {
+    const said = textsFor(act, context);
+    const text = match?.text ?? said.texts[0] ?? (act.commands[0] ? act.commands.map((c) => c.verb).join(" ") : "");
+    const pieces = match ? highlight(text, query) : [{ text: shorten(text, 90), hit: false }];
+    const fav = store.isFavourite(act.label);
+    const fire = h(
+      "button",
+      {
+        type: "button",
+        class: "act",
+        dataset: { label: act.label },
+        title: said.texts.join("\n") || undefined,
+        "aria-keyshortcuts": act.key ? `Alt+${act.key}` : null,
+        onclick: (event) => onFire(act, { interrupt: event.shiftKey }),
+        onfocus: () => {
+          hovered = act;
+          tellPreview();
+        },
+        onblur: () => {
+          hovered = null;
+          tellPreview();
+        },
+      },
+      h("span", { class: "act-label" }, act.label),
+      act.key ? h("kbd", { class: "act-key" }, `Alt+${act.key}`) : null,
+      h("span", { class: "act-text" }, pieces.map((p) => (p.hit ? h("mark", {}, p.text) : p.text))),
+    );
+    const star = h(
+      "button",
+      {
+        type: "button",
+        class: "star",
+        "aria-pressed": String(fav),
+        "aria-label": `Favourite ${act.label}`,
+        title: "Favourite (F4 for the chosen act)",
+        onclick: () => {
+          store.toggleFavourite(act.label);
+          render();
+        },
+      },
+      fav ? "★" : "☆",
+    );
+    const row = h(
+      "li",
+      { class: "act-row", onmouseenter: () => ((hovered = act), tellPreview()), onmouseleave: () => ((hovered = null), tellPreview()) },
+      fire,
+      star,
+    );
+    rows.push({ act, button: fire });
+    return row;
+  }
+
+  function section(title, items, extra = {}) {
+    return h(
+      "section",
+      { class: `act-group ${extra.class ?? ""}` },
+      h("h3", {}, title, h("span", { class: "muted small" }, ` ${items.length}`)),
+      h("ul", { class: "act-grid" }, items.map((item) => button(item.act ?? item, item.act ? item : null))),
+    );
+  }
+
+  function render() {
+    const keep = rows[chosen]?.act?.label;
+    rows = [];
+    hovered = null;
+    const parts = [];
+    if (query.trim()) {
+      const matches = search(index, query, context);
+      count.textContent = matches.length === 1 ? "1 match" : `${matches.length} matches`;
+      if (matches.length) parts.push(section("Matches", matches, { class: "matches" }));
+      else parts.push(h("p", { class: "muted empty" }, "No act matches. Esc still stops."));
+      chosen = matches.length ? 0 : -1;
+    } else {
+      count.textContent = `${acts.length} acts`;
+      const favs = store.favourites().map((l) => byLabel.get(l)).filter(Boolean);
+      const recent = store.recent().map((l) => byLabel.get(l)).filter(Boolean);
+      if (favs.length) parts.push(section("★ Favourites", favs, { class: "favourites" }));
+      if (recent.length) parts.push(section("Recently used", recent, { class: "recent" }));
+      for (const [group, members] of groupActs(acts)) parts.push(section(group, members));
+      // Keep the choice on the same act when the list is redrawn (context, favourites).
+      chosen = keep ? rows.findIndex((r) => r.act.label === keep) : -1;
+    }
+    element.replaceChildren(...parts);
+    mark();
+  }
+
+  function mark() {
+    for (const [i, row] of rows.entries()) {
+      row.button.classList.toggle("chosen", i === chosen);
+      if (i === chosen) row.button.setAttribute("aria-current", "true");
+      else row.button.removeAttribute("aria-current");
+    }
+    rows[chosen]?.button.scrollIntoView({ block: "nearest" });
+    tellPreview();
+  }
+
+  return {
+    setActs(list) {
+      acts = list;
+      byLabel = new Map(acts.map((a) => [a.label, a]));
+      index = indexActs(acts);
+      render();
+    },
+    setContext(name) {
+      context = name;
+      render();
+    },
+    setQuery(text) {
+      query = text;
+      render();
+    },
+    /** Redraws (favourites or recently used changed). */
+    refresh: render,
+    /** Moves the choice by `delta` rows; focuses the chosen button when `focus`. */
+    move(delta, { focus = false } = {}) {
+      if (!rows.length) return;
+      chosen = chosen === -1 ? (delta > 0 ? 0 : rows.length - 1) : (chosen + delta + rows.length) % rows.length;
+      hovered = null;
+      mark();
+      if (focus) rows[chosen].button.focus();
+    },
+    /** The chosen act, or null. */
+    chosen: () => rows[chosen]?.act ?? null,
+    /** The act with this label. */
+    act: (label) => byLabel.get(label) ?? null,
+    /** The act bound to `key` (A-Z, 0-9). */
+    byKey: (key) => acts.find((a) => a.key === key) ?? null,
+    /** Briefly marks the buttons of `label` as fired. */
+    flash(label) {
+      for (const row of rows) {
+        if (row.act.label !== label) continue;
+        row.button.classList.remove("fired");
+        void row.button.offsetWidth; // restart the animation
+        row.button.classList.add("fired");
+      }
+    },
+  };
+}

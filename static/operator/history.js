@@ -1,0 +1,79 @@
+// history.js: what happened, newest first: every act triggered by anyone (time, source, act,
+// variant and the exact text chosen), stops, refused triggers, proposals accepted or dismissed,
+// context changes and corpus marks. Several consoles see each other's acts here live.
+
+import { clock, h } from "./dom.js";
+
+const KEEP = 300;
+
+/** @param {HTMLElement} list the <ol> to fill, newest first */
+export function createHistory(list) {
+  let me = null;
+
+  const who = (e) => {
+    const source = e.source ?? "";
+    if (e.client === undefined || e.client === null) return source;
+    return e.client === me ? `${source} (you)` : `${source} #${e.client}`;
+  };
+
+  function line(e) {
+    switch (e.type) {
+      case "act.triggered":
+        return [
+          "act",
+          [
+            h("strong", { class: "history-label" }, e.label),
+            e.variant && e.variant !== "Text" ? h("span", { class: "muted small" }, ` ${e.variant}`) : null,
+            e.interrupt ? h("span", { class: "muted small" }, " interrupting") : null,
+            e.text ? h("span", { class: "history-text" }, ` “${e.text}”`) : null,
+          ],
+        ];
+      case "stop":
+        return ["stop", [h("strong", {}, "STOP"), ` ${e.reason ?? ""}`]];
+      case "trigger.refused":
+        return ["refused", [`refused ${e.label}: `, e.message ?? e.code]];
+      case "client.refused":
+        return ["refused", [`sign-in refused (${e.code}) for a ${e.role}`, e.address ? ` from ${e.address}` : ""]];
+      case "proposal.accepted":
+        return ["proposal", [`accepted proposal ${e.proposal}: `, h("strong", {}, e.label)]];
+      case "proposal.dismissed":
+        return ["proposal", [`dismissed proposal ${e.proposal}: `, h("strong", {}, e.label)]];
+      case "context.changed":
+        return ["mark", [`context → ${e.context}`]];
+      case "session.started":
+        return ["mark", [`session ${e.session} started`]];
+      case "session.ended":
+        return ["mark", [`session ${e.session} ended`]];
+      case "visitor.group":
+        return ["mark", [`visitor group: ${e.group}`, e.context ? ` (context ${e.context})` : ""]];
+      case "situation.marked":
+        return ["mark", [`situation: ${e.situation}`]];
+      default:
+        return null;
+    }
+  }
+
+  return {
+    welcome(id) {
+      me = id;
+      list.replaceChildren();
+    },
+    event(e) {
+      const made = line(e);
+      if (!made) return;
+      const [kind, body] = made;
+      const item = h(
+        "li",
+        { class: `history-item ${kind}`, dataset: { seq: String(e.seq), type: e.type } },
+        h("time", { datetime: e.time }, clock(e.time)),
+        h("span", { class: "history-source" }, who(e)),
+        h("span", { class: "history-body" }, body),
+      );
+      // Newest first by seq: a replayed event may arrive after a newer live one.
+      let before = list.firstElementChild;
+      while (before && Number(before.dataset.seq) > e.seq) before = before.nextElementSibling;
+      list.insertBefore(item, before);
+      while (list.childElementCount > KEEP) list.lastElementChild.remove();
+    },
+  };
+}

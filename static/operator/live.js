@@ -1,0 +1,103 @@
+// live.js: what the robot does now: the kiosk's page and the projector's content
+// (display.changed, welcome state), the text being spoken (a SAY between command.started and
+// its end) and the queue of commands sent to adapters and not yet ended (command.* events;
+// before those, the per-adapter snapshot of GET /api/state `queues`).
+
+import { h, shorten } from "./dom.js";
+
+const ENDED = new Set(["command.done", "command.failed", "command.cancelled"]);
+
+/** @param {{kiosk: HTMLElement, projector: HTMLElement, speaking: HTMLElement, queue: HTMLElement}} els */
+export function createLive(els) {
+  const commands = new Map(); // id -> {id, verb, arg, label, adapter, started}
+  let snapshot = []; // [{adapter, current, queued}] from /api/state until events take over
+  let speakingId = null;
+  let speakingText = null;
+
+  function showDisplay(display) {
+    if (!display) return;
+    els.kiosk.textContent = display.page ?? "–";
+    els.projector.textContent = display.highlight
+      ? `highlight ${display.highlight}`
+      : display.projector ?? "black";
+  }
+
+  function showSpeaking() {
+    if (speakingText) els.speaking.replaceChildren(h("span", { class: "said" }, `“${speakingText}”`));
+    else els.speaking.replaceChildren(h("span", { class: "muted" }, "silent"));
+  }
+
+  function showQueue() {
+    const items = [
+      ...snapshot.map((s) =>
+        h("li", { class: "queue-item started" }, h("code", {}, shorten(s.current, 70)), h("span", { class: "muted small" }, ` ${s.adapter}${s.queued ? `, ${s.queued} waiting` : ""}`)),
+      ),
+      ...[...commands.values()].map((c) =>
+        h(
+          "li",
+          { class: `queue-item ${c.started ? "started" : "waiting"}`, dataset: { command: String(c.id) } },
+          h("code", {}, shorten(c.arg ? `${c.verb} ${c.arg}` : c.verb, 70)),
+          h("span", { class: "muted small" }, ` ${c.label} · ${c.adapter ?? ""} · ${c.started ? "running" : "queued"}`),
+        ),
+      ),
+    ];
+    els.queue.replaceChildren(...(items.length ? items : [h("li", { class: "muted" }, "nothing running")]));
+  }
+
+  return {
+    /** The `state` of a welcome frame. */
+    welcome(state) {
+      showDisplay(state?.display);
+    },
+    /** A GET /api/state answer. */
+    apiState(state) {
+      showDisplay(state.display);
+      if (!commands.size) {
+        snapshot = Object.entries(state.queues ?? {})
+          .filter(([, q]) => q.current)
+          .map(([adapter, q]) => ({ adapter, current: q.current, queued: q.queued ?? 0 }));
+      }
+      if (speakingId === null) speakingText = state.speaking ?? null;
+      showSpeaking();
+      showQueue();
+    },
+    /** One event. */
+    event(e) {
+      if (e.type === "display.changed") {
+        showDisplay(e);
+      } else if (e.type === "command.sent") {
+        commands.set(e.command, { id: e.command, verb: e.verb, arg: e.arg ?? null, label: e.label, adapter: e.adapter, started: false });
+        showQueue();
+      } else if (e.type === "command.started") {
+        const c = commands.get(e.command);
+        if (c) c.started = true;
+        if (e.verb === "SAY") {
+          speakingId = e.command;
+          speakingText = c?.arg ?? speakingText;
+          showSpeaking();
+        }
+        showQueue();
+      } else if (ENDED.has(e.type)) {
+        if (!commands.delete(e.command)) snapshot = snapshot.filter((s) => !s.current.startsWith(e.verb));
+        if (e.command === speakingId || (speakingId === null && e.verb === "SAY")) {
+          speakingId = null;
+          speakingText = null;
+          showSpeaking();
+        }
+        showQueue();
+      } else if (e.type === "stop") {
+        snapshot = [];
+        showQueue();
+      }
+    },
+    /** Forgets everything before a new connection's snapshot. */
+    reset() {
+      commands.clear();
+      snapshot = [];
+      speakingId = null;
+      speakingText = null;
+      showSpeaking();
+      showQueue();
+    },
+  };
+}
