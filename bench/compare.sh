@@ -45,7 +45,7 @@ for config in $CONFIGS; do
   esac
   corpus=$SCRATCH/corpus-$config
   rm -rf "$corpus"
-  export DOCENT_CMD="$SCRATCH/docent serve $ROOT/bench/bundles/$config --listen 127.0.0.1:{port} --corpus $corpus"
+  export DOCENT_CMD="$SCRATCH/docent serve $ROOT/bench/bundles/$config --listen 127.0.0.1:{port} --open --corpus $corpus"
   # Shell words, eval'd by the shared run.sh.
   export DOCENT_LOAD="--trigger-template '$TRIGGER' --hello '$hello' --sender-hello '$OPERATOR' --match-field ref --match-if type=command"
   echo "== shared harness with Docent, configuration $config" >&2

@@ -203,7 +203,8 @@ async function main() {
   let server;
   let browser;
   try {
-    server = await startDocent(bundle);
+    // Loopback only: the shell's benchmark script triggers over HTTP without a credential.
+    server = await startDocent(bundle, { args: ['--open'] });
     browser = await launchBrowser();
     const context = await newTouchContext(browser);
     const page = await context.newPage();

@@ -3,15 +3,18 @@
 //! commands for device adapters and every event goes to the corpus log.
 //!
 //! Module map (see `ARCHITECTURE.md` for the whole picture):
+//! - [`access`]: credentials, failed-attempt lockout and the kiosk trigger allowance.
 //! - [`content`]: loading and checking content bundles (acts files, `docent.yaml`, pages, media).
 //! - [`dispatch`]: the dialog act dispatcher, the only path from a trigger to a device.
 //! - [`adapters`]: speech, display, drive and external (websocket) adapters, and the router.
 //! - [`events`]: the event types and the hub that stamps and fans them out.
 //! - [`corpus`]: the JSON Lines corpus writer.
 //! - [`http`]: the route table and HTTP handlers; [`ws`]: the websocket protocol.
+//! - [`operator`]: pending proposals (mixed initiative) and visitor-session marks.
 //! - [`serve`]: wiring it together and running with graceful shutdown.
 //! - [`state`], [`lifecycle`], [`sync`]: shared handles and small helpers.
 
+pub mod access;
 pub mod adapters;
 pub mod content;
 pub mod corpus;
@@ -19,6 +22,7 @@ pub mod dispatch;
 pub mod events;
 pub mod http;
 pub mod lifecycle;
+pub mod operator;
 pub mod serve;
 pub mod state;
 pub mod sync;

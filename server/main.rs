@@ -7,6 +7,7 @@ use std::process::ExitCode;
 
 use anyhow::Context;
 use clap::{Parser, Subcommand, ValueEnum};
+use docent::access::{AccessMode, AccessSetup, Origin, decide_access};
 use docent::content::config::AdapterKind;
 use docent::content::{Diagnostic, load_bundle};
 use docent::serve::{ServeOptions, Server, run};
@@ -42,6 +43,10 @@ enum Cmd {
         /// For authors: speak in the browser and open the kiosk and projector side by side.
         #[arg(long)]
         preview: bool,
+        /// Development only: no credentials for operator and dialog-manager clients. Allowed
+        /// only with a loopback --listen address.
+        #[arg(long)]
+        open: bool,
     },
     /// Check a bundle and list every problem with its file, line and column.
     Check {
@@ -81,14 +86,16 @@ fn main() -> ExitCode {
             corpus,
             speech_wav,
             preview,
+            open,
         } => {
             let options = ServeOptions {
                 seed,
                 corpus_dir: corpus,
                 speech_wav,
+                access: AccessMode::Open,
             };
             let mode = if preview { Mode::Preview } else { Mode::Robot };
-            serve(&bundle, listen, options, mode)
+            serve(&bundle, listen, options, mode, open)
         }
     };
     match result {
@@ -134,8 +141,9 @@ fn counts(diagnostics: &[Diagnostic]) -> (usize, usize) {
 fn serve(
     bundle_dir: &Path,
     listen: SocketAddr,
-    options: ServeOptions,
+    mut options: ServeOptions,
     mode: Mode,
+    open: bool,
 ) -> anyhow::Result<ExitCode> {
     tracing_subscriber::fmt()
         .with_env_filter(
@@ -159,6 +167,13 @@ fn serve(
         // untouched on disk.
         bundle.config.speech.adapter = Some(AdapterKind::Browser);
     }
+    let setup = decide_access(
+        open,
+        listen.ip().is_loopback(),
+        &bundle.config.access,
+        |var| std::env::var(var).ok(),
+    )?;
+    options.access = setup.mode.clone();
     let home = bundle.config.home.clone();
     let runtime = tokio::runtime::Runtime::new().context("starting the async runtime")?;
     runtime.block_on(async move {
@@ -177,6 +192,7 @@ fn serve(
             bundle_dir.display(),
             server.corpus_path().display()
         );
+        print_access(&setup, addr);
         if mode == Mode::Preview {
             open_preview(&format!("http://{addr}/preview"));
         }
@@ -185,6 +201,46 @@ fn serve(
             .context("serving")?;
         anyhow::Ok(ExitCode::SUCCESS)
     })
+}
+
+/// Says how operators and dialog managers get in. A generated credential is printed here,
+/// on the console of the person starting Docent, and nowhere else (never in the log).
+fn print_access(setup: &AccessSetup, addr: SocketAddr) {
+    let mut out = std::io::stdout().lock();
+    let _ = writeln!(out, "  operator:    http://{addr}/operator");
+    let AccessMode::Guarded(credentials) = &setup.mode else {
+        let _ = writeln!(
+            out,
+            "  access:      open (--open): no credentials needed; for development only"
+        );
+        return;
+    };
+    let roles = [
+        (
+            "operator",
+            &credentials.operator,
+            setup.operator,
+            "DOCENT_OPERATOR_TOKEN",
+        ),
+        (
+            "dialog manager",
+            &credentials.dm,
+            setup.dm,
+            "DOCENT_DM_TOKEN",
+        ),
+    ];
+    for (role, secret, origin, var) in roles {
+        let line = match origin {
+            Some(Origin::Generated) => format!(
+                "{role} credential (generated for this run; set {var} to choose one): {}",
+                secret.expose()
+            ),
+            Some(Origin::Environment) => format!("{role} credential: from {var}"),
+            Some(Origin::Settings) => format!("{role} credential: from docent.yaml"),
+            None => continue,
+        };
+        let _ = writeln!(out, "  {line}");
+    }
 }
 
 /// Prints the preview address and opens it in the desktop's browser when there is one.

@@ -5,6 +5,7 @@
 
 use std::future::Future;
 use std::io;
+use std::net::SocketAddr;
 use std::path::PathBuf;
 use std::sync::Arc;
 use std::time::Duration;
@@ -12,6 +13,7 @@ use std::time::Duration;
 use axum::serve::ListenerExt;
 use tokio::net::TcpListener;
 
+use crate::access::{Access, AccessMode};
 use crate::adapters::{Devices, SpeechOutput, espeak_available, espeak_can_play, espeak_voices};
 use crate::content::config::{AdapterKind, SpeechConfig};
 use crate::content::{Bundle, BundleArea, resolve_in_bundle};
@@ -34,6 +36,8 @@ pub struct ServeOptions {
     pub corpus_dir: PathBuf,
     /// Write espeak-ng speech as WAV files into this folder instead of playing it.
     pub speech_wav: Option<PathBuf>,
+    /// Credentials for operators and dialog managers, or an open development server.
+    pub access: AccessMode,
 }
 
 /// A server ready to run.
@@ -69,7 +73,8 @@ impl Server {
             seed: options.seed,
         });
         let dispatcher = Dispatcher::new(Arc::new(bundle), router, hub, options.seed, life.clone());
-        let state = AppState::new(dispatcher, Arc::new(devices), life);
+        let access = Access::new(options.access.clone());
+        let state = AppState::new(dispatcher, Arc::new(devices), life, access);
         Ok(Server {
             state,
             corpus,
@@ -170,7 +175,8 @@ pub async fn run(
         stopping.stop(Source::Server, "the server is shutting down");
         stop.cancel();
     };
-    let served = axum::serve(listener, app(state))
+    let service = app(state).into_make_service_with_connect_info::<SocketAddr>();
+    let served = axum::serve(listener, service)
         .with_graceful_shutdown(signal)
         .await;
     // axum's graceful shutdown does not wait for websocket tasks (tokio-rs/axum#3003).

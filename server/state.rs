@@ -6,11 +6,14 @@ use std::sync::{Arc, Mutex};
 
 use serde::Serialize;
 
+use crate::access::Access;
 use crate::adapters::Devices;
 use crate::dispatch::Dispatcher;
 use crate::events::{ClientRole, Hub};
 use crate::lifecycle::Lifecycle;
+use crate::operator::{Proposals, Visits};
 use crate::sync::lock;
+use crate::ws::outbox::Outbox;
 use crate::ws::protocol::StateView;
 
 /// A connected websocket client, as `GET /api/state` lists it.
@@ -35,24 +38,46 @@ pub struct AppState {
     pub devices: Arc<Devices>,
     /// Shutdown token and task tracker.
     pub life: Lifecycle,
+    /// Credentials and failed-attempt memory.
+    pub access: Arc<Access>,
+    /// Proposals from dialog managers waiting for an operator.
+    pub proposals: Arc<Proposals>,
+    /// The visitor session marked by operators.
+    pub visits: Arc<Visits>,
     clients: Arc<Clients>,
 }
 
 #[derive(Default)]
 struct Clients {
     next: AtomicU64,
-    connected: Mutex<BTreeMap<u64, ClientInfo>>,
+    connected: Mutex<BTreeMap<u64, Connected>>,
+}
+
+struct Connected {
+    info: ClientInfo,
+    /// For frames relayed from another client (WebRTC signalling).
+    outbox: Outbox,
+    /// Operators that signalled this client (a kiosk answers only them).
+    signalled_by: Vec<u64>,
 }
 
 impl AppState {
     /// State over a running dispatcher and its devices.
-    pub fn new(dispatcher: Arc<Dispatcher>, devices: Arc<Devices>, life: Lifecycle) -> Self {
+    pub fn new(
+        dispatcher: Arc<Dispatcher>,
+        devices: Arc<Devices>,
+        life: Lifecycle,
+        access: Access,
+    ) -> Self {
         let hub = dispatcher.hub().clone();
         AppState {
             dispatcher,
             hub,
             devices,
             life,
+            access: Arc::new(access),
+            proposals: Arc::default(),
+            visits: Arc::default(),
             clients: Arc::default(),
         }
     }
@@ -63,8 +88,14 @@ impl AppState {
     }
 
     /// Records a client that said hello.
-    pub fn client_joined(&self, id: u64, info: ClientInfo) {
-        lock(&self.clients.connected).insert(id, info);
+    pub fn client_joined(&self, id: u64, info: ClientInfo, outbox: Outbox) {
+        let signalled_by = Vec::new();
+        let client = Connected {
+            info,
+            outbox,
+            signalled_by,
+        };
+        lock(&self.clients.connected).insert(id, client);
     }
 
     /// Forgets a client.
@@ -74,7 +105,25 @@ impl AppState {
 
     /// Connected clients by id.
     pub fn clients(&self) -> BTreeMap<u64, ClientInfo> {
-        lock(&self.clients.connected).clone()
+        (lock(&self.clients.connected).iter())
+            .map(|(id, c)| (*id, c.info.clone()))
+            .collect()
+    }
+
+    /// A connected client's role and outgoing queue, for relaying a signal from `from`: the
+    /// receiver remembers `from` so that it may answer.
+    pub fn signal_route(&self, to: u64, from: u64) -> Option<(ClientRole, Outbox)> {
+        let mut clients = lock(&self.clients.connected);
+        let target = clients.get_mut(&to)?;
+        if !target.signalled_by.contains(&from) {
+            target.signalled_by.push(from);
+        }
+        Some((target.info.role, target.outbox.clone()))
+    }
+
+    /// Whether client `from` signalled client `to` before.
+    pub fn was_signalled_by(&self, to: u64, from: u64) -> bool {
+        (lock(&self.clients.connected).get(&to)).is_some_and(|c| c.signalled_by.contains(&from))
     }
 
     /// The state a client is welcomed with.

@@ -137,6 +137,7 @@ fn spawn_docent(bundle: &std::path::Path, corpus: &std::path::Path) -> (Child, S
             "--corpus",
             corpus.to_str().unwrap(),
         ])
+        .env("DOCENT_OPERATOR_TOKEN", common::OPERATOR_TOKEN)
         .stdout(Stdio::piped())
         .stderr(Stdio::null())
         .spawn()
@@ -173,7 +174,8 @@ async fn the_log_survives_a_crash() {
     let corpus = tempfile::tempdir().unwrap();
     let (mut child, addr) = spawn_docent(b.path(), corpus.path());
     let mut op = WsClient::connect(&format!("ws://{addr}/ws")).await;
-    op.send(json!({"type": "hello", "role": "operator"})).await;
+    op.send(json!({"type": "hello", "role": "operator", "token": common::OPERATOR_TOKEN}))
+        .await;
     op.recv_type("welcome").await;
     op.send(json!({"type": "trigger", "label": "GREET", "ref": "before-crash"}))
         .await;

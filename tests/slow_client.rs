@@ -16,12 +16,10 @@ async fn a_client_that_stops_reading_is_dropped_without_slowing_the_others() {
     // Says hello as an operator (so every event is sent to it), then never reads again.
     let mut stalled = WsClient::connect(&format!("ws://{}/ws", server.addr)).await;
     stalled
-        .send(json!({"type": "hello", "role": "operator", "name": "stalled"}))
+        .send(json!({"type": "hello", "role": "operator", "name": "stalled", "token": common::OPERATOR_TOKEN}))
         .await;
-    // A kiosk triggers as fast as the server answers it, and keeps being answered.
-    let mut sender = server
-        .client(json!({"type": "hello", "role": "kiosk"}))
-        .await;
+    // A dialog manager triggers as fast as the server answers it, and keeps being answered.
+    let mut sender = server.client(json!({"type": "hello", "role": "dm"})).await;
     let mut answered = 0u64;
     loop {
         for _ in 0..50 {

@@ -134,6 +134,7 @@ fn an_unknown_voice_is_reported_at_start_up() {
         seed: None,
         corpus_dir: corpus.path().to_owned(),
         speech_wav: None,
+        access: common::test_access(),
     };
     let runtime = tokio::runtime::Runtime::new().unwrap();
     let server =

@@ -16,7 +16,7 @@ async fn fig4() -> TestServer {
 async fn a_trigger_is_answered_with_its_ref_and_resolved_commands() {
     let server = fig4().await;
     let mut op = server.operator().await;
-    assert_eq!(op.welcome["protocol"], 1);
+    assert_eq!(op.welcome["protocol"], 2);
     assert_eq!(op.welcome["role"], "operator");
     assert_eq!(op.welcome["state"]["context"], "Text");
     op.send(
@@ -66,9 +66,11 @@ async fn every_bad_frame_gets_an_error_and_the_connection_stays_usable() {
     }
     c.send_message(Message::binary(vec![1, 2, 3])).await;
     assert_eq!(c.recv_type("error").await["code"], "binary-frame");
-    c.send(json!({"type": "hello", "role": "dm"})).await;
+    c.send(json!({"type": "hello", "role": "dm", "token": common::DM_TOKEN}))
+        .await;
     assert_eq!(c.recv_type("welcome").await["role"], "dm");
-    c.send(json!({"type": "hello", "role": "dm"})).await;
+    c.send(json!({"type": "hello", "role": "dm", "token": common::DM_TOKEN}))
+        .await;
     assert_eq!(c.recv_type("error").await["code"], "already-introduced");
     c.send(json!({"type": "trigger", "label": "OK", "ref": "after"}))
         .await;

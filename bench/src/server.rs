@@ -45,6 +45,8 @@ impl Server {
             .arg(bundle)
             .args(["--listen", &format!("127.0.0.1:{port}"), "--corpus"])
             .arg(scratch.join("corpus"))
+            // Loopback only: the load clients say hello as operators without a credential.
+            .arg("--open")
             .stdin(Stdio::null())
             .stdout(log)
             .stderr(log2)

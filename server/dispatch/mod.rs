@@ -252,6 +252,22 @@ impl Dispatcher {
             .collect()
     }
 
+    /// Whether `label` (in `context`) could be triggered now, without triggering it: how a
+    /// proposal is checked before an operator sees it.
+    pub fn check(&self, label: &str, context: Option<&str>) -> Result<(), TriggerError> {
+        let bundle = self.bundle.load();
+        if bundle.act(label).is_none() {
+            return Err(TriggerError::UnknownAct {
+                label: label.to_owned(),
+                suggestion: suggest(label, bundle.labels()),
+            });
+        }
+        match context {
+            Some(c) => self.known_context(&bundle, c).map(drop),
+            None => Ok(()),
+        }
+    }
+
     fn known_context(&self, bundle: &Bundle, context: &str) -> Result<String, TriggerError> {
         if bundle.contexts.iter().any(|c| c == context) {
             return Ok(context.to_owned());

@@ -2,6 +2,7 @@
 //! unbounded channel (the log must not lose anything); websocket subscribers get them through a
 //! bounded broadcast channel and handle lag themselves.
 
+use std::collections::VecDeque;
 use std::sync::{Arc, Mutex};
 use std::time::{Instant, SystemTime};
 
@@ -9,6 +10,9 @@ use tokio::sync::{broadcast, mpsc};
 
 use crate::events::{Event, EventKind};
 use crate::sync::lock;
+
+/// How many history events (acts triggered, proposals, marks) a console joining later gets.
+pub const HISTORY_LEN: usize = 200;
 
 /// How many events a slow websocket subscriber may fall behind before it lags.
 pub const EVENT_CHANNEL_CAPACITY: usize = 4096;
@@ -34,6 +38,8 @@ struct Inner {
     seq: Mutex<u64>,
     corpus: mpsc::UnboundedSender<CorpusMsg>,
     broadcast: broadcast::Sender<Arc<Event>>,
+    /// The latest history events (see [`EventKind::is_history`]), oldest first.
+    history: Mutex<VecDeque<Arc<Event>>>,
 }
 
 impl Hub {
@@ -46,6 +52,7 @@ impl Hub {
             seq: Mutex::new(0),
             corpus,
             broadcast,
+            history: Mutex::new(VecDeque::with_capacity(HISTORY_LEN)),
         };
         (
             Hub {
@@ -67,8 +74,24 @@ impl Hub {
         let _ = self.inner.corpus.send(CorpusMsg::Event(Arc::clone(&event)));
         // No subscribers is fine.
         let _ = self.inner.broadcast.send(Arc::clone(&event));
+        if event.kind.is_history() {
+            let mut history = lock(&self.inner.history);
+            if history.len() == HISTORY_LEN {
+                history.pop_front();
+            }
+            history.push_back(Arc::clone(&event));
+        }
         drop(seq);
         event
+    }
+
+    /// A receiver of every event from now on, and the recent history up to now: taken
+    /// together, so no history event falls between them.
+    pub fn subscribe_with_history(&self) -> (broadcast::Receiver<Arc<Event>>, Vec<Arc<Event>>) {
+        let _seq = lock(&self.inner.seq);
+        let rx = self.inner.broadcast.subscribe();
+        let history = lock(&self.inner.history).iter().cloned().collect();
+        (rx, history)
     }
 
     /// Tells the corpus writer to flush and stop after every event published so far.

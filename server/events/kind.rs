@@ -43,6 +43,26 @@ pub enum ClientRole {
     Adapter,
 }
 
+impl EventKind {
+    /// Whether an operator or dialog manager joining later should see this event again (the
+    /// console's history, pending proposals and marks).
+    pub fn is_history(&self) -> bool {
+        matches!(
+            self,
+            EventKind::ActTriggered { .. }
+                | EventKind::TriggerRefused { .. }
+                | EventKind::ContextChanged { .. }
+                | EventKind::ProposalMade { .. }
+                | EventKind::ProposalAccepted { .. }
+                | EventKind::ProposalDismissed { .. }
+                | EventKind::SessionStarted { .. }
+                | EventKind::SessionEnded { .. }
+                | EventKind::VisitorGroup { .. }
+                | EventKind::SituationMarked { .. }
+        )
+    }
+}
+
 impl ClientRole {
     /// The source recorded for triggers from a client in this role.
     pub fn source(self) -> Source {
@@ -233,6 +253,98 @@ pub enum EventKind {
         source: Source,
         /// Why, e.g. `stop request` or `DRIVE_STOP in act GOODBYE`.
         reason: String,
+    },
+    /// A dialog manager proposed an act for the operator to accept or dismiss.
+    #[serde(rename = "proposal.made")]
+    ProposalMade {
+        /// The proposal's id.
+        proposal: u64,
+        /// The dialog manager's connection.
+        client: u64,
+        /// The act proposed.
+        label: String,
+        /// The context it would be triggered in (the current one when absent).
+        context: Option<String>,
+        /// Why, in the dialog manager's words.
+        reason: Option<String>,
+    },
+    /// An operator accepted a proposal; the act was triggered as `trigger`.
+    #[serde(rename = "proposal.accepted")]
+    ProposalAccepted {
+        /// The proposal's id.
+        proposal: u64,
+        /// The operator's connection.
+        client: u64,
+        /// The act.
+        label: String,
+        /// The trigger it became.
+        trigger: u64,
+    },
+    /// An operator dismissed a proposal; nothing was triggered.
+    #[serde(rename = "proposal.dismissed")]
+    ProposalDismissed {
+        /// The proposal's id.
+        proposal: u64,
+        /// The operator's connection.
+        client: u64,
+        /// The act.
+        label: String,
+    },
+    /// A visitor session began (marked by an operator).
+    #[serde(rename = "session.started")]
+    SessionStarted {
+        /// The session's number, from 1 within one server run.
+        session: u64,
+        /// Who marked it.
+        source: Source,
+        /// The marking client.
+        client: u64,
+    },
+    /// A visitor session ended.
+    #[serde(rename = "session.ended")]
+    SessionEnded {
+        /// The session's number.
+        session: u64,
+        /// Who marked it.
+        source: Source,
+        /// The marking client.
+        client: u64,
+    },
+    /// The operator noted who the visitors are.
+    #[serde(rename = "visitor.group")]
+    VisitorGroup {
+        /// The running session, if any.
+        session: Option<u64>,
+        /// `single`, `group` or `children`.
+        group: String,
+        /// The context this set, when the site maps the group to one.
+        context: Option<String>,
+        /// Who marked it.
+        source: Source,
+        /// The marking client.
+        client: u64,
+    },
+    /// The operator marked a dialog situation (`question`, `laughter`, ... as the site lists).
+    #[serde(rename = "situation.marked")]
+    SituationMarked {
+        /// The running session, if any.
+        session: Option<u64>,
+        /// The situation's name.
+        situation: String,
+        /// Who marked it.
+        source: Source,
+        /// The marking client.
+        client: u64,
+    },
+    /// A websocket client's credential was refused; the connection was closed.
+    #[serde(rename = "client.refused")]
+    ClientRefused {
+        /// The role it asked for.
+        role: ClientRole,
+        /// `unauthorized` or `too-many-attempts`.
+        code: &'static str,
+        /// Its network address, when known.
+        address: Option<String>,
     },
     /// A websocket client said hello.
     #[serde(rename = "client.connected")]

@@ -1,5 +1,5 @@
 //! Events: everything that happens (act triggered, command sent/started/done/failed, display
-//! changed, pose, context changed, stop, clients coming and going) as one [`EventKind`] enum,
+//! changed, pose, context changed, stop, proposals, corpus marks, clients coming and going) as one [`EventKind`] enum,
 //! stamped with a sequence number and times by the [`Hub`], which hands each event to the
 //! corpus writer (lossless) and to websocket subscribers (broadcast, may lag).
 //!
@@ -9,7 +9,7 @@
 mod hub;
 mod kind;
 
-pub use hub::{CorpusMsg, EVENT_CHANNEL_CAPACITY, Hub};
+pub use hub::{CorpusMsg, EVENT_CHANNEL_CAPACITY, HISTORY_LEN, Hub};
 pub use kind::{ActRef, ClientRole, Event, EventKind, Source};
 
 /// Version of the event format, written into every corpus line as `v`.

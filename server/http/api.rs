@@ -14,6 +14,7 @@ use crate::content::{Act, Pos};
 use crate::dispatch::TriggerRequest;
 use crate::events::Source;
 use crate::http::AppError;
+use crate::http::auth::Authorized;
 use crate::state::AppState;
 use crate::ws::protocol::PROTOCOL_VERSION;
 
@@ -32,6 +33,12 @@ pub async fn health(State(state): State<AppState>) -> Json<Value> {
 struct ActView<'a> {
     label: &'a str,
     at: &'a Pos,
+    /// The acts file, relative to the bundle.
+    file: &'a str,
+    /// The console group: the act's `Group`, else its file name without extension.
+    group: &'a str,
+    /// The console key (`Alt+` this), if the act has one.
+    key: Option<String>,
     variants: Vec<VariantView<'a>>,
     commands: Vec<CommandView<'a>>,
 }
@@ -57,9 +64,15 @@ struct CommandView<'a> {
 }
 
 fn act_view(act: &Act) -> ActView<'_> {
+    let file: &str = &act.pos.file;
+    let stem = file.rsplit('/').next().unwrap_or(file);
+    let stem = stem.split_once('.').map_or(stem, |(name, _)| name);
     ActView {
         label: &act.label,
         at: &act.pos,
+        file,
+        group: act.group.as_deref().unwrap_or(stem),
+        key: act.key.map(String::from),
         variants: (act.variants.iter())
             .map(|v| VariantView {
                 name: &v.name,
@@ -111,9 +124,11 @@ fn optional_json<T: for<'de> Deserialize<'de> + Default>(body: &Bytes) -> Result
         .map_err(|e| AppError::bad_request(format!("the request body is not right: {e}")))
 }
 
-/// `POST /api/acts/{label}/trigger`: 202 with the trigger id and resolved commands.
+/// `POST /api/acts/{label}/trigger` (credential needed): 202 with the trigger id and resolved
+/// commands.
 pub async fn trigger_act(
     State(state): State<AppState>,
+    _: Authorized,
     label: Result<Path<String>, PathRejection>,
     body: Bytes,
 ) -> Result<impl IntoResponse, AppError> {
@@ -131,8 +146,8 @@ pub async fn trigger_act(
     Ok((StatusCode::ACCEPTED, Json(triggered)))
 }
 
-/// `POST /api/stop`: stops speech, drive and every queue.
-pub async fn stop_all(State(state): State<AppState>) -> impl IntoResponse {
+/// `POST /api/stop` (credential needed): stops speech, drive and every queue.
+pub async fn stop_all(State(state): State<AppState>, _: Authorized) -> impl IntoResponse {
     state.dispatcher.stop(Source::Http, "stop request");
     (StatusCode::ACCEPTED, Json(json!({ "stopped": true })))
 }
@@ -149,9 +164,10 @@ struct ContextBody {
     context: String,
 }
 
-/// `PUT /api/context` with `{"context": "TextGroup"}`.
+/// `PUT /api/context` with `{"context": "TextGroup"}` (credential needed).
 pub async fn put_context(
     State(state): State<AppState>,
+    _: Authorized,
     body: Bytes,
 ) -> Result<Json<Value>, AppError> {
     let body: ContextBody = serde_json::from_slice(&body)
@@ -160,7 +176,8 @@ pub async fn put_context(
     Ok(get_context(State(state)).await)
 }
 
-/// `GET /api/state`: display, pose, speech, queues, context and connected clients.
+/// `GET /api/state`: display, pose, speech, queues, context, connected clients, pending
+/// proposals and the visitor session.
 pub async fn get_state(State(state): State<AppState>) -> Json<Value> {
     let adapters = state.dispatcher.adapter_status();
     let speaking = (adapters.get(state.devices.speech_adapter)).and_then(|s| {
@@ -177,6 +194,8 @@ pub async fn get_state(State(state): State<AppState>) -> Json<Value> {
         "queues": adapters,
         "context": state.dispatcher.context(),
         "clients": state.clients(),
+        "proposals": state.proposals.pending(),
+        "session": state.visits.current(),
     }))
 }
 

@@ -2,7 +2,7 @@
 //! errors say what was wrong; internal errors get a generic message and are logged once.
 
 use axum::Json;
-use axum::http::StatusCode;
+use axum::http::{HeaderName, HeaderValue, StatusCode};
 use axum::response::{IntoResponse, Response};
 use serde_json::json;
 
@@ -15,6 +15,8 @@ pub struct AppError {
     code: &'static str,
     message: String,
     suggestion: Option<String>,
+    // Boxed: rare, and it would double the size of every `Result<_, AppError>`.
+    header: Option<Box<(HeaderName, HeaderValue)>>,
 }
 
 impl AppError {
@@ -25,7 +27,14 @@ impl AppError {
             code,
             message: message.into(),
             suggestion: None,
+            header: None,
         }
+    }
+
+    /// The same error with one more response header (`WWW-Authenticate`, `Retry-After`).
+    pub fn with_header(mut self, name: HeaderName, value: HeaderValue) -> Self {
+        self.header = Some(Box::new((name, value)));
+        self
     }
 
     /// 404 `not-found`.
@@ -60,6 +69,7 @@ impl From<TriggerError> for AppError {
             code: e.code(),
             message: e.to_string(),
             suggestion: e.suggestion().map(str::to_owned),
+            header: None,
         }
     }
 }
@@ -70,6 +80,11 @@ impl IntoResponse for AppError {
         if let Some(s) = self.suggestion {
             body["suggestion"] = s.into();
         }
-        (self.status, Json(body)).into_response()
+        let mut response = (self.status, Json(body)).into_response();
+        if let Some(header) = self.header {
+            let (name, value) = *header;
+            response.headers_mut().insert(name, value);
+        }
+        response
     }
 }

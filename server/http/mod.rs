@@ -4,9 +4,11 @@
 //! - `files`: bundle files under `/pages/` and `/media/`, never outside the bundle.
 //! - `shells`: the kiosk (`/`) and projector (`/projector`) pages, askama templates.
 //! - `static_files`: `/static/...`, the shells' scripts and styles, embedded in the binary.
+//! - `auth`: who is asking ([`auth::Peer`]) and whether they may ([`auth::Authorized`]).
 //! - `error`: [`AppError`], the one error type at the HTTP edge.
 
 mod api;
+pub(crate) mod auth;
 mod error;
 mod files;
 mod shells;

@@ -1,7 +1,12 @@
-//! One websocket connection: the upgrade, the reader loop and what each client frame does.
-//! Every bad frame gets an `error` frame and the connection stays usable.
+//! One websocket connection: the upgrade, the reader loop and the routing of each client frame
+//! to its handler (`hello`, `triggers`, `initiative`, `signal` and answers here). Every bad
+//! frame gets an `error` frame and the connection stays usable; only a refused credential
+//! ends it.
 
 use std::time::Duration;
+
+use std::net::IpAddr;
+use std::time::Instant;
 
 use axum::extract::State;
 use axum::extract::ws::{Message, WebSocket, WebSocketUpgrade};
@@ -10,17 +15,15 @@ use futures_util::StreamExt;
 use tokio::sync::oneshot;
 use tokio_util::sync::CancellationToken;
 
+use crate::access::TokenBucket;
 use crate::adapters::Outcome;
-use crate::content::{BundleArea, resolve_in_bundle};
-use crate::dispatch::TriggerRequest;
 use crate::events::{ClientRole, EventKind};
-use crate::state::{AppState, ClientInfo};
+use crate::http::auth::Peer;
+use crate::state::AppState;
 use crate::ws::diagnose::diagnose;
+use crate::ws::hello::Hello;
 use crate::ws::outbox::{Frame, OUTBOX_CAPACITY, Outbox};
-use crate::ws::protocol::{
-    ClientFrame, MAX_FRAME_BYTES, context_frame, error_frame, stopped_frame, triggered_frame,
-    welcome_frame,
-};
+use crate::ws::protocol::{ClientFrame, MAX_FRAME_BYTES, error_frame};
 use crate::ws::writer::{Feed, PING_INTERVAL, run_writer};
 
 /// Frames beyond this size end the connection at the websocket layer; frames between
@@ -35,7 +38,11 @@ const IDLE_TIMEOUT: Duration = Duration::from_secs(3 * PING_INTERVAL.as_secs());
 const WRITER_ENDED: &str = "writer ended";
 
 /// `GET /ws`: upgrades to a websocket connection.
-pub async fn ws_upgrade(ws: WebSocketUpgrade, State(state): State<AppState>) -> Response {
+pub async fn ws_upgrade(
+    ws: WebSocketUpgrade,
+    State(state): State<AppState>,
+    Peer(peer): Peer,
+) -> Response {
     ws.max_message_size(MAX_MESSAGE_BYTES)
         .max_frame_size(MAX_MESSAGE_BYTES)
         // tungstenite reads into a 128 KiB buffer per connection by default; protocol frames
@@ -44,27 +51,31 @@ pub async fn ws_upgrade(ws: WebSocketUpgrade, State(state): State<AppState>) -> 
         .on_upgrade(move |socket| {
             // axum spawns this itself; tracking it lets shutdown wait for the client.left event.
             let tracker = state.life.tracker.clone();
-            tracker.track_future(serve(socket, state))
+            tracker.track_future(serve(socket, state, peer))
         })
 }
 
-/// What a `hello` frame says.
-struct Hello {
-    role: ClientRole,
-    verbs: Vec<String>,
-    name: Option<String>,
-    events: bool,
+/// One connection's state, shared by the frame handlers in the sibling files.
+pub(super) struct Session {
+    /// The connection's id.
+    pub(super) client: u64,
+    /// The client's address (`None` when unknown).
+    pub(super) peer: Option<IpAddr>,
+    /// The role, once `hello` was accepted.
+    pub(super) role: Option<ClientRole>,
+    /// Frames to this client.
+    pub(super) outbox: Outbox,
+    /// Hands the writer its subscription after `hello`.
+    pub(super) feed: Option<oneshot::Sender<Feed>>,
+    /// The server.
+    pub(super) state: AppState,
+    /// Set when the connection must end after the frames queued so far (a refused hello).
+    pub(super) closing: Option<&'static str>,
+    /// A kiosk's trigger allowance.
+    pub(super) allowance: TokenBucket,
 }
 
-struct Session {
-    client: u64,
-    role: Option<ClientRole>,
-    outbox: Outbox,
-    feed: Option<oneshot::Sender<Feed>>,
-    state: AppState,
-}
-
-async fn serve(socket: WebSocket, state: AppState) {
+async fn serve(socket: WebSocket, state: AppState, peer: Option<IpAddr>) {
     let client = state.next_client_id();
     let (sink, mut stream) = socket.split();
     let (outbox, queue) = Outbox::new(OUTBOX_CAPACITY);
@@ -79,10 +90,13 @@ async fn serve(socket: WebSocket, state: AppState) {
     ));
     let mut session = Session {
         client,
+        peer,
         role: None,
         outbox,
         feed: Some(feed_tx),
         state: state.clone(),
+        closing: None,
+        allowance: TokenBucket::kiosk(Instant::now()),
     };
     let shutdown = state.life.shutdown.clone();
     let kicked = session.outbox.kicked().clone();
@@ -97,7 +111,12 @@ async fn serve(socket: WebSocket, state: AppState) {
             Err(_) => break "idle timeout",
             Ok(None) | Ok(Some(Ok(Message::Close(_)))) => break "closed by client",
             Ok(Some(Err(_))) => break "protocol error",
-            Ok(Some(Ok(Message::Text(text)))) => session.on_text(text.as_str()),
+            Ok(Some(Ok(Message::Text(text)))) => {
+                session.on_text(text.as_str());
+                if let Some(reason) = session.closing {
+                    break reason;
+                }
+            }
             Ok(Some(Ok(Message::Binary(_)))) => {
                 session.reply_error(
                     "binary-frame",
@@ -109,6 +128,12 @@ async fn serve(socket: WebSocket, state: AppState) {
             Ok(Some(Ok(_))) => {} // pings and pongs
         }
     };
+    if session.closing.is_some() {
+        // Dropping the only sender lets the writer send the queued error, then close.
+        drop(session);
+        let _ = writer.await;
+        return;
+    }
     if reason == WRITER_ENDED {
         let writer_end = writer.await.unwrap_or("writer failed");
         return session.leave(writer_end);
@@ -121,11 +146,11 @@ async fn serve(socket: WebSocket, state: AppState) {
 }
 
 impl Session {
-    fn send(&self, frame: String) {
+    pub(super) fn send(&self, frame: String) {
         self.outbox.send(Frame::from(frame));
     }
 
-    fn reply_error(
+    pub(super) fn reply_error(
         &self,
         code: &str,
         message: &str,
@@ -155,12 +180,13 @@ impl Session {
                 role,
                 verbs,
                 name,
-                token: _,
+                token,
                 events,
             } => self.hello(Hello {
                 role,
                 verbs,
                 name,
+                token,
                 events,
             }),
             ClientFrame::Trigger {
@@ -168,59 +194,30 @@ impl Session {
                 context,
                 interrupt,
                 reference,
-            } => {
-                let Some(role) = self.allowed(
-                    &[ClientRole::Kiosk, ClientRole::Operator, ClientRole::Dm],
-                    reference.as_deref(),
-                ) else {
-                    return self.log_refused(label);
-                };
-                let request = TriggerRequest {
-                    label,
-                    context,
-                    interrupt,
-                    reference: reference.clone(),
-                    source: role.source(),
-                    client: Some(self.client),
-                };
-                match self.state.dispatcher.trigger(request) {
-                    Ok(t) => self.send(triggered_frame(&t)),
-                    Err(e) => self.reply_error(
-                        e.code(),
-                        &e.to_string(),
-                        reference.as_deref(),
-                        e.suggestion(),
-                    ),
-                }
-            }
-            ClientFrame::Stop { reference } => {
-                let Some(role) = self.allowed(
-                    &[ClientRole::Operator, ClientRole::Dm],
-                    reference.as_deref(),
-                ) else {
-                    return;
-                };
-                self.state.dispatcher.stop(role.source(), "stop request");
-                self.send(stopped_frame(reference.as_deref()));
-            }
-            ClientFrame::Context { context, reference } => {
-                let Some(role) = self.allowed(
-                    &[ClientRole::Operator, ClientRole::Dm],
-                    reference.as_deref(),
-                ) else {
-                    return;
-                };
-                match self.state.dispatcher.set_context(&context, role.source()) {
-                    Ok(()) => self.send(context_frame(reference.as_deref(), &context)),
-                    Err(e) => self.reply_error(
-                        e.code(),
-                        &e.to_string(),
-                        reference.as_deref(),
-                        e.suggestion(),
-                    ),
-                }
-            }
+            } => self.trigger(label, context, interrupt, reference),
+            ClientFrame::Stop { reference } => self.stop(reference),
+            ClientFrame::Context { context, reference } => self.set_context(context, reference),
             ClientFrame::Page { page } => self.page_shown(page),
+            ClientFrame::Propose {
+                label,
+                context,
+                reason,
+                reference,
+            } => self.propose(label, context, reason, reference),
+            ClientFrame::Accept {
+                proposal,
+                reference,
+            } => self.accept(proposal, reference),
+            ClientFrame::Dismiss {
+                proposal,
+                reference,
+            } => self.dismiss(proposal, reference),
+            ClientFrame::Mark {
+                mark,
+                value,
+                reference,
+            } => self.mark(mark, value, reference),
+            ClientFrame::Signal { to, data } => self.signal(to, &data),
             ClientFrame::Started { id } => self.answer(id, None),
             ClientFrame::Done { id } => self.answer(id, Some(Outcome::Done)),
             ClientFrame::Failed { id, reason } => {
@@ -231,7 +228,11 @@ impl Session {
     }
 
     /// The client's role if it is one of `roles`; otherwise answers with an error.
-    fn allowed(&self, roles: &[ClientRole], reference: Option<&str>) -> Option<ClientRole> {
+    pub(super) fn allowed(
+        &self,
+        roles: &[ClientRole],
+        reference: Option<&str>,
+    ) -> Option<ClientRole> {
         match self.role {
             None => {
                 self.reply_error(
@@ -249,118 +250,6 @@ impl Session {
                 None
             }
         }
-    }
-
-    /// A kiosk reports a page it shows on its own, so the server's display state (what a
-    /// reconnecting kiosk is sent back to, what the log says) stays true.
-    fn page_shown(&self, page: String) {
-        if self.allowed(&[ClientRole::Kiosk], None).is_none() {
-            return;
-        }
-        let root = &self.state.dispatcher.bundle().root;
-        if resolve_in_bundle(root, BundleArea::Pages, &page).is_err() {
-            let message = format!("{page:?} is not a page of this bundle");
-            return self.reply_error("unknown-page", &message, None, None);
-        }
-        self.state.devices.display.page_shown(page, &self.state.hub);
-    }
-
-    /// Records a trigger this client's role may not make.
-    fn log_refused(&self, label: String) {
-        let Some(role) = self.role else { return };
-        self.state.hub.publish(EventKind::TriggerRefused {
-            source: role.source(),
-            client: Some(self.client),
-            label,
-            code: "forbidden",
-            message: format!("a client with role {role:?} may not trigger acts").to_lowercase(),
-        });
-    }
-
-    fn hello(&mut self, hello: Hello) {
-        let Hello {
-            role,
-            verbs,
-            name,
-            events,
-        } = hello;
-        if self.role.is_some() {
-            return self.reply_error(
-                "already-introduced",
-                "hello was already received on this connection",
-                None,
-                None,
-            );
-        }
-        if role == ClientRole::Adapter && verbs.is_empty() {
-            return self.reply_error(
-                "no-verbs",
-                "an adapter must list the verbs it serves in \"verbs\"",
-                None,
-                None,
-            );
-        }
-        self.role = Some(role);
-        let state = &self.state;
-        let (display, display_rx) = state.devices.display.subscribe(role);
-        if role == ClientRole::Projector {
-            state.devices.display.projector_joined(self.client);
-        }
-        let mut view = state.state_view();
-        view.display = display;
-        self.send(welcome_frame(self.client, role, &view));
-        let feed = match (role, display_rx) {
-            (_, Some(rx)) => Some(Feed::Display(role, rx)),
-            (ClientRole::Operator | ClientRole::Dm, None) if events => {
-                Some(Feed::Events(state.hub.subscribe()))
-            }
-            _ => None,
-        };
-        if let (Some(feed), Some(tx)) = (feed, self.feed.take()) {
-            let _ = tx.send(feed);
-        }
-        if role == ClientRole::Adapter {
-            state
-                .devices
-                .ws
-                .connect(self.client, verbs.clone(), self.outbox.clone());
-            self.warn_unrouted(&verbs);
-        }
-        state.client_joined(
-            self.client,
-            ClientInfo {
-                role,
-                name: name.clone(),
-                verbs: verbs.clone(),
-            },
-        );
-        state.hub.publish(EventKind::ClientConnected {
-            client: self.client,
-            role,
-            name,
-            verbs,
-        });
-    }
-
-    /// Tells an adapter, in one frame, which of its verbs this bundle sends elsewhere: it
-    /// will not get them.
-    fn warn_unrouted(&self, verbs: &[String]) {
-        let problems: Vec<String> = (verbs.iter())
-            .filter_map(|verb| match self.state.dispatcher.adapter_for(verb) {
-                Some("ws") => None,
-                Some(other) => Some(format!("{verb} goes to the {other} adapter")),
-                None => Some(format!("{verb} is not a verb of this bundle")),
-            })
-            .collect();
-        if problems.is_empty() {
-            return;
-        }
-        let message = format!(
-            "{}; route built-in verbs to ws and declare site verbs under verbs: in docent.yaml \
-             to receive them here",
-            problems.join("; ")
-        );
-        self.reply_error("verb-not-routed", &message, None, None);
     }
 
     fn answer(&self, id: u64, outcome: Option<Outcome>) {

@@ -3,12 +3,18 @@
 //!
 //! Each connection has a reader loop (`connection`) and a writer task (`writer`); when one ends,
 //! the other stops. Outgoing frames pass through a bounded [`outbox::Outbox`], so a slow
-//! client is dropped instead of slowing others.
+//! client is dropped instead of slowing others. The reader routes each frame to a handler:
+//! `hello` (credentials, welcome, feeds), `triggers` (trigger, stop, context, page; the kiosk
+//! rules), `initiative` (proposals and corpus marks) and `signal` (WebRTC signalling relay).
 
 mod connection;
 mod diagnose;
+mod hello;
+mod initiative;
 pub mod outbox;
 pub mod protocol;
+mod signal;
+mod triggers;
 mod writer;
 
 pub use connection::ws_upgrade;

@@ -8,7 +8,7 @@ use crate::dispatch::ResolvedCommand;
 use crate::events::{ClientRole, Event};
 
 /// The protocol version sent in `welcome`.
-pub const PROTOCOL_VERSION: u32 = 1;
+pub const PROTOCOL_VERSION: u32 = 2;
 
 /// Largest text frame Docent reads; larger ones are answered with an error.
 pub const MAX_FRAME_BYTES: usize = 16 * 1024;
@@ -27,7 +27,7 @@ pub enum ClientFrame {
         /// A name for logs and the operator's view.
         #[serde(default)]
         name: Option<String>,
-        /// A credential (operator and dialog-manager roles; checked from a later version).
+        /// The credential (operator and dialog-manager roles; adapters not on this machine).
         #[serde(default)]
         token: Option<String>,
         /// Whether an operator or dialog manager wants the event stream (default true); a
@@ -68,6 +68,54 @@ pub enum ClientFrame {
         /// The page, relative to `pages/`.
         page: String,
     },
+    /// A dialog manager proposes an act to the operators.
+    Propose {
+        /// The act.
+        label: String,
+        /// A context variant (the current one when absent).
+        #[serde(default)]
+        context: Option<String>,
+        /// Why, for the operator.
+        #[serde(default)]
+        reason: Option<String>,
+        /// Echoed back.
+        #[serde(default, rename = "ref")]
+        reference: Option<String>,
+    },
+    /// An operator accepts a proposal: its act is triggered.
+    Accept {
+        /// The proposal's id.
+        proposal: u64,
+        /// Echoed back.
+        #[serde(default, rename = "ref")]
+        reference: Option<String>,
+    },
+    /// An operator dismisses a proposal.
+    Dismiss {
+        /// The proposal's id.
+        proposal: u64,
+        /// Echoed back.
+        #[serde(default, rename = "ref")]
+        reference: Option<String>,
+    },
+    /// An operator marks the corpus: a visitor session, the visitor group, a situation.
+    Mark {
+        /// What is marked.
+        mark: MarkKind,
+        /// The group (`single`, `group`, `children`) or the situation's name.
+        #[serde(default)]
+        value: Option<String>,
+        /// Echoed back.
+        #[serde(default, rename = "ref")]
+        reference: Option<String>,
+    },
+    /// WebRTC signalling between an operator and a kiosk, relayed as is.
+    Signal {
+        /// The receiving client's id.
+        to: u64,
+        /// Offer, answer, candidate...: opaque to the server.
+        data: serde_json::Value,
+    },
     /// An adapter began a command.
     Started {
         /// Command id.
@@ -86,6 +134,20 @@ pub enum ClientFrame {
         #[serde(default)]
         reason: Option<String>,
     },
+}
+
+/// What a `mark` frame marks.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Deserialize, Serialize)]
+#[serde(rename_all = "snake_case")]
+pub enum MarkKind {
+    /// A visitor session begins (ending the running one).
+    SessionStart,
+    /// The visitor session ends.
+    SessionEnd,
+    /// Who the visitors are: `value` is `single`, `group` or `children`.
+    Group,
+    /// A dialog situation: `value` is one of the site's situations.
+    Situation,
 }
 
 fn yes() -> bool {
@@ -147,6 +209,28 @@ enum ServerFrame<'a> {
         #[serde(rename = "ref")]
         reference: Option<&'a str>,
         context: &'a str,
+    },
+    Proposed {
+        #[serde(rename = "ref")]
+        reference: Option<&'a str>,
+        proposal: u64,
+    },
+    Dismissed {
+        #[serde(rename = "ref")]
+        reference: Option<&'a str>,
+        proposal: u64,
+    },
+    Marked {
+        #[serde(rename = "ref")]
+        reference: Option<&'a str>,
+        mark: MarkKind,
+        value: Option<&'a str>,
+        session: Option<u64>,
+    },
+    Signal {
+        from: u64,
+        role: ClientRole,
+        data: &'a serde_json::Value,
     },
     Error {
         code: &'a str,
@@ -216,6 +300,42 @@ pub fn stopped_frame(reference: Option<&str>) -> String {
 /// `context`: the answer to a context change.
 pub fn context_frame(reference: Option<&str>, context: &str) -> String {
     encode(&ServerFrame::Context { reference, context })
+}
+
+/// `proposed`: the answer to `propose`.
+pub fn proposed_frame(reference: Option<&str>, proposal: u64) -> String {
+    encode(&ServerFrame::Proposed {
+        reference,
+        proposal,
+    })
+}
+
+/// `dismissed`: the answer to `dismiss`.
+pub fn dismissed_frame(reference: Option<&str>, proposal: u64) -> String {
+    encode(&ServerFrame::Dismissed {
+        reference,
+        proposal,
+    })
+}
+
+/// `marked`: the answer to `mark`, with the session the mark belongs to.
+pub fn marked_frame(
+    reference: Option<&str>,
+    mark: MarkKind,
+    value: Option<&str>,
+    session: Option<u64>,
+) -> String {
+    encode(&ServerFrame::Marked {
+        reference,
+        mark,
+        value,
+        session,
+    })
+}
+
+/// `signal`: signalling data relayed from client `from`.
+pub fn signal_frame(from: u64, role: ClientRole, data: &serde_json::Value) -> String {
+    encode(&ServerFrame::Signal { from, role, data })
 }
 
 /// `error`: what went wrong with a client's frame; the connection stays open.

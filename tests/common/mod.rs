@@ -9,6 +9,7 @@ pub mod check;
 use std::path::{Path, PathBuf};
 use std::time::Duration;
 
+use docent::access::{AccessMode, Credentials, Secret};
 use docent::content::load_bundle;
 use docent::serve::{ServeOptions, Server, run};
 use futures_util::{SinkExt, StreamExt};
@@ -18,6 +19,19 @@ use tokio::sync::oneshot;
 use tokio::task::JoinHandle;
 use tokio_tungstenite::tungstenite::Message;
 use tokio_tungstenite::{MaybeTlsStream, WebSocketStream, connect_async};
+
+/// The operator credential of every test server (unless a test sets another).
+pub const OPERATOR_TOKEN: &str = "test-operator-credential";
+/// The dialog-manager credential of every test server.
+pub const DM_TOKEN: &str = "test-dialog-manager-credential";
+
+/// The access mode test servers run with: guarded by the two test credentials.
+pub fn test_access() -> AccessMode {
+    AccessMode::Guarded(Credentials {
+        operator: Secret::new(OPERATOR_TOKEN),
+        dm: Secret::new(DM_TOKEN),
+    })
+}
 
 /// How long any single wait may take before the test fails.
 pub const DEADLINE: Duration = Duration::from_secs(20);
@@ -93,6 +107,7 @@ impl TestServer {
             seed: Some(1),
             corpus_dir: corpus_dir.path().to_owned(),
             speech_wav: None,
+            access: test_access(),
         };
         adjust(&mut options);
         let server = Server::start(loaded, &options).expect("server starts");
@@ -127,9 +142,22 @@ impl TestServer {
         (status, r.json().await.unwrap_or(Value::Null))
     }
 
-    /// POST JSON (or nothing), returning status and JSON body.
+    /// POST JSON (or nothing) with the operator credential, returning status and JSON body.
     pub async fn post(&self, path: &str, body: Option<Value>) -> (u16, Value) {
+        self.post_with(path, body, Some(OPERATOR_TOKEN)).await
+    }
+
+    /// POST JSON (or nothing) with `token` as bearer credential (none when `None`).
+    pub async fn post_with(
+        &self,
+        path: &str,
+        body: Option<Value>,
+        token: Option<&str>,
+    ) -> (u16, Value) {
         let mut req = self.http.post(self.url(path));
+        if let Some(token) = token {
+            req = req.bearer_auth(token);
+        }
         if let Some(body) = body {
             req = req.json(&body);
         }
@@ -143,6 +171,7 @@ impl TestServer {
         let r = self
             .http
             .put(self.url(path))
+            .bearer_auth(OPERATOR_TOKEN)
             .json(&body)
             .send()
             .await
@@ -160,13 +189,27 @@ impl TestServer {
         body
     }
 
-    /// A websocket client that has said hello with `hello` and read its welcome.
-    pub async fn client(&self, hello: Value) -> WsClient {
-        let mut c = WsClient::connect(&format!("ws://{}/ws", self.addr)).await;
+    /// A websocket client that has said hello with `hello` and read its welcome. Operator
+    /// and dialog-manager hellos without a `token` get the test credential of their role.
+    pub async fn client(&self, mut hello: Value) -> WsClient {
+        let token = match hello["role"].as_str() {
+            Some("operator") => Some(OPERATOR_TOKEN),
+            Some("dm") => Some(DM_TOKEN),
+            _ => None,
+        };
+        if let (Some(token), None) = (token, hello.get("token")) {
+            hello["token"] = token.into();
+        }
+        let mut c = self.connect().await;
         c.send(hello).await;
         let welcome = c.recv_type("welcome").await;
         c.welcome = welcome;
         c
+    }
+
+    /// A websocket client that has said nothing yet.
+    pub async fn connect(&self) -> WsClient {
+        WsClient::connect(&format!("ws://{}/ws", self.addr)).await
     }
 
     /// An operator client (receives every event).
@@ -245,6 +288,23 @@ impl WsClient {
                 Message::Text(t) => return serde_json::from_str(&t).expect("JSON frame"),
                 Message::Close(c) => panic!("connection closed: {c:?}"),
                 _ => continue,
+            }
+        }
+    }
+
+    /// Every JSON frame until the server closes the connection.
+    pub async fn frames_until_closed(&mut self) -> Vec<Value> {
+        let mut frames = Vec::new();
+        loop {
+            let next = tokio::time::timeout(DEADLINE, self.stream.next())
+                .await
+                .expect("the server closes within the deadline");
+            match next {
+                Some(Ok(Message::Text(t))) => {
+                    frames.push(serde_json::from_str(&t).expect("JSON frame"));
+                }
+                Some(Ok(Message::Close(_))) | None | Some(Err(_)) => return frames,
+                Some(Ok(_)) => {}
             }
         }
     }

@@ -16,6 +16,11 @@ import { fileURLToPath } from 'node:url';
 /** The repository root. */
 export const REPO = path.resolve(path.dirname(fileURLToPath(import.meta.url)), '../../..');
 
+/** The operator credential every test server gets (DOCENT_OPERATOR_TOKEN). */
+export const OPERATOR_TOKEN = 'e2e-operator-credential';
+/** The dialog-manager credential every test server gets (DOCENT_DM_TOKEN). */
+export const DM_TOKEN = 'e2e-dialog-manager-credential';
+
 /** How long one wait may take before a test fails: a deadline, never a pause. */
 export const DEADLINE_MS = 20_000;
 
@@ -76,9 +81,10 @@ export function freePort() {
 
 /**
  * Starts `docent serve` on `bundle` (a path). Options: `port` (default 0: any free port),
- * `corpus` (a folder; default a new temporary one), `args` (more command-line arguments).
+ * `corpus` (a folder; default a new temporary one), `args` (more command-line arguments),
+ * `env` (more environment; the credentials default to OPERATOR_TOKEN and DM_TOKEN).
  */
-export async function startDocent(bundle, { port = 0, corpus, args = [] } = {}) {
+export async function startDocent(bundle, { port = 0, corpus, args = [], env = {} } = {}) {
   const corpusDir = corpus ?? tempDir('docent-e2e-corpus-');
   const bin = docentBin();
   if (!fs.existsSync(bin)) {
@@ -87,7 +93,16 @@ export async function startDocent(bundle, { port = 0, corpus, args = [] } = {}) 
   const child = spawn(
     bin,
     ['serve', bundle, '--listen', `127.0.0.1:${port}`, '--corpus', corpusDir, '--seed', '1', ...args],
-    { stdio: ['ignore', 'pipe', 'pipe'], env: { ...process.env, RUST_LOG: process.env.RUST_LOG ?? 'docent=warn' } },
+    {
+      stdio: ['ignore', 'pipe', 'pipe'],
+      env: {
+        ...process.env,
+        RUST_LOG: process.env.RUST_LOG ?? 'docent=warn',
+        DOCENT_OPERATOR_TOKEN: OPERATOR_TOKEN,
+        DOCENT_DM_TOKEN: DM_TOKEN,
+        ...env,
+      },
+    },
   );
   let output = '';
   const keep = (chunk) => {
@@ -133,9 +148,14 @@ export async function startDocent(bundle, { port = 0, corpus, args = [] } = {}) 
     port: Number(new URL(base).port),
     process: child,
     output: () => output,
-    /** GET or POST a JSON route, e.g. `api('/api/state')`, `api('/api/acts/X/trigger', {})`. */
+    /**
+     * GET or POST a JSON route with the operator credential, e.g. `api('/api/state')`,
+     * `api('/api/acts/X/trigger', {})`.
+     */
     async api(route, body) {
-      const res = await fetch(base + route, body === undefined ? {} : { method: 'POST', body: JSON.stringify(body) });
+      const headers = { authorization: `Bearer ${OPERATOR_TOKEN}` };
+      const init = body === undefined ? { headers } : { method: 'POST', headers, body: JSON.stringify(body) };
+      const res = await fetch(base + route, init);
       const json = await res.json();
       if (!res.ok) throw new Error(`${route}: ${res.status} ${JSON.stringify(json)}`);
       return json;

@@ -6,11 +6,18 @@
 
 import WebSocket from 'ws';
 
-import { DEADLINE_MS, withDeadline } from './docent.mjs';
+import { DEADLINE_MS, DM_TOKEN, OPERATOR_TOKEN, withDeadline } from './docent.mjs';
+
+/** The test credential of a role that needs one. */
+const TOKENS = { operator: OPERATOR_TOKEN, dm: DM_TOKEN };
 
 export class DocentClient {
-  /** Connects to `wsUrl` and says hello; resolves once `welcome` arrived. */
+  /**
+   * Connects to `wsUrl` and says hello (operators and dialog managers with their test
+   * credential unless `hello.token` is given); resolves once `welcome` arrived.
+   */
   static async connect(wsUrl, hello) {
+    if (TOKENS[hello.role] && !('token' in hello)) hello = { ...hello, token: TOKENS[hello.role] };
     const client = new DocentClient(new WebSocket(wsUrl));
     await withDeadline(
       new Promise((resolve, reject) => {

@@ -1,0 +1,252 @@
+//! Who may do what. Operator and dialog-manager clients prove themselves with a credential
+//! (websocket `hello.token`, HTTP `Authorization: Bearer`); kiosks and projectors need none
+//! but a kiosk may trigger only what its pages offer, at a limited rate (enforced in
+//! `ws::connection` with [`TokenBucket`]). A development server started with `--open` on
+//! loopback needs no credentials at all.
+//!
+//! - `secret`: [`Secret`], a credential that never prints and compares in constant time.
+//! - `attempts`: [`Attempts`], the lockout after repeated wrong credentials from one address.
+//! - `rate`: [`TokenBucket`], the kiosk trigger allowance.
+//! - `setup`: [`decide_access`], the mode and credentials chosen at start-up.
+
+mod attempts;
+mod rate;
+mod secret;
+mod setup;
+
+use std::net::IpAddr;
+use std::time::{Duration, Instant};
+
+pub use attempts::{Attempts, LOCKOUT, MAX_FAILURES};
+pub use rate::{KIOSK_BURST, KIOSK_PER_SECOND, TokenBucket};
+pub use secret::Secret;
+pub use setup::{AccessSetup, DM_TOKEN_ENV, OPERATOR_TOKEN_ENV, Origin, SetupError, decide_access};
+
+/// The credentials a guarded server checks.
+#[derive(Clone, Debug)]
+pub struct Credentials {
+    /// For operator consoles.
+    pub operator: Secret,
+    /// For dialog managers (and external adapters not on this machine).
+    pub dm: Secret,
+}
+
+/// Whether credentials are checked.
+#[derive(Clone, Debug)]
+pub enum AccessMode {
+    /// `--open`: a loopback-only development server; nobody needs a credential.
+    Open,
+    /// Operator and dialog-manager clients need their credential.
+    Guarded(Credentials),
+}
+
+/// Which credential a request must carry.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Needed {
+    /// The operator's (an operator console).
+    Operator,
+    /// The dialog manager's (a dialog manager, a remote adapter).
+    Dm,
+    /// Either (the HTTP trigger API).
+    Either,
+}
+
+/// Why a credential was refused.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Refusal {
+    /// None was given.
+    Missing,
+    /// The one given is wrong.
+    Wrong,
+    /// This address got it wrong too often; it may try again after this long.
+    TooManyAttempts(Duration),
+}
+
+impl Refusal {
+    /// The error code on the wire.
+    pub fn code(self) -> &'static str {
+        match self {
+            Refusal::Missing | Refusal::Wrong => "unauthorized",
+            Refusal::TooManyAttempts(_) => "too-many-attempts",
+        }
+    }
+
+    /// What the client is told. Never echoes the credential.
+    pub fn message(self, needed: Needed) -> String {
+        let which = match needed {
+            Needed::Operator => "the operator credential (DOCENT_OPERATOR_TOKEN)",
+            Needed::Dm => "the dialog-manager credential (DOCENT_DM_TOKEN)",
+            Needed::Either => "the operator or dialog-manager credential",
+        };
+        match self {
+            Refusal::Missing => format!("this needs {which}"),
+            Refusal::Wrong => format!("that is not {which}"),
+            Refusal::TooManyAttempts(wait) => format!(
+                "too many wrong credentials from this address; try again in {} s",
+                wait.as_secs().max(1)
+            ),
+        }
+    }
+}
+
+/// The server's access policy and its memory of failed attempts.
+#[derive(Debug)]
+pub struct Access {
+    mode: AccessMode,
+    attempts: Attempts,
+}
+
+impl Access {
+    /// A policy in `mode`.
+    pub fn new(mode: AccessMode) -> Self {
+        Access {
+            mode,
+            attempts: Attempts::default(),
+        }
+    }
+
+    /// Whether this is an `--open` development server.
+    pub fn is_open(&self) -> bool {
+        matches!(self.mode, AccessMode::Open)
+    }
+
+    /// Checks a credential presented by `peer` (unknown when `None`).
+    pub fn check(
+        &self,
+        peer: Option<IpAddr>,
+        needed: Needed,
+        token: Option<&str>,
+    ) -> Result<(), Refusal> {
+        let AccessMode::Guarded(credentials) = &self.mode else {
+            return Ok(());
+        };
+        let now = Instant::now();
+        if let Some(wait) = peer.and_then(|p| self.attempts.locked(p, now)) {
+            return Err(Refusal::TooManyAttempts(wait));
+        }
+        let Some(token) = token.filter(|t| !t.is_empty()) else {
+            return Err(Refusal::Missing);
+        };
+        // Both comparisons always run, so timing does not tell which role a token was near.
+        let operator = credentials.operator.matches(token);
+        let dm = credentials.dm.matches(token);
+        let ok = match needed {
+            Needed::Operator => operator,
+            Needed::Dm => dm,
+            Needed::Either => operator | dm,
+        };
+        if ok {
+            return Ok(());
+        }
+        if let Some(peer) = peer
+            && let Some(wait) = self.attempts.failed(peer, now)
+        {
+            tracing::warn!(%peer, "too many wrong credentials; refusing this address for {}s", wait.as_secs());
+            return Err(Refusal::TooManyAttempts(wait));
+        }
+        Err(Refusal::Wrong)
+    }
+}
+
+/// Whether `peer` is this machine (only then may an adapter connect without a credential).
+pub fn is_loopback(peer: Option<IpAddr>) -> bool {
+    peer.is_some_and(|p| match p {
+        IpAddr::V4(v4) => v4.is_loopback(),
+        IpAddr::V6(v6) => {
+            v6.is_loopback() || v6.to_ipv4_mapped().is_some_and(|v4| v4.is_loopback())
+        }
+    })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn guarded() -> Access {
+        Access::new(AccessMode::Guarded(Credentials {
+            operator: Secret::new("operator-credential-1"),
+            dm: Secret::new("dialog-manager-cred-2"),
+        }))
+    }
+
+    const PEER: Option<IpAddr> = Some(IpAddr::V4(std::net::Ipv4Addr::new(192, 168, 1, 20)));
+
+    #[test]
+    fn each_role_needs_its_own_credential() {
+        let access = guarded();
+        assert_eq!(
+            access.check(PEER, Needed::Operator, Some("operator-credential-1")),
+            Ok(())
+        );
+        assert_eq!(
+            access.check(PEER, Needed::Dm, Some("dialog-manager-cred-2")),
+            Ok(())
+        );
+        assert_eq!(
+            access.check(PEER, Needed::Either, Some("dialog-manager-cred-2")),
+            Ok(())
+        );
+        assert_eq!(
+            access.check(PEER, Needed::Operator, Some("dialog-manager-cred-2")),
+            Err(Refusal::Wrong)
+        );
+        assert_eq!(
+            access.check(PEER, Needed::Operator, None),
+            Err(Refusal::Missing)
+        );
+        assert_eq!(
+            access.check(PEER, Needed::Operator, Some("")),
+            Err(Refusal::Missing)
+        );
+    }
+
+    #[test]
+    fn repeated_wrong_credentials_lock_out_even_the_right_one() {
+        let access = guarded();
+        for _ in 1..MAX_FAILURES {
+            assert_eq!(
+                access.check(PEER, Needed::Operator, Some("guess")),
+                Err(Refusal::Wrong)
+            );
+        }
+        assert_eq!(
+            access.check(PEER, Needed::Operator, Some("guess")),
+            Err(Refusal::TooManyAttempts(LOCKOUT))
+        );
+        assert!(matches!(
+            access.check(PEER, Needed::Operator, Some("operator-credential-1")),
+            Err(Refusal::TooManyAttempts(_))
+        ));
+        let elsewhere = Some(IpAddr::V4(std::net::Ipv4Addr::new(192, 168, 1, 21)));
+        assert_eq!(
+            access.check(elsewhere, Needed::Operator, Some("operator-credential-1")),
+            Ok(())
+        );
+    }
+
+    #[test]
+    fn an_open_server_asks_for_nothing() {
+        let access = Access::new(AccessMode::Open);
+        assert!(access.is_open());
+        assert_eq!(access.check(PEER, Needed::Operator, None), Ok(()));
+    }
+
+    #[test]
+    fn refusal_messages_never_contain_the_token() {
+        let access = guarded();
+        let refusal = access
+            .check(PEER, Needed::Operator, Some("my-guess-token"))
+            .unwrap_err();
+        assert!(!refusal.message(Needed::Operator).contains("my-guess-token"));
+        assert_eq!(refusal.code(), "unauthorized");
+    }
+
+    #[test]
+    fn loopback_addresses_are_recognised() {
+        assert!(is_loopback(Some("127.0.0.1".parse().unwrap())));
+        assert!(is_loopback(Some("::1".parse().unwrap())));
+        assert!(is_loopback(Some("::ffff:127.0.0.1".parse().unwrap())));
+        assert!(!is_loopback(Some("192.168.1.2".parse().unwrap())));
+        assert!(!is_loopback(None));
+    }
+}

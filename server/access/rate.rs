@@ -1,0 +1,74 @@
+//! A token bucket: how often a kiosk may trigger. A visitor's taps come in short bursts; a
+//! stuck finger, a page script in a loop or a stranger on the network must not flood the
+//! robot with acts.
+
+use std::time::{Duration, Instant};
+
+/// Triggers a kiosk may send at once.
+pub const KIOSK_BURST: f64 = 5.0;
+/// Triggers per second a kiosk may keep up.
+pub const KIOSK_PER_SECOND: f64 = 4.0;
+
+/// One client's allowance.
+#[derive(Debug)]
+pub struct TokenBucket {
+    capacity: f64,
+    per_second: f64,
+    tokens: f64,
+    last: Instant,
+}
+
+impl TokenBucket {
+    /// A full bucket.
+    pub fn new(capacity: f64, per_second: f64, now: Instant) -> Self {
+        TokenBucket {
+            capacity,
+            per_second,
+            tokens: capacity,
+            last: now,
+        }
+    }
+
+    /// The allowance of one kiosk connection.
+    pub fn kiosk(now: Instant) -> Self {
+        Self::new(KIOSK_BURST, KIOSK_PER_SECOND, now)
+    }
+
+    /// Takes one token if there is one; otherwise says how long until the next.
+    pub fn take(&mut self, now: Instant) -> Result<(), Duration> {
+        let elapsed = now.saturating_duration_since(self.last).as_secs_f64();
+        self.tokens = (self.tokens + elapsed * self.per_second).min(self.capacity);
+        self.last = now;
+        if self.tokens >= 1.0 {
+            self.tokens -= 1.0;
+            return Ok(());
+        }
+        Err(Duration::from_secs_f64(
+            (1.0 - self.tokens) / self.per_second,
+        ))
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn a_burst_passes_then_the_steady_rate() {
+        let start = Instant::now();
+        let mut bucket = TokenBucket::kiosk(start);
+        for _ in 0..5 {
+            assert_eq!(bucket.take(start), Ok(()));
+        }
+        let wait = bucket.take(start).expect_err("sixth at once");
+        assert_eq!(wait, Duration::from_millis(250));
+        assert!(bucket.take(start + Duration::from_millis(249)).is_err());
+        assert_eq!(bucket.take(start + Duration::from_millis(500)), Ok(()));
+        // Idle time refills up to the burst, never beyond.
+        let later = start + Duration::from_secs(60);
+        for _ in 0..5 {
+            assert_eq!(bucket.take(later), Ok(()));
+        }
+        assert!(bucket.take(later).is_err());
+    }
+}

@@ -1,0 +1,97 @@
+//! Extractors for who is asking: [`Peer`] (the client's address) and [`Authorized`] (a valid
+//! `Authorization: Bearer` credential, or an `--open` server). Refusals are JSON errors with
+//! `WWW-Authenticate` or `Retry-After`; the credential itself is never logged or echoed.
+
+use std::convert::Infallible;
+use std::net::{IpAddr, SocketAddr};
+
+use axum::extract::{ConnectInfo, FromRequestParts};
+use axum::http::request::Parts;
+use axum::http::{HeaderMap, HeaderValue, StatusCode, header};
+
+use crate::access::{Needed, Refusal};
+use crate::http::AppError;
+use crate::state::AppState;
+
+/// The client's address, when the server was started with connection info (tests calling
+/// the router directly have none).
+pub struct Peer(pub Option<IpAddr>);
+
+impl<S: Send + Sync> FromRequestParts<S> for Peer {
+    type Rejection = Infallible;
+
+    async fn from_request_parts(parts: &mut Parts, _: &S) -> Result<Self, Infallible> {
+        let peer = parts
+            .extensions
+            .get::<ConnectInfo<SocketAddr>>()
+            .map(|ConnectInfo(addr)| addr.ip());
+        Ok(Peer(peer))
+    }
+}
+
+/// Proof that the request carries the operator's or dialog manager's credential.
+pub struct Authorized;
+
+impl FromRequestParts<AppState> for Authorized {
+    type Rejection = AppError;
+
+    async fn from_request_parts(parts: &mut Parts, state: &AppState) -> Result<Self, AppError> {
+        let Ok(Peer(peer)) = Peer::from_request_parts(parts, state).await;
+        let token = bearer(&parts.headers);
+        match state.access.check(peer, Needed::Either, token) {
+            Ok(()) => Ok(Authorized),
+            Err(refusal) => Err(refusal_error(refusal, Needed::Either)),
+        }
+    }
+}
+
+/// The token of an `Authorization: Bearer ...` header, if there is one.
+fn bearer(headers: &HeaderMap) -> Option<&str> {
+    let value = headers.get(header::AUTHORIZATION)?.to_str().ok()?;
+    let (scheme, token) = value.split_once(' ')?;
+    scheme.eq_ignore_ascii_case("bearer").then(|| token.trim())
+}
+
+/// 401 with `WWW-Authenticate: Bearer`, or 429 with `Retry-After`.
+fn refusal_error(refusal: Refusal, needed: Needed) -> AppError {
+    let message = refusal.message(needed);
+    match refusal {
+        Refusal::TooManyAttempts(wait) => {
+            let seconds = HeaderValue::from(wait.as_secs().max(1));
+            AppError::new(StatusCode::TOO_MANY_REQUESTS, refusal.code(), message)
+                .with_header(header::RETRY_AFTER, seconds)
+        }
+        Refusal::Missing | Refusal::Wrong => {
+            AppError::new(StatusCode::UNAUTHORIZED, refusal.code(), message).with_header(
+                header::WWW_AUTHENTICATE,
+                HeaderValue::from_static("Bearer realm=\"docent\""),
+            )
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn bearer_tokens_are_read_from_the_authorization_header() {
+        let mut headers = HeaderMap::new();
+        assert_eq!(bearer(&headers), None);
+        headers.insert(
+            header::AUTHORIZATION,
+            HeaderValue::from_static("Bearer abc123"),
+        );
+        assert_eq!(bearer(&headers), Some("abc123"));
+        headers.insert(
+            header::AUTHORIZATION,
+            HeaderValue::from_static("bearer  abc123 "),
+        );
+        assert_eq!(bearer(&headers), Some("abc123"));
+        headers.insert(
+            header::AUTHORIZATION,
+            HeaderValue::from_static("Basic YWJjOmRlZg=="),
+        );
+        assert_eq!(bearer(&headers), None);
+    }
+}

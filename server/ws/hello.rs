@@ -1,0 +1,159 @@
+//! `hello`: who a client is. Operator and dialog-manager clients must show their credential
+//! (adapters too, unless they run on this machine); a refused one gets an `error` frame, the
+//! refusal is logged without the credential, and the connection ends. An accepted client is
+//! welcomed with the current state and gets its feed: display commands for kiosks and
+//! projectors, the event stream (after the recent history) for operators and dialog managers.
+
+use crate::access::{Needed, is_loopback};
+use crate::events::{ClientRole, EventKind};
+use crate::state::ClientInfo;
+use crate::ws::connection::Session;
+use crate::ws::outbox::Frame;
+use crate::ws::protocol::{event_frame, welcome_frame};
+use crate::ws::writer::Feed;
+
+/// What a `hello` frame says.
+pub(super) struct Hello {
+    pub(super) role: ClientRole,
+    pub(super) verbs: Vec<String>,
+    pub(super) name: Option<String>,
+    pub(super) token: Option<String>,
+    pub(super) events: bool,
+}
+
+/// The credential a role needs from a client at `peer`, if any.
+fn needed(role: ClientRole, local: bool) -> Option<Needed> {
+    match role {
+        ClientRole::Operator => Some(Needed::Operator),
+        ClientRole::Dm => Some(Needed::Dm),
+        // Device adapters normally run on the robot itself; one elsewhere is a machine
+        // client like a dialog manager.
+        ClientRole::Adapter if !local => Some(Needed::Dm),
+        ClientRole::Adapter | ClientRole::Kiosk | ClientRole::Projector => None,
+    }
+}
+
+impl Session {
+    pub(super) fn hello(&mut self, hello: Hello) {
+        let Hello {
+            role,
+            verbs,
+            name,
+            token,
+            events,
+        } = hello;
+        if self.role.is_some() {
+            return self.reply_error(
+                "already-introduced",
+                "hello was already received on this connection",
+                None,
+                None,
+            );
+        }
+        if let Some(needed) = needed(role, is_loopback(self.peer))
+            && let Err(refusal) = self.state.access.check(self.peer, needed, token.as_deref())
+        {
+            let address = self.peer.map(|p| p.to_string());
+            tracing::warn!(
+                ?role,
+                address,
+                code = refusal.code(),
+                "websocket credential refused"
+            );
+            self.state.hub.publish(EventKind::ClientRefused {
+                role,
+                code: refusal.code(),
+                address,
+            });
+            self.reply_error(refusal.code(), &refusal.message(needed), None, None);
+            self.closing = Some("credential refused");
+            return;
+        }
+        if role == ClientRole::Adapter && verbs.is_empty() {
+            return self.reply_error(
+                "no-verbs",
+                "an adapter must list the verbs it serves in \"verbs\"",
+                None,
+                None,
+            );
+        }
+        self.role = Some(role);
+        let state = &self.state;
+        let (display, display_rx) = state.devices.display.subscribe(role);
+        if role == ClientRole::Projector {
+            state.devices.display.projector_joined(self.client);
+        }
+        let mut view = state.state_view();
+        view.display = display;
+        self.send(welcome_frame(self.client, role, &view));
+        let feed = match (role, display_rx) {
+            (_, Some(rx)) => Some(Feed::Display(role, rx)),
+            (ClientRole::Operator | ClientRole::Dm, None) if events => {
+                let (rx, history) = state.hub.subscribe_with_history();
+                for event in history {
+                    self.outbox.send(Frame::from(event_frame(&event)));
+                }
+                Some(Feed::Events(rx))
+            }
+            _ => None,
+        };
+        if let (Some(feed), Some(tx)) = (feed, self.feed.take()) {
+            let _ = tx.send(feed);
+        }
+        if role == ClientRole::Adapter {
+            state
+                .devices
+                .ws
+                .connect(self.client, verbs.clone(), self.outbox.clone());
+            self.warn_unrouted(&verbs);
+        }
+        let info = ClientInfo {
+            role,
+            name: name.clone(),
+            verbs: verbs.clone(),
+        };
+        state.client_joined(self.client, info, self.outbox.clone());
+        state.hub.publish(EventKind::ClientConnected {
+            client: self.client,
+            role,
+            name,
+            verbs,
+        });
+    }
+
+    /// Tells an adapter, in one frame, which of its verbs this bundle sends elsewhere: it
+    /// will not get them.
+    fn warn_unrouted(&self, verbs: &[String]) {
+        let problems: Vec<String> = (verbs.iter())
+            .filter_map(|verb| match self.state.dispatcher.adapter_for(verb) {
+                Some("ws") => None,
+                Some(other) => Some(format!("{verb} goes to the {other} adapter")),
+                None => Some(format!("{verb} is not a verb of this bundle")),
+            })
+            .collect();
+        if problems.is_empty() {
+            return;
+        }
+        let message = format!(
+            "{}; route built-in verbs to ws and declare site verbs under verbs: in docent.yaml \
+             to receive them here",
+            problems.join("; ")
+        );
+        self.reply_error("verb-not-routed", &message, None, None);
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn only_operators_dialog_managers_and_remote_adapters_need_a_credential() {
+        assert_eq!(needed(ClientRole::Operator, true), Some(Needed::Operator));
+        assert_eq!(needed(ClientRole::Dm, true), Some(Needed::Dm));
+        assert_eq!(needed(ClientRole::Adapter, false), Some(Needed::Dm));
+        assert_eq!(needed(ClientRole::Adapter, true), None);
+        assert_eq!(needed(ClientRole::Kiosk, false), None);
+        assert_eq!(needed(ClientRole::Projector, false), None);
+    }
+}

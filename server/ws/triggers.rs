@@ -1,0 +1,124 @@
+//! Triggering and controlling: `trigger` (kiosks, operators, dialog managers), `stop` and
+//! `context` (operators, dialog managers) and `page` (kiosks). A kiosk is a visitor's
+//! touchscreen: it may trigger only the acts the bundle's pages offer (and the idle act), at
+//! the rate of [`TokenBucket::kiosk`](crate::access::TokenBucket::kiosk); every refusal is an
+//! `error` frame and a `trigger.refused` event.
+
+use std::time::Instant;
+
+use crate::content::{BundleArea, resolve_in_bundle};
+use crate::dispatch::TriggerRequest;
+use crate::events::{ClientRole, EventKind};
+use crate::ws::connection::Session;
+use crate::ws::protocol::{context_frame, stopped_frame, triggered_frame};
+
+const TRIGGER_ROLES: [ClientRole; 3] = [ClientRole::Kiosk, ClientRole::Operator, ClientRole::Dm];
+const CONTROL_ROLES: [ClientRole; 2] = [ClientRole::Operator, ClientRole::Dm];
+
+impl Session {
+    pub(super) fn trigger(
+        &mut self,
+        label: String,
+        context: Option<String>,
+        interrupt: bool,
+        reference: Option<String>,
+    ) {
+        let Some(role) = self.allowed(&TRIGGER_ROLES, reference.as_deref()) else {
+            return self.log_refused(label, "forbidden", "this role may not trigger acts".into());
+        };
+        if role == ClientRole::Kiosk
+            && let Err((code, message)) = self.kiosk_may_trigger(&label)
+        {
+            self.reply_error(code, &message, reference.as_deref(), None);
+            return self.log_refused(label, code, message);
+        }
+        let request = TriggerRequest {
+            label,
+            context,
+            interrupt,
+            reference: reference.clone(),
+            source: role.source(),
+            client: Some(self.client),
+        };
+        match self.state.dispatcher.trigger(request) {
+            Ok(t) => self.send(triggered_frame(&t)),
+            Err(e) => self.reply_error(
+                e.code(),
+                &e.to_string(),
+                reference.as_deref(),
+                e.suggestion(),
+            ),
+        }
+    }
+
+    /// Whether a kiosk may trigger `label` now: an act its pages offer, within its allowance.
+    fn kiosk_may_trigger(&mut self, label: &str) -> Result<(), (&'static str, String)> {
+        let bundle = self.state.dispatcher.bundle();
+        let offered = bundle.page_acts.iter().any(|a| a == label)
+            || bundle.config.kiosk.idle_act.as_deref() == Some(label);
+        if !offered {
+            let message = format!(
+                "no page of this bundle offers the act {label:?}, so a touchscreen may not \
+                 trigger it (add data-act=\"{label}\" to a page to offer it)"
+            );
+            return Err(("not-offered", message));
+        }
+        if let Err(wait) = self.allowance.take(Instant::now()) {
+            let message = format!(
+                "too many triggers from this touchscreen; the next is possible in {} ms",
+                wait.as_millis().max(1)
+            );
+            return Err(("rate-limited", message));
+        }
+        Ok(())
+    }
+
+    /// Records a trigger this client may not make.
+    fn log_refused(&self, label: String, code: &'static str, message: String) {
+        let Some(role) = self.role else { return };
+        self.state.hub.publish(EventKind::TriggerRefused {
+            source: role.source(),
+            client: Some(self.client),
+            label,
+            code,
+            message,
+        });
+    }
+
+    pub(super) fn stop(&self, reference: Option<String>) {
+        let Some(role) = self.allowed(&CONTROL_ROLES, reference.as_deref()) else {
+            return;
+        };
+        self.state.dispatcher.stop(role.source(), "stop request");
+        self.send(stopped_frame(reference.as_deref()));
+    }
+
+    pub(super) fn set_context(&self, context: String, reference: Option<String>) {
+        let Some(role) = self.allowed(&CONTROL_ROLES, reference.as_deref()) else {
+            return;
+        };
+        match self.state.dispatcher.set_context(&context, role.source()) {
+            Ok(()) => self.send(context_frame(reference.as_deref(), &context)),
+            Err(e) => self.reply_error(
+                e.code(),
+                &e.to_string(),
+                reference.as_deref(),
+                e.suggestion(),
+            ),
+        }
+    }
+
+    /// A kiosk reports a page it shows on its own, so the server's display state (what a
+    /// reconnecting kiosk is sent back to, what the log says) stays true.
+    pub(super) fn page_shown(&self, page: String) {
+        if self.allowed(&[ClientRole::Kiosk], None).is_none() {
+            return;
+        }
+        let root = &self.state.dispatcher.bundle().root;
+        if resolve_in_bundle(root, BundleArea::Pages, &page).is_err() {
+            let message = format!("{page:?} is not a page of this bundle");
+            return self.reply_error("unknown-page", &message, None, None);
+        }
+        self.state.devices.display.page_shown(page, &self.state.hub);
+    }
+}
