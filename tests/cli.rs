@@ -156,3 +156,101 @@ mod reqwest {
         rt.block_on(async { ::reqwest::get(url).await.unwrap().text().await.unwrap() })
     }
 }
+
+/// `docent serve` with the credential variables removed from its environment.
+fn serve_without_credentials(extra: &[&str]) -> Command {
+    let mut command = Command::new(env!("CARGO_BIN_EXE_docent"));
+    command
+        .args(["serve", "dialogs/paper-fig4"])
+        .args(extra)
+        .current_dir(repo())
+        .env_remove("DOCENT_OPERATOR_TOKEN")
+        .env_remove("DOCENT_DM_TOKEN");
+    command
+}
+
+#[test]
+fn serve_refuses_a_network_address_without_a_chosen_credential_or_with_open() {
+    for extra in [
+        &["--listen", "0.0.0.0:0"][..],
+        &["--listen", "0.0.0.0:0", "--open"],
+    ] {
+        let out = serve_without_credentials(extra).output().unwrap();
+        let err = String::from_utf8(out.stderr).unwrap();
+        assert_eq!(out.status.code(), Some(1), "{extra:?}: {err}");
+        assert!(
+            err.contains("DOCENT_OPERATOR_TOKEN") || err.contains("--open is for development"),
+            "{extra:?}: {err}"
+        );
+    }
+    let out = serve_without_credentials(&["--listen", "127.0.0.1:0"])
+        .env("DOCENT_OPERATOR_TOKEN", "short")
+        .output()
+        .unwrap();
+    let err = String::from_utf8(out.stderr).unwrap();
+    assert_eq!(out.status.code(), Some(1), "{err}");
+    assert!(err.contains("at least 16"), "{err}");
+    assert!(!err.contains("short\""), "{err}");
+}
+
+#[test]
+fn a_generated_credential_is_printed_once_and_works_but_is_never_logged() {
+    use std::io::{BufRead, BufReader};
+    let corpus = tempfile::tempdir().unwrap();
+    let log = tempfile::NamedTempFile::new().unwrap();
+    let mut child = serve_without_credentials(&["--listen", "127.0.0.1:0", "--corpus"])
+        .arg(corpus.path())
+        .env("RUST_LOG", "debug")
+        .stdout(std::process::Stdio::piped())
+        .stderr(log.reopen().unwrap())
+        .spawn()
+        .unwrap();
+    let lines: Vec<String> = BufReader::new(child.stdout.take().unwrap())
+        .lines()
+        .map_while(Result::ok)
+        .take_while(|l| !l.contains("dialog manager credential"))
+        .collect();
+    let line = |prefix: &str| {
+        let found = lines.iter().find(|l| l.trim().starts_with(prefix));
+        found
+            .unwrap_or_else(|| panic!("no {prefix} line in {lines:?}"))
+            .clone()
+    };
+    let token = line("operator credential")
+        .rsplit(' ')
+        .next()
+        .unwrap()
+        .to_owned();
+    assert_eq!(token.len(), 32, "{token}");
+    let api = line("trigger API:");
+    let base = api
+        .split_whitespace()
+        .nth(2)
+        .unwrap()
+        .trim_end_matches("/api/acts");
+    let rt = tokio::runtime::Runtime::new().unwrap();
+    let status = |token: &str| {
+        rt.block_on(async {
+            let request = ::reqwest::Client::new()
+                .post(format!("{base}/api/acts/WELCOME/trigger"))
+                .bearer_auth(token);
+            request.send().await.unwrap().status().as_u16()
+        })
+    };
+    assert_eq!(status("not-it-at-all-000"), 401);
+    assert_eq!(status(&token), 202);
+    // SIGTERM: a graceful stop flushes the corpus.
+    let term = Command::new("kill")
+        .args(["-TERM", &child.id().to_string()])
+        .status();
+    assert!(term.unwrap().success());
+    assert!(child.wait().unwrap().success());
+    let logged = std::fs::read_to_string(log.path()).unwrap();
+    assert!(!logged.is_empty(), "debug logging wrote something");
+    assert!(!logged.contains(&token), "the log holds the credential");
+    for file in std::fs::read_dir(corpus.path()).unwrap() {
+        let text = std::fs::read_to_string(file.unwrap().path()).unwrap();
+        assert!(text.contains("act.triggered"), "{text}");
+        assert!(!text.contains(&token), "the corpus holds the credential");
+    }
+}
