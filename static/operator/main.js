@@ -69,6 +69,10 @@ const proposals = createProposals({
     const act = list.act(label);
     return act ? textsFor(act, ctx ?? context).texts[0] ?? null : `unknown act ${label}`;
   },
+  who: (client) => {
+    const c = clients.get().get(client);
+    return c?.name ? `${c.name} (#${client})` : `dialog manager #${client ?? "?"}`;
+  },
 });
 const marks = createMarks({
   session: byId("session"),

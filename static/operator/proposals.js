@@ -8,10 +8,11 @@ import { clock, h } from "./dom.js";
 /**
  * @param {{panel: HTMLElement, list: HTMLElement,
  *          accept: (id: number) => void, dismiss: (id: number) => void,
- *          says: (label: string, context: string|null) => string|null}} options `says`: the
- *          text the act would say, to show beside the proposal.
+ *          says: (label: string, context: string|null) => string|null,
+ *          who: (client: number) => string}} options `says`: the text the act would say, to
+ *          show beside the proposal; `who`: a client's name.
  */
-export function createProposals({ panel, list, accept, dismiss, says }) {
+export function createProposals({ panel, list, accept, dismiss, says, who }) {
   const pending = new Map(); // id -> proposal
   const settled = new Set(); // ids accepted or dismissed: a late snapshot must not revive them
 
@@ -30,7 +31,7 @@ export function createProposals({ panel, list, accept, dismiss, says }) {
             p.context ? h("span", { class: "muted small" }, ` ${p.context}`) : null,
             p.reason ? h("span", { class: "proposal-reason" }, ` — ${p.reason}`) : null,
             h("div", { class: "proposal-text small" }, says(p.label, p.context) ?? ""),
-            h("div", { class: "muted small" }, `${p.time ? clock(p.time) : ""} from dialog manager #${p.client ?? "?"}`),
+            h("div", { class: "muted small" }, `${p.time ? clock(p.time) : ""} from ${who(p.client)}`),
           ),
           h(
             "div",
