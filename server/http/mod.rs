@@ -11,6 +11,7 @@ mod api;
 pub(crate) mod auth;
 mod error;
 mod files;
+mod operator;
 mod shells;
 mod static_files;
 
@@ -33,6 +34,7 @@ pub fn app(state: AppState) -> Router {
         .route("/", get(shells::kiosk))
         .route("/projector", get(shells::projector))
         .route("/preview", get(shells::preview))
+        .route("/operator", get(operator::console))
         .route("/static/{*path}", get(static_files::serve_static))
         .route("/favicon.ico", get(api::no_favicon))
         .route("/healthz", get(api::health))
@@ -41,6 +43,7 @@ pub fn app(state: AppState) -> Router {
         .route("/api/stop", post(api::stop_all))
         .route("/api/context", get(api::get_context).put(api::put_context))
         .route("/api/state", get(api::get_state))
+        .route("/api/operator", get(operator::settings))
         .route("/pages/{*path}", get(files::serve_page))
         .route("/media/{*path}", get(files::serve_media))
         .route("/ws", get(ws_upgrade))

@@ -1,0 +1,199 @@
+//! The operator console (Wizard of Oz): the page at `/operator` (an askama template whose
+//! script, `static/operator/main.js`, signs in and does the rest over the websocket) and its
+//! settings at `GET /api/operator` (map, camera, situations, visitor groups from `docent.yaml`
+//! `operator:`), which need the operator's or dialog manager's credential.
+
+use askama::Template;
+use axum::Json;
+use axum::extract::State;
+use axum::http::header;
+use axum::response::{IntoResponse, Response};
+use serde_json::{Value, json};
+
+use crate::content::config::{Camera, SiteConfig};
+use crate::http::AppError;
+use crate::http::auth::Authorized;
+use crate::http::static_files;
+use crate::state::AppState;
+
+/// The camera script, when this build embeds it (`static/operator/camera.js`).
+const CAMERA_SCRIPT: &str = "operator/camera.js";
+
+/// `pages/operator/console.html`: the console.
+#[derive(Template)]
+#[template(path = "operator/console.html")]
+pub struct OperatorConsole<'a> {
+    /// Websocket path, e.g. `/ws`.
+    pub ws_path: &'a str,
+    /// False on an `--open` development server: the console connects without asking.
+    pub needs_credential: bool,
+    /// Whether the camera script is served (the console loads it only then).
+    pub camera_script: bool,
+}
+
+impl OperatorConsole<'_> {
+    /// The console of a server that does (or, `--open`, does not) ask for a credential.
+    pub fn new(needs_credential: bool) -> Self {
+        OperatorConsole {
+            ws_path: "/ws",
+            needs_credential,
+            camera_script: static_files::lookup(CAMERA_SCRIPT).is_some(),
+        }
+    }
+}
+
+/// `GET /operator`: the console page. Open to anyone: it holds no secret and does nothing
+/// until its operator signs in.
+pub async fn console(State(state): State<AppState>) -> Response {
+    match OperatorConsole::new(!state.access.is_open()).render() {
+        Ok(page) => (
+            [
+                (header::CONTENT_TYPE, "text/html; charset=utf-8"),
+                (header::CACHE_CONTROL, "no-cache"),
+            ],
+            page,
+        )
+            .into_response(),
+        Err(e) => AppError::internal(e).into_response(),
+    }
+}
+
+/// `GET /api/operator` (bearer): the console's settings.
+pub async fn settings(_: Authorized, State(state): State<AppState>) -> Json<Value> {
+    Json(settings_json(&state.dispatcher.bundle().config))
+}
+
+/// The console's settings as `GET /api/operator` answers them.
+pub fn settings_json(config: &SiteConfig) -> Value {
+    let operator = &config.operator;
+    let map = operator.map.as_deref().map(|path| {
+        let bounds = config.drive.bounds.map(
+            |b| json!({ "min_x": b.min_x, "min_y": b.min_y, "max_x": b.max_x, "max_y": b.max_y }),
+        );
+        json!({ "url": url_path(path), "bounds": bounds })
+    });
+    let camera = match &operator.camera {
+        Camera::WebRtc => json!({ "kind": "webrtc" }),
+        Camera::None => json!({ "kind": "none" }),
+        Camera::Url(url) => json!({ "kind": "url", "url": url }),
+    };
+    json!({
+        "map": map,
+        "camera": camera,
+        "situations": operator.situations,
+        "visitor_groups": operator.visitor_groups,
+    })
+}
+
+/// A bundle-relative path (`pages/images/map.png`) as the URL path it is served at, each
+/// segment percent-encoded.
+fn url_path(path: &str) -> String {
+    let mut url = String::with_capacity(path.len() + 1);
+    for segment in path.split('/') {
+        url.push('/');
+        for byte in segment.bytes() {
+            if byte.is_ascii_alphanumeric() || b"-._~".contains(&byte) {
+                url.push(char::from(byte));
+            } else {
+                url.push_str(&format!("%{byte:02X}"));
+            }
+        }
+    }
+    url
+}
+
+#[cfg(test)]
+mod tests {
+    use std::collections::BTreeMap;
+
+    use super::*;
+    use crate::content::config::{Bounds, OperatorConfig};
+
+    #[test]
+    fn the_console_page_carries_its_contract() {
+        let page = OperatorConsole::new(true).render().expect("renders");
+        assert!(page.starts_with("<!doctype html>"), "{page}");
+        assert!(page.contains(r#"data-ws="/ws""#), "{page}");
+        assert!(page.contains(r#"data-credential="required""#), "{page}");
+        assert!(page.contains(r#"src="/static/operator/main.js""#), "{page}");
+        assert!(page.contains(r#"href="/static/operator.css""#), "{page}");
+        assert!(page.contains(r#"<dialog id="signin""#), "{page}");
+        assert!(page.contains(r#"type="password""#), "{page}");
+        // The sign-in form never sends the credential anywhere by itself (no GET to a URL).
+        assert!(page.contains(r#"method="dialog""#), "{page}");
+        for id in [
+            "search",
+            "act-list",
+            "preview",
+            "stop",
+            "history",
+            "proposals",
+            "queue",
+        ] {
+            assert!(page.contains(&format!(r#"id="{id}""#)), "no #{id}");
+        }
+        let camera = static_files::lookup(CAMERA_SCRIPT).is_some();
+        assert_eq!(
+            page.contains(r#"data-camera-script="/static/operator/camera.js""#),
+            camera
+        );
+
+        let page = OperatorConsole::new(false).render().expect("renders");
+        assert!(page.contains(r#"data-credential="open""#), "{page}");
+    }
+
+    #[test]
+    fn every_console_script_is_served() {
+        let page = include_str!("../../static/operator/main.js");
+        for line in page.lines().filter(|l| l.starts_with("import ")) {
+            let name = line.split('"').nth(1).expect("quoted module");
+            let name = name.trim_start_matches("./");
+            assert!(
+                static_files::lookup(&format!("operator/{name}")).is_some(),
+                "{name}"
+            );
+        }
+    }
+
+    #[test]
+    fn settings_give_the_map_with_its_bounds_and_the_camera() {
+        let mut config = SiteConfig::default();
+        assert_eq!(
+            settings_json(&config),
+            json!({"map": null, "camera": {"kind": "webrtc"}, "situations": [], "visitor_groups": {}})
+        );
+        config.drive.bounds = Some(Bounds {
+            min_x: 0.0,
+            min_y: -1.0,
+            max_x: 20.0,
+            max_y: 12.5,
+        });
+        config.operator = OperatorConfig {
+            map: Some("pages/images/hall map.png".to_owned()),
+            camera: Camera::Url("http://cam.local/stream.mjpg".to_owned()),
+            situations: vec!["question".to_owned(), "laughter".to_owned()],
+            visitor_groups: BTreeMap::from([("children".to_owned(), "TextChild".to_owned())]),
+        };
+        assert_eq!(
+            settings_json(&config),
+            json!({
+                "map": {"url": "/pages/images/hall%20map.png",
+                        "bounds": {"min_x": 0.0, "min_y": -1.0, "max_x": 20.0, "max_y": 12.5}},
+                "camera": {"kind": "url", "url": "http://cam.local/stream.mjpg"},
+                "situations": ["question", "laughter"],
+                "visitor_groups": {"children": "TextChild"},
+            })
+        );
+        config.operator.camera = Camera::None;
+        assert_eq!(settings_json(&config)["camera"], json!({"kind": "none"}));
+    }
+
+    #[test]
+    fn url_paths_are_percent_encoded_per_segment() {
+        assert_eq!(url_path("pages/images/map.png"), "/pages/images/map.png");
+        assert_eq!(
+            url_path("media/Plan ü#1.png"),
+            "/media/Plan%20%C3%BC%231.png"
+        );
+    }
+}

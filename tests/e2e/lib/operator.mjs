@@ -1,0 +1,62 @@
+// Driving the operator console (`GET /operator`) as an operator would: sign in through its form,
+// wait until it is connected and shows the acts, and read what it shows. Servers started by
+// `startDocent` have the credentials OPERATOR_TOKEN and DM_TOKEN (lib/docent.mjs).
+
+import { DEADLINE_MS, DM_TOKEN, OPERATOR_TOKEN } from './docent.mjs';
+import { DocentClient } from './ws-client.mjs';
+
+/** The console's size in the tests and the screenshot: a common desktop screen. */
+export const CONSOLE_VIEWPORT = { width: 1440, height: 900 };
+
+/** A new browser context of the console's size. */
+export function newConsoleContext(browser) {
+  return browser.newContext({ viewport: CONSOLE_VIEWPORT });
+}
+
+/** The operator credential of a server started by `startDocent`. */
+export function operatorToken() {
+  return OPERATOR_TOKEN;
+}
+
+/** A websocket client with `role` (operator or dm) presenting that role's credential. */
+export function connectWithToken(server, role, name = `e2e-${role}`) {
+  const token = role === 'dm' ? DM_TOKEN : OPERATOR_TOKEN;
+  return DocentClient.connect(server.wsUrl, { role, name, token });
+}
+
+/** Opens the console in `page`; resolves once the sign-in form is shown. */
+export async function openConsole(page, server) {
+  const res = await page.goto(`${server.base}/operator`);
+  if (res.status() !== 200) throw new Error(`no console at ${server.base}/operator: HTTP ${res.status()}`);
+  await page.locator('#signin-token').waitFor({ state: 'visible', timeout: DEADLINE_MS });
+}
+
+/** Fills the sign-in form and submits it with Enter (nothing else is awaited). */
+export async function submitCredential(page, token, name = null) {
+  if (name !== null) await page.fill('#signin-name', name);
+  await page.fill('#signin-token', token);
+  await page.press('#signin-token', 'Enter');
+}
+
+/** Waits until the console is connected (welcomed) and shows its act buttons. */
+export async function waitOnline(page) {
+  await page.locator('#link[data-state="online"]').waitFor({ timeout: DEADLINE_MS });
+  await page.locator('#act-list .act').first().waitFor({ timeout: DEADLINE_MS });
+}
+
+/** Opens the console and signs in with the server's operator credential. */
+export async function signIn(page, server, name = 'e2e-console') {
+  await openConsole(page, server);
+  await submitCredential(page, operatorToken(server), name);
+  await waitOnline(page);
+}
+
+/** The labels of the act buttons in screen order (search matches when searching). */
+export function actLabels(page) {
+  return page.locator('#act-list .act').evaluateAll((buttons) => buttons.map((b) => b.dataset.label));
+}
+
+/** The label of the chosen act (what Enter fires), or null. */
+export function chosenLabel(page) {
+  return page.evaluate(() => document.querySelector('#act-list .act.chosen')?.dataset.label ?? null);
+}
