@@ -434,3 +434,43 @@ fn an_act_with_variants_but_no_default_text_is_warned_about() {
         ("no-default-text", 2, 3)
     );
 }
+
+/// Kebab-case string literals in the content code outside its unit tests: the codes.
+fn codes_in_source(dir: &std::path::Path, found: &mut std::collections::BTreeSet<String>) {
+    for entry in fs::read_dir(dir).expect("source folder").flatten() {
+        let path = entry.path();
+        if path.is_dir() {
+            codes_in_source(&path, found);
+            continue;
+        }
+        let text = fs::read_to_string(&path).expect("source file");
+        let code = text.split("#[cfg(test)]").next().unwrap_or_default();
+        for literal in code.split('"').skip(1).step_by(2) {
+            let kebab = literal.contains('-')
+                && literal.starts_with(|c: char| c.is_ascii_lowercase())
+                && literal
+                    .split('-')
+                    .all(|w| !w.is_empty() && w.chars().all(|c| c.is_ascii_lowercase()));
+            if kebab && literal != "data-act" {
+                found.insert(literal.to_owned());
+            }
+        }
+    }
+}
+
+#[test]
+fn every_diagnostic_code_is_in_the_authoring_guide() {
+    let root = std::path::Path::new(env!("CARGO_MANIFEST_DIR"));
+    let mut codes = std::collections::BTreeSet::new();
+    codes_in_source(&root.join("server/content"), &mut codes);
+    assert!(codes.len() > 30, "{codes:?}");
+    let guide = fs::read_to_string(root.join("docs/AUTHORING.md")).expect("guide");
+    let missing: Vec<&String> = codes
+        .iter()
+        .filter(|code| !guide.contains(&format!("| `{code}` |")))
+        .collect();
+    assert!(
+        missing.is_empty(),
+        "not in the table of docs/AUTHORING.md: {missing:?}"
+    );
+}

@@ -4,7 +4,7 @@
 use std::fs;
 use std::path::{Path, PathBuf};
 
-use docent::content::config::{AdapterKind, ArgRule};
+use docent::content::config::{AccessSettings, AdapterKind, ArgRule};
 use docent::content::{Bundle, CommandSpec, LoadReport, Pos, Severity, Verb, load_bundle};
 
 fn repo(rel: &str) -> PathBuf {
@@ -185,6 +185,13 @@ fn every_shipped_dialog_bundle_loads_without_errors() {
             assert!(
                 !bundle.acts.is_empty(),
                 "{} has acts",
+                entry.path().display()
+            );
+            // Tokens come from the environment; a shipped bundle would give them to everyone.
+            assert_eq!(
+                bundle.config.access,
+                AccessSettings::default(),
+                "{} holds no tokens",
                 entry.path().display()
             );
             checked += 1;
