@@ -167,7 +167,10 @@ info_terminal() {
 # ---------------------------------------------------------------------------------------------
 # museum-tour: hall map, a picture per exhibit, and the card punch video.
 
-# Map coordinates (metres, y up) to map image pixels: 48 px per metre, 20 px border.
+# Map coordinates (metres, y up) to map image pixels: 48 px per metre, drawn with a 20 px border
+# that is cropped off at the end, so that the picture spans exactly the hall, x 0..20 m and
+# y 0..12 m: `drive: bounds` in docent.yaml, by which the operator console places the robot on
+# it (`operator: map`).
 mx() { awk -v v="$1" 'BEGIN { printf "%d", 20 + 48 * v }'; }
 my() { awk -v v="$1" 'BEGIN { printf "%d", 20 + 48 * (12 - v) }'; }
 
@@ -210,6 +213,7 @@ tour_map() {
     txt 84 540 20 0x3b3127 "Robot stops"
     box 720 560 240 8 0x3b3127                         # scale bar: 5 m = 240 px
     txt 812 532 20 0x3b3127 "5 m"
+    add "crop=960:576:20:20"                            # the hall only: 960 x 576 px, 20 m x 12 m
     save_png museum-tour/pages/images/map.png
 }
 
