@@ -13,7 +13,7 @@ import path from 'node:path';
 import { after, before, test } from 'node:test';
 
 import { launchBrowser, newTouchContext, watchProblems } from './lib/browser.mjs';
-import { copyBundle, corpusEvents, makeBundle, removeTemp, REPO, startDocent } from './lib/docent.mjs';
+import { copyBundle, corpusEvents, freePort, makeBundle, removeTemp, REPO, startDocent } from './lib/docent.mjs';
 import { openShell, waitForShownPage } from './lib/kiosk.mjs';
 import {
   actLabels,
@@ -151,6 +151,113 @@ test('after five wrong credentials the console says to wait instead of trying ag
       }
       assert.match(message, /Too many failed attempts/);
       assert.equal(sockets.length, 6, 'the console retried by itself');
+    });
+  } finally {
+    removeTemp(bundle);
+  }
+});
+
+test('an --open development server needs no credential; a restarted server is rejoined with the same one', { timeout: 90_000 }, async () => {
+  const bundle = museumTour();
+  const context = await newConsoleContext(browser);
+  let server = await startDocent(bundle, { args: ['--open'] });
+  try {
+    const page = await context.newPage();
+    const problems = watchProblems(page);
+    await page.goto(`${server.base}/operator`);
+    await waitOnline(page);
+    assert.equal(await page.locator('#signin').evaluate((d) => d.open), false, 'an open server asked for a credential');
+    assert.equal(await page.locator('#signout').isVisible(), false);
+    assert.deepEqual(problems, [], 'problems in the console');
+  } finally {
+    await context.close();
+    await server.stop();
+  }
+
+  // A guarded server restarted on the same port: the console reconnects with the credential
+  // it kept, without asking, and works again.
+  const port = await freePort();
+  const again = await newConsoleContext(browser);
+  server = await startDocent(bundle, { port });
+  try {
+    const page = await again.newPage();
+    await signIn(page, server);
+    await server.stop();
+    await page.locator('#link[data-state="offline"]').waitFor();
+    server = await startDocent(bundle, { port });
+    await page.locator('#link[data-state="online"]').waitFor({ timeout: 30_000 });
+    assert.equal(await page.locator('#signin').evaluate((d) => d.open), false, 'the console asked again after a restart');
+    const observer = await connectWithToken(server, 'operator', 'e2e-observer');
+    try {
+      await page.keyboard.type('bye bye');
+      await page.keyboard.press('Enter');
+      const fired = await observer.waitForEvent((e) => e.type === 'act.triggered');
+      assert.equal(fired.label, 'FAREWELL');
+    } finally {
+      await observer.close();
+    }
+  } finally {
+    await again.close();
+    await server.stop();
+    removeTemp(bundle);
+  }
+});
+
+test('search ignores case and accents, finds labels and groups; Up/Down choose, Enter fires the choice', { timeout: 60_000 }, async () => {
+  const bundle = makeBundle({
+    'acts.yaml': [
+      '- Label: ORDER_COFFEE',
+      '  Group: Café',
+      '  Text:',
+      "    - Un café, s'il vous plaît.",
+      '- Label: COFFEE_MACHINE',
+      '  Group: Café',
+      '  Text:',
+      '    - The coffee machine is over there.',
+      '- Label: GOODBYE',
+      '  Key: G',
+      '  Text:',
+      '    - Goodbye and thank you.',
+      '  TextChild:',
+      '    - Bye bye, see you!',
+      '',
+    ].join('\n'),
+    'pages/index.html': '<!doctype html><title>home</title><h1>home</h1>\n',
+  });
+  try {
+    await withServer(bundle, async ({ server, observer, newPage }) => {
+      const page = await newPage();
+      const problems = watchProblems(page);
+      await signIn(page, server);
+      assert.ok(await page.locator('.act-group h3', { hasText: 'Café' }).count(), 'no group "Café"');
+      assert.equal(await page.locator('.act[data-label="GOODBYE"] kbd').textContent(), 'Alt+G');
+
+      await page.keyboard.type('CAFE PLAIT');
+      assert.deepEqual(await actLabels(page), ['ORDER_COFFEE']);
+      assert.equal(await page.locator('#act-list mark').first().textContent(), 'café');
+      await page.fill('#search', 'café');
+      assert.deepEqual(await actLabels(page), ['ORDER_COFFEE', 'COFFEE_MACHINE'], 'a group name matches its acts');
+      await page.fill('#search', 'coffee');
+      assert.deepEqual((await actLabels(page)).sort(), ['COFFEE_MACHINE', 'ORDER_COFFEE']);
+      // A text of another variant is found too (the child's "bye bye"); the preview shows the
+      // current context's texts.
+      await page.fill('#search', 'see you');
+      assert.deepEqual(await actLabels(page), ['GOODBYE']);
+      assert.match(await page.locator('#preview').textContent(), /Goodbye and thank you/);
+
+      await page.fill('#search', 'coffee');
+      const first = await chosenLabel(page);
+      await page.keyboard.press('ArrowDown');
+      const second = await chosenLabel(page);
+      assert.notEqual(first, second);
+      await page.keyboard.press('ArrowUp');
+      assert.equal(await chosenLabel(page), first);
+      await page.keyboard.press('ArrowDown');
+      await page.keyboard.press('Enter');
+      const fired = await observer.waitForEvent((e) => e.type === 'act.triggered');
+      assert.equal(fired.label, second);
+      assert.equal(await page.inputValue('#search'), '');
+      assert.deepEqual(problems, [], 'problems in the console');
     });
   } finally {
     removeTemp(bundle);
@@ -373,6 +480,9 @@ test('a dialog manager\'s proposal accepted with F9 is dispatched, one dismissed
       await line.waitFor();
       assert.ok((await line.textContent()).includes(fired.text));
       assert.match(await line.textContent(), new RegExp(`operator #${accepted.client}`));
+      // Replayed history and live events may overlap: each event is shown once.
+      const seqs = await b.locator('#history li').evaluateAll((items) => items.map((i) => i.dataset.seq));
+      assert.equal(new Set(seqs).size, seqs.length, `history shows an event twice: ${seqs}`);
 
       dm.send({ type: 'propose', label: 'FAREWELL', context: 'TextChild', reason: 'visitor leaving', ref: 'p2' });
       const second = await dm.waitFor((f) => f.type === 'proposed' && f.ref === 'p2');
