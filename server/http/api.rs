@@ -64,14 +64,11 @@ struct CommandView<'a> {
 }
 
 fn act_view(act: &Act) -> ActView<'_> {
-    let file: &str = &act.pos.file;
-    let stem = file.rsplit('/').next().unwrap_or(file);
-    let stem = stem.split_once('.').map_or(stem, |(name, _)| name);
     ActView {
         label: &act.label,
         at: &act.pos,
-        file,
-        group: act.group.as_deref().unwrap_or(stem),
+        file: &act.pos.file,
+        group: act.group_name(),
         key: act.key.map(String::from),
         variants: (act.variants.iter())
             .map(|v| VariantView {
