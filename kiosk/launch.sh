@@ -5,6 +5,7 @@
 # Step-by-step set-up: docs/DEVICE.md.
 #
 #   kiosk/launch.sh [--dry-run] [--url URL] [--no-projector] [--state-dir DIR]
+#   kiosk/launch.sh --camera-policy [--url URL]
 #
 # Options (each also settable by the environment variable in brackets):
 #   --url URL                   Docent's address [DOCENT_URL] (http://127.0.0.1:8080)
@@ -17,6 +18,11 @@
 #                               (${XDG_STATE_HOME:-~/.local/state}/docent-kiosk)
 #   --chromium PATH             the browser [CHROMIUM] (chromium, chromium-browser or google-chrome)
 #   --wait SECONDS              how long to wait for Docent's /healthz [HEALTH_TIMEOUT] (120)
+#   --camera-permission MODE    how the touchscreen may use camera and microphone without a
+#                               prompt (for the operator's live view) [CAMERA_PERMISSION] (switch):
+#                               switch: --auto-accept-camera-and-microphone-capture;
+#                               policy: a Chromium managed policy (see --camera-policy)
+#   --camera-policy             print that managed policy for URL's origin, then exit
 #   --dry-run                   print the commands instead of running them
 # More environment:
 #   DISABLE_FEATURES=A,B        extra Chromium features to disable (merged into the one switch)
@@ -46,10 +52,12 @@ projector=${PROJECTOR:-1}
 state_dir=${DOCENT_KIOSK_STATE:-${XDG_STATE_HOME:-${HOME:?HOME is not set}/.local/state}/docent-kiosk}
 chromium=${CHROMIUM:-}
 health_timeout=${HEALTH_TIMEOUT:-120}
+camera_permission=${CAMERA_PERMISSION:-switch}
+camera_policy=0
 dry_run=0
 
 usage() {
-    sed -n '7,25p' "${BASH_SOURCE[0]}" | sed 's/^# \{0,1\}//' >&2
+    sed -n '7,30p' "${BASH_SOURCE[0]}" | sed 's/^# \{0,1\}//' >&2
     exit 2
 }
 
@@ -64,6 +72,8 @@ while (($# > 0)); do
         --state-dir) state_dir=${2:?}; shift 2 ;;
         --chromium) chromium=${2:?}; shift 2 ;;
         --wait) health_timeout=${2:?}; shift 2 ;;
+        --camera-permission) camera_permission=${2:?}; shift 2 ;;
+        --camera-policy) camera_policy=1; shift ;;
         --dry-run) dry_run=1; shift ;;
         -h | --help) usage ;;
         *) echo "launch.sh: unknown option $1" >&2; usage ;;
@@ -75,6 +85,33 @@ for pair in "$touch_position" "$touch_size" "$projector_position" "$projector_si
     [[ $pair =~ ^-?[0-9]+,-?[0-9]+$ ]] || { echo "launch.sh: '$pair' is not of the form X,Y or W,H" >&2; exit 2; }
 done
 [[ $health_timeout =~ ^[0-9]+$ ]] || { echo "launch.sh: --wait needs whole seconds" >&2; exit 2; }
+[[ $camera_permission == switch || $camera_permission == policy ]] ||
+    { echo "launch.sh: --camera-permission is switch or policy, not '$camera_permission'" >&2; exit 2; }
+[[ $url =~ ^(https?://[^/?#]+) ]] || { echo "launch.sh: '$url' is not an http(s) address" >&2; exit 2; }
+origin=${BASH_REMATCH[1]}
+
+# ---- Camera and microphone for the operator's live view ----------------------------------------
+# The touchscreen page answers the operator console's camera calls (operator.camera: webrtc in
+# docent.yaml) with getUserMedia, which must never show a permission prompt on a kiosk. Either
+# the switch below (this browser only; not one of the switches Chromium warns about) or a
+# managed policy that allows exactly Docent's origin (the port counts); the projector gets
+# neither. Chromium offers the camera only to secure pages: https, or http on 127.0.0.1/localhost.
+if ((camera_policy)); then
+    cat <<EOF
+{
+  "VideoCaptureAllowedUrls": ["$origin"],
+  "AudioCaptureAllowedUrls": ["$origin"]
+}
+EOF
+    exit 0
+fi
+camera_switches=()
+if [[ $camera_permission == switch ]]; then
+    camera_switches=(--auto-accept-camera-and-microphone-capture)
+elif ! grep -qsF "\"$origin\"" /etc/chromium/policies/managed/*.json /etc/opt/chrome/policies/managed/*.json; then
+    echo "launch.sh: no managed Chromium policy allows the camera for $origin;" \
+        "the kiosk may ask visitors for permission (docs/DEVICE.md, camera)" >&2
+fi
 
 if [[ -z $chromium ]]; then
     for candidate in chromium chromium-browser google-chrome; do
@@ -163,8 +200,10 @@ fi
 
 # ---- Chromium switches ------------------------------------------------------------------------
 # Chromium honours --disable-features only once (a second switch replaces the first), so all
-# disabled features go into this one list.
-disabled="TranslateUI,Translate,OverscrollHistoryNavigation,MediaRouter${DISABLE_FEATURES:+,$DISABLE_FEATURES}"
+# disabled features go into this one list. WebRtcHideLocalIpsWithMdns: the touchscreen offers the
+# operator's camera call its real network addresses instead of random .local names, so the call
+# needs no multicast DNS on the network (the projector makes no such calls).
+disabled="TranslateUI,Translate,OverscrollHistoryNavigation,MediaRouter,WebRtcHideLocalIpsWithMdns${DISABLE_FEATURES:+,$DISABLE_FEATURES}"
 common=(
     --kiosk
     --noerrdialogs
@@ -187,14 +226,15 @@ if [[ -n ${CHROMIUM_FLAGS:-} ]]; then
     common+=("${extra[@]}")
 fi
 
-# The watchdog command for one browser: ROLE POSITION SIZE PAGE.
+# The watchdog command for one browser: ROLE POSITION SIZE PAGE [SWITCH...].
 browser_command() {
     local role=$1 position=$2 size=$3 page=$4 profile
+    shift 4
     profile="$state_dir/$role"
     cmd=(
         "$here/watchdog.sh" --name "$role"
         --before "$(show "$here/launch.sh" --clear-crash-flags "$profile")"
-        -- "$chromium" "${common[@]}"
+        -- "$chromium" "${common[@]}" "$@"
         "--user-data-dir=$profile"
         "--window-position=$position"
         "--window-size=$size"
@@ -205,7 +245,7 @@ browser_command() {
 run mkdir -p -- "$state_dir/touch"
 ((projector == 0)) || run mkdir -p -- "$state_dir/projector"
 
-browser_command touch "$touch_position" "$touch_size" "$url/"
+browser_command touch "$touch_position" "$touch_size" "$url/" "${camera_switches[@]}"
 touch_cmd=("${cmd[@]}")
 projector_cmd=()
 if ((projector != 0)); then

@@ -2,8 +2,10 @@
 // state frames) in two stacked iframes: the next page loads in the hidden one and is revealed
 // once loaded, so a swap never flashes white; the old page is then unloaded, which ends its
 // timers. Returns home after the configured idle time without touch (and may trigger the idle
-// act), and offers `window.docentShell` to the page script (docent-page.js).
+// act), and offers `window.docentShell` to the page script (docent-page.js). With
+// `data-camera="webrtc"` it also answers the operator console's camera calls (camera-kiosk.js).
 
+import { answerCameraCalls } from "./camera-kiosk.js";
 import { encodePath, keepConnected } from "./socket.js";
 import { startBrowserSpeech } from "./speech.js";
 
@@ -185,3 +187,4 @@ for (const frame of frames) frame.addEventListener("load", () => reportShown(fra
 if (config.speech === "browser") {
   startBrowserSpeech({ path: config.ws || "/ws", voice: config.voice, wpm: Number(config.rate) });
 }
+if (config.camera === "webrtc") answerCameraCalls({ send: socket.send, on: window.docentShell.on });

@@ -7,7 +7,7 @@ use axum::extract::State;
 use axum::http::header;
 use axum::response::{IntoResponse, Response};
 
-use crate::content::config::{AdapterKind, SiteConfig};
+use crate::content::config::{AdapterKind, Camera, SiteConfig};
 use crate::http::AppError;
 use crate::state::AppState;
 
@@ -34,6 +34,8 @@ pub struct KioskShell<'a> {
     pub voice: &'a str,
     /// Words per minute for browser speech.
     pub rate: u32,
+    /// Whether the kiosk answers the operator console's camera calls (`operator.camera: webrtc`).
+    pub webrtc_camera: bool,
 }
 
 impl<'a> KioskShell<'a> {
@@ -48,6 +50,7 @@ impl<'a> KioskShell<'a> {
             browser_speech: config.speech.adapter == Some(AdapterKind::Browser),
             voice: &config.speech.voice,
             rate: config.speech.rate_wpm,
+            webrtc_camera: config.operator.camera == Camera::WebRtc,
         }
     }
 }
@@ -182,6 +185,21 @@ mod tests {
         config.kiosk.idle_act = None;
         let page = KioskShell::new(&config).render().expect("renders");
         assert!(!page.contains("data-idle-act"), "{page}");
+    }
+
+    #[test]
+    fn the_kiosk_shell_answers_camera_calls_only_with_a_webrtc_camera() {
+        let mut config = SiteConfig::default();
+        let page = KioskShell::new(&config).render().expect("renders");
+        assert!(page.contains(r#"data-camera="webrtc""#), "{page}");
+        for camera in [
+            Camera::None,
+            Camera::Url("http://192.168.1.20:8081/stream.mjpg".to_owned()),
+        ] {
+            config.operator.camera = camera;
+            let page = KioskShell::new(&config).render().expect("renders");
+            assert!(!page.contains("data-camera"), "{page}");
+        }
     }
 
     #[test]

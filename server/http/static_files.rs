@@ -16,6 +16,16 @@ const FILES: &[(&str, &str, &str)] = &[
     ("kiosk.js", JS, include_str!("../../static/kiosk.js")),
     ("socket.js", JS, include_str!("../../static/socket.js")),
     ("speech.js", JS, include_str!("../../static/speech.js")),
+    (
+        "camera-kiosk.js",
+        JS,
+        include_str!("../../static/camera-kiosk.js"),
+    ),
+    (
+        "operator/camera.js",
+        JS,
+        include_str!("../../static/operator/camera.js"),
+    ),
     ("preview.js", JS, include_str!("../../static/preview.js")),
     ("kiosk.css", CSS, include_str!("../../static/kiosk.css")),
     ("preview.css", CSS, include_str!("../../static/preview.css")),
