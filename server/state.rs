@@ -121,6 +121,19 @@ impl AppState {
         Some((target.info.role, target.outbox.clone()))
     }
 
+    /// Forgets client `from` as a signaller; returns the outboxes of the clients it had
+    /// signalled (so they can be told it hung up).
+    pub fn signaller_left(&self, from: u64) -> Vec<Outbox> {
+        let mut clients = lock(&self.clients.connected);
+        (clients.values_mut())
+            .filter_map(|c| {
+                let at = c.signalled_by.iter().position(|&id| id == from)?;
+                c.signalled_by.swap_remove(at);
+                Some(c.outbox.clone())
+            })
+            .collect()
+    }
+
     /// Whether client `from` signalled client `to` before.
     pub fn was_signalled_by(&self, to: u64, from: u64) -> bool {
         (lock(&self.clients.connected).get(&to)).is_some_and(|c| c.signalled_by.contains(&from))

@@ -284,6 +284,13 @@ async fn signalling_is_relayed_between_an_operator_and_the_kiosk_it_called() {
     op.send(json!({"type": "signal", "to": 9999, "data": {}}))
         .await;
     assert_eq!(op.recv_type("error").await["code"], "unknown-client");
+    // A console that goes away without hanging up: the kiosk is told on its behalf.
+    drop(op);
+    let hangup = kiosk.recv_type("signal").await;
+    assert_eq!(
+        (hangup["from"].clone(), hangup["data"]["kind"].as_str()),
+        (op_id, Some("hangup"))
+    );
     server.stop().await;
 }
 

@@ -283,6 +283,9 @@ impl Session {
             self.state.devices.display.projector_left(self.client);
         }
         self.state.client_left(self.client);
+        if role == ClientRole::Operator {
+            self.hang_up_calls();
+        }
         let reason = reason.to_owned();
         self.state.hub.publish(EventKind::ClientLeft {
             client: self.client,

@@ -8,6 +8,9 @@ use crate::ws::connection::Session;
 use crate::ws::outbox::Frame;
 use crate::ws::protocol::signal_frame;
 
+/// What a kiosk is told on behalf of an operator that left without hanging up.
+const HANGUP: &str = r#"{"kind":"hangup","reason":"the operator left"}"#;
+
 impl Session {
     pub(super) fn signal(&self, to: u64, data: &serde_json::Value) {
         let Some(role) = self.allowed(&[ClientRole::Operator, ClientRole::Kiosk], None) else {
@@ -33,5 +36,15 @@ impl Session {
             return self.reply_error("unknown-client", &message, None, None);
         };
         outbox.send(Frame::from(signal_frame(self.client, role, data)));
+    }
+
+    /// Ends the calls of an operator that left (a closed or crashed console), so kiosks free
+    /// their camera at once instead of waiting for WebRTC to notice.
+    pub(super) fn hang_up_calls(&self) {
+        let data: serde_json::Value = serde_json::from_str(HANGUP).unwrap_or_default();
+        let frame = signal_frame(self.client, ClientRole::Operator, &data);
+        for outbox in self.state.signaller_left(self.client) {
+            outbox.send(Frame::from(frame.clone()));
+        }
     }
 }
