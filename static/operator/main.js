@@ -67,7 +67,7 @@ const proposals = createProposals({
   dismiss: (id) => answerProposal("dismiss", id),
   says: (label, ctx) => {
     const act = list.act(label);
-    return act ? textsFor(act, ctx ?? context).texts[0] ?? null : `unknown act ${label}`;
+    return act ? textsFor(act, ctx ?? context).texts[0] ?? null : null;
   },
   who: (client) => {
     const c = clients.get().get(client);
@@ -128,7 +128,12 @@ function fire(act, { interrupt = false } = {}) {
 }
 
 function stop() {
-  send({ type: "stop", ref: ref("stop") }, "Stop");
+  // Without the websocket, Stop still tries the HTTP route: stopping must not wait for a reconnect.
+  if (!connection?.send({ type: "stop", ref: ref("stop") })) {
+    fetch("/api/stop", { method: "POST", headers: authHeaders() })
+      .then((res) => notice(res.ok ? "Stopped (over HTTP: the console is not connected)." : `Stop failed: HTTP ${res.status}`))
+      .catch(() => notice("Not connected: Stop could not reach Docent."));
+  }
   const button = byId("stop");
   button.classList.remove("pressed");
   void button.offsetWidth;
@@ -371,6 +376,7 @@ async function loadActs() {
   contextSelect.value = context;
   contextSelect.disabled = false;
   list.setActs(readActs(answer));
+  proposals.refresh(); // proposals shown before the acts arrived name their texts now
 }
 
 loadActs().catch((error) => notice(`The acts could not be loaded: ${error.message}`));

@@ -71,6 +71,8 @@ export function createProposals({ panel, list, accept, dismiss, says, who }) {
         render();
       }
     },
+    /** Redraws (the acts arrived, so their texts can be shown). */
+    refresh: render,
     /** The id of the oldest pending proposal, or null. */
     oldest() {
       const ids = [...pending.keys()];
