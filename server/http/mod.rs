@@ -4,6 +4,7 @@
 //! - `files`: bundle files under `/pages/` and `/media/`, never outside the bundle.
 //! - `shells`: the kiosk (`/`) and projector (`/projector`) pages, askama templates.
 //! - `static_files`: `/static/...`, the shells' scripts and styles, embedded in the binary.
+//! - `operator`: the operator console (`/operator`) and its settings (`/api/operator`).
 //! - `auth`: who is asking ([`auth::Peer`]) and whether they may ([`auth::Authorized`]).
 //! - `error`: [`AppError`], the one error type at the HTTP edge.
 
