@@ -6,13 +6,12 @@
 use askama::Template;
 use axum::Json;
 use axum::extract::State;
-use axum::http::header;
-use axum::response::{IntoResponse, Response};
+use axum::response::Response;
 use serde_json::{Value, json};
 
 use crate::content::config::{Camera, SiteConfig};
-use crate::http::AppError;
 use crate::http::auth::Authorized;
+use crate::http::shells::html;
 use crate::http::static_files;
 use crate::state::AppState;
 
@@ -45,17 +44,7 @@ impl OperatorConsole<'_> {
 /// `GET /operator`: the console page. Open to anyone: it holds no secret and does nothing
 /// until its operator signs in.
 pub async fn console(State(state): State<AppState>) -> Response {
-    match OperatorConsole::new(!state.access.is_open()).render() {
-        Ok(page) => (
-            [
-                (header::CONTENT_TYPE, "text/html; charset=utf-8"),
-                (header::CACHE_CONTROL, "no-cache"),
-            ],
-            page,
-        )
-            .into_response(),
-        Err(e) => AppError::internal(e).into_response(),
-    }
+    html(OperatorConsole::new(!state.access.is_open()).render())
 }
 
 /// `GET /api/operator` (bearer): the console's settings.

@@ -124,7 +124,9 @@ pub async fn projector(State(state): State<AppState>) -> Response {
     html(ProjectorShell::new(&bundle.config).render())
 }
 
-fn html(rendered: askama::Result<String>) -> Response {
+/// A rendered page as an HTML answer that is revalidated on every load (a deployed kiosk must
+/// pick up a new Docent at once); a rendering failure is an internal error.
+pub(super) fn html(rendered: askama::Result<String>) -> Response {
     match rendered {
         Ok(page) => (
             [
