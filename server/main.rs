@@ -24,30 +24,7 @@ struct Cli {
 #[derive(Subcommand)]
 enum Cmd {
     /// Serve a content bundle: pages, the trigger API and the websocket.
-    Serve {
-        /// The bundle folder.
-        #[arg(default_value = "dialogs/info-terminal")]
-        bundle: PathBuf,
-        /// Address to listen on. Stays on loopback unless told otherwise.
-        #[arg(long, default_value = "127.0.0.1:8080")]
-        listen: SocketAddr,
-        /// Seed for choosing among alternative texts (reproducible runs).
-        #[arg(long)]
-        seed: Option<u64>,
-        /// Folder for the corpus log.
-        #[arg(long, default_value = "corpus")]
-        corpus: PathBuf,
-        /// Write speech as WAV files into this folder instead of playing it (no sound card).
-        #[arg(long, value_name = "DIR")]
-        speech_wav: Option<PathBuf>,
-        /// For authors: speak in the browser and open the kiosk and projector side by side.
-        #[arg(long)]
-        preview: bool,
-        /// Development only: no credentials for operator and dialog-manager clients. Allowed
-        /// only with a loopback --listen address.
-        #[arg(long)]
-        open: bool,
-    },
+    Serve(ServeArgs),
     /// Check a bundle and list every problem with its file, line and column.
     Check {
         /// The bundle folder.
@@ -56,6 +33,33 @@ enum Cmd {
         #[arg(long, value_enum, default_value_t = Format::Text)]
         format: Format,
     },
+}
+
+/// What `docent serve` takes.
+#[derive(clap::Args)]
+struct ServeArgs {
+    /// The bundle folder.
+    #[arg(default_value = "dialogs/info-terminal")]
+    bundle: PathBuf,
+    /// Address to listen on. Stays on loopback unless told otherwise.
+    #[arg(long, default_value = "127.0.0.1:8080")]
+    listen: SocketAddr,
+    /// Seed for choosing among alternative texts (reproducible runs).
+    #[arg(long)]
+    seed: Option<u64>,
+    /// Folder for the corpus log.
+    #[arg(long, default_value = "corpus")]
+    corpus: PathBuf,
+    /// Write speech as WAV files into this folder instead of playing it (no sound card).
+    #[arg(long, value_name = "DIR")]
+    speech_wav: Option<PathBuf>,
+    /// For authors: speak in the browser and open the kiosk and projector side by side.
+    #[arg(long)]
+    preview: bool,
+    /// Development only: no credentials for operator and dialog-manager clients. Allowed
+    /// only with a loopback --listen address.
+    #[arg(long)]
+    open: bool,
 }
 
 /// How `serve` presents the bundle.
@@ -79,24 +83,7 @@ fn main() -> ExitCode {
     let cli = Cli::parse();
     let result = match cli.command {
         Cmd::Check { bundle, format } => check(&bundle, format),
-        Cmd::Serve {
-            bundle,
-            listen,
-            seed,
-            corpus,
-            speech_wav,
-            preview,
-            open,
-        } => {
-            let options = ServeOptions {
-                seed,
-                corpus_dir: corpus,
-                speech_wav,
-                access: AccessMode::Open,
-            };
-            let mode = if preview { Mode::Preview } else { Mode::Robot };
-            serve(&bundle, listen, options, mode, open)
-        }
+        Cmd::Serve(args) => serve(&args),
     };
     match result {
         Ok(code) => code,
@@ -138,13 +125,9 @@ fn counts(diagnostics: &[Diagnostic]) -> (usize, usize) {
     (errors, diagnostics.len() - errors)
 }
 
-fn serve(
-    bundle_dir: &Path,
-    listen: SocketAddr,
-    mut options: ServeOptions,
-    mode: Mode,
-    open: bool,
-) -> anyhow::Result<ExitCode> {
+fn serve(args: &ServeArgs) -> anyhow::Result<ExitCode> {
+    let (bundle_dir, listen) = (args.bundle.as_path(), args.listen);
+    let mode = if args.preview { Mode::Preview } else { Mode::Robot };
     tracing_subscriber::fmt()
         .with_env_filter(
             tracing_subscriber::EnvFilter::try_from_default_env()
@@ -168,12 +151,17 @@ fn serve(
         bundle.config.speech.adapter = Some(AdapterKind::Browser);
     }
     let setup = decide_access(
-        open,
+        args.open,
         listen.ip().is_loopback(),
         &bundle.config.access,
         |var| std::env::var(var).ok(),
     )?;
-    options.access = setup.mode.clone();
+    let options = ServeOptions {
+        seed: args.seed,
+        corpus_dir: args.corpus.clone(),
+        speech_wav: args.speech_wav.clone(),
+        access: setup.mode.clone(),
+    };
     let home = bundle.config.home.clone();
     let runtime = tokio::runtime::Runtime::new().context("starting the async runtime")?;
     runtime.block_on(async move {

@@ -110,15 +110,22 @@ impl AppState {
             .collect()
     }
 
-    /// A connected client's role and outgoing queue, for relaying a signal from `from`: the
-    /// receiver remembers `from` so that it may answer.
-    pub fn signal_route(&self, to: u64, from: u64) -> Option<(ClientRole, Outbox)> {
+    /// A connected client's role.
+    pub fn role_of(&self, id: u64) -> Option<ClientRole> {
+        lock(&self.clients.connected).get(&id).map(|c| c.info.role)
+    }
+
+    /// The outgoing queue of client `to`, for relaying a signal; when the sender is a
+    /// `caller` (an operator), the receiver remembers it so that it may answer.
+    pub fn signal_route(&self, to: u64, caller: Option<u64>) -> Option<Outbox> {
         let mut clients = lock(&self.clients.connected);
         let target = clients.get_mut(&to)?;
-        if !target.signalled_by.contains(&from) {
-            target.signalled_by.push(from);
+        if let Some(caller) = caller
+            && !target.signalled_by.contains(&caller)
+        {
+            target.signalled_by.push(caller);
         }
-        Some((target.info.role, target.outbox.clone()))
+        Some(target.outbox.clone())
     }
 
     /// Forgets client `from` as a signaller; returns the outboxes of the clients it had

@@ -16,6 +16,7 @@ async fn fig4() -> TestServer {
 async fn the_http_trigger_stop_and_context_endpoints_need_a_credential() {
     let server = fig4().await;
     let trigger = "/api/acts/WELCOME/trigger";
+    // Four refusals: one short of the address having to wait.
     for token in [None, Some("not-the-credential")] {
         let (status, body) = server.post_with(trigger, None, token).await;
         assert_eq!(
@@ -23,9 +24,9 @@ async fn the_http_trigger_stop_and_context_endpoints_need_a_credential() {
             (401, Some("unauthorized")),
             "{body}"
         );
-        let (status, _) = server.post_with("/api/stop", None, token).await;
-        assert_eq!(status, 401);
     }
+    let (status, _) = server.post_with("/api/stop", None, None).await;
+    assert_eq!(status, 401);
     let r = reqwest::Client::new()
         .put(server.url("/api/context"))
         .json(&json!({"context": "TextGroup"}))
@@ -46,9 +47,14 @@ async fn the_http_trigger_stop_and_context_endpoints_need_a_credential() {
             .0,
         200
     );
-    // Reading stays open.
+    // The acts stay open to read; the state (client names, a dialog manager's reasons) not.
     assert_eq!(server.get("/api/acts").await.0, 200);
     assert_eq!(server.get("/api/state").await.0, 200);
+    // (On a second server: a fifth refusal here would make this address wait.)
+    let second = fig4().await;
+    let anonymous = reqwest::get(second.url("/api/state")).await.unwrap();
+    assert_eq!(anonymous.status().as_u16(), 401);
+    second.stop().await;
     let corpus = server.stop().await;
     let refused = corpus
         .iter()
@@ -259,7 +265,7 @@ async fn a_kiosk_flooding_triggers_is_held_to_its_rate() {
         .iter()
         .filter(|e| e["type"] == "trigger.refused" && e["code"] == "rate-limited")
         .count();
-    assert_eq!(logged, limited);
+    assert_eq!(logged, 1, "one run of rate-limited triggers is logged once");
 }
 
 #[tokio::test]
@@ -273,5 +279,95 @@ async fn a_refused_connection_is_closed_after_its_error() {
     // The server itself keeps serving.
     let op = server.operator().await;
     assert_eq!(op.welcome["type"], "welcome");
+    server.stop().await;
+}
+
+#[tokio::test]
+async fn pages_of_other_sites_are_refused() {
+    let server = fig4().await;
+    let r = reqwest::Client::new()
+        .post(server.url("/api/acts/WELCOME/trigger"))
+        .bearer_auth(OPERATOR_TOKEN)
+        .header("origin", "http://evil.example")
+        .send()
+        .await
+        .unwrap();
+    assert_eq!(r.status().as_u16(), 403);
+    let same = reqwest::Client::new()
+        .post(server.url("/api/acts/WELCOME/trigger"))
+        .bearer_auth(OPERATOR_TOKEN)
+        .header("origin", format!("http://{}", server.addr))
+        .send()
+        .await
+        .unwrap();
+    assert_eq!(same.status().as_u16(), 202);
+    use tokio_tungstenite::tungstenite::client::IntoClientRequest;
+    let mut request = format!("ws://{}/ws", server.addr)
+        .into_client_request()
+        .unwrap();
+    request
+        .headers_mut()
+        .insert("origin", "http://evil.example".parse().unwrap());
+    let refused = tokio_tungstenite::connect_async(request).await;
+    assert!(
+        refused.is_err(),
+        "a websocket from another site's page is refused"
+    );
+    server.stop().await;
+}
+
+#[tokio::test]
+async fn a_flood_of_hellos_without_a_credential_is_logged_only_until_the_address_waits() {
+    let server = fig4().await;
+    let mut codes = Vec::new();
+    for _ in 0..20 {
+        let frames = refused_hello(&server, json!({"type": "hello", "role": "operator"})).await;
+        codes.push(frames[0]["code"].as_str().unwrap().to_owned());
+    }
+    assert_eq!(codes[..4], ["unauthorized"; 4]);
+    assert!(
+        codes[4..].iter().all(|c| c == "too-many-attempts"),
+        "{codes:?}"
+    );
+    let corpus = server.stop().await;
+    let logged = corpus
+        .iter()
+        .filter(|e| e["type"] == "client.refused")
+        .count();
+    assert_eq!(
+        logged, 5,
+        "the four refusals and the one that made the address wait"
+    );
+}
+
+#[tokio::test]
+async fn kiosk_connections_from_one_address_share_one_allowance() {
+    let b = kiosk_bundle();
+    let server = TestServer::start_with(b.path(), |_| {}).await;
+    let mut kiosks = Vec::new();
+    for _ in 0..4 {
+        kiosks.push(
+            server
+                .client(json!({"type": "hello", "role": "kiosk"}))
+                .await,
+        );
+    }
+    let mut triggered = 0;
+    for round in 0..3 {
+        for kiosk in &mut kiosks {
+            kiosk
+                .send(json!({"type": "trigger", "label": "OFFERED", "ref": round.to_string()}))
+                .await;
+            let answer = kiosk
+                .recv_where(|f| f["type"] == "triggered" || f["type"] == "error")
+                .await;
+            triggered += usize::from(answer["type"] == "triggered");
+        }
+    }
+    // Separate allowances would have let all twelve through at once.
+    assert!(
+        (5..12).contains(&triggered),
+        "{triggered} of 12 went through: the burst of 5, plus what refilled meanwhile"
+    );
     server.stop().await;
 }

@@ -273,15 +273,15 @@ async fn signalling_is_relayed_between_an_operator_and_the_kiosk_it_called() {
         (kiosk_id.clone(), Some("kiosk"))
     );
     kiosk
-        .send(json!({"type": "signal", "to": other_id, "data": {}}))
+        .send(json!({"type": "signal", "to": other_id, "data": {"kind": "offer"}}))
         .await;
     assert_eq!(kiosk.recv_type("error").await["code"], "forbidden");
     // Operators signal kiosks only.
     other_op
-        .send(json!({"type": "signal", "to": op_id, "data": {}}))
+        .send(json!({"type": "signal", "to": op_id, "data": {"kind": "offer"}}))
         .await;
     assert_eq!(other_op.recv_type("error").await["code"], "forbidden");
-    op.send(json!({"type": "signal", "to": 9999, "data": {}}))
+    op.send(json!({"type": "signal", "to": 9999, "data": {"kind": "offer"}}))
         .await;
     assert_eq!(op.recv_type("error").await["code"], "unknown-client");
     // A console that goes away without hanging up: the kiosk is told on its behalf.
@@ -311,4 +311,44 @@ async fn a_console_joining_later_gets_the_recent_history() {
     );
     assert_eq!(late.event("proposal.made").await["label"], "GOODBYE");
     server.stop().await;
+}
+
+#[tokio::test]
+async fn signalling_carries_only_call_data() {
+    let b = tour();
+    let server = TestServer::start(b.path()).await;
+    let mut op = server.operator().await;
+    let kiosk = server
+        .client(json!({"type": "hello", "role": "kiosk"}))
+        .await;
+    let to = kiosk.welcome["client"].clone();
+    for data in [json!({}), json!({"kind": "shout"}), json!("offer")] {
+        op.send(json!({"type": "signal", "to": to, "data": data}))
+            .await;
+        assert_eq!(op.recv_type("error").await["code"], "bad-signal", "{data}");
+    }
+    server.stop().await;
+}
+
+#[tokio::test]
+async fn a_leaving_dialog_managers_proposals_are_withdrawn() {
+    let b = tour();
+    let server = TestServer::start(b.path()).await;
+    let mut op = server.operator().await;
+    let mut dm = dm(&server).await;
+    dm.send(json!({"type": "propose", "label": "GOODBYE"}))
+        .await;
+    let id = dm.recv_type("proposed").await["proposal"].clone();
+    drop(dm);
+    let withdrawn = op.event("proposal.withdrawn").await;
+    assert_eq!(
+        (withdrawn["proposal"].clone(), withdrawn["label"].as_str()),
+        (id.clone(), Some("GOODBYE"))
+    );
+    op.send(json!({"type": "accept", "proposal": id})).await;
+    assert_eq!(op.recv_type("error").await["code"], "unknown-proposal");
+    let (_, state) = server.get("/api/state").await;
+    assert_eq!(state["proposals"], json!([]));
+    let corpus = server.stop().await;
+    assert!(!corpus.iter().any(|e| e["type"] == "act.triggered"));
 }

@@ -1,79 +1,72 @@
-//! Limiting wrong credentials: an address that gets the credential wrong [`MAX_FAILURES`]
-//! times within [`WINDOW`] is refused for [`LOCKOUT`], even with the right one, so guessing
-//! stays hopeless. Missing credentials do not count (a console before sign-in is no guess).
+//! Slowing down wrong credentials: each client address (an IPv6 /64 counts as one, since one
+//! machine can hold all of it) has a bucket of [`MAX_FAILURES`] failures that refills one
+//! every [`REFILL`]. Once it is empty every attempt from there is refused, even with the right
+//! credential, until a failure has refilled. Credentials are long (16+ characters, generated
+//! ones about 190 bits), so this bounds guessing to nothing useful, while an operator who
+//! shares an address with a misconfigured client waits seconds, not minutes.
 
 use std::collections::HashMap;
 use std::net::IpAddr;
 use std::sync::Mutex;
 use std::time::{Duration, Instant};
 
+use crate::access::TokenBucket;
 use crate::sync::lock;
 
-/// Wrong credentials tolerated from one address within [`WINDOW`].
+/// Wrong or missing credentials tolerated from one address in a row.
 pub const MAX_FAILURES: u32 = 5;
-/// The window failures are counted in.
-pub const WINDOW: Duration = Duration::from_secs(60);
-/// How long an address is refused once it reached [`MAX_FAILURES`].
-pub const LOCKOUT: Duration = Duration::from_secs(60);
-/// Addresses remembered at most; beyond it the oldest records are dropped, so a flood of
-/// addresses cannot grow memory without bound.
+/// How long until one more failure is tolerated.
+pub const REFILL: Duration = Duration::from_secs(10);
+/// Addresses remembered at most; beyond it those with a full bucket are forgotten first, so a
+/// flood of addresses cannot grow memory without bound.
 const MAX_ADDRESSES: usize = 10_000;
-
-#[derive(Clone, Copy, Debug)]
-struct Record {
-    failures: u32,
-    since: Instant,
-    locked_until: Option<Instant>,
-}
 
 /// Failed attempts per client address.
 #[derive(Debug, Default)]
 pub struct Attempts {
-    records: Mutex<HashMap<IpAddr, Record>>,
+    buckets: Mutex<HashMap<IpAddr, TokenBucket>>,
+}
+
+/// The key an address is counted under: IPv4 as is, IPv6 by its /64 network.
+fn key(peer: IpAddr) -> IpAddr {
+    match peer {
+        IpAddr::V6(v6) => match v6.to_ipv4_mapped() {
+            Some(v4) => IpAddr::V4(v4),
+            None => IpAddr::V6((u128::from(v6) & !u128::from(u64::MAX)).into()),
+        },
+        v4 => v4,
+    }
+}
+
+fn bucket(now: Instant) -> TokenBucket {
+    TokenBucket::new(f64::from(MAX_FAILURES), 1.0 / REFILL.as_secs_f64(), now)
 }
 
 impl Attempts {
-    /// How long `peer` must still wait, if it is locked out now.
+    /// How long `peer` must still wait, if its failures are used up.
     pub fn locked(&self, peer: IpAddr, now: Instant) -> Option<Duration> {
-        let records = lock(&self.records);
-        let until = records.get(&peer)?.locked_until?;
-        (until > now).then(|| until - now)
+        let mut buckets = lock(&self.buckets);
+        buckets.get_mut(&key(peer))?.peek(now).err()
     }
 
-    /// Records a wrong credential from `peer`; returns the lockout when this one started it.
+    /// Records a wrong or missing credential from `peer`; returns how long it must wait when
+    /// this one used up its failures.
     pub fn failed(&self, peer: IpAddr, now: Instant) -> Option<Duration> {
-        let mut records = lock(&self.records);
-        if records.len() >= MAX_ADDRESSES && !records.contains_key(&peer) {
-            records.retain(|_, r| now.duration_since(r.since) < WINDOW.max(LOCKOUT));
-            if records.len() >= MAX_ADDRESSES {
-                // Still full of fresh records: forget one to make room (this costs a flooder
-                // its own history, never a locked-out address its lock for long).
-                if let Some(oldest) = records.iter().min_by_key(|(_, r)| r.since).map(|(a, _)| *a) {
-                    records.remove(&oldest);
-                }
+        let mut buckets = lock(&self.buckets);
+        let key = key(peer);
+        if buckets.len() >= MAX_ADDRESSES && !buckets.contains_key(&key) {
+            buckets.retain(|_, b| !b.is_full(now));
+            if buckets.len() >= MAX_ADDRESSES {
+                // Still full of fresh failures: a flood. Forget one to stay bounded.
+                let any = buckets.keys().next().copied();
+                any.map(|k| buckets.remove(&k));
             }
         }
-        let record = records.entry(peer).or_insert(Record {
-            failures: 0,
-            since: now,
-            locked_until: None,
-        });
-        if now.duration_since(record.since) > WINDOW {
-            *record = Record {
-                failures: 0,
-                since: now,
-                locked_until: None,
-            };
+        let bucket = buckets.entry(key).or_insert_with(|| bucket(now));
+        match bucket.take(now) {
+            Ok(()) => bucket.peek(now).err(),
+            Err(wait) => Some(wait),
         }
-        record.failures += 1;
-        if record.failures >= MAX_FAILURES {
-            record.locked_until = Some(now + LOCKOUT);
-            // The lockout starts a fresh window once it ends.
-            record.failures = 0;
-            record.since = now + LOCKOUT;
-            return Some(LOCKOUT);
-        }
-        None
     }
 }
 
@@ -85,33 +78,45 @@ mod tests {
     const OTHER: IpAddr = IpAddr::V4(std::net::Ipv4Addr::new(10, 0, 0, 8));
 
     #[test]
-    fn the_fifth_failure_within_a_minute_locks_the_address_out_for_a_minute() {
+    fn the_fifth_failure_in_a_row_makes_the_address_wait() {
         let attempts = Attempts::default();
         let start = Instant::now();
-        for i in 1..MAX_FAILURES {
-            assert_eq!(
-                attempts.failed(PEER, start + Duration::from_secs(i.into())),
-                None
-            );
+        for _ in 1..MAX_FAILURES {
+            assert_eq!(attempts.failed(PEER, start), None);
             assert_eq!(attempts.locked(PEER, start), None);
         }
-        let fifth = start + Duration::from_secs(10);
-        assert_eq!(attempts.failed(PEER, fifth), Some(LOCKOUT));
-        assert_eq!(attempts.locked(PEER, fifth), Some(LOCKOUT));
-        assert_eq!(attempts.locked(OTHER, fifth), None);
-        let later = fifth + LOCKOUT - Duration::from_secs(1);
+        assert_eq!(attempts.failed(PEER, start), Some(REFILL));
+        assert_eq!(attempts.locked(PEER, start), Some(REFILL));
+        assert_eq!(attempts.locked(OTHER, start), None);
+        let later = start + REFILL - Duration::from_secs(1);
         assert_eq!(attempts.locked(PEER, later), Some(Duration::from_secs(1)));
-        assert_eq!(attempts.locked(PEER, fifth + LOCKOUT), None);
+        // One failure's worth refilled: one more try, then the wait again.
+        assert_eq!(attempts.locked(PEER, start + REFILL), None);
+        assert_eq!(attempts.failed(PEER, start + REFILL), Some(REFILL));
     }
 
     #[test]
-    fn failures_spread_over_more_than_a_minute_do_not_lock() {
+    fn failures_slower_than_the_refill_never_lock() {
         let attempts = Attempts::default();
         let start = Instant::now();
         for i in 0..(3 * MAX_FAILURES) {
-            let at = start + WINDOW.mul_f64(0.4) * i;
+            let at = start + REFILL * i;
             assert_eq!(attempts.failed(PEER, at), None, "failure {i}");
         }
+    }
+
+    #[test]
+    fn an_ipv6_network_counts_as_one_address() {
+        let attempts = Attempts::default();
+        let now = Instant::now();
+        for i in 0..MAX_FAILURES {
+            let peer: IpAddr = format!("2001:db8:1:2::{i:x}").parse().unwrap();
+            attempts.failed(peer, now);
+        }
+        let fresh: IpAddr = "2001:db8:1:2:ffff::1".parse().unwrap();
+        assert!(attempts.locked(fresh, now).is_some());
+        let elsewhere: IpAddr = "2001:db8:1:3::1".parse().unwrap();
+        assert_eq!(attempts.locked(elsewhere, now), None);
     }
 
     #[test]
@@ -121,6 +126,6 @@ mod tests {
         for i in 0..(MAX_ADDRESSES as u32 + 50) {
             attempts.failed(IpAddr::V4(i.into()), now);
         }
-        assert!(lock(&attempts.records).len() <= MAX_ADDRESSES);
+        assert!(lock(&attempts.buckets).len() <= MAX_ADDRESSES);
     }
 }

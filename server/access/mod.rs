@@ -1,12 +1,12 @@
 //! Who may do what. Operator and dialog-manager clients prove themselves with a credential
 //! (websocket `hello.token`, HTTP `Authorization: Bearer`); kiosks and projectors need none
-//! but a kiosk may trigger only what its pages offer, at a limited rate (enforced in
-//! `ws::connection` with [`TokenBucket`]). A development server started with `--open` on
-//! loopback needs no credentials at all.
+//! but a kiosk may trigger only what its pages offer (checked in `ws::triggers`), at a rate
+//! limited per client address ([`Access::kiosk_allowance`]). A development server started
+//! with `--open` on loopback needs no credentials at all.
 //!
 //! - `secret`: [`Secret`], a credential that never prints and compares in constant time.
-//! - `attempts`: [`Attempts`], the lockout after repeated wrong credentials from one address.
-//! - `rate`: [`TokenBucket`], the kiosk trigger allowance.
+//! - `attempts`: [`Attempts`], the wait after repeated wrong credentials from one address.
+//! - `rate`: [`TokenBucket`], the allowance behind both.
 //! - `setup`: [`decide_access`], the mode and credentials chosen at start-up.
 
 mod attempts;
@@ -14,10 +14,17 @@ mod rate;
 mod secret;
 mod setup;
 
-use std::net::IpAddr;
+use std::collections::HashMap;
+use std::net::{IpAddr, Ipv4Addr};
+use std::sync::Mutex;
 use std::time::{Duration, Instant};
 
-pub use attempts::{Attempts, LOCKOUT, MAX_FAILURES};
+use crate::sync::lock;
+
+/// Kiosk addresses whose allowance is remembered at most (full ones are forgotten first).
+const MAX_KIOSK_ADDRESSES: usize = 10_000;
+
+pub use attempts::{Attempts, MAX_FAILURES, REFILL};
 pub use rate::{KIOSK_BURST, KIOSK_PER_SECOND, TokenBucket};
 pub use secret::Secret;
 pub use setup::{AccessSetup, DM_TOKEN_ENV, OPERATOR_TOKEN_ENV, Origin, SetupError, decide_access};
@@ -58,8 +65,10 @@ pub enum Refusal {
     Missing,
     /// The one given is wrong.
     Wrong,
-    /// This address got it wrong too often; it may try again after this long.
+    /// This attempt used up the address's failures; it may try again after this long.
     TooManyAttempts(Duration),
+    /// The address had used up its failures already; not counted, not worth logging again.
+    Locked(Duration),
 }
 
 impl Refusal {
@@ -67,7 +76,7 @@ impl Refusal {
     pub fn code(self) -> &'static str {
         match self {
             Refusal::Missing | Refusal::Wrong => "unauthorized",
-            Refusal::TooManyAttempts(_) => "too-many-attempts",
+            Refusal::TooManyAttempts(_) | Refusal::Locked(_) => "too-many-attempts",
         }
     }
 
@@ -81,7 +90,7 @@ impl Refusal {
         match self {
             Refusal::Missing => format!("this needs {which}"),
             Refusal::Wrong => format!("that is not {which}"),
-            Refusal::TooManyAttempts(wait) => format!(
+            Refusal::TooManyAttempts(wait) | Refusal::Locked(wait) => format!(
                 "too many wrong credentials from this address; try again in {} s",
                 wait.as_secs().max(1)
             ),
@@ -94,6 +103,7 @@ impl Refusal {
 pub struct Access {
     mode: AccessMode,
     attempts: Attempts,
+    kiosks: Mutex<HashMap<IpAddr, TokenBucket>>,
 }
 
 impl Access {
@@ -102,7 +112,26 @@ impl Access {
         Access {
             mode,
             attempts: Attempts::default(),
+            kiosks: Mutex::default(),
         }
+    }
+
+    /// Takes one trigger from the allowance of the kiosk address `peer` (all kiosks at one
+    /// address share it, so opening more connections gains nothing); otherwise how long until
+    /// the next is allowed.
+    pub fn kiosk_allowance(&self, peer: Option<IpAddr>, now: Instant) -> Result<(), Duration> {
+        let peer = peer.unwrap_or(IpAddr::V4(Ipv4Addr::UNSPECIFIED));
+        let mut kiosks = lock(&self.kiosks);
+        if kiosks.len() >= MAX_KIOSK_ADDRESSES && !kiosks.contains_key(&peer) {
+            kiosks.retain(|_, b| !b.is_full(now));
+            if kiosks.len() >= MAX_KIOSK_ADDRESSES {
+                return Err(Duration::from_secs(1));
+            }
+        }
+        kiosks
+            .entry(peer)
+            .or_insert_with(|| TokenBucket::kiosk(now))
+            .take(now)
     }
 
     /// Whether this is an `--open` development server.
@@ -122,14 +151,12 @@ impl Access {
         };
         let now = Instant::now();
         if let Some(wait) = peer.and_then(|p| self.attempts.locked(p, now)) {
-            return Err(Refusal::TooManyAttempts(wait));
+            return Err(Refusal::Locked(wait));
         }
-        let Some(token) = token.filter(|t| !t.is_empty()) else {
-            return Err(Refusal::Missing);
-        };
+        let token = token.filter(|t| !t.is_empty());
         // Both comparisons always run, so timing does not tell which role a token was near.
-        let operator = credentials.operator.matches(token);
-        let dm = credentials.dm.matches(token);
+        let operator = token.is_some_and(|t| credentials.operator.matches(t));
+        let dm = token.is_some_and(|t| credentials.dm.matches(t));
         let ok = match needed {
             Needed::Operator => operator,
             Needed::Dm => dm,
@@ -138,13 +165,14 @@ impl Access {
         if ok {
             return Ok(());
         }
+        // A missing credential counts too: asking without one, again and again, is a flood.
         if let Some(peer) = peer
             && let Some(wait) = self.attempts.failed(peer, now)
         {
-            tracing::warn!(%peer, "too many wrong credentials; refusing this address for {}s", wait.as_secs());
+            tracing::warn!(%peer, "too many wrong credentials; this address waits {}s", wait.as_secs());
             return Err(Refusal::TooManyAttempts(wait));
         }
-        Err(Refusal::Wrong)
+        Err(if token.is_some() { Refusal::Wrong } else { Refusal::Missing })
     }
 }
 
@@ -209,13 +237,13 @@ mod tests {
                 Err(Refusal::Wrong)
             );
         }
-        assert_eq!(
-            access.check(PEER, Needed::Operator, Some("guess")),
-            Err(Refusal::TooManyAttempts(LOCKOUT))
-        );
+        assert!(matches!(
+            access.check(PEER, Needed::Operator, None),
+            Err(Refusal::TooManyAttempts(_))
+        ));
         assert!(matches!(
             access.check(PEER, Needed::Operator, Some("operator-credential-1")),
-            Err(Refusal::TooManyAttempts(_))
+            Err(Refusal::Locked(_))
         ));
         let elsewhere = Some(IpAddr::V4(std::net::Ipv4Addr::new(192, 168, 1, 21)));
         assert_eq!(
@@ -229,6 +257,18 @@ mod tests {
         let access = Access::new(AccessMode::Open);
         assert!(access.is_open());
         assert_eq!(access.check(PEER, Needed::Operator, None), Ok(()));
+    }
+
+    #[test]
+    fn kiosks_at_one_address_share_one_allowance() {
+        let access = guarded();
+        let now = Instant::now();
+        for _ in 0..5 {
+            assert_eq!(access.kiosk_allowance(PEER, now), Ok(()));
+        }
+        assert!(access.kiosk_allowance(PEER, now).is_err());
+        let elsewhere = Some(IpAddr::V4(Ipv4Addr::new(192, 168, 1, 99)));
+        assert_eq!(access.kiosk_allowance(elsewhere, now), Ok(()));
     }
 
     #[test]

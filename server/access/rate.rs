@@ -8,6 +8,10 @@ use std::time::{Duration, Instant};
 pub const KIOSK_BURST: f64 = 5.0;
 /// Triggers per second a kiosk may keep up.
 pub const KIOSK_PER_SECOND: f64 = 4.0;
+/// Signalling frames a client may relay at once.
+pub const SIGNAL_BURST: f64 = 200.0;
+/// Signalling frames per second a client may keep up.
+pub const SIGNAL_PER_SECOND: f64 = 50.0;
 
 /// One client's allowance.
 #[derive(Debug)]
@@ -29,23 +33,43 @@ impl TokenBucket {
         }
     }
 
-    /// The allowance of one kiosk connection.
+    /// The trigger allowance of one kiosk address.
     pub fn kiosk(now: Instant) -> Self {
         Self::new(KIOSK_BURST, KIOSK_PER_SECOND, now)
     }
 
+    /// The allowance of relayed WebRTC signalling frames of one connection: a call needs a
+    /// few dozen (offer, answer, candidates), a flood must not bury the other side.
+    pub fn signalling(now: Instant) -> Self {
+        Self::new(SIGNAL_BURST, SIGNAL_PER_SECOND, now)
+    }
+
     /// Takes one token if there is one; otherwise says how long until the next.
     pub fn take(&mut self, now: Instant) -> Result<(), Duration> {
+        self.peek(now)?;
+        self.tokens -= 1.0;
+        Ok(())
+    }
+
+    /// Whether a token is there, without taking it; otherwise how long until one is.
+    pub fn peek(&mut self, now: Instant) -> Result<(), Duration> {
+        self.refill(now);
+        if self.tokens >= 1.0 {
+            return Ok(());
+        }
+        Err(Duration::from_secs_f64((1.0 - self.tokens) / self.per_second))
+    }
+
+    /// Whether the bucket has refilled completely (nothing left to remember about it).
+    pub fn is_full(&mut self, now: Instant) -> bool {
+        self.refill(now);
+        self.tokens >= self.capacity
+    }
+
+    fn refill(&mut self, now: Instant) {
         let elapsed = now.saturating_duration_since(self.last).as_secs_f64();
         self.tokens = (self.tokens + elapsed * self.per_second).min(self.capacity);
         self.last = now;
-        if self.tokens >= 1.0 {
-            self.tokens -= 1.0;
-            return Ok(());
-        }
-        Err(Duration::from_secs_f64(
-            (1.0 - self.tokens) / self.per_second,
-        ))
     }
 }
 

@@ -48,6 +48,13 @@ pub enum SetupError {
          (at least 16 characters) or `access: operator_token:` in docent.yaml"
     )]
     NoCredential,
+    /// The operator and dialog-manager credentials are the same, so neither role is told
+    /// apart (a dialog manager would have operator powers).
+    #[error(
+        "the operator and dialog-manager credentials must differ: a dialog manager would \
+         otherwise have the operator's powers"
+    )]
+    SameCredential,
     /// An environment variable holds an unusable credential.
     #[error("{0} is not usable as a credential: {1}")]
     Weak(&'static str, crate::content::config::WeakCredential),
@@ -75,6 +82,9 @@ pub fn decide_access(
     let (dm, dm_origin) = credential(DM_TOKEN_ENV, settings.dm_token.as_ref(), &env)?;
     if !loopback && operator_origin == Origin::Generated {
         return Err(SetupError::NoCredential);
+    }
+    if operator.matches(dm.expose()) {
+        return Err(SetupError::SameCredential);
     }
     Ok(AccessSetup {
         mode: AccessMode::Guarded(Credentials { operator, dm }),
@@ -168,6 +178,13 @@ mod tests {
         );
         let setup = decide_access(true, true, &none, env).expect("starts");
         assert!(matches!(setup.mode, AccessMode::Open));
+    }
+
+    #[test]
+    fn the_two_roles_need_different_credentials() {
+        let same = |_: &str| Some(OP.to_owned());
+        let error = decide_access(false, true, &AccessSettings::default(), same).unwrap_err();
+        assert_eq!(error, SetupError::SameCredential);
     }
 
     #[test]

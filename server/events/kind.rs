@@ -50,11 +50,11 @@ impl EventKind {
         matches!(
             self,
             EventKind::ActTriggered { .. }
-                | EventKind::TriggerRefused { .. }
                 | EventKind::ContextChanged { .. }
                 | EventKind::ProposalMade { .. }
                 | EventKind::ProposalAccepted { .. }
                 | EventKind::ProposalDismissed { .. }
+                | EventKind::ProposalWithdrawn { .. }
                 | EventKind::SessionStarted { .. }
                 | EventKind::SessionEnded { .. }
                 | EventKind::VisitorGroup { .. }
@@ -289,6 +289,18 @@ pub enum EventKind {
         client: u64,
         /// The act.
         label: String,
+    },
+    /// A proposal was taken back before anyone answered it (its dialog manager left).
+    #[serde(rename = "proposal.withdrawn")]
+    ProposalWithdrawn {
+        /// The proposal's id.
+        proposal: u64,
+        /// The dialog manager's connection.
+        client: u64,
+        /// The act.
+        label: String,
+        /// Why.
+        reason: String,
     },
     /// A visitor session began (marked by an operator).
     #[serde(rename = "session.started")]

@@ -173,9 +173,10 @@ pub async fn put_context(
     Ok(get_context(State(state)).await)
 }
 
-/// `GET /api/state`: display, pose, speech, queues, context, connected clients, pending
-/// proposals and the visitor session.
-pub async fn get_state(State(state): State<AppState>) -> Json<Value> {
+/// `GET /api/state` (credential needed: it names clients and holds the dialog manager's
+/// reasons): display, pose, speech, queues, context, connected clients, pending proposals and
+/// the visitor session.
+pub async fn get_state(State(state): State<AppState>, _: Authorized) -> Json<Value> {
     let adapters = state.dispatcher.adapter_status();
     let speaking = (adapters.get(state.devices.speech_adapter)).and_then(|s| {
         s.current

@@ -1,6 +1,8 @@
 //! Extractors for who is asking: [`Peer`] (the client's address) and [`Authorized`] (a valid
-//! `Authorization: Bearer` credential, or an `--open` server). Refusals are JSON errors with
-//! `WWW-Authenticate` or `Retry-After`; the credential itself is never logged or echoed.
+//! `Authorization: Bearer` credential, or an `--open` server), and [`same_origin`], which
+//! keeps other web sites' pages in a visitor's or developer's browser from using the API.
+//! Refusals are JSON errors with `WWW-Authenticate` or `Retry-After`; the credential itself
+//! is never logged or echoed.
 
 use std::convert::Infallible;
 use std::net::{IpAddr, SocketAddr};
@@ -36,12 +38,37 @@ impl FromRequestParts<AppState> for Authorized {
     type Rejection = AppError;
 
     async fn from_request_parts(parts: &mut Parts, state: &AppState) -> Result<Self, AppError> {
+        same_origin(&parts.headers)?;
         let Ok(Peer(peer)) = Peer::from_request_parts(parts, state).await;
         let token = bearer(&parts.headers);
         match state.access.check(peer, Needed::Either, token) {
             Ok(()) => Ok(Authorized),
             Err(refusal) => Err(refusal_error(refusal, Needed::Either)),
         }
+    }
+}
+
+/// Refuses a request a browser sent from a page of another site (its `Origin` names another
+/// host than the request's `Host`). Clients that are not browsers send no `Origin` and pass.
+/// Without this, any web page open in a browser next to an `--open` development server could
+/// drive the robot.
+pub fn same_origin(headers: &HeaderMap) -> Result<(), AppError> {
+    let Some(origin) = headers.get(header::ORIGIN) else {
+        return Ok(());
+    };
+    let host = headers.get(header::HOST).and_then(|h| h.to_str().ok());
+    let origin_host = origin
+        .to_str()
+        .ok()
+        .and_then(|o| o.split_once("://"))
+        .map(|(_, rest)| rest.trim_end_matches('/'));
+    match (origin_host, host) {
+        (Some(o), Some(h)) if o.eq_ignore_ascii_case(h) => Ok(()),
+        _ => Err(AppError::new(
+            StatusCode::FORBIDDEN,
+            "cross-origin",
+            "requests from pages of another site are refused",
+        )),
     }
 }
 
@@ -56,7 +83,7 @@ fn bearer(headers: &HeaderMap) -> Option<&str> {
 fn refusal_error(refusal: Refusal, needed: Needed) -> AppError {
     let message = refusal.message(needed);
     match refusal {
-        Refusal::TooManyAttempts(wait) => {
+        Refusal::TooManyAttempts(wait) | Refusal::Locked(wait) => {
             let seconds = HeaderValue::from(wait.as_secs().max(1));
             AppError::new(StatusCode::TOO_MANY_REQUESTS, refusal.code(), message)
                 .with_header(header::RETRY_AFTER, seconds)
@@ -73,6 +100,20 @@ fn refusal_error(refusal: Refusal, needed: Needed) -> AppError {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn only_pages_of_this_server_may_send_requests_with_an_origin() {
+        let mut headers = HeaderMap::new();
+        assert!(same_origin(&headers).is_ok(), "no Origin: not a browser page");
+        headers.insert(header::HOST, HeaderValue::from_static("127.0.0.1:8080"));
+        assert!(same_origin(&headers).is_ok());
+        headers.insert(header::ORIGIN, HeaderValue::from_static("http://127.0.0.1:8080"));
+        assert!(same_origin(&headers).is_ok());
+        for other in ["http://evil.example", "http://127.0.0.1:9999", "null"] {
+            headers.insert(header::ORIGIN, HeaderValue::from_static(other));
+            assert!(same_origin(&headers).is_err(), "{other}");
+        }
+    }
 
     #[test]
     fn bearer_tokens_are_read_from_the_authorization_header() {

@@ -62,13 +62,15 @@ struct Inner {
 }
 
 impl Proposals {
-    /// Records a proposal and returns it with its id.
+    /// Records a proposal and returns it with its id. `announce` runs before anyone else can
+    /// see it (under the lock), so its event always comes before any answer to it.
     pub fn propose(
         &self,
         client: u64,
         label: String,
         context: Option<String>,
         reason: Option<String>,
+        announce: impl FnOnce(&Proposal),
     ) -> Result<Proposal, ProposalError> {
         let mut inner = lock(&self.inner);
         if inner.pending.len() >= MAX_PENDING {
@@ -82,8 +84,22 @@ impl Proposals {
             context,
             reason,
         };
+        announce(&proposal);
         inner.pending.insert(proposal.proposal, proposal.clone());
         Ok(proposal)
+    }
+
+    /// Takes out every pending proposal of `client` (a dialog manager that left: its
+    /// proposals no longer stand for anything).
+    pub fn withdraw_from(&self, client: u64) -> Vec<Proposal> {
+        let mut inner = lock(&self.inner);
+        let gone: Vec<u64> = (inner.pending.values())
+            .filter(|p| p.client == client)
+            .map(|p| p.proposal)
+            .collect();
+        gone.iter()
+            .filter_map(|id| inner.pending.remove(id))
+            .collect()
     }
 
     /// Takes a pending proposal out (to accept or dismiss it); only one operator can.
@@ -114,7 +130,13 @@ mod tests {
     #[test]
     fn a_proposal_is_settled_once() {
         let proposals = Proposals::default();
-        let made = proposals.propose(3, "WELCOME".into(), None, Some("a visitor came".into()));
+        let made = proposals.propose(
+            3,
+            "WELCOME".into(),
+            None,
+            Some("a visitor came".into()),
+            |_| {},
+        );
         let made = made.expect("room");
         assert_eq!(made.proposal, 1);
         assert_eq!(proposals.pending(), std::slice::from_ref(&made));
@@ -127,13 +149,32 @@ mod tests {
     fn too_many_pending_proposals_are_refused() {
         let proposals = Proposals::default();
         for _ in 0..MAX_PENDING {
-            proposals.propose(1, "A".into(), None, None).expect("room");
+            proposals
+                .propose(1, "A".into(), None, None, |_| {})
+                .expect("room");
         }
         assert_eq!(
-            proposals.propose(1, "A".into(), None, None),
+            proposals.propose(1, "A".into(), None, None, |_| {}),
             Err(ProposalError::TooMany)
         );
         proposals.settle(1).expect("pending");
-        assert!(proposals.propose(1, "A".into(), None, None).is_ok());
+        assert!(proposals.propose(1, "A".into(), None, None, |_| {}).is_ok());
+    }
+
+    #[test]
+    fn a_leaving_dialog_managers_proposals_are_withdrawn() {
+        let proposals = Proposals::default();
+        for client in [1, 2, 1] {
+            proposals
+                .propose(client, "A".into(), None, None, |_| {})
+                .expect("room");
+        }
+        let withdrawn: Vec<u64> = proposals
+            .withdraw_from(1)
+            .iter()
+            .map(|p| p.proposal)
+            .collect();
+        assert_eq!(withdrawn, [1, 3]);
+        assert_eq!(proposals.pending().len(), 1);
     }
 }

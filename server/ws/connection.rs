@@ -3,14 +3,13 @@
 //! frame gets an `error` frame and the connection stays usable; only a refused credential
 //! ends it.
 
-use std::time::Duration;
-
 use std::net::IpAddr;
-use std::time::Instant;
+use std::time::{Duration, Instant};
 
 use axum::extract::State;
 use axum::extract::ws::{Message, WebSocket, WebSocketUpgrade};
-use axum::response::Response;
+use axum::http::HeaderMap;
+use axum::response::{IntoResponse, Response};
 use futures_util::StreamExt;
 use tokio::sync::oneshot;
 use tokio_util::sync::CancellationToken;
@@ -18,7 +17,7 @@ use tokio_util::sync::CancellationToken;
 use crate::access::TokenBucket;
 use crate::adapters::Outcome;
 use crate::events::{ClientRole, EventKind};
-use crate::http::auth::Peer;
+use crate::http::auth::{Peer, same_origin};
 use crate::state::AppState;
 use crate::ws::diagnose::diagnose;
 use crate::ws::hello::Hello;
@@ -42,7 +41,12 @@ pub async fn ws_upgrade(
     ws: WebSocketUpgrade,
     State(state): State<AppState>,
     Peer(peer): Peer,
+    headers: HeaderMap,
 ) -> Response {
+    // Browsers let any page open a websocket anywhere: only this server's own pages may.
+    if let Err(refused) = same_origin(&headers) {
+        return refused.into_response();
+    }
     ws.max_message_size(MAX_MESSAGE_BYTES)
         .max_frame_size(MAX_MESSAGE_BYTES)
         // tungstenite reads into a 128 KiB buffer per connection by default; protocol frames
@@ -71,8 +75,12 @@ pub(super) struct Session {
     pub(super) state: AppState,
     /// Set when the connection must end after the frames queued so far (a refused hello).
     pub(super) closing: Option<&'static str>,
-    /// A kiosk's trigger allowance.
-    pub(super) allowance: TokenBucket,
+    /// Whether this client's current run of refused triggers (rate-limited, or forbidden for
+    /// its role) was logged already: one `trigger.refused` per run, so a flood cannot flood
+    /// the corpus.
+    pub(super) limited_logged: bool,
+    /// This client's allowance for relayed signalling frames.
+    pub(super) signals: TokenBucket,
 }
 
 async fn serve(socket: WebSocket, state: AppState, peer: Option<IpAddr>) {
@@ -96,7 +104,8 @@ async fn serve(socket: WebSocket, state: AppState, peer: Option<IpAddr>) {
         feed: Some(feed_tx),
         state: state.clone(),
         closing: None,
-        allowance: TokenBucket::kiosk(Instant::now()),
+        limited_logged: false,
+        signals: TokenBucket::signalling(Instant::now()),
     };
     let shutdown = state.life.shutdown.clone();
     let kicked = session.outbox.kicked().clone();
@@ -285,6 +294,9 @@ impl Session {
         self.state.client_left(self.client);
         if role == ClientRole::Operator {
             self.hang_up_calls();
+        }
+        if role == ClientRole::Dm {
+            self.withdraw_proposals();
         }
         let reason = reason.to_owned();
         self.state.hub.publish(EventKind::ClientLeft {

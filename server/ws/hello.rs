@@ -4,7 +4,7 @@
 //! welcomed with the current state and gets its feed: display commands for kiosks and
 //! projectors, the event stream (after the recent history) for operators and dialog managers.
 
-use crate::access::{Needed, is_loopback};
+use crate::access::{Needed, Refusal, is_loopback};
 use crate::events::{ClientRole, EventKind};
 use crate::state::ClientInfo;
 use crate::ws::connection::Session;
@@ -53,18 +53,18 @@ impl Session {
         if let Some(needed) = needed(role, is_loopback(self.peer))
             && let Err(refusal) = self.state.access.check(self.peer, needed, token.as_deref())
         {
-            let address = self.peer.map(|p| p.to_string());
-            tracing::warn!(
-                ?role,
-                address,
-                code = refusal.code(),
-                "websocket credential refused"
-            );
-            self.state.hub.publish(EventKind::ClientRefused {
-                role,
-                code: refusal.code(),
-                address,
-            });
+            // Counted refusals are logged; an address already waiting is refused quietly, so
+            // a flood of hellos cannot flood the log.
+            if !matches!(refusal, Refusal::Locked(_)) {
+                let address = self.peer.map(|p| p.to_string());
+                let code = refusal.code();
+                tracing::warn!(?role, address, code, "websocket credential refused");
+                self.state.hub.publish(EventKind::ClientRefused {
+                    role,
+                    code,
+                    address,
+                });
+            }
             self.reply_error(refusal.code(), &refusal.message(needed), None, None);
             self.closing = Some("credential refused");
             return;

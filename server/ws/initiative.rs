@@ -5,7 +5,7 @@
 
 use crate::dispatch::TriggerRequest;
 use crate::events::{ClientRole, EventKind};
-use crate::operator::VISITOR_GROUPS;
+use crate::operator::{Proposal, VISITOR_GROUPS};
 use crate::ws::connection::Session;
 use crate::ws::protocol::{
     MarkKind, dismissed_frame, marked_frame, proposed_frame, triggered_frame,
@@ -28,22 +28,32 @@ impl Session {
         if let Err(e) = self.state.dispatcher.check(&label, context.as_deref()) {
             return self.reply_error(e.code(), &e.to_string(), reference, e.suggestion());
         }
-        let made = self
-            .state
-            .proposals
-            .propose(self.client, label, context, reason);
+        let hub = &self.state.hub;
+        let announce = |p: &Proposal| {
+            hub.publish(EventKind::ProposalMade {
+                proposal: p.proposal,
+                client: p.client,
+                label: p.label.clone(),
+                context: p.context.clone(),
+                reason: p.reason.clone(),
+            });
+        };
+        let made = (self.state.proposals).propose(self.client, label, context, reason, announce);
         match made {
-            Ok(p) => {
-                self.send(proposed_frame(reference, p.proposal));
-                self.state.hub.publish(EventKind::ProposalMade {
-                    proposal: p.proposal,
-                    client: p.client,
-                    label: p.label,
-                    context: p.context,
-                    reason: p.reason,
-                });
-            }
+            Ok(p) => self.send(proposed_frame(reference, p.proposal)),
             Err(e) => self.reply_error(e.code(), &e.to_string(), reference, None),
+        }
+    }
+
+    /// Withdraws the pending proposals of a dialog manager that left.
+    pub(super) fn withdraw_proposals(&self) {
+        for p in self.state.proposals.withdraw_from(self.client) {
+            self.state.hub.publish(EventKind::ProposalWithdrawn {
+                proposal: p.proposal,
+                client: p.client,
+                label: p.label,
+                reason: "the dialog manager left".into(),
+            });
         }
     }
 

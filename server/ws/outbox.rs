@@ -44,6 +44,16 @@ impl Outbox {
         }
     }
 
+    /// Queues a frame that may be lost (relayed from another client): dropped when the queue
+    /// is three quarters full, so another client's flood cannot get this one kicked. False
+    /// when dropped.
+    pub fn send_if_room(&self, frame: Frame) -> bool {
+        if self.tx.capacity() < self.tx.max_capacity() / 4 {
+            return false;
+        }
+        self.send(frame)
+    }
+
     /// Cancelled when the client was too slow.
     pub fn kicked(&self) -> &CancellationToken {
         &self.kick

@@ -2,27 +2,40 @@
 //! answers and candidates through the server; the media itself flows between the browsers
 //! and never passes through Docent. An operator may signal any kiosk; a kiosk may answer only
 //! an operator that signalled it first, so a visitor's screen cannot reach consoles unasked.
+//! Each client relays at a bounded rate, only the kinds of data a call uses, and a receiver
+//! that falls behind loses relayed frames instead of its connection.
+
+use std::time::Instant;
+
+use serde_json::json;
 
 use crate::events::ClientRole;
 use crate::ws::connection::Session;
 use crate::ws::outbox::Frame;
 use crate::ws::protocol::signal_frame;
 
-/// What a kiosk is told on behalf of an operator that left without hanging up.
-const HANGUP: &str = r#"{"kind":"hangup","reason":"the operator left"}"#;
+/// The `data.kind` values a call uses (see `static/camera-kiosk.js`).
+const KINDS: [&str; 5] = ["offer", "answer", "candidate", "hangup", "error"];
 
 impl Session {
-    pub(super) fn signal(&self, to: u64, data: &serde_json::Value) {
+    pub(super) fn signal(&mut self, to: u64, data: &serde_json::Value) {
         let Some(role) = self.allowed(&[ClientRole::Operator, ClientRole::Kiosk], None) else {
             return;
         };
+        if !(data["kind"].as_str()).is_some_and(|k| KINDS.contains(&k)) {
+            let message = format!("signal data needs a \"kind\": one of {}", KINDS.join(", "));
+            return self.reply_error("bad-signal", &message, None, None);
+        }
+        if let Err(wait) = self.signals.take(Instant::now()) {
+            let message = format!(
+                "too many signalling frames; the next is possible in {} ms",
+                wait.as_millis().max(1)
+            );
+            return self.reply_error("rate-limited", &message, None, None);
+        }
         let permitted = match role {
             ClientRole::Kiosk => self.state.was_signalled_by(self.client, to),
-            _ => self
-                .state
-                .clients()
-                .get(&to)
-                .is_none_or(|c| c.role == ClientRole::Kiosk),
+            _ => (self.state.role_of(to)).is_none_or(|r| r == ClientRole::Kiosk),
         };
         if !permitted {
             let message = match role {
@@ -31,20 +44,22 @@ impl Session {
             };
             return self.reply_error("forbidden", message, None, None);
         }
-        let Some((_, outbox)) = self.state.signal_route(to, self.client) else {
+        // The kiosk remembers the operator that called it (so it may answer); not the reverse.
+        let caller = (role == ClientRole::Operator).then_some(self.client);
+        let Some(outbox) = self.state.signal_route(to, caller) else {
             let message = format!("client {to} is not connected");
             return self.reply_error("unknown-client", &message, None, None);
         };
-        outbox.send(Frame::from(signal_frame(self.client, role, data)));
+        outbox.send_if_room(Frame::from(signal_frame(self.client, role, data)));
     }
 
     /// Ends the calls of an operator that left (a closed or crashed console), so kiosks free
     /// their camera at once instead of waiting for WebRTC to notice.
     pub(super) fn hang_up_calls(&self) {
-        let data: serde_json::Value = serde_json::from_str(HANGUP).unwrap_or_default();
+        let data = json!({"kind": "hangup", "reason": "the operator left"});
         let frame = signal_frame(self.client, ClientRole::Operator, &data);
         for outbox in self.state.signaller_left(self.client) {
-            outbox.send(Frame::from(frame.clone()));
+            outbox.send_if_room(Frame::from(frame.clone()));
         }
     }
 }

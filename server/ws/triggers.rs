@@ -1,8 +1,9 @@
 //! Triggering and controlling: `trigger` (kiosks, operators, dialog managers), `stop` and
 //! `context` (operators, dialog managers) and `page` (kiosks). A kiosk is a visitor's
 //! touchscreen: it may trigger only the acts the bundle's pages offer (and the idle act), at
-//! the rate of [`TokenBucket::kiosk`](crate::access::TokenBucket::kiosk); every refusal is an
-//! `error` frame and a `trigger.refused` event.
+//! the rate its address is allowed ([`Access::kiosk_allowance`](crate::access::Access)); every
+//! refusal is an `error` frame and a `trigger.refused` event, except that a run of
+//! rate-limited ones is logged once.
 
 use std::time::Instant;
 
@@ -14,6 +15,7 @@ use crate::ws::protocol::{context_frame, stopped_frame, triggered_frame};
 
 const TRIGGER_ROLES: [ClientRole; 3] = [ClientRole::Kiosk, ClientRole::Operator, ClientRole::Dm];
 const CONTROL_ROLES: [ClientRole; 2] = [ClientRole::Operator, ClientRole::Dm];
+const RATE_LIMITED: &str = "rate-limited";
 
 impl Session {
     pub(super) fn trigger(
@@ -24,12 +26,22 @@ impl Session {
         reference: Option<String>,
     ) {
         let Some(role) = self.allowed(&TRIGGER_ROLES, reference.as_deref()) else {
+            // Once per connection: a role does not change, repeating it says nothing new.
+            if self.role.is_none() || std::mem::replace(&mut self.limited_logged, true) {
+                return;
+            }
             return self.log_refused(label, "forbidden", "this role may not trigger acts".into());
         };
         if role == ClientRole::Kiosk
             && let Err((code, message)) = self.kiosk_may_trigger(&label)
         {
             self.reply_error(code, &message, reference.as_deref(), None);
+            if code == RATE_LIMITED {
+                if self.limited_logged {
+                    return;
+                }
+                self.limited_logged = true;
+            }
             return self.log_refused(label, code, message);
         }
         let request = TriggerRequest {
@@ -51,8 +63,9 @@ impl Session {
         }
     }
 
-    /// Whether a kiosk may trigger `label` now: an act its pages offer, within its allowance.
+    /// Whether a kiosk may trigger `label` now: within its allowance, an act its pages offer.
     fn kiosk_may_trigger(&mut self, label: &str) -> Result<(), (&'static str, String)> {
+        self.kiosk_allowance()?;
         let bundle = self.state.dispatcher.bundle();
         let offered = bundle.page_acts.iter().any(|a| a == label)
             || bundle.config.kiosk.idle_act.as_deref() == Some(label);
@@ -63,13 +76,19 @@ impl Session {
             );
             return Err(("not-offered", message));
         }
-        if let Err(wait) = self.allowance.take(Instant::now()) {
+        Ok(())
+    }
+
+    /// Takes one from this kiosk address's allowance (triggers and `page` reports alike).
+    fn kiosk_allowance(&mut self) -> Result<(), (&'static str, String)> {
+        if let Err(wait) = self.state.access.kiosk_allowance(self.peer, Instant::now()) {
             let message = format!(
-                "too many triggers from this touchscreen; the next is possible in {} ms",
+                "too many requests from this touchscreen; the next is possible in {} ms",
                 wait.as_millis().max(1)
             );
-            return Err(("rate-limited", message));
+            return Err((RATE_LIMITED, message));
         }
+        self.limited_logged = false;
         Ok(())
     }
 
@@ -110,9 +129,12 @@ impl Session {
 
     /// A kiosk reports a page it shows on its own, so the server's display state (what a
     /// reconnecting kiosk is sent back to, what the log says) stays true.
-    pub(super) fn page_shown(&self, page: String) {
+    pub(super) fn page_shown(&mut self, page: String) {
         if self.allowed(&[ClientRole::Kiosk], None).is_none() {
             return;
+        }
+        if let Err((code, message)) = self.kiosk_allowance() {
+            return self.reply_error(code, &message, None, None);
         }
         let root = &self.state.dispatcher.bundle().root;
         if resolve_in_bundle(root, BundleArea::Pages, &page).is_err() {

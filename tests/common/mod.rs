@@ -135,9 +135,10 @@ impl TestServer {
         format!("http://{}{}", self.addr, path)
     }
 
-    /// GET, returning status and JSON body.
+    /// GET with the operator credential, returning status and JSON body.
     pub async fn get(&self, path: &str) -> (u16, Value) {
-        let r = self.http.get(self.url(path)).send().await.expect("GET");
+        let request = self.http.get(self.url(path)).bearer_auth(OPERATOR_TOKEN);
+        let r = request.send().await.expect("GET");
         let status = r.status().as_u16();
         (status, r.json().await.unwrap_or(Value::Null))
     }
