@@ -6,6 +6,12 @@ then carries out every `command` frame Docent sends and answers `started`, then 
 `failed`. A `cancel` frame drops queued commands and cuts the running one short. When the
 connection drops, it connects again.
 
+On the robot itself (Docent on the same machine) the adapter needs no credential. Connecting
+to Docent on another machine, it must show the dialog-manager credential: set the
+environment variable DOCENT_DM_TOKEN and it is sent as `token` in hello. A refused
+credential ends the adapter instead of retrying (five wrong ones within a minute would lock
+this machine out for a minute).
+
 Commands run in lanes. A lane is a queue that runs its commands one at a time, in the order
 they arrived. Verbs that must stay in order with each other share a lane (a drive's
 SET_WAYPOINT, DRIVE_START and DRIVE_STOP); verbs of separate devices get separate lanes, so a
@@ -14,6 +20,7 @@ long SAY does not hold up the lights.
     pip install websockets
     python3 adapter.py --url ws://127.0.0.1:8080/ws --lane SAY --lane LIGHTS
     python3 adapter.py --lane SET_WAYPOINT,DRIVE_START,DRIVE_STOP
+    DOCENT_DM_TOKEN=... python3 adapter.py --url ws://robot.local:8080/ws --lane SAY
 
 Replace the functions in HANDLERS with code for your devices. See docs/ADAPTERS.md.
 """
@@ -22,6 +29,8 @@ import argparse
 import asyncio
 import json
 import logging
+import os
+import sys
 
 import websockets
 
@@ -72,6 +81,10 @@ async def run_command(verb, arg):
 
 
 # --- The protocol side: usually left as it is. ---------------------------------------------------
+
+
+class Refused(Exception):
+    """Docent refused the credential (or its absence): connecting again would not help."""
 
 
 class Lane:
@@ -129,7 +142,7 @@ class Lane:
         self.worker.cancel()  # also cancels the running command
 
 
-async def serve(url, name, lane_specs):
+async def serve(url, name, lane_specs, token):
     verbs = [verb for spec in lane_specs for verb in spec]
     async with websockets.connect(url) as ws:
         lock = asyncio.Lock()
@@ -141,8 +154,15 @@ async def serve(url, name, lane_specs):
                 except websockets.ConnectionClosed:
                     pass  # the loop below notices too, and main() connects again
 
-        await send({"type": "hello", "role": "adapter", "name": name, "verbs": verbs})
+        hello = {"type": "hello", "role": "adapter", "name": name, "verbs": verbs}
+        if token:
+            hello["token"] = token  # the dialog-manager credential; never logged
+        await send(hello)
         welcome = json.loads(await ws.recv())
+        if welcome.get("type") == "error" and welcome["code"] in ("unauthorized",
+                                                                  "too-many-attempts"):
+            # Docent closes the connection after this frame.
+            raise Refused(f'{welcome["code"]}: {welcome["message"]}')
         if welcome.get("type") != "welcome":
             raise RuntimeError(f"Docent refused the hello: {welcome}")
         log.info("connected as client %s (protocol %s), serving %s",
@@ -179,12 +199,19 @@ async def main():
                         help="verbs that run one after another; give --lane once per lane")
     args = parser.parse_args()
     lane_specs = [[v.strip() for v in lane.split(",") if v.strip()] for lane in args.lane]
+    # Needed only when Docent runs on another machine; from the environment, so it stays out
+    # of the command line (which other users of the machine can see).
+    token = os.environ.get("DOCENT_DM_TOKEN") or None
     delay = 1
     while True:
         try:
-            await serve(args.url, args.name, lane_specs)
+            await serve(args.url, args.name, lane_specs, token)
             delay = 1
             log.warning("Docent closed the connection; connecting again in %s s", delay)
+        except Refused as e:
+            hint = "check DOCENT_DM_TOKEN" if token else "set DOCENT_DM_TOKEN"
+            log.error("Docent refused this adapter (%s); %s and start again", e, hint)
+            return 1
         except (OSError, websockets.ConnectionClosed) as e:
             log.warning("connection lost (%s); connecting again in %s s", e, delay)
         await asyncio.sleep(delay)
@@ -194,6 +221,6 @@ async def main():
 if __name__ == "__main__":
     logging.basicConfig(level=logging.INFO, format="%(asctime)s %(name)s %(message)s")
     try:
-        asyncio.run(main())
+        sys.exit(asyncio.run(main()))
     except KeyboardInterrupt:
         pass
