@@ -16,19 +16,33 @@ use crate::http::AppError;
 use crate::state::AppState;
 
 /// The client's address, when the server was started with connection info (tests calling
-/// the router directly have none).
+/// the router directly have none). Behind a reverse proxy on this machine the connection
+/// comes from loopback: then the address the proxy names last in `X-Forwarded-For` is the
+/// client's, so a remote client never passes for a local one.
 pub struct Peer(pub Option<IpAddr>);
 
 impl<S: Send + Sync> FromRequestParts<S> for Peer {
     type Rejection = Infallible;
 
     async fn from_request_parts(parts: &mut Parts, _: &S) -> Result<Self, Infallible> {
-        let peer = parts
+        let direct = parts
             .extensions
             .get::<ConnectInfo<SocketAddr>>()
             .map(|ConnectInfo(addr)| addr.ip());
-        Ok(Peer(peer))
+        Ok(Peer(client_address(direct, &parts.headers)))
     }
+}
+
+/// The client's address: the direct peer, or, when that is a proxy on loopback, the last
+/// `X-Forwarded-For` entry (an unreadable one counts as an unknown remote address).
+fn client_address(direct: Option<IpAddr>, headers: &HeaderMap) -> Option<IpAddr> {
+    let proxied = direct.is_some_and(|ip| ip.is_loopback());
+    let Some(forwarded) = headers.get("x-forwarded-for").filter(|_| proxied) else {
+        return direct;
+    };
+    let last = forwarded.to_str().ok().and_then(|v| v.rsplit(',').next());
+    let parsed = last.and_then(|v| v.trim().parse::<IpAddr>().ok());
+    Some(parsed.unwrap_or(IpAddr::V4(std::net::Ipv4Addr::UNSPECIFIED)))
 }
 
 /// Proof that the request carries the operator's or dialog manager's credential.
@@ -104,15 +118,40 @@ mod tests {
     #[test]
     fn only_pages_of_this_server_may_send_requests_with_an_origin() {
         let mut headers = HeaderMap::new();
-        assert!(same_origin(&headers).is_ok(), "no Origin: not a browser page");
+        assert!(
+            same_origin(&headers).is_ok(),
+            "no Origin: not a browser page"
+        );
         headers.insert(header::HOST, HeaderValue::from_static("127.0.0.1:8080"));
         assert!(same_origin(&headers).is_ok());
-        headers.insert(header::ORIGIN, HeaderValue::from_static("http://127.0.0.1:8080"));
+        headers.insert(
+            header::ORIGIN,
+            HeaderValue::from_static("http://127.0.0.1:8080"),
+        );
         assert!(same_origin(&headers).is_ok());
         for other in ["http://evil.example", "http://127.0.0.1:9999", "null"] {
             headers.insert(header::ORIGIN, HeaderValue::from_static(other));
             assert!(same_origin(&headers).is_err(), "{other}");
         }
+    }
+
+    #[test]
+    fn a_proxy_on_loopback_names_the_client_in_x_forwarded_for() {
+        let local: Option<IpAddr> = Some("127.0.0.1".parse().unwrap());
+        let remote: Option<IpAddr> = Some("192.168.1.5".parse().unwrap());
+        let mut headers = HeaderMap::new();
+        assert_eq!(client_address(local, &headers), local);
+        headers.insert(
+            "x-forwarded-for",
+            HeaderValue::from_static("10.0.0.1, 192.168.1.5"),
+        );
+        assert_eq!(client_address(local, &headers), remote);
+        // Only a proxy on this machine is believed.
+        let stranger = Some("192.168.1.9".parse().unwrap());
+        assert_eq!(client_address(stranger, &headers), stranger);
+        headers.insert("x-forwarded-for", HeaderValue::from_static("garbage"));
+        let unknown = client_address(local, &headers).unwrap();
+        assert!(!unknown.is_loopback());
     }
 
     #[test]
