@@ -147,7 +147,11 @@ impl Access {
         token: Option<&str>,
     ) -> Result<(), Refusal> {
         let AccessMode::Guarded(credentials) = &self.mode else {
-            return Ok(());
+            // Open is for this machine only, even when a proxy or tunnel forwards the port.
+            return match peer {
+                Some(p) if !is_loopback(Some(p)) => Err(Refusal::Missing),
+                _ => Ok(()),
+            };
         };
         let now = Instant::now();
         if let Some(wait) = peer.and_then(|p| self.attempts.locked(p, now)) {
@@ -256,7 +260,10 @@ mod tests {
     fn an_open_server_asks_for_nothing() {
         let access = Access::new(AccessMode::Open);
         assert!(access.is_open());
-        assert_eq!(access.check(PEER, Needed::Operator, None), Ok(()));
+        let local = Some(IpAddr::V4(Ipv4Addr::LOCALHOST));
+        assert_eq!(access.check(local, Needed::Operator, None), Ok(()));
+        // A request forwarded from elsewhere (a proxy, a tunnel) gets nothing for free.
+        assert_eq!(access.check(PEER, Needed::Operator, None), Err(Refusal::Missing));
     }
 
     #[test]
