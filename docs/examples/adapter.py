@@ -9,8 +9,8 @@ connection drops, it connects again.
 On the robot itself (Docent on the same machine) the adapter needs no credential. Connecting
 to Docent on another machine, it must show the dialog-manager credential: set the
 environment variable DOCENT_DM_TOKEN and it is sent as `token` in hello. A refused
-credential ends the adapter instead of retrying (five wrong ones within a minute would lock
-this machine out for a minute).
+credential ends the adapter instead of retrying (after five wrong or missing credentials in a
+row, Docent lets this machine try only once every 10 seconds).
 
 Commands run in lanes. A lane is a queue that runs its commands one at a time, in the order
 they arrived. Verbs that must stay in order with each other share a lane (a drive's
