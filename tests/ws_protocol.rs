@@ -51,6 +51,8 @@ async fn every_bad_frame_gets_an_error_and_the_connection_stays_usable() {
         ("not json at all".into(), "malformed-json"),
         (r#"{"label":"OK"}"#.into(), "missing-type"),
         (r#"{"type":"dance"}"#.into(), "unknown-type"),
+        (r#"{"type":"propose"}"#.into(), "bad-frame"),
+        (r#"{"type":"mark","mark":"party"}"#.into(), "bad-frame"),
         (r#"{"type":"hello","role":"pilot"}"#.into(), "bad-frame"),
         (r#"{"type":"hello","role":"adapter"}"#.into(), "no-verbs"),
         (

@@ -92,7 +92,7 @@ impl Refusal {
             Refusal::Wrong => format!("that is not {which}"),
             Refusal::TooManyAttempts(wait) | Refusal::Locked(wait) => format!(
                 "too many wrong credentials from this address; try again in {} s",
-                wait.as_secs().max(1)
+                whole_seconds(wait)
             ),
         }
     }
@@ -178,6 +178,13 @@ impl Access {
         }
         Err(if token.is_some() { Refusal::Wrong } else { Refusal::Missing })
     }
+}
+
+/// A wait in whole seconds, rounded up (a client that waits what it is told must not be
+/// refused again for the missing fraction).
+pub fn whole_seconds(wait: Duration) -> u64 {
+    let rounded = wait.as_secs() + u64::from(wait.subsec_nanos() > 0);
+    rounded.max(1)
 }
 
 /// Whether `peer` is this machine (only then may an adapter connect without a credential).
@@ -286,6 +293,14 @@ mod tests {
             .unwrap_err();
         assert!(!refusal.message(Needed::Operator).contains("my-guess-token"));
         assert_eq!(refusal.code(), "unauthorized");
+    }
+
+    #[test]
+    fn waits_are_told_in_whole_seconds_rounded_up() {
+        assert_eq!(whole_seconds(Duration::from_millis(9_900)), 10);
+        assert_eq!(whole_seconds(Duration::from_secs(10)), 10);
+        assert_eq!(whole_seconds(Duration::from_millis(1)), 1);
+        assert_eq!(whole_seconds(Duration::ZERO), 1);
     }
 
     #[test]

@@ -11,7 +11,7 @@ use axum::extract::{ConnectInfo, FromRequestParts};
 use axum::http::request::Parts;
 use axum::http::{HeaderMap, HeaderValue, StatusCode, header};
 
-use crate::access::{Needed, Refusal};
+use crate::access::{Needed, Refusal, whole_seconds};
 use crate::http::AppError;
 use crate::state::AppState;
 
@@ -98,7 +98,7 @@ fn refusal_error(refusal: Refusal, needed: Needed) -> AppError {
     let message = refusal.message(needed);
     match refusal {
         Refusal::TooManyAttempts(wait) | Refusal::Locked(wait) => {
-            let seconds = HeaderValue::from(wait.as_secs().max(1));
+            let seconds = HeaderValue::from(whole_seconds(wait));
             AppError::new(StatusCode::TOO_MANY_REQUESTS, refusal.code(), message)
                 .with_header(header::RETRY_AFTER, seconds)
         }

@@ -34,6 +34,7 @@ pub fn diagnose(text: &str, error: &serde_json::Error) -> (&'static str, String,
 }
 
 /// Every frame type a client may send.
-const KNOWN_TYPES: [&str; 8] = [
-    "hello", "trigger", "stop", "context", "page", "started", "done", "failed",
+const KNOWN_TYPES: [&str; 13] = [
+    "hello", "trigger", "stop", "context", "page", "propose", "accept", "dismiss", "mark",
+    "signal", "started", "done", "failed",
 ];
