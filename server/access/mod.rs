@@ -91,7 +91,7 @@ impl Refusal {
             Refusal::Missing => format!("this needs {which}"),
             Refusal::Wrong => format!("that is not {which}"),
             Refusal::TooManyAttempts(wait) | Refusal::Locked(wait) => format!(
-                "too many wrong credentials from this address; try again in {} s",
+                "too many wrong or missing credentials from this address; try again in {} s",
                 whole_seconds(wait)
             ),
         }

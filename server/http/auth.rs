@@ -11,7 +11,7 @@ use axum::extract::{ConnectInfo, FromRequestParts};
 use axum::http::request::Parts;
 use axum::http::{HeaderMap, HeaderValue, StatusCode, header};
 
-use crate::access::{Needed, Refusal, whole_seconds};
+use crate::access::{Needed, Refusal, is_loopback, whole_seconds};
 use crate::http::AppError;
 use crate::state::AppState;
 
@@ -36,7 +36,9 @@ impl<S: Send + Sync> FromRequestParts<S> for Peer {
 /// The client's address: the direct peer, or, when that is a proxy on loopback, the last
 /// `X-Forwarded-For` entry (an unreadable one counts as an unknown remote address).
 fn client_address(direct: Option<IpAddr>, headers: &HeaderMap) -> Option<IpAddr> {
-    let proxied = direct.is_some_and(|ip| ip.is_loopback());
+    // `is_loopback` also knows `::ffff:127.0.0.1`, how a proxy's connection to 127.0.0.1
+    // arrives on a server listening on `[::]`.
+    let proxied = is_loopback(direct);
     let Some(forwarded) = headers.get("x-forwarded-for").filter(|_| proxied) else {
         return direct;
     };
@@ -147,6 +149,8 @@ mod tests {
         );
         assert_eq!(client_address(local, &headers), remote);
         // Only a proxy on this machine is believed.
+        let mapped = Some("::ffff:127.0.0.1".parse().unwrap());
+        assert_eq!(client_address(mapped, &headers), remote);
         let stranger = Some("192.168.1.9".parse().unwrap());
         assert_eq!(client_address(stranger, &headers), stranger);
         headers.insert("x-forwarded-for", HeaderValue::from_static("garbage"));
