@@ -1,6 +1,9 @@
 // actlist.js: the act buttons. Without a search: favourites, recently used, then every act by
 // group. With a search: the matches, best first, the first one chosen, each showing the text
-// that matched with the query's words marked. Up/Down move the choice; a click fires (Shift
+// that matched with the query's words marked. Up/Down move the choice, and so does the focus
+// (Tab, a click): the chosen act is the one the preview shows and the one Enter fires; hovering
+// chooses nothing. A redraw (the context, a star, recently used) keeps the choice on the same
+// act while it is still listed; a changed search chooses its best match. A click fires (Shift
 // interrupts current speech); the star keeps an act among the favourites.
 
 import { groupActs, textsFor } from "./acts.js";
@@ -11,8 +14,8 @@ import * as store from "./store.js";
 /**
  * @param {{element: HTMLElement, count: HTMLElement,
  *          onFire: (act: object, options: {interrupt: boolean}) => void,
- *          onPreview: (act: object|null) => void}} options `onPreview` gets the act to show
- *          (hovered, focused or chosen) whenever that changes.
+ *          onPreview: (act: object|null) => void}} options `onPreview` gets the chosen act
+ *          (or null) whenever the choice or its text may have changed.
  */
 export function createActList({ element, count, onFire, onPreview }) {
   let acts = [];
@@ -22,10 +25,15 @@ export function createActList({ element, count, onFire, onPreview }) {
   let query = "";
   let rows = []; // [{act, button}] in screen order
   let chosen = -1;
-  let hovered = null;
 
-  const shownAct = () => hovered ?? rows[chosen]?.act ?? null;
-  const tellPreview = () => onPreview(shownAct());
+  const tellPreview = () => onPreview(rows[chosen]?.act ?? null);
+
+  /** Makes row `i` the choice. */
+  function choose(i) {
+    if (i === chosen) return;
+    chosen = i;
+    mark();
+  }
 
   function button(act, match) {
     const said = textsFor(act, context);
@@ -41,14 +49,8 @@ export function createActList({ element, count, onFire, onPreview }) {
         title: said.texts.join("\n") || undefined,
         "aria-keyshortcuts": act.key ? `Alt+${act.key}` : null,
         onclick: (event) => onFire(act, { interrupt: event.shiftKey }),
-        onfocus: () => {
-          hovered = act;
-          tellPreview();
-        },
-        onblur: () => {
-          hovered = null;
-          tellPreview();
-        },
+        // Tab (or a click) to a button chooses it: Enter then fires what the preview shows.
+        onfocus: () => choose(rows.findIndex((r) => r.button === fire)),
       },
       h("span", { class: "act-label" }, act.label),
       act.key ? h("kbd", { class: "act-key" }, `Alt+${act.key}`) : null,
@@ -69,12 +71,7 @@ export function createActList({ element, count, onFire, onPreview }) {
       },
       fav ? "★" : "☆",
     );
-    const row = h(
-      "li",
-      { class: "act-row", onmouseenter: () => ((hovered = act), tellPreview()), onmouseleave: () => ((hovered = null), tellPreview()) },
-      fire,
-      star,
-    );
+    const row = h("li", { class: "act-row" }, fire, star);
     rows.push({ act, button: fire });
     return row;
   }
@@ -88,17 +85,22 @@ export function createActList({ element, count, onFire, onPreview }) {
     );
   }
 
-  function render() {
-    const keep = rows[chosen]?.act?.label;
+  /**
+   * Redraws. `newQuery`: the search text changed, so its best match is chosen (none without a
+   * search); otherwise the same act stays chosen while it is listed, on the same row when it is
+   * listed twice (a favourite is also in its group).
+   */
+  function render({ newQuery = false } = {}) {
+    const keep = newQuery ? null : rows[chosen]?.act?.label ?? null;
+    const keepAt = chosen;
     rows = [];
-    hovered = null;
     const parts = [];
-    if (query.trim()) {
+    const searching = Boolean(query.trim());
+    if (searching) {
       const matches = search(index, query, context);
       count.textContent = matches.length === 1 ? "1 match" : `${matches.length} matches`;
       if (matches.length) parts.push(section("Matches", matches, { class: "matches" }));
       else parts.push(h("p", { class: "muted empty" }, "No act matches. Esc still stops."));
-      chosen = matches.length ? 0 : -1;
     } else {
       count.textContent = `${acts.length} acts`;
       const favs = store.favourites().map((l) => byLabel.get(l)).filter(Boolean);
@@ -106,9 +108,10 @@ export function createActList({ element, count, onFire, onPreview }) {
       if (favs.length) parts.push(section("★ Favourites", favs, { class: "favourites" }));
       if (recent.length) parts.push(section("Recently used", recent, { class: "recent" }));
       for (const [group, members] of groupActs(acts)) parts.push(section(group, members));
-      // Keep the choice on the same act when the list is redrawn (context, favourites).
-      chosen = keep ? rows.findIndex((r) => r.act.label === keep) : -1;
     }
+    const kept = keep === null ? -1 : rows[keepAt]?.act.label === keep ? keepAt : rows.findIndex((r) => r.act.label === keep);
+    // Else a search chooses its best match; the plain list chooses nothing until Up/Down.
+    chosen = kept !== -1 ? kept : searching && rows.length ? 0 : -1;
     element.replaceChildren(...parts);
     mark();
   }
@@ -135,17 +138,16 @@ export function createActList({ element, count, onFire, onPreview }) {
       render();
     },
     setQuery(text) {
+      if (text === query) return;
       query = text;
-      render();
+      render({ newQuery: true });
     },
-    /** Redraws (favourites or recently used changed). */
-    refresh: render,
+    /** Redraws (favourites or recently used changed), keeping the choice. */
+    refresh: () => render(),
     /** Moves the choice by `delta` rows; focuses the chosen button when `focus`. */
     move(delta, { focus = false } = {}) {
       if (!rows.length) return;
-      chosen = chosen === -1 ? (delta > 0 ? 0 : rows.length - 1) : (chosen + delta + rows.length) % rows.length;
-      hovered = null;
-      mark();
+      choose(chosen === -1 ? (delta > 0 ? 0 : rows.length - 1) : (chosen + delta + rows.length) % rows.length);
       if (focus) rows[chosen].button.focus();
     },
     /** The chosen act, or null. */

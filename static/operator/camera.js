@@ -4,10 +4,14 @@
 // without STUN) and plays what it sends in a <video>, muted until the operator turns the sound
 // on (browsers allow sound only after a gesture). It picks the first kiosk (a selector offers
 // the others), calls again when that kiosk reconnects or the call fails, and says what is going
-// on: connecting, live, no camera on the kiosk. With a camera URL it shows the MJPEG stream in
-// an <img>, reloaded with backoff after an error (a stream that merely stops fires no event in
-// an <img>, so a Reload button is offered too). The console mounts it (createCamera) and feeds
-// it the `signal` frames and the list of connected clients.
+// on: connecting, live, no camera on the kiosk. Kiosks that share a name (every kiosk shell
+// says "kiosk") are told apart by their client ids, with a warning. When the kiosk called
+// leaves, the one called next must be that kiosk again for sure: the only one of its name, and
+// not one seen connected beside it (another device). Otherwise the console asks the operator to
+// choose rather than show another kiosk's camera without a word. With a camera URL it shows
+// the MJPEG stream in an <img>, reloaded with backoff after an error (a stream that merely
+// stops fires no event in an <img>, so a Reload button is offered too). The console mounts it
+// (createCamera) and feeds it the `signal` frames and the list of connected clients.
 
 const RETRY_FIRST_MS = 1_000;
 const RETRY_MAX_MS = 15_000;
@@ -57,9 +61,27 @@ function kiosksOf(clients) {
   return list.filter((c) => c?.role === "kiosk");
 }
 
-/** The kiosk with the name of the one called before, else the first kiosk. */
-function pickKiosk(kiosks, previousName) {
-  return kiosks.find((k) => previousName !== undefined && k.name === previousName) ?? kiosks[0] ?? null;
+/**
+ * The kiosk to call after the one called before (`previous`: {client, name}, or null when none
+ * was) left: the first kiosk when none was called; the only kiosk with its name when no kiosk
+ * of that name was seen beside it (`others`: client ids seen connected at the same time as it,
+ * so other devices); the first kiosk when none has its name. Null when there is no kiosk, and
+ * "ask" when the name does not tell which kiosk it was.
+ */
+export function nextKiosk(kiosks, previous, others) {
+  if (!kiosks.length) return null;
+  if (!previous) return kiosks[0];
+  const same = kiosks.filter((k) => k.name === previous.name);
+  if (!same.length) return kiosks[0];
+  if (same.length === 1 && !others.has(same[0].client)) return same[0];
+  return "ask";
+}
+
+/** The names several of `kiosks` share: `[[name, [client, ...]], ...]`. */
+function sharedNames(kiosks) {
+  const byName = new Map();
+  for (const k of kiosks) byName.set(k.name ?? "", [...(byName.get(k.name ?? "") ?? []), k.client]);
+  return [...byName].filter(([, ids]) => ids.length > 1);
 }
 
 function webrtcCamera(element, send) {
@@ -73,13 +95,17 @@ function webrtcCamera(element, send) {
   const retry = el("button", { type: "button", class: "camera-retry", text: "Try again" });
   retry.hidden = true;
   const status = el("p", { class: "camera-state", role: "status" });
+  const warning = el("p", { class: "camera-warning", role: "note" });
+  warning.hidden = true;
   const bar = el("div", { class: "camera-bar" });
   bar.append(picker, sound, retry);
-  element.append(video, bar, status);
+  element.append(video, bar, status, warning);
 
   let kiosks = []; // the connected kiosks, in the order given
   let kiosk = null; // the kiosk called (client id), or null
-  let kioskName; // its name, to find it again after it reconnects
+  let previous = null; // {client, name} of the kiosk called last, to find it again after it reconnects
+  let others = new Set(); // the kiosks seen connected beside it: not it, whatever their names
+  let asking = false; // the kiosk called left and the console cannot tell which one it is now
   let call = null; // {pc, kiosk, offeredAt, firstFrameMs}
   let retryDelay = RETRY_FIRST_MS;
   let retryTimer = null;
@@ -183,23 +209,46 @@ function webrtcCamera(element, send) {
   };
 
   const fillPicker = () => {
+    const placeholder = kiosk === null && kiosks.length ? [el("option", { value: "", text: "choose a kiosk…" })] : [];
     picker.replaceChildren(
+      ...placeholder,
       ...kiosks.map((k) => {
         const option = el("option", { value: String(k.client), text: label(k.client) });
         option.selected = k.client === kiosk;
         return option;
       }),
     );
-    picker.hidden = kiosks.length < 2;
+    if (placeholder.length) picker.value = "";
+    picker.hidden = kiosks.length < 2 && !asking;
+    const shared = sharedNames(kiosks);
+    warning.hidden = !shared.length;
+    warning.textContent = shared
+      .map(([name, ids]) => `${ids.length} kiosks are called “${name || "(no name)"}”: only their numbers (${ids.map((id) => `#${id}`).join(", ")}) tell them apart.`)
+      .join(" ");
+  };
+
+  /** Calls `next` (a kiosk, or null for none). */
+  const callKiosk = (next) => {
+    asking = false;
+    kiosk = next?.client ?? null;
+    if (next) {
+      previous = { client: next.client, name: next.name };
+      others = new Set(kiosks.filter((k) => k.client !== kiosk).map((k) => k.client));
+    }
+    retryDelay = RETRY_FIRST_MS;
+    fillPicker();
+    if (call?.kiosk !== kiosk || !call) {
+      hangUp({ tell: false });
+      dial();
+    }
   };
 
   picker.addEventListener("change", () => {
     const chosen = kiosks.find((k) => String(k.client) === picker.value);
+    // Chosen: let go of the focus, so that the console's typing goes to its search again.
+    picker.blur();
     if (!chosen || chosen.client === kiosk) return;
-    kiosk = chosen.client;
-    kioskName = chosen.name;
-    retryDelay = RETRY_FIRST_MS;
-    dial();
+    callKiosk(chosen);
   });
   sound.addEventListener("click", () => {
     video.muted = !video.muted;
@@ -236,22 +285,34 @@ function webrtcCamera(element, send) {
     onClients(clients) {
       kiosks = kiosksOf(clients);
       const still = kiosks.find((k) => k.client === kiosk);
-      if (!still) {
-        // The kiosk left (or reconnected under a new id): find it again by its name.
-        const next = pickKiosk(kiosks, kioskName);
-        kiosk = next?.client ?? null;
-        if (next) kioskName = next.name;
-        retryDelay = RETRY_FIRST_MS;
+      if (still) {
+        // Every other kiosk connected now is another device, whatever its name.
+        for (const k of kiosks) if (k.client !== kiosk) others.add(k.client);
         fillPicker();
-        if (call?.kiosk !== kiosk) {
-          hangUp({ tell: false });
-          dial();
-        }
+        // The same kiosk, but nothing running (the console's own socket came back): call it.
+        if (!call && !retryTimer && element.dataset.state !== "error") dial();
         return;
       }
+      if (asking && kiosks.length) {
+        fillPicker();
+        return;
+      }
+      // The kiosk left (or reconnected under a new id): find it again, if the name tells.
+      const gone = kiosk;
+      const next = nextKiosk(kiosks, asking ? null : previous, others);
+      if (next !== "ask") {
+        callKiosk(next);
+        return;
+      }
+      hangUp({ tell: false });
+      kiosk = null;
+      asking = true;
       fillPicker();
-      // The same kiosk, but nothing running (the console's own socket came back): call it.
-      if (!call && !retryTimer && element.dataset.state !== "error") dial();
+      const name = previous?.name ?? "kiosk";
+      show(
+        "choose",
+        `${gone === null ? "the kiosk called before" : `${name} (#${gone})`} left; ${kiosks.filter((k) => k.name === previous?.name).length > 1 ? "several kiosks are" : "another kiosk is"} called “${name}”: choose the one to watch`,
+      );
     },
     stop() {
       stopped = true;

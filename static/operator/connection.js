@@ -1,21 +1,32 @@
 // connection.js: the console's websocket. Says hello as an operator with the credential, hands
 // every frame on, and reconnects after a network loss or a server restart (backoff 0.5 s
 // doubling to 10 s, +-30 % jitter). Unlike the kiosk's socket.js it gives up for good when the
-// server refuses the credential (`unauthorized`, `too-many-attempts`): trying again with the
-// same credential could only lock the operator out, so the console asks for it again instead.
+// server says the credential is wrong (`unauthorized`): trying again with it could only lock the
+// operator out, so the console asks for it again instead. When this computer is locked out
+// (`too-many-attempts`: too many wrong credentials from its address, perhaps from another
+// browser on it) the credential may well be right: it is kept and tried again once the
+// server's wait is over ("try again in N s" in the error's message).
 
 const FIRST_DELAY_MS = 500;
 const MAX_DELAY_MS = 10_000;
 const JITTER = 0.3;
-/** Error codes that end the connection for good: the credential is wrong or locked out. */
-const REFUSALS = new Set(["unauthorized", "too-many-attempts"]);
+/** The wait when the server's message does not say: asking early only gets the real wait. */
+const LOCKOUT_S = 10;
+
+/** The seconds to wait that a `too-many-attempts` message gives ("try again in 42 s"). */
+export function lockoutSeconds(message) {
+  const seconds = Number(/try again in (\d+) ?s\b/.exec(String(message ?? ""))?.[1]);
+  return Number.isFinite(seconds) && seconds > 0 ? seconds : LOCKOUT_S;
+}
 
 /**
  * Connects and keeps connected until refused or closed.
  * @param {{path: string, token: string|null, name: string|null,
  *          onFrame: (frame: object) => void,
- *          onStatus: (status: {state: "connecting"|"online"|"offline"|"refused",
- *                              code?: string, message?: string}) => void}} options
+ *          onStatus: (status: {state: "connecting"|"online"|"offline"|"locked"|"refused",
+ *                              code?: string, message?: string, retryAt?: number}) => void}}
+ *          options `locked`: refused for a while, tried again at `retryAt` (ms, Date.now());
+ *          `refused`: the credential is wrong, given up.
  * @returns {{send: (frame: object) => boolean, close: () => void}} `send` is false when the
  *          console is not connected and welcomed.
  */
@@ -47,7 +58,7 @@ export function connect({ path, token, name, onFrame, onStatus }) {
       } catch {
         return;
       }
-      if (!welcomed && frame.type === "error" && REFUSALS.has(frame.code)) {
+      if (!welcomed && frame.type === "error" && (frame.code === "unauthorized" || frame.code === "too-many-attempts")) {
         refusal = frame;
         ws.close();
         return;
@@ -63,12 +74,20 @@ export function connect({ path, token, name, onFrame, onStatus }) {
       if (socket !== ws) return;
       socket = null;
       welcomed = false;
-      if (refusal) {
+      if (closed) return;
+      if (refusal?.code === "unauthorized") {
         closed = true;
         onStatus({ state: "refused", code: refusal.code, message: refusal.message });
         return;
       }
-      if (closed) return;
+      if (refusal) {
+        // The server's seconds are rounded down: one more makes sure the lockout is over.
+        const wait = (lockoutSeconds(refusal.message) + 1) * 1000;
+        delay = FIRST_DELAY_MS;
+        retryTimer = setTimeout(open, wait);
+        onStatus({ state: "locked", code: refusal.code, message: refusal.message, retryAt: Date.now() + wait });
+        return;
+      }
       onStatus({ state: "offline" });
       const wait = delay * (1 + JITTER * (2 * Math.random() - 1));
       delay = Math.min(delay * 2, MAX_DELAY_MS);

@@ -1,6 +1,7 @@
 // history.js: what happened, newest first: every act triggered by anyone (time, source, act,
-// variant and the exact text chosen), stops, refused triggers, proposals accepted or dismissed,
-// context changes and corpus marks. Several consoles see each other's acts here live.
+// variant and the exact text chosen), stops, refused triggers, proposals accepted, dismissed or
+// withdrawn (their dialog manager left), context changes and corpus marks. Several consoles
+// see each other's acts here live.
 
 import { clock, h } from "./dom.js";
 
@@ -38,6 +39,8 @@ export function createHistory(list) {
         return ["proposal", [`accepted proposal ${e.proposal}: `, h("strong", {}, e.label)]];
       case "proposal.dismissed":
         return ["proposal", [`dismissed proposal ${e.proposal}: `, h("strong", {}, e.label)]];
+      case "proposal.withdrawn":
+        return ["proposal", [`withdrawn proposal ${e.proposal}: `, h("strong", {}, e.label ?? "?"), e.reason ? ` (${e.reason})` : ""]];
       case "context.changed":
         return ["mark", [`context → ${e.context}`]];
       case "session.started":

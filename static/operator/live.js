@@ -1,7 +1,9 @@
 // live.js: what the robot does now: the kiosk's page and the projector's content
 // (display.changed, welcome state), the text being spoken (a SAY between command.started and
 // its end) and the queue of commands sent to adapters and not yet ended (command.* events;
-// before those, the per-adapter snapshot of GET /api/state `queues`).
+// before those, the per-adapter snapshot of GET /api/state `queues`). The snapshot is fetched
+// after `welcome` while events already arrive: a part of it is used only as long as no event
+// about that part came first (an event is newer than any snapshot still on its way).
 
 import { h, shorten } from "./dom.js";
 
@@ -13,6 +15,10 @@ export function createLive(els) {
   let snapshot = []; // [{adapter, current, queued}] from /api/state until events take over
   let speakingId = null;
   let speakingText = null;
+  // Which parts events have told since the connection's `welcome`: the snapshot leaves them be.
+  // `verbs`: the verbs of command events seen (the snapshot's queue entries of those verbs are
+  // older); `queue`: a stop emptied every queue.
+  const told = { display: false, speech: false, queue: false, verbs: new Set() };
 
   function showDisplay(display) {
     if (!display) return;
@@ -51,18 +57,22 @@ export function createLive(els) {
     },
     /** A GET /api/state answer. */
     apiState(state) {
-      showDisplay(state.display);
-      if (!commands.size) {
+      if (!told.display) showDisplay(state.display);
+      if (!told.queue) {
         snapshot = Object.entries(state.queues ?? {})
-          .filter(([, q]) => q.current)
+          .filter(([, q]) => q.current && !told.verbs.has(q.current.split(" ")[0]))
           .map(([adapter, q]) => ({ adapter, current: q.current, queued: q.queued ?? 0 }));
       }
-      if (speakingId === null) speakingText = state.speaking ?? null;
+      if (!told.speech) speakingText = state.speaking ?? null;
       showSpeaking();
       showQueue();
     },
     /** One event. */
     event(e) {
+      if (e.type === "display.changed") told.display = true;
+      else if (e.type.startsWith("command.") && e.verb) told.verbs.add(e.verb);
+      if (e.verb === "SAY" && (e.type === "command.started" || ENDED.has(e.type))) told.speech = true;
+      if (e.type === "stop") told.queue = told.speech = true;
       if (e.type === "display.changed") {
         showDisplay(e);
       } else if (e.type === "command.sent") {
@@ -87,11 +97,16 @@ export function createLive(els) {
         showQueue();
       } else if (e.type === "stop") {
         snapshot = [];
+        speakingId = null;
+        speakingText = null;
+        showSpeaking();
         showQueue();
       }
     },
     /** Forgets everything before a new connection's snapshot. */
     reset() {
+      told.display = told.speech = told.queue = false;
+      told.verbs.clear();
       commands.clear();
       snapshot = [];
       speakingId = null;

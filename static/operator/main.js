@@ -1,8 +1,11 @@
 // main.js: the operator console (GET /operator). Signs in, keeps one websocket as an operator,
 // and wires the panels together: acts (actlist.js, preview.js), keys (keys.js), live state
 // (live.js, map.js, clients.js), history, proposals, marks and the camera (camera.js, when the
-// server has it). Events are handed to every panel once: the server replays recent history
-// after `welcome`, which may repeat live events, so they are told apart by `seq`.
+// server has it). Events are handed to every panel once: after `welcome` the server replays
+// recent history strictly before the live events, all in `seq` order, so an event whose `seq`
+// is not above the highest seen is one already handled. The GET /api/state snapshot fetched
+// after `welcome` fills in only what no event has told since. Stop never waits: without a
+// connection, or when the websocket does not answer within STOP_ANSWER_MS, it goes over HTTP.
 
 import { readActs, textsFor } from "./acts.js";
 import { createActList } from "./actlist.js";
@@ -20,6 +23,8 @@ import * as signin from "./signin.js";
 import * as store from "./store.js";
 
 const NOTICE_MS = 6_000;
+/** How long a websocket stop may wait for its `stopped` answer before Stop goes over HTTP. */
+const STOP_ANSWER_MS = 500;
 const NO_SETTINGS = { map: null, camera: { kind: "none" }, situations: [], visitor_groups: {} };
 
 const config = document.body.dataset;
@@ -29,6 +34,8 @@ let connection = null;
 let signedIn = false;
 let me = null;
 let token = null;
+let verified = false; // the server accepted `token` before (or it was kept from this tab's sign-in)
+let lockouts = 0; // `too-many-attempts` answers in a row
 let name = null;
 let context = "Text";
 let askedContext = null; // the context this console asked for last, until the server confirms
@@ -36,8 +43,13 @@ let lastFired = null;
 let refCount = 0;
 let camera = null;
 let settings = null; // GET /api/operator, once loaded
-let seen = new Set();
+let lastSeq = -Infinity; // the highest event seq handled on this connection
 let noticeTimer = null;
+let welcomes = 0; // connections welcomed so far: a fetch for an older one is dropped
+let streaming = false; // the live stream began (this console's own client.connected arrived)
+let clockOffset = null; // this computer's clock minus the server's, from live events
+const told = { pose: false, waypoint: false, session: false }; // newer than the snapshot
+const pendingStops = new Map(); // ref -> timer: websocket stops not answered yet
 
 // --- panels ---------------------------------------------------------------------------------
 
@@ -51,14 +63,17 @@ const list = createActList({
   onFire: (act, options) => fire(act, options),
   onPreview: (act) => showPreview(previewEl, act, context),
 });
-const live = createLive({
+const liveView = createLive({
   kiosk: byId("kiosk-page"),
   projector: byId("projector-content"),
   speaking: byId("speaking"),
   queue: byId("queue"),
 });
 const map = createMap({ panel: byId("map-panel"), view: byId("map"), text: byId("pose-text") });
-const clients = createClients(byId("clients"), (all) => camera?.onClients(clientList(all)));
+// The camera hears of the kiosks only once the list is whole again after a `welcome` (with the
+// snapshot): an empty list in between would look as if its kiosk had left.
+let clientsKnown = false;
+const clients = createClients(byId("clients"), (all) => clientsKnown && camera?.onClients(clientList(all)));
 const history = createHistory(byId("history"));
 const proposals = createProposals({
   panel: byId("proposals"),
@@ -73,6 +88,7 @@ const proposals = createProposals({
     const c = clients.get().get(client);
     return c?.name ? `${c.name} (#${client})` : `dialog manager #${client ?? "?"}`;
   },
+  now: () => Date.now() - (clockOffset ?? 0),
 });
 const marks = createMarks({
   session: byId("session"),
@@ -128,16 +144,46 @@ function fire(act, { interrupt = false } = {}) {
 }
 
 function stop() {
-  // Without the websocket, Stop still tries the HTTP route: stopping must not wait for a reconnect.
-  if (!connection?.send({ type: "stop", ref: ref("stop") })) {
-    fetch("/api/stop", { method: "POST", headers: authHeaders() })
-      .then((res) => notice(res.ok ? "Stopped (over HTTP: the console is not connected)." : `Stop failed: HTTP ${res.status}`))
-      .catch(() => notice("Not connected: Stop could not reach Docent."));
-  }
   const button = byId("stop");
+  // Without the websocket (offline, not welcomed yet), Stop goes over HTTP at once: stopping
+  // must not wait for a reconnect. A socket that looks open may be dead (half-open): when its
+  // `stopped` answer does not come in time, Stop goes over HTTP too (stopping twice is harmless).
+  const id = ref("stop");
+  if (connection?.send({ type: "stop", ref: id })) {
+    const timer = setTimeout(() => {
+      settleStop(id);
+      httpStop(`the websocket did not answer within ${STOP_ANSWER_MS} ms`);
+    }, STOP_ANSWER_MS);
+    pendingStops.set(id, timer);
+    button.dataset.pending = String(pendingStops.size);
+  } else {
+    httpStop("the console is not connected");
+  }
   button.classList.remove("pressed");
   void button.offsetWidth;
   button.classList.add("pressed");
+}
+
+/** A websocket stop is answered (or given up on): no HTTP stop for it. */
+function settleStop(id) {
+  clearTimeout(pendingStops.get(id));
+  pendingStops.delete(id);
+  byId("stop").dataset.pending = String(pendingStops.size); // how many wait for their answer
+}
+
+/** POST /api/stop with the credential; says how it went. */
+function httpStop(why) {
+  if (!token && !open) {
+    notice("Not signed in: Stop needs the operator credential.");
+    return;
+  }
+  fetch("/api/stop", { method: "POST", headers: authHeaders() })
+    .then((res) => {
+      if (res.ok) notice(`Stopped over HTTP (${why}).`);
+      else if (res.status === 429) notice(`Stop refused: this computer is locked out for ${retryAfter(res)} s (too many wrong credentials).`);
+      else notice(`Stop failed: HTTP ${res.status}`);
+    })
+    .catch(() => notice(`Stop could not reach Docent (${why}).`));
 }
 
 function answerProposal(kind, id) {
@@ -166,6 +212,8 @@ contextSelect.addEventListener("change", () => {
   contextSelect.value = context; // shown once the server says it changed
   askedContext = wanted;
   send({ type: "context", context: wanted, ref: ref("context") }, `context ${wanted}`);
+  // Chosen: let go of the focus, so that typing goes to the search and not into the selector.
+  contextSelect.blur();
 });
 byId("stop").addEventListener("click", stop);
 byId("signout").addEventListener("click", signOut);
@@ -173,13 +221,19 @@ search.addEventListener("input", () => list.setQuery(search.value));
 
 bindKeys({
   search,
-  active: () => signedIn,
+  active: () => signedIn && !byId("signin").open,
   stop,
   fire: ({ interrupt }) => {
     const act = list.chosen();
     return act ? fire(act, { interrupt }) : false;
   },
-  move: (delta) => list.move(delta, { focus: document.activeElement?.closest?.("#act-list") != null }),
+  move: (delta) => {
+    // In the act list the focus follows the choice; from anywhere else it goes to the search,
+    // so that no other control (a button, a selector) keeps it for the next Enter.
+    const inList = document.activeElement?.closest?.("#act-list") != null;
+    list.move(delta, { focus: inList });
+    if (!inList) search.focus();
+  },
   repeat: () => {
     const act = lastFired && list.act(lastFired);
     if (act) fire(act);
@@ -192,23 +246,23 @@ bindKeys({
     list.refresh();
   },
   accept: () => {
-    const id = proposals.oldest();
+    const id = proposals.newest();
     if (id === null) notice("No proposal is waiting.");
     else answerProposal("accept", id);
   },
   dismiss: () => {
-    const id = proposals.oldest();
+    const id = proposals.newest();
     if (id === null) notice("No proposal is waiting.");
     else answerProposal("dismiss", id);
   },
-  actKey: (key) => {
+  actKey: (key, { repeat }) => {
     const act = list.byKey(key);
-    if (act) fire(act);
+    if (act && !repeat) fire(act);
     return Boolean(act);
   },
-  situation: (n) => {
+  situation: (n, { repeat }) => {
     const situation = marks.situation(n);
-    if (situation) send({ type: "mark", mark: "situation", value: situation, ref: ref("mark") }, `situation ${situation}`);
+    if (situation && !repeat) send({ type: "mark", mark: "situation", value: situation, ref: ref("mark") }, `situation ${situation}`);
     return Boolean(situation);
   },
   typed: () => list.setQuery(search.value),
@@ -218,10 +272,17 @@ bindKeys({
 
 function handleEvent(e) {
   if (typeof e?.seq === "number") {
-    if (seen.has(e.seq)) return;
-    seen.add(e.seq);
+    if (e.seq <= lastSeq) return;
+    lastSeq = e.seq;
   }
-  live.event(e);
+  if (e.type === "client.connected" && e.client === me) streaming = true;
+  const at = Date.parse(e.time ?? "");
+  // The smallest (local - server) time of live events: the clocks' offset plus the least delay.
+  if (streaming && Number.isFinite(at)) clockOffset = Math.min(clockOffset ?? Infinity, Date.now() - at);
+  if (e.type === "pose") told.pose = true;
+  else if (e.type === "command.sent" && e.verb === "SET_WAYPOINT") told.waypoint = true;
+  else if (e.type === "session.started" || e.type === "session.ended") told.session = true;
+  liveView.event(e);
   clients.event(e);
   history.event(e);
   proposals.event(e);
@@ -241,16 +302,23 @@ function onFrame(frame) {
   switch (frame.type) {
     case "welcome":
       me = frame.client;
-      seen = new Set();
+      welcomes += 1;
+      lastSeq = -Infinity; // a new connection replays its history (a new server run restarts seq)
+      clientsKnown = false;
+      streaming = false;
+      told.pose = told.waypoint = told.session = false;
       history.welcome(me);
       proposals.welcome();
       clients.welcome(me);
-      live.reset();
-      live.welcome(frame.state);
+      liveView.reset();
+      liveView.welcome(frame.state);
       map.pose(frame.state?.pose);
       setContext(frame.state?.context);
       byId("operator-name").textContent = `${name || "operator"} #${me}`;
       loadState();
+      break;
+    case "stopped":
+      settleStop(frame.ref);
       break;
     case "event":
       handleEvent(frame.event);
@@ -262,7 +330,10 @@ function onFrame(frame) {
       notice(frame.message ?? frame.code);
       break;
     case "marked":
-      if (frame.mark === "session_start") marks.setSession(frame.session);
+      if (frame.mark === "session_start") {
+        told.session = true;
+        marks.setSession(frame.session);
+      }
       break;
     default:
       break;
@@ -272,34 +343,85 @@ function onFrame(frame) {
 function onStatus(status) {
   const link = byId("link");
   link.dataset.state = status.state;
+  if (status.state !== "locked") showLockout(null);
   if (status.state === "online") {
     link.textContent = "connected";
     signedIn = true;
+    verified = true;
+    lockouts = 0;
     if (token) signin.remember(token, name);
     loadSettings();
   } else if (status.state === "connecting") {
     link.textContent = "connecting…";
   } else if (status.state === "offline") {
     link.textContent = "offline: reconnecting…";
+  } else if (status.state === "locked") {
+    // Too many wrong credentials from this computer (maybe not this console's): the server
+    // refuses every one for a while. The credential is kept and tried again after the wait,
+    // with no sign-in form over the console (Stop stays in reach). Only a credential the server
+    // never accepted and that is refused again right after the wait is given up: the server
+    // then answers a wrong one with `too-many-attempts` as well, and retrying it would keep
+    // this computer locked out for good.
+    lockouts += 1;
+    if (!verified && lockouts >= 2) {
+      connection?.close();
+      refused("Still refused after the wait: the credential is probably wrong. Check it and try again.");
+      return;
+    }
+    link.textContent = "locked out: waiting";
+    showLockout(status.retryAt);
   } else if (status.state === "refused") {
-    link.textContent = "signed out";
-    signedIn = false;
-    connection = null;
-    camera?.stop();
-    camera = null;
-    signin.forget();
-    dialog.ask(
-      status.code === "too-many-attempts"
-        ? "Too many failed attempts from this computer: wait a minute, then try again."
-        : "That credential was refused. Check it and try again.",
-    );
+    // A wrong credential: forget it and ask again.
+    refused("That credential was refused. Check it and try again.");
   }
 }
 
+/** The credential is given up: forget it and ask for one, saying `why`. */
+function refused(why) {
+  const link = byId("link");
+  link.textContent = "signed out";
+  link.dataset.state = "refused";
+  showLockout(null);
+  signedIn = false;
+  connection = null;
+  camera?.stop();
+  camera = null;
+  signin.forget();
+  token = null;
+  verified = false;
+  dialog.ask(why);
+}
+
+let lockoutTimer = null;
+
+/** The lockout banner counting down to `retryAt` (ms, this computer's clock); null hides it. */
+function showLockout(retryAt) {
+  const banner = byId("lockout");
+  clearInterval(lockoutTimer);
+  lockoutTimer = null;
+  if (retryAt === null || retryAt === undefined) {
+    banner.hidden = true;
+    return;
+  }
+  const show = () => {
+    const left = Math.max(0, Math.ceil((retryAt - Date.now()) / 1000));
+    banner.dataset.seconds = String(left);
+    banner.textContent =
+      left > 0
+        ? `Too many wrong credentials from this computer: Docent refuses every sign-in from it for ${left} s more. The console keeps its credential and signs in again by itself then. Stop tries the server all the same.`
+        : "Signing in again…";
+  };
+  show();
+  banner.hidden = false;
+  lockoutTimer = setInterval(show, 1000);
+}
+
 /** Signs in with `credential` (null on an open development server). */
-function start(credential, operatorName) {
+function start(credential, operatorName, { kept = false } = {}) {
   connection?.close();
   token = credential;
+  verified = kept; // a kept credential was accepted in this tab before
+  lockouts = 0;
   name = operatorName || name || "operator";
   connection = connect({ path: config.ws || "/ws", token, name, onFrame, onStatus });
 }
@@ -308,6 +430,7 @@ function signOut() {
   connection?.close();
   connection = null;
   signedIn = false;
+  showLockout(null);
   camera?.stop();
   camera = null;
   signin.forget();
@@ -319,18 +442,59 @@ function signOut() {
 
 const authHeaders = () => (token ? { Authorization: `Bearer ${token}` } : {});
 
-async function loadState() {
-  try {
-    const state = await (await fetch("/api/state")).json();
-    live.apiState(state);
-    clients.snapshot(state.clients);
-    proposals.snapshot(state.proposals);
-    marks.setSession(state.session ?? null);
-    map.pose(state.pose);
-    map.waypoint(state.waypoint);
-  } catch (error) {
-    console.warn("docent console: no /api/state", error);
+/** The seconds of a 429 answer's `Retry-After` (10 when it has none: asking early is harmless). */
+function retryAfter(res) {
+  const seconds = Number(res.headers.get("Retry-After"));
+  return Number.isFinite(seconds) && seconds > 0 ? seconds : 10;
+}
+
+/**
+ * GET `path` with the credential while `wanted()`: JSON, or null when it failed or is no longer
+ * wanted (signed out, a newer connection). A lockout (429) is waited out and the request made
+ * again.
+ */
+async function getJson(path, wanted) {
+  while (wanted()) {
+    let res;
+    try {
+      res = await fetch(path, { headers: authHeaders() });
+    } catch (error) {
+      console.warn(`docent console: no ${path}`, error);
+      return null;
+    }
+    if (res.status === 429) {
+      const seconds = retryAfter(res);
+      showLockout(Date.now() + seconds * 1000);
+      await new Promise((resolve) => setTimeout(resolve, (seconds + 1) * 1000));
+      showLockout(null);
+      continue;
+    }
+    if (!res.ok) {
+      console.warn(`docent console: ${path} answered ${res.status}`);
+      return null;
+    }
+    return wanted() ? res.json() : null;
   }
+  return null;
+}
+
+async function loadState() {
+  const welcome = welcomes;
+  const state = await getJson("/api/state", () => welcome === welcomes && connection !== null);
+  if (welcome !== welcomes) return;
+  clientsKnown = true;
+  if (!state) {
+    camera?.onClients(clientList(clients.get())); // as far as the events told
+    return;
+  }
+  liveView.apiState(state);
+  clients.snapshot(state.clients);
+  proposals.snapshot(state.proposals);
+  // Only what no event told since `welcome`: an event is newer than this answer.
+  if (!told.session) marks.setSession(state.session ?? null);
+  if (!told.pose) map.pose(state.pose);
+  if (!told.waypoint) map.waypoint(state.waypoint);
+  document.body.dataset.snapshots = String(Number(document.body.dataset.snapshots ?? 0) + 1);
 }
 
 async function loadSettings() {
@@ -338,14 +502,11 @@ async function loadSettings() {
     await startCamera(settings.camera);
     return;
   }
-  try {
-    const res = await fetch("/api/operator", { headers: authHeaders() });
-    if (res.ok) settings = { ...NO_SETTINGS, ...(await res.json()) };
-    else console.warn(`docent console: /api/operator answered ${res.status}`);
-  } catch (error) {
-    console.warn("docent console: no /api/operator", error);
-  }
-  settings ??= NO_SETTINGS;
+  const mine = connection;
+  const answer = await getJson("/api/operator", () => connection === mine && mine !== null);
+  if (connection !== mine || !mine) return; // signed out meanwhile
+  if (settings) return; // an earlier call got them
+  settings = answer ? { ...NO_SETTINGS, ...answer } : NO_SETTINGS;
   map.configure(settings.map);
   marks.configure(settings);
   await startCamera(settings.camera ?? { kind: "none" });
@@ -360,7 +521,7 @@ async function startCamera(settings) {
     try {
       const module = await import(config.cameraScript);
       camera = module.createCamera({ element, send: (frame) => connection?.send(frame) ?? false, settings });
-      camera.onClients(clientList(clients.get()));
+      if (clientsKnown) camera.onClients(clientList(clients.get()));
       return;
     } catch (error) {
       console.error("docent console: the camera did not start", error);
@@ -386,6 +547,6 @@ if (open) {
   start(null, signin.stored().name);
 } else {
   const saved = signin.stored();
-  if (saved.token) start(saved.token, saved.name);
+  if (saved.token) start(saved.token, saved.name, { kept: true });
   else dialog.ask();
 }

@@ -5,7 +5,9 @@
 // released when the consoles hang up, and a kiosk without a camera says why. The launcher's own
 // switch (kiosk/launch.sh) opens the camera without the test-only fake permission prompt. A
 // camera URL in docent.yaml shows a real MJPEG stream served by this test, retried after an
-// error. Every wait is for an event or a page state, with a deadline only.
+// error. Kiosks that share a name are told apart, and one of them is never called in the
+// place of another without the operator's choice. Every wait is for an event or a page state,
+// with a deadline only.
 
 import assert from 'node:assert/strict';
 import { execFileSync } from 'node:child_process';
@@ -204,6 +206,50 @@ test('the console shows the kiosk camera over WebRTC, shared by two consoles, ca
     } finally {
       for (const c of consoles) await c.context.close();
       await kiosk.context.close();
+    }
+  });
+});
+
+test('kiosks of one name are told apart by their ids, with a warning; when the kiosk called leaves, the console asks instead of calling the other', { timeout: 120_000 }, async () => {
+  await withServer(BUNDLE, async (server) => {
+    const one = await openKiosk(browser, server);
+    const operator = await openConsole(browser, server);
+    const two = await openKiosk(browser, server);
+    const { page } = operator;
+    try {
+      await cameraState(page, 'live');
+      // Both kiosk shells are called "kiosk": the picker names them by their ids and warns.
+      const picker = page.locator('#camera .camera-pick');
+      await picker.waitFor({ state: 'visible' });
+      await page.waitForFunction(() => document.querySelectorAll('#camera .camera-pick option').length === 2);
+      const options = await picker.locator('option').evaluateAll((os) => os.map((o) => ({ value: o.value, text: o.textContent })));
+      for (const o of options) assert.equal(o.text, `kiosk (#${o.value})`);
+      const warning = page.locator('#camera .camera-warning');
+      assert.equal(await warning.isVisible(), true, 'no warning about the shared name');
+      assert.match(await warning.textContent(), new RegExp(`2 kiosks are called “kiosk”: only their numbers \\(#${options[0].value}, #${options[1].value}\\)`));
+      // The first is called; the second, seen beside it, is another device.
+      assert.equal(await one.page.evaluate(() => window.e2eMedia.calls), 1);
+      assert.equal(await two.page.evaluate(() => window.e2eMedia.calls), 0);
+
+      // The kiosk called goes away: the console does not call the other one by their shared name.
+      await one.context.close();
+      const text = await cameraState(page, 'choose');
+      assert.match(text, /left; another kiosk is called “kiosk”: choose the one to watch/);
+      assert.equal(await picker.isVisible(), true);
+      assert.equal(await two.page.evaluate(() => window.e2eMedia.calls), 0, 'the other kiosk was called without asking');
+
+      // The operator chooses it: called; the picker lets go of the focus (typing goes to the search).
+      await picker.focus();
+      await picker.selectOption(options[1].value);
+      await cameraState(page, 'live');
+      assert.equal(await two.page.evaluate(() => window.e2eMedia.calls), 1);
+      assert.notEqual(await page.evaluate(() => document.activeElement?.className), 'camera-pick');
+      assert.equal(await warning.isVisible(), false, 'a warning with one kiosk left');
+      assert.deepEqual(operator.problems, [], 'problems in the console');
+    } finally {
+      await operator.context.close();
+      await two.context.close();
+      await one.context.close().catch(() => {});
     }
   });
 });

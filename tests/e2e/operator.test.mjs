@@ -22,6 +22,7 @@ import {
   newConsoleContext,
   openConsole,
   operatorToken,
+  routeConsoleSocket,
   signIn,
   submitCredential,
   waitOnline,
@@ -132,25 +133,68 @@ test('the console needs the operator credential: none shows only the form, a wro
   }
 });
 
-test('after five wrong credentials the console says to wait instead of trying again', { timeout: 90_000 }, async () => {
+test('a lockout is waited out with a countdown, the credential kept and Stop in reach; a new credential refused again after the wait is asked for again', { timeout: 120_000 }, async () => {
   const bundle = museumTour();
   try {
+    // A signed-in console whose computer is locked out by someone else's wrong credentials.
+    await withServer(bundle, async ({ server, observer, newPage }) => {
+      const page = await newPage();
+      const socket = await routeConsoleSocket(page);
+      await signIn(page, server, 'Ada');
+      const joined = await observer.waitForEvent((e) => e.type === 'client.connected' && e.name === 'Ada');
+      let answer;
+      for (let i = 0; i < 5; i++) {
+        answer = await fetch(`${server.base}/api/stop`, { method: 'POST', headers: { authorization: 'Bearer someone-elses-wrong-guess' } });
+      }
+      assert.equal(answer.status, 429, 'five wrong credentials did not lock this address out');
+      const wait = Number(answer.headers.get('retry-after'));
+      // The console's connection drops; signing in again is refused for the rest of the wait.
+      socket.closeAll();
+      await page.locator('#lockout:not([hidden])').waitFor();
+      const refusedAt = Date.now();
+      assert.equal(await page.locator('#link').getAttribute('data-state'), 'locked');
+      assert.equal(await page.locator('#signin').evaluate((d) => d.open), false, 'a sign-in form covers the console');
+      assert.equal(await page.evaluate(() => sessionStorage.getItem('docent.operator.token')), operatorToken(server), 'the credential was forgotten');
+      assert.match(await page.locator('#lockout').textContent(), /refuses every sign-in from it for \d+ s more/);
+      // The countdown runs, from no more than the server's wait (plus the second it adds).
+      const first = Number(await page.locator('#lockout').getAttribute('data-seconds'));
+      assert.ok(first >= 1 && first <= wait + 1, `countdown from ${first} s for a wait of ${wait} s`);
+      await page.waitForFunction((s) => Number(document.querySelector('#lockout').dataset.seconds) < s, first);
+      // Stop is in reach (nothing over it) and still tries the server, which refuses for now.
+      await page.click('#stop');
+      await page.locator('#notice', { hasText: 'locked out' }).waitFor();
+      // After the wait the console signs in again by itself, with the credential it kept.
+      const again = await observer.waitForEvent((e) => e.type === 'client.connected' && e.name === 'Ada' && e.client > joined.client, { timeout: (wait + 10) * 1000 });
+      await page.locator('#link[data-state="online"]').waitFor();
+      await page.locator('#lockout').waitFor({ state: 'hidden' });
+      const retried = socket.sockets.at(-1);
+      assert.ok(retried.at - refusedAt >= (first - 1) * 1000, `signed in again ${retried.at - refusedAt} ms after the refusal; the wait was ${first} s`);
+      assert.ok(again.client > joined.client);
+    });
+
+    // Five wrong credentials typed into the form: the fifth is met with the lockout, waited out
+    // without the form; refused again right after the wait, the credential is asked for again.
     await withServer(bundle, async ({ server, newPage }) => {
       const page = await newPage();
       const sockets = [];
       page.on('websocket', (ws) => sockets.push(ws));
       await openConsole(page, server);
-      let message = '';
-      for (let attempt = 1; attempt <= 6; attempt++) {
-        // Each refusal closes its socket; then the form is open again with the reason.
+      for (let attempt = 1; attempt <= 4; attempt++) {
         const closed = new Promise((resolve) => page.once('websocket', (ws) => ws.on('close', resolve)));
         await submitCredential(page, `wrong-credential-number-${attempt}`);
         await closed;
         await page.waitForFunction(() => document.querySelector('#signin').open);
-        message = await page.locator('#signin-error').textContent();
+        assert.match(await page.locator('#signin-error').textContent(), /refused/);
       }
-      assert.match(message, /Too many failed attempts/);
-      assert.equal(sockets.length, 6, 'the console retried by itself');
+      await submitCredential(page, 'wrong-credential-number-5');
+      await page.locator('#lockout:not([hidden])').waitFor();
+      assert.equal(await page.locator('#signin').evaluate((d) => d.open), false, 'the form came back during the wait');
+      assert.equal(await page.locator('#link').getAttribute('data-state'), 'locked');
+      const seconds = Number(await page.locator('#lockout').getAttribute('data-seconds'));
+      await page.waitForFunction(() => document.querySelector('#signin').open, null, { timeout: (seconds + 10) * 1000 });
+      assert.match(await page.locator('#signin-error').textContent(), /Still refused after the wait/);
+      assert.equal(sockets.length, 6, 'not one try after the wait');
+      assert.equal(await page.locator('#lockout').isVisible(), false);
     });
   } finally {
     removeTemp(bundle);
@@ -315,6 +359,107 @@ test('type a word of an act\'s text anywhere, Enter: the kiosk in another browse
   }
 });
 
+test('keys reach the search from a focused selector or button; Enter fires the chosen act, never a focused button, once however long it is held; the choice survives redraws and is what the preview shows', { timeout: 90_000 }, async () => {
+  const bundle = museumTour();
+  const expected = [];
+  try {
+    const events = await withServer(bundle, async ({ server, observer, newPage }) => {
+      const page = await newPage();
+      const problems = watchProblems(page);
+      await signIn(page, server, 'Ada');
+      let last = 0;
+      const fired = async (label) => {
+        const e = await observer.waitForEvent((x) => x.type === 'act.triggered' && x.seq > last);
+        assert.equal(e.label, label, `fired ${e.label}, not ${label}`);
+        expected.push(label);
+        last = e.seq;
+      };
+      const focused = () => page.evaluate(() => document.activeElement?.id || document.activeElement?.tagName);
+
+      // Letters and arrows with the focus on the context selector go to the search; the
+      // selector's own type-ahead ("t": TextGroup) and arrows would change the robot's context.
+      await page.focus('#context');
+      await page.keyboard.type('tchild');
+      assert.equal(await page.inputValue('#search'), 'tchild');
+      assert.equal(await page.inputValue('#context'), 'Text');
+      await page.fill('#search', '');
+      await page.focus('#context');
+      await page.keyboard.press('ArrowDown');
+      assert.equal(await page.inputValue('#context'), 'Text');
+      assert.equal(await focused(), 'search', 'ArrowDown left the focus on the selector');
+      assert.ok(await chosenLabel(page), 'ArrowDown chose nothing');
+      await page.keyboard.press('ArrowUp');
+      // Once a context is chosen, the selector lets go of the focus.
+      await page.focus('#context');
+      await page.selectOption('#context', 'TextChild');
+      await observer.waitForEvent((e) => e.type === 'context.changed' && e.context === 'TextChild');
+      assert.notEqual(await focused(), 'context');
+
+      // Start clicked keeps the focus; Down and Enter then fire the chosen act, not Start again.
+      await page.click('#session-start');
+      await observer.waitForEvent((e) => e.type === 'session.started');
+      assert.equal(await focused(), 'session-start');
+      await page.keyboard.press('ArrowDown');
+      assert.equal(await focused(), 'search');
+      const first = await chosenLabel(page);
+      await page.keyboard.press('Enter');
+      await fired(first);
+      // A search typed, then the focus on Sign out (not by Tab): Enter fires the act.
+      await page.keyboard.type('bye bye');
+      await page.focus('#signout');
+      await page.keyboard.press('Enter');
+      await fired('FAREWELL');
+      assert.equal(await page.locator('#link').getAttribute('data-state'), 'online', 'Enter signed out');
+
+      // Held keys (auto-repeat) fire once: Enter, Alt+W, F2; F4 stars once (not on and off).
+      await page.keyboard.press('ArrowDown');
+      const held = await chosenLabel(page);
+      for (let i = 0; i < 3; i++) await page.keyboard.down('Enter');
+      await page.keyboard.up('Enter');
+      await fired(held);
+      await page.keyboard.down('Alt');
+      for (let i = 0; i < 3; i++) await page.keyboard.down('KeyW');
+      await page.keyboard.up('KeyW');
+      await page.keyboard.up('Alt');
+      await fired('GREETING');
+      for (let i = 0; i < 3; i++) await page.keyboard.down('F2');
+      await page.keyboard.up('F2');
+      await fired('GREETING');
+      for (let i = 0; i < 2; i++) await page.keyboard.down('F4');
+      await page.keyboard.up('F4');
+      await page.locator(`.favourites .act[data-label="${held}"]`).waitFor();
+
+      // The choice stays on its act when the list is redrawn: a star (F4), a context set elsewhere.
+      await page.keyboard.type('the');
+      const matches = await actLabels(page);
+      assert.ok(matches.length > 3, `matches: ${matches}`);
+      await page.keyboard.press('ArrowDown');
+      await page.keyboard.press('ArrowDown');
+      const picked = matches[2];
+      assert.equal(await chosenLabel(page), picked);
+      await page.keyboard.press('F4');
+      await page.locator(`.act-row:has(.act[data-label="${picked}"]) .star[aria-pressed="true"]`).waitFor();
+      assert.equal(await chosenLabel(page), picked, 'a star moved the choice');
+      observer.send({ type: 'context', context: 'TextGroup', ref: 'elsewhere' });
+      await page.waitForFunction(() => document.querySelector('#context').value === 'TextGroup');
+      assert.equal(await chosenLabel(page), picked, 'a context change moved the choice');
+      // The preview shows the chosen act, also while the mouse rests on another; Enter fires it.
+      const other = matches.find((l) => l !== picked);
+      await page.hover(`#act-list .act[data-label="${other}"]`);
+      assert.equal(await page.locator('#preview .preview-label').textContent(), picked);
+      await page.keyboard.press('Enter');
+      await fired(picked);
+      assert.deepEqual(problems, [], 'problems in the console');
+    });
+    // Nothing fired twice, Start marked once, the context changed only when asked.
+    assert.deepEqual(events.filter((e) => e.type === 'act.triggered').map((e) => e.label), expected);
+    assert.equal(events.filter((e) => e.type === 'session.started').length, 1);
+    assert.deepEqual(events.filter((e) => e.type === 'context.changed').map((e) => e.context), ['TextChild', 'TextGroup']);
+  } finally {
+    removeTemp(bundle);
+  }
+});
+
 test('keystrokes to find and fire each museum-tour act by one word of its text', { timeout: 60_000 }, async (t) => {
   const bundle = museumTour();
   try {
@@ -449,34 +594,129 @@ test('Esc stops a long SAY and a running drive; Alt+<Key> fires an act', { timeo
   }
 });
 
-test('a dialog manager\'s proposal accepted with F9 is dispatched, one dismissed with Shift+F9 is not; two consoles see each other', { timeout: 90_000 }, async () => {
+test('Esc stops before the first welcome and during an IME composition; a websocket stop unanswered within 500 ms goes over HTTP too', { timeout: 90_000 }, async () => {
+  const bundle = museumTour();
+  try {
+    const events = await withServer(bundle, async ({ server, observer, newPage }) => {
+      const page = await newPage();
+      const socket = await routeConsoleSocket(page);
+      const httpStops = [];
+      page.on('request', (request) => {
+        if (new URL(request.url()).pathname === '/api/stop') httpStops.push(request);
+      });
+      const nextHttpStop = () => page.waitForRequest((request) => new URL(request.url()).pathname === '/api/stop');
+
+      // Signed in, but the server never answers the hello: Esc stops over HTTP with the credential.
+      socket.mode = 'silent';
+      await openConsole(page, server);
+      await submitCredential(page, operatorToken(server), 'Ada');
+      await socket.waitForSocket(1);
+      await page.locator('#link[data-state="connecting"]').waitFor();
+      let request = nextHttpStop();
+      await page.keyboard.press('Escape');
+      const first = await request;
+      assert.deepEqual([first.method(), first.headers().authorization], ['POST', `Bearer ${operatorToken(server)}`]);
+      const early = await observer.waitForEvent((e) => e.type === 'stop');
+      assert.equal(early.source, 'http');
+      await page.locator('#notice', { hasText: 'not connected' }).waitFor();
+
+      // A half-open socket: welcomed, but the stop frame is lost on its way. Half a second
+      // without the `stopped` answer, the console stops over HTTP as well.
+      socket.mode = 'dropStops';
+      socket.closeAll();
+      await socket.waitForSocket(2);
+      await waitOnline(page);
+      await page.evaluate(() => addEventListener('keydown', (e) => e.key === 'Escape' && (window.e2eEscapeAt = e.timeStamp), { capture: true }));
+      request = nextHttpStop();
+      await page.keyboard.press('Escape');
+      await request;
+      const late = await observer.waitForEvent((e) => e.type === 'stop' && e.seq > early.seq);
+      assert.equal(late.source, 'http');
+      // The page's own clock: from the key press to the start of the HTTP request.
+      const after = await page.evaluate(async () => {
+        const stops = () => performance.getEntriesByType('resource').filter((r) => r.name.endsWith('/api/stop'));
+        while (stops().length < 2) await new Promise((resolve) => requestAnimationFrame(resolve));
+        return Math.round(stops()[1].startTime - window.e2eEscapeAt);
+      });
+      assert.ok(after >= 450 && after < 5_000, `the HTTP stop came ${after} ms after Esc`);
+      assert.ok(socket.sockets[1].sent.some((m) => JSON.parse(m).type === 'stop'), 'the console did not try its websocket first');
+      await page.locator('#notice', { hasText: 'did not answer' }).waitFor();
+
+      // A healthy socket whose every event frame arrives twice; Esc while an IME composes
+      // a word in the search field stops over the websocket, which answers.
+      socket.mode = 'pass';
+      socket.duplicate = true;
+      socket.closeAll();
+      await socket.waitForSocket(3);
+      await waitOnline(page);
+      await page.keyboard.press('Alt+KeyW');
+      const greeting = await observer.waitForEvent((e) => e.type === 'act.triggered' && e.label === 'GREETING');
+      await page.focus('#search');
+      await page.evaluate(() => {
+        window.e2eEscapes = [];
+        addEventListener('keydown', (e) => e.key === 'Escape' && window.e2eEscapes.push(e.isComposing), { capture: true });
+      });
+      const cdp = await page.context().newCDPSession(page);
+      await cdp.send('Input.imeSetComposition', { text: 'す', selectionStart: 1, selectionEnd: 1 });
+      await page.keyboard.press('Escape');
+      const composed = await observer.waitForEvent((e) => e.type === 'stop' && e.seq > late.seq);
+      assert.equal(composed.source, 'operator');
+      assert.deepEqual(await page.evaluate(() => window.e2eEscapes), [true], 'Esc was not pressed during a composition');
+      // Answered (`stopped`): nothing waits for an answer, so no HTTP stop follows.
+      await page.locator('#stop[data-pending="0"]').waitFor();
+      assert.equal(httpStops.length, 2, 'an answered stop went over HTTP too');
+      // Each event once, although every one arrived twice.
+      await page.locator(`#history li[data-seq="${composed.seq}"]`).waitFor();
+      const seqs = await page.locator('#history li').evaluateAll((items) => items.map((i) => i.dataset.seq));
+      assert.equal(new Set(seqs).size, seqs.length, `history shows an event twice: ${seqs}`);
+      assert.ok(seqs.includes(String(greeting.seq)), `no GREETING in the history: ${seqs}`);
+    });
+    const stops = events.filter((e) => e.type === 'stop' && e.source !== 'server'); // not the server's own at shutdown
+    assert.deepEqual(stops.map((e) => e.source), ['http', 'http', 'operator']);
+  } finally {
+    removeTemp(bundle);
+  }
+});
+
+test('proposals come newest first with their age; F9 accepts the newest, Shift+F9 dismisses the newest; a leaving dialog manager\'s proposal is withdrawn; two consoles see each other', { timeout: 90_000 }, async () => {
   const bundle = museumTour();
   try {
     const events = await withServer(bundle, async ({ server, observer, newPage, cleanup }) => {
       const dm = await connectWithToken(server, 'dm', 'e2e-dm');
       cleanup.unshift(() => dm.close());
-      // A proposal made before any console is open: consoles find it pending when they sign in.
+      // Two proposals made before any console is open: consoles find them pending when they sign in.
       dm.send({ type: 'propose', label: 'GREETING', context: null, reason: 'visitor smiled', ref: 'p1' });
       const first = await dm.waitFor((f) => f.type === 'proposed' && f.ref === 'p1');
+      dm.send({ type: 'propose', label: 'FAREWELL', context: 'TextChild', reason: 'visitor leaving', ref: 'p2' });
+      const second = await dm.waitFor((f) => f.type === 'proposed' && f.ref === 'p2');
 
       const a = await newPage();
       const b = await newPage();
       const problems = [...watchProblems(a), ...watchProblems(b)];
       await signIn(a, server, 'Ada');
       await signIn(b, server, 'Bob');
+      const order = (page) => page.locator('#proposal-list li').evaluateAll((items) => items.map((i) => Number(i.dataset.proposal)));
       for (const page of [a, b]) {
-        const item = page.locator(`#proposal-list li[data-proposal="${first.proposal}"]`);
-        await item.waitFor();
-        assert.match(await item.textContent(), /visitor smiled/);
+        await page.locator(`#proposal-list li[data-proposal="${first.proposal}"]`).waitFor();
+        assert.deepEqual(await order(page), [second.proposal, first.proposal], 'not newest first');
+        assert.match(await page.locator('#proposal-list li').first().textContent(), /visitor leaving/);
       }
+      // Each shows its age, and it counts on.
+      const age = a.locator(`#proposal-list li[data-proposal="${first.proposal}"] .proposal-age`);
+      const was = await age.textContent();
+      assert.match(was, /^(just now|\d+ s ago)$/);
+      await a.waitForFunction((t) => document.querySelector('#proposal-list li:last-child .proposal-age').textContent !== t, was);
+      assert.match(await age.textContent(), /^\d+ s ago$/);
 
+      // F9: the newest (FAREWELL, the one that just came) is accepted.
       await a.keyboard.press('F9');
-      const accepted = await observer.waitForEvent((e) => e.type === 'proposal.accepted' && e.proposal === first.proposal);
-      const fired = await observer.waitForEvent((e) => e.type === 'act.triggered' && e.label === 'GREETING');
+      const accepted = await observer.waitForEvent((e) => e.type === 'proposal.accepted');
+      assert.equal(accepted.proposal, second.proposal, 'F9 did not accept the newest proposal');
+      const fired = await observer.waitForEvent((e) => e.type === 'act.triggered' && e.label === 'FAREWELL');
       assert.equal(fired.source, 'operator');
       assert.equal(fired.trigger, accepted.trigger);
-      // Gone from both consoles; Bob's history shows Ada's act with its text.
-      for (const page of [a, b]) await page.locator('#proposals').waitFor({ state: 'hidden' });
+      for (const page of [a, b]) await page.locator(`#proposal-list li[data-proposal="${second.proposal}"]`).waitFor({ state: 'detached' });
+      // Bob's history shows Ada's act with its text.
       const line = b.locator(`#history li[data-seq="${fired.seq}"]`);
       await line.waitFor();
       assert.ok((await line.textContent()).includes(fired.text));
@@ -485,19 +725,100 @@ test('a dialog manager\'s proposal accepted with F9 is dispatched, one dismissed
       const seqs = await b.locator('#history li').evaluateAll((items) => items.map((i) => i.dataset.seq));
       assert.equal(new Set(seqs).size, seqs.length, `history shows an event twice: ${seqs}`);
 
-      dm.send({ type: 'propose', label: 'FAREWELL', context: 'TextChild', reason: 'visitor leaving', ref: 'p2' });
-      const second = await dm.waitFor((f) => f.type === 'proposed' && f.ref === 'p2');
-      await a.locator(`#proposal-list li[data-proposal="${second.proposal}"]`).waitFor();
-      await b.locator(`#proposal-list li[data-proposal="${second.proposal}"]`).waitFor();
+      // Shift+F9 on Bob's console: the newest left (GREETING) is dismissed.
       await b.keyboard.press('Shift+F9');
-      await observer.waitForEvent((e) => e.type === 'proposal.dismissed' && e.proposal === second.proposal);
+      const dismissed = await observer.waitForEvent((e) => e.type === 'proposal.dismissed');
+      assert.equal(dismissed.proposal, first.proposal);
       await a.locator('#proposals').waitFor({ state: 'hidden' });
       await b.locator('#proposals').waitFor({ state: 'hidden' });
+
+      // A dialog manager that leaves takes its waiting proposal with it.
+      const planner = await connectWithToken(server, 'dm', 'e2e-planner');
+      planner.send({ type: 'propose', label: 'ANY_QUESTIONS', context: null, reason: 'a pause', ref: 'p3' });
+      const third = await planner.waitFor((f) => f.type === 'proposed' && f.ref === 'p3');
+      await a.locator(`#proposal-list li[data-proposal="${third.proposal}"]`).waitFor();
+      await planner.close();
+      const withdrawn = await observer.waitForEvent((e) => e.type === 'proposal.withdrawn');
+      assert.equal(withdrawn.proposal, third.proposal);
+      await a.locator('#proposals').waitFor({ state: 'hidden' });
+      const note = a.locator(`#history li[data-seq="${withdrawn.seq}"]`);
+      await note.waitFor();
+      assert.match(await note.textContent(), /withdrawn proposal \d+: ANY_QUESTIONS/);
       assert.deepEqual(problems, [], 'problems in the consoles');
     });
     const acts = events.filter((e) => e.type === 'act.triggered').map((e) => e.label);
-    assert.deepEqual(acts, ['GREETING'], 'the dismissed proposal was dispatched');
-    assert.deepEqual(events.filter((e) => e.type.startsWith('proposal.')).map((e) => e.type), ['proposal.made', 'proposal.accepted', 'proposal.made', 'proposal.dismissed']);
+    assert.deepEqual(acts, ['FAREWELL'], 'the dismissed or withdrawn proposal was dispatched');
+    assert.deepEqual(events.filter((e) => e.type.startsWith('proposal.')).map((e) => e.type), [
+      'proposal.made',
+      'proposal.made',
+      'proposal.accepted',
+      'proposal.dismissed',
+      'proposal.made',
+      'proposal.withdrawn',
+    ]);
+  } finally {
+    removeTemp(bundle);
+  }
+});
+
+test('the state fetched after signing in does not undo newer events; /api/state and /api/operator are asked with the credential', { timeout: 60_000 }, async () => {
+  const words = Array.from({ length: 120 }, (_, i) => `word${i}`).join(' ');
+  const bundle = makeBundle({
+    'docent.yaml': 'home: index.html\nspeech: {adapter: log, rate: 60}\n',
+    'acts.yaml': [
+      '- Label: LONG_STORY',
+      '  Text:',
+      `    - ${words}`,
+      '- Label: SHOW_OTHER',
+      '  Cmds:',
+      '    - DISPLAY_PAGE other.html',
+      '',
+    ].join('\n'),
+    'pages/index.html': '<!doctype html><title>home</title><h1>home</h1>\n',
+    'pages/other.html': '<!doctype html><title>other</title><h1>other</h1>\n',
+  });
+  try {
+    await withServer(bundle, async ({ server, observer, newPage }) => {
+      // The robot speaks before the console comes.
+      await server.trigger('LONG_STORY');
+      await observer.waitForEvent((e) => e.type === 'command.started' && e.verb === 'SAY');
+      const page = await newPage();
+      const problems = watchProblems(page);
+      const credentials = {};
+      page.on('request', (request) => {
+        const route = new URL(request.url()).pathname;
+        if (route === '/api/state' || route === '/api/operator') credentials[route] = request.headers().authorization;
+      });
+      // The snapshot is taken at once but reaches the console only after newer events.
+      let release;
+      const held = new Promise((resolve) => (release = resolve));
+      let taken;
+      const snapshotTaken = new Promise((resolve) => (taken = resolve));
+      await page.route('**/api/state', async (route) => {
+        const response = await route.fetch();
+        taken(await response.json());
+        await held;
+        await route.fulfill({ response });
+      });
+      await signIn(page, server);
+      const snapshot = await snapshotTaken;
+      assert.equal(snapshot.display.page, 'index.html');
+      assert.match(snapshot.speaking ?? '', /^word0 word1/);
+      // Meanwhile the speech is stopped and the kiosk shows another page.
+      await server.api('/api/stop', {});
+      await server.trigger('SHOW_OTHER');
+      await page.locator('#kiosk-page', { hasText: 'other.html' }).waitFor();
+      await observer.waitForEvent((e) => e.type === 'command.done' && e.verb === 'DISPLAY_PAGE');
+      await page.locator('#queue', { hasText: 'nothing running' }).waitFor();
+      release();
+      await page.waitForFunction(() => document.body.dataset.snapshots === '1');
+      assert.equal(await page.locator('#kiosk-page').textContent(), 'other.html', 'the snapshot put back the old page');
+      assert.equal(await page.locator('#speaking').textContent(), 'silent', 'the snapshot put back the old speech');
+      assert.equal(await page.locator('#queue').textContent(), 'nothing running', 'the snapshot put back the old queue');
+      const bearer = `Bearer ${operatorToken(server)}`;
+      assert.deepEqual(credentials, { '/api/state': bearer, '/api/operator': bearer });
+      assert.deepEqual(problems, [], 'problems in the console');
+    });
   } finally {
     removeTemp(bundle);
   }

@@ -1,8 +1,9 @@
 // Driving the operator console (`GET /operator`) as an operator would: sign in through its form,
-// wait until it is connected and shows the acts, and read what it shows. Servers started by
+// wait until it is connected and shows the acts, and read what it shows; and standing between
+// the console and its websocket to make the network misbehave. Servers started by
 // `startDocent` have the credentials OPERATOR_TOKEN and DM_TOKEN (lib/docent.mjs).
 
-import { DEADLINE_MS, DM_TOKEN, OPERATOR_TOKEN } from './docent.mjs';
+import { DEADLINE_MS, DM_TOKEN, OPERATOR_TOKEN, withDeadline } from './docent.mjs';
 import { DocentClient } from './ws-client.mjs';
 
 /** The console's size in the tests and the screenshot: a common desktop screen. */
@@ -59,4 +60,76 @@ export function actLabels(page) {
 /** The label of the chosen act (what Enter fires), or null. */
 export function chosenLabel(page) {
   return page.evaluate(() => document.querySelector('#act-list .act.chosen')?.dataset.label ?? null);
+}
+
+/**
+ * Puts the test between the console in `page` and Docent's websocket (Playwright's
+ * routeWebSocket), to make the network misbehave. Each new connection gets the `mode` of the
+ * moment: `pass` (frames go through; with `duplicate` every event frame reaches the page twice),
+ * `dropStops` (a half-open socket as far as Stop goes: `stop` frames are lost on the way),
+ * `silent` (the hello is never answered, so the console is never welcomed), or `lockout` (the
+ * hello is answered with a `too-many-attempts` error carrying `lockoutMessage`, then closed).
+ * `closeAll()` drops every connection (the console reconnects by itself); `waitForSocket(n)`
+ * resolves once the console opened `n` connections. `sockets`: `{mode, at, sent}` per
+ * connection, `sent` the frames the page sent.
+ */
+export async function routeConsoleSocket(page) {
+  const waiters = [];
+  const control = {
+    mode: 'pass',
+    duplicate: false,
+    lockoutMessage: 'too many wrong credentials from this address; try again in 2 s',
+    sockets: [],
+    routes: [],
+    closeAll() {
+      for (const route of control.routes.splice(0)) {
+        route.server?.close();
+        route.ws.close();
+      }
+    },
+    waitForSocket(n) {
+      return withDeadline(
+        new Promise((resolve) => {
+          const check = () => control.sockets.length >= n && (resolve(), true);
+          if (!check()) waiters.push(check);
+        }),
+        DEADLINE_MS,
+        () => `the console opened ${control.sockets.length} websocket connections, not ${n}`,
+      );
+    },
+  };
+  await page.routeWebSocket(
+    (url) => url.pathname === '/ws',
+    (ws) => {
+      const entry = { mode: control.mode, at: Date.now(), sent: [] };
+      const route = { ws, server: null };
+      control.sockets.push(entry);
+      control.routes.push(route);
+      for (const check of [...waiters]) if (check()) waiters.splice(waiters.indexOf(check), 1);
+      if (entry.mode === 'silent') {
+        ws.onMessage((message) => entry.sent.push(message));
+        return;
+      }
+      if (entry.mode === 'lockout') {
+        ws.onMessage((message) => {
+          entry.sent.push(message);
+          ws.send(JSON.stringify({ type: 'error', code: 'too-many-attempts', message: control.lockoutMessage, ref: null, suggestion: null }));
+          ws.close();
+        });
+        return;
+      }
+      const server = ws.connectToServer();
+      route.server = server;
+      ws.onMessage((message) => {
+        entry.sent.push(message);
+        if (entry.mode === 'dropStops' && JSON.parse(message).type === 'stop') return;
+        server.send(message);
+      });
+      server.onMessage((message) => {
+        ws.send(message);
+        if (control.duplicate && JSON.parse(message).type === 'event') ws.send(message);
+      });
+    },
+  );
+  return control;
 }
