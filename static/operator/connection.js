@@ -3,8 +3,8 @@
 // doubling to 10 s, +-30 % jitter). Unlike the kiosk's socket.js it gives up for good when the
 // server says the credential is wrong (`unauthorized`): trying again with it could only lock the
 // operator out, so the console asks for it again instead. When this computer is locked out
-// (`too-many-attempts`: too many wrong credentials from its address, perhaps from another
-// browser on it) the credential may well be right: it is kept and tried again once the
+// (`too-many-attempts`: too many wrong or missing credentials from its address, perhaps from
+// another browser on it) the credential may well be right: it is kept and tried again once the
 // server's wait is over ("try again in N s" in the error's message).
 
 const FIRST_DELAY_MS = 500;
@@ -81,7 +81,7 @@ export function connect({ path, token, name, onFrame, onStatus }) {
         return;
       }
       if (refusal) {
-        // The server's seconds are rounded down: one more makes sure the lockout is over.
+        // Whole seconds, however the server rounds them: one more makes sure the wait is over.
         const wait = (lockoutSeconds(refusal.message) + 1) * 1000;
         delay = FIRST_DELAY_MS;
         retryTimer = setTimeout(open, wait);

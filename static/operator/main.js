@@ -356,12 +356,12 @@ function onStatus(status) {
   } else if (status.state === "offline") {
     link.textContent = "offline: reconnecting…";
   } else if (status.state === "locked") {
-    // Too many wrong credentials from this computer (maybe not this console's): the server
-    // refuses every one for a while. The credential is kept and tried again after the wait,
-    // with no sign-in form over the console (Stop stays in reach). Only a credential the server
-    // never accepted and that is refused again right after the wait is given up: the server
-    // then answers a wrong one with `too-many-attempts` as well, and retrying it would keep
-    // this computer locked out for good.
+    // Too many wrong or missing credentials from this computer (maybe not this console's): the
+    // server refuses every one for a while. The credential is kept and tried again after the
+    // wait, with no sign-in form over the console (Stop stays in reach). Only a credential the
+    // server never accepted and that is refused again right after the wait is given up: the
+    // server then answers a wrong one with `too-many-attempts` as well, and retrying it would
+    // keep this computer locked out for good.
     lockouts += 1;
     if (!verified && lockouts >= 2) {
       connection?.close();
@@ -408,7 +408,7 @@ function showLockout(retryAt) {
     banner.dataset.seconds = String(left);
     banner.textContent =
       left > 0
-        ? `Too many wrong credentials from this computer: Docent refuses every sign-in from it for ${left} s more. The console keeps its credential and signs in again by itself then. Stop tries the server all the same.`
+        ? `Too many wrong or missing credentials from this computer: Docent refuses every sign-in from it for ${left} s more. The console keeps its credential and signs in again by itself then. Stop tries the server all the same.`
         : "Signing in again…";
   };
   show();
