@@ -51,6 +51,11 @@ const FILES: &[(&str, &str, &str)] = &[
         include_str!("../../static/operator/main.js"),
     ),
     (
+        "operator/access.js",
+        JS,
+        include_str!("../../static/operator/access.js"),
+    ),
+    (
         "operator/acts.js",
         JS,
         include_str!("../../static/operator/acts.js"),
@@ -59,6 +64,16 @@ const FILES: &[(&str, &str, &str)] = &[
         "operator/actlist.js",
         JS,
         include_str!("../../static/operator/actlist.js"),
+    ),
+    (
+        "operator/api.js",
+        JS,
+        include_str!("../../static/operator/api.js"),
+    ),
+    (
+        "operator/camerapanel.js",
+        JS,
+        include_str!("../../static/operator/camerapanel.js"),
     ),
     (
         "operator/clients.js",
@@ -71,9 +86,19 @@ const FILES: &[(&str, &str, &str)] = &[
         include_str!("../../static/operator/connection.js"),
     ),
     (
+        "operator/context.js",
+        JS,
+        include_str!("../../static/operator/context.js"),
+    ),
+    (
         "operator/dom.js",
         JS,
         include_str!("../../static/operator/dom.js"),
+    ),
+    (
+        "operator/events.js",
+        JS,
+        include_str!("../../static/operator/events.js"),
     ),
     (
         "operator/history.js",
@@ -119,6 +144,11 @@ const FILES: &[(&str, &str, &str)] = &[
         "operator/signin.js",
         JS,
         include_str!("../../static/operator/signin.js"),
+    ),
+    (
+        "operator/stop.js",
+        JS,
+        include_str!("../../static/operator/stop.js"),
     ),
     (
         "operator/store.js",

@@ -1,10 +1,16 @@
 // Driving the operator console (`GET /operator`) as an operator would: sign in through its form,
 // wait until it is connected and shows the acts, and read what it shows; and standing between
-// the console and its websocket to make the network misbehave. Servers started by
-// `startDocent` have the credentials OPERATOR_TOKEN and DM_TOKEN (lib/docent.mjs).
+// the console and its websocket to make the network misbehave. Also what the console's test
+// files (operator-*.test.mjs) share: the museum tour with the console's settings and
+// `withConsoleServer`, a server with an observer and console pages that are closed afterwards.
+// Servers started by `startDocent` have the credentials OPERATOR_TOKEN and DM_TOKEN
+// (lib/docent.mjs).
 
-import { DEADLINE_MS, DM_TOKEN, OPERATOR_TOKEN, withDeadline } from './docent.mjs';
+import { copyBundle, corpusEvents, DEADLINE_MS, DM_TOKEN, OPERATOR_TOKEN, startDocent, withDeadline } from './docent.mjs';
 import { DocentClient } from './ws-client.mjs';
+
+/** Chromium's fake camera, granted without a prompt, on loopback: the kiosk's camera in the screenshot. */
+export const FAKE_MEDIA = ['--use-fake-device-for-media-stream', '--use-fake-ui-for-media-stream', '--allow-loopback-in-peer-connection'];
 
 /** The console's size in the tests and the screenshot: a common desktop screen. */
 export const CONSOLE_VIEWPORT = { width: 1440, height: 900 };
@@ -132,4 +138,47 @@ export async function routeConsoleSocket(page) {
     },
   );
   return control;
+}
+
+/** The museum tour with the console's settings, logged speech and a drive of `speed` m/s. */
+export function museumTour({ speed = 0.5, camera = 'none' } = {}) {
+  return copyBundle('museum-tour', {
+    'docent.yaml': [
+      'home: index.html',
+      'contexts: [TextGroup, TextChild]',
+      'speech: {adapter: log, rate: 160}',
+      'drive:',
+      `  speed: ${speed}`,
+      '  pose_rate: 10',
+      '  bounds: { min_x: 0, min_y: 0, max_x: 20, max_y: 12 }',
+      'operator:',
+      '  map: pages/images/map.png',
+      `  camera: ${camera}`,
+      '  situations: [question, misunderstanding, laughter, interruption, leaving]',
+      '',
+    ].join('\n'),
+  });
+}
+
+/**
+ * Runs `body` with a server on `bundle`, an observing operator client and fresh console
+ * contexts of `browser` (`newPage`); closes everything afterwards and returns the corpus events
+ * of the run.
+ */
+export async function withConsoleServer(browser, bundle, body) {
+  const server = await startDocent(bundle);
+  const cleanup = [() => server.stop()];
+  try {
+    const observer = await connectWithToken(server, 'operator', 'e2e-observer');
+    cleanup.unshift(() => observer.close());
+    const newPage = async (makeContext = newConsoleContext) => {
+      const context = await makeContext(browser);
+      cleanup.unshift(() => context.close());
+      return context.newPage();
+    };
+    await body({ server, observer, newPage, cleanup });
+  } finally {
+    for (const step of cleanup) await step();
+  }
+  return corpusEvents(server.corpusFile);
 }

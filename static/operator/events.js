@@ -1,0 +1,119 @@
+// events.js: the server's frames, routed to the panels. Events are handed to every panel once:
+// after `welcome` the server replays recent history strictly before the live events, all in
+// `seq` order, so an event whose `seq` is not above the highest seen is one already handled. The
+// GET /api/state snapshot fetched after `welcome` fills in only what no event has told since (a
+// fetch for an older connection is dropped). The live events also give this computer's clock
+// offset from the server's, by which proposals show their age.
+
+import { parseWaypoint } from "./map.js";
+
+/**
+ * @param {{panels: {live: object, clients: object, history: object, proposals: object,
+ *          marks: object, map: object}, context: object, camera: object,
+ *          operatorName: HTMLElement, name: () => string|null, stopped: (ref: string) => void,
+ *          notice: (message: string) => void,
+ *          getJson: (path: string, wanted: () => boolean) => Promise<object|null>,
+ *          connected: () => boolean}} options `context`: context.js; `camera`: camerapanel.js;
+ *          `operatorName`: where this console's name and client id are shown; `stopped`: a
+ *          websocket stop was answered; `getJson`: a GET with the credential (api.js)
+ * @returns {{onFrame: (frame: object) => void, now: () => number}} `now`: the server's clock
+ *          in ms, as far as the live events tell
+ */
+export function createEvents({ panels, context, camera, operatorName, name, stopped, notice, getJson, connected }) {
+  const { live, clients, history, proposals, marks, map } = panels;
+  let me = null;
+  let lastSeq = -Infinity; // the highest event seq handled on this connection
+  let welcomes = 0; // connections welcomed so far: a fetch for an older one is dropped
+  let streaming = false; // the live stream began (this console's own client.connected arrived)
+  let clockOffset = null; // this computer's clock minus the server's, from live events
+  const told = { pose: false, waypoint: false, session: false }; // newer than the snapshot
+
+  function handleEvent(e) {
+    if (typeof e?.seq === "number") {
+      if (e.seq <= lastSeq) return;
+      lastSeq = e.seq;
+    }
+    if (e.type === "client.connected" && e.client === me) streaming = true;
+    const at = Date.parse(e.time ?? "");
+    // The smallest (local - server) time of live events: the clocks' offset plus the least delay.
+    if (streaming && Number.isFinite(at)) clockOffset = Math.min(clockOffset ?? Infinity, Date.now() - at);
+    if (e.type === "pose") told.pose = true;
+    else if (e.type === "command.sent" && e.verb === "SET_WAYPOINT") told.waypoint = true;
+    else if (e.type === "session.started" || e.type === "session.ended") told.session = true;
+    live.event(e);
+    clients.event(e);
+    history.event(e);
+    proposals.event(e);
+    marks.event(e);
+    if (e.type === "pose") map.pose(e);
+    else if (e.type === "command.sent" && e.verb === "SET_WAYPOINT") map.waypoint(parseWaypoint(e.arg));
+    else if (e.type === "context.changed") context.changed(e);
+  }
+
+  function welcome(frame) {
+    me = frame.client;
+    welcomes += 1;
+    lastSeq = -Infinity; // a new connection replays its history (a new server run restarts seq)
+    camera.clientsUnknown();
+    streaming = false;
+    told.pose = told.waypoint = told.session = false;
+    history.welcome(me);
+    proposals.welcome();
+    clients.welcome(me);
+    live.reset();
+    live.welcome(frame.state);
+    map.pose(frame.state?.pose);
+    context.set(frame.state?.context);
+    operatorName.textContent = `${name() || "operator"} #${me}`;
+    loadState();
+  }
+
+  async function loadState() {
+    const welcome = welcomes;
+    const state = await getJson("/api/state", () => welcome === welcomes && connected());
+    if (welcome !== welcomes) return;
+    camera.clientsWhole();
+    if (!state) {
+      camera.clients(clients.get()); // as far as the events told
+      return;
+    }
+    live.apiState(state);
+    clients.snapshot(state.clients);
+    proposals.snapshot(state.proposals);
+    // Only what no event told since `welcome`: an event is newer than this answer.
+    if (!told.session) marks.setSession(state.session ?? null);
+    if (!told.pose) map.pose(state.pose);
+    if (!told.waypoint) map.waypoint(state.waypoint);
+    document.body.dataset.snapshots = String(Number(document.body.dataset.snapshots ?? 0) + 1);
+  }
+
+  function onFrame(frame) {
+    switch (frame.type) {
+      case "welcome":
+        welcome(frame);
+        break;
+      case "stopped":
+        stopped(frame.ref);
+        break;
+      case "event":
+        handleEvent(frame.event);
+        break;
+      case "signal":
+        camera.signal(frame);
+        break;
+      case "error":
+        notice(frame.message ?? frame.code);
+        break;
+      case "marked":
+        if (frame.mark === "session_start") {
+          told.session = true;
+          marks.setSession(frame.session);
+        }
+        break;
+      default:
+        break;
+    }
+  }
+
+  return { onFrame, now: () => Date.now() - (clockOffset ?? 0) };
+}
