@@ -127,7 +127,11 @@ fn counts(diagnostics: &[Diagnostic]) -> (usize, usize) {
 
 fn serve(args: &ServeArgs) -> anyhow::Result<ExitCode> {
     let (bundle_dir, listen) = (args.bundle.as_path(), args.listen);
-    let mode = if args.preview { Mode::Preview } else { Mode::Robot };
+    let mode = if args.preview {
+        Mode::Preview
+    } else {
+        Mode::Robot
+    };
     tracing_subscriber::fmt()
         .with_env_filter(
             tracing_subscriber::EnvFilter::try_from_default_env()

@@ -176,7 +176,11 @@ impl Access {
             tracing::warn!(%peer, "too many wrong credentials; this address waits {}s", wait.as_secs());
             return Err(Refusal::TooManyAttempts(wait));
         }
-        Err(if token.is_some() { Refusal::Wrong } else { Refusal::Missing })
+        Err(if token.is_some() {
+            Refusal::Wrong
+        } else {
+            Refusal::Missing
+        })
     }
 }
 
@@ -270,7 +274,10 @@ mod tests {
         let local = Some(IpAddr::V4(Ipv4Addr::LOCALHOST));
         assert_eq!(access.check(local, Needed::Operator, None), Ok(()));
         // A request forwarded from elsewhere (a proxy, a tunnel) gets nothing for free.
-        assert_eq!(access.check(PEER, Needed::Operator, None), Err(Refusal::Missing));
+        assert_eq!(
+            access.check(PEER, Needed::Operator, None),
+            Err(Refusal::Missing)
+        );
     }
 
     #[test]

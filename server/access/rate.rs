@@ -57,7 +57,9 @@ impl TokenBucket {
         if self.tokens >= 1.0 {
             return Ok(());
         }
-        Err(Duration::from_secs_f64((1.0 - self.tokens) / self.per_second))
+        Err(Duration::from_secs_f64(
+            (1.0 - self.tokens) / self.per_second,
+        ))
     }
 
     /// Whether the bucket has refilled completely (nothing left to remember about it).
