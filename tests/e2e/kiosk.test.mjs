@@ -242,3 +242,34 @@ test('the idle return home is known to the server: display state and corpus log'
     removeTemp(bundle);
   }
 });
+
+test('a kiosk may trigger only the acts its pages offer', { timeout: 60_000 }, async () => {
+  const bundle = makeBundle({
+    'acts.yaml': [
+      '- Label: OFFERED',
+      '  Text: Hello.',
+      '- Label: SECRET',
+      '  Text: Only the operator says this.',
+      '',
+    ].join('\n'),
+    'docent.yaml': 'speech: {adapter: log}\n',
+    'pages/index.html': page('Home', '<button data-act="OFFERED">Hello</button>'),
+  });
+  try {
+    await withKiosk(bundle, async ({ server, page: shell, operator }) => {
+      const home = await openShell(shell, server, 'index.html');
+      // A page script asks for an act no page offers, as a tampered page or a stranger would.
+      const refused = await home.evaluate(() => docent.trigger('SECRET'));
+      assert.equal(refused.type, 'error');
+      assert.equal(refused.code, 'not-offered');
+      const logged = await operator.waitForEvent((e) => e.type === 'trigger.refused');
+      assert.deepEqual([logged.label, logged.code, logged.source], ['SECRET', 'not-offered', 'kiosk']);
+      // What the page offers still works.
+      await home.locator('[data-act="OFFERED"]').tap();
+      const act = await operator.waitForEvent((e) => e.type === 'act.triggered');
+      assert.deepEqual([act.label, act.source], ['OFFERED', 'kiosk']);
+    });
+  } finally {
+    removeTemp(bundle);
+  }
+});
