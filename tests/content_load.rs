@@ -1,11 +1,14 @@
 //! Loading bundles into the model: the paper's Fig. 4 sample unchanged, every position kept,
 //! acts files merged in name order, site settings applied, and the shipped dialogs clean.
 
+mod common;
+
 use std::fs;
 use std::path::{Path, PathBuf};
 
+use common::check::loaded;
 use docent::content::config::{AccessSettings, AdapterKind, ArgRule};
-use docent::content::{Bundle, CommandSpec, LoadReport, Pos, Severity, Verb, load_bundle};
+use docent::content::{Bundle, CommandSpec, Pos, Severity, Verb, load_bundle};
 
 fn repo(rel: &str) -> PathBuf {
     Path::new(env!("CARGO_MANIFEST_DIR")).join(rel)
@@ -26,21 +29,6 @@ fn bundle(files: &[(&str, &str)]) -> tempfile::TempDir {
         fs::write(dir.path().join(rel), contents).expect("write file");
     }
     dir
-}
-
-fn loaded(report: LoadReport) -> Bundle {
-    let errors: Vec<String> = report
-        .diagnostics
-        .iter()
-        .filter(|d| d.is_error())
-        .map(|d| d.to_string())
-        .collect();
-    assert!(
-        errors.is_empty(),
-        "unexpected errors:\n{}",
-        errors.join("\n")
-    );
-    report.bundle.expect("a bundle when there are no errors")
 }
 
 fn at(line: u32, column: u32) -> Pos {

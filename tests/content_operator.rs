@@ -7,24 +7,8 @@ use std::collections::BTreeMap;
 use std::fs;
 use std::path::Path;
 
-use common::check::{assert_plain, bundle, check, only, places, yaml};
+use common::check::{assert_plain, bundle, check, loaded, only, places, yaml};
 use docent::content::config::{Camera, Credential};
-use docent::content::{Bundle, LoadReport};
-
-fn loaded(report: LoadReport) -> Bundle {
-    let errors: Vec<String> = report
-        .diagnostics
-        .iter()
-        .filter(|d| d.is_error())
-        .map(|d| d.to_string())
-        .collect();
-    assert!(
-        errors.is_empty(),
-        "unexpected errors:\n{}",
-        errors.join("\n")
-    );
-    report.bundle.expect("a bundle when there are no errors")
-}
 
 fn groups(pairs: &[(&str, &str)]) -> BTreeMap<String, String> {
     pairs

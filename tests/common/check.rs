@@ -5,7 +5,7 @@
 use std::fs;
 use std::path::Path;
 
-use docent::content::{Diagnostic, LoadReport, load_bundle};
+use docent::content::{Bundle, Diagnostic, LoadReport, load_bundle};
 
 /// Lines joined into a file, one element a line: line numbers in assertions are indexes + 1.
 pub fn yaml(lines: &[&str]) -> String {
@@ -67,4 +67,20 @@ pub fn assert_plain(report: &LoadReport) {
             assert!(!d.message.contains(jargon), "{d} uses `{jargon}`");
         }
     }
+}
+
+/// The bundle of a report that must have no errors (the errors are the failure message).
+pub fn loaded(report: LoadReport) -> Bundle {
+    let errors: Vec<String> = report
+        .diagnostics
+        .iter()
+        .filter(|d| d.is_error())
+        .map(|d| d.to_string())
+        .collect();
+    assert!(
+        errors.is_empty(),
+        "unexpected errors:\n{}",
+        errors.join("\n")
+    );
+    report.bundle.expect("a bundle when there are no errors")
 }
