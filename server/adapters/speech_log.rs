@@ -2,23 +2,15 @@
 //! after the time the text would take to speak at the configured rate; any other verb routed
 //! here (a site verb with `adapter: log`) is done at once. Every command is in the corpus.
 
-use std::time::Duration;
-
 use crate::adapters::worker::{Task, Worker};
 use crate::adapters::{Command, Outcome};
-use crate::content::Verb;
+use crate::content::{Verb, speaking_time};
 use crate::lifecycle::Lifecycle;
 
 /// The `log` adapter: speech (and site verbs) without a device, speaking at `rate_wpm` words
 /// per minute.
 pub fn log_adapter(rate_wpm: u32, life: &Lifecycle) -> Worker {
     Worker::start("log", Pacing { rate_wpm }, life)
-}
-
-/// How long `text` takes to say at `rate_wpm`: words over rate, plus a short pause.
-pub fn speaking_time(text: &str, rate_wpm: u32) -> Duration {
-    let words = text.split_whitespace().count().max(1) as f64;
-    Duration::from_secs_f64(words * 60.0 / f64::from(rate_wpm.max(1)) + 0.1)
 }
 
 struct Pacing {
@@ -38,6 +30,7 @@ impl Task for Pacing {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use std::time::Duration;
 
     #[test]
     fn speaking_time_grows_with_words_and_falls_with_rate() {

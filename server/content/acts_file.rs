@@ -9,10 +9,12 @@
 use std::sync::Arc;
 
 use crate::content::commands::WrittenCommand;
+use crate::content::config::SpeechConfig;
 use crate::content::diagnostic::Diagnostic;
 use crate::content::model::{DEFAULT_VARIANT, Located, Pos, Variant};
 use crate::content::suggest::closest;
 
+mod texts;
 mod values;
 pub(in crate::content) mod yaml;
 
@@ -48,9 +50,24 @@ pub(crate) struct ActsFile {
 /// The keys an act may have besides `Text...` variants, for suggestions.
 const KEYS: [&str; 5] = ["Label", DEFAULT_VARIANT, "Cmds", "Group", "Key"];
 
-/// Reads the acts file `file` (named relative to the bundle root) from its bytes.
-pub(crate) fn read_acts_file(file: &Arc<str>, bytes: &[u8]) -> ActsFile {
+/// What reading the texts of one file needs besides its tree.
+pub(crate) struct Reading<'a> {
+    /// The file and its text, to compare what YAML read with what was written.
+    pub source: texts::Source<'a>,
+    /// The speech settings, for the length of spoken texts.
+    pub speech: &'a SpeechConfig,
+}
+
+/// Reads the acts file `file` (named relative to the bundle root) from its bytes; spoken
+/// texts are checked against `speech`.
+pub(crate) fn read_acts_file(file: &Arc<str>, bytes: &[u8], speech: &SpeechConfig) -> ActsFile {
     let parsed = yaml::parse(file, bytes, "yaml-syntax", Recovery::SkipBrokenItems);
+    let reading = Reading {
+        source: texts::Source {
+            text: std::str::from_utf8(bytes).unwrap_or_default(),
+        },
+        speech,
+    };
     let mut out = ActsFile {
         acts: Vec::new(),
         diagnostics: parsed.diagnostics,
@@ -64,7 +81,7 @@ pub(crate) fn read_acts_file(file: &Arc<str>, bytes: &[u8]) -> ActsFile {
     match &root.kind {
         Kind::Seq(items) => {
             for item in items {
-                if let Some(act) = read_act(item, &mut out.diagnostics) {
+                if let Some(act) = read_act(item, &reading, &mut out.diagnostics) {
                     out.acts.push(act);
                 }
             }
@@ -111,7 +128,7 @@ fn file_not_a_list_message(file: &str, root: &Node) -> String {
 }
 
 /// One act; `None` (after reporting) when it is not a mapping or has no usable label.
-fn read_act(node: &Node, out: &mut Vec<Diagnostic>) -> Option<WrittenAct> {
+fn read_act(node: &Node, reading: &Reading<'_>, out: &mut Vec<Diagnostic>) -> Option<WrittenAct> {
     let Kind::Map(entries) = &node.kind else {
         let message = format!(
             "Each act must be a set of keys (`Label:`, `Text:`, `Cmds:`), but this one is {}. \
@@ -166,7 +183,7 @@ fn read_act(node: &Node, out: &mut Vec<Diagnostic>) -> Option<WrittenAct> {
             }
             _ if is_variant_key(name) => {
                 wrote_content = true;
-                let alternatives = read_alternatives(name, value, out);
+                let alternatives = read_alternatives(name, value, reading, out);
                 if !alternatives.is_empty() {
                     act.variants.push(Variant {
                         name: name.to_owned(),
@@ -277,7 +294,8 @@ mod tests {
     use super::*;
 
     fn read(text: &str) -> ActsFile {
-        read_acts_file(&Arc::from("acts.yaml"), text.as_bytes())
+        let speech = crate::content::config::SiteConfig::default().speech;
+        read_acts_file(&Arc::from("acts.yaml"), text.as_bytes(), &speech)
     }
 
     #[test]

@@ -15,6 +15,7 @@ use crate::content::duration::parse_duration;
 use crate::content::highlight::{parse_highlight, words_with_offsets};
 use crate::content::model::{CommandSpec, Located, Pos, Verb};
 use crate::content::paths::{BundleArea, PathError, list_files, resolve_in_bundle};
+use crate::content::speech::{SpokenText, check_spoken};
 use crate::content::suggest::{closest, did_you_mean};
 
 /// A command string as written in an acts file.
@@ -157,6 +158,17 @@ impl<'a> CommandChecker<'a> {
     ) {
         let problem: Option<(&Pos, String)> = match (verb, arg) {
             (Verb::Say, None) => Some((&cmd.pos, SAY_USAGE.to_owned())),
+            (Verb::Say, Some(text)) => {
+                let before = cmd.text.get(..arg_start).map_or(0, |t| t.chars().count());
+                let spoken = SpokenText {
+                    text,
+                    pos: &cmd.pos,
+                    verbatim_at: (cmd.verbatim_at)
+                        .map(|at| at.saturating_add(u32::try_from(before).unwrap_or(0))),
+                };
+                check_spoken(&spoken, &self.config.speech, out);
+                None
+            }
             (Verb::Project, None) => Some((&cmd.pos, PROJECT_USAGE.to_owned())),
             (Verb::DisplayPage, None) => Some((&cmd.pos, DISPLAY_PAGE_USAGE.to_owned())),
             (Verb::Project, Some(file)) => {

@@ -70,6 +70,9 @@ pub struct SpeechConfig {
     pub voice: String,
     /// Words per minute.
     pub rate_wpm: u32,
+    /// The longest a text may take to say (estimated from `rate_wpm`) before `docent check`
+    /// warns; far above it is an error.
+    pub max_seconds: u32,
 }
 
 /// The rectangle of the map the drive may move in, in metres.
@@ -278,6 +281,7 @@ impl Default for SiteConfig {
                 adapter: None,
                 voice: "en".to_owned(),
                 rate_wpm: 160,
+                max_seconds: 30,
             },
             drive: DriveConfig {
                 adapter: AdapterKind::DriveSim,

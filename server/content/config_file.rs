@@ -54,6 +54,9 @@ const HOME_USAGE: &str = "`home` names the page under pages/ the kiosk starts on
 const CONTEXT_USAGE: &str = "A context is the name of a text variant key: `Text` followed by \
                              a name, e.g. `TextGroup` or `TextChild`.";
 const VOICE_USAGE: &str = "`voice` is an espeak-ng voice name such as `en`, `en-us` or `de`.";
+const MAX_SECONDS_USAGE: &str = "`max_seconds` is the longest a single text may take to say, \
+                                 in seconds: a whole number from 1 to 3600, e.g. \
+                                 `max_seconds: 45`.";
 const RATE_USAGE: &str = "`rate` is the speaking speed in words per minute: a whole number \
                           from 40 to 600, e.g. `rate: 160`.";
 const SPEED_USAGE: &str = "`speed` is the simulated driving speed in metres per second: a \
@@ -148,7 +151,8 @@ impl Reader {
 
     fn speech(&mut self, node: &Node, config: &mut SiteConfig) {
         let speech = &mut config.speech;
-        for (key, value) in self.entries(node, &["adapter", "voice", "rate"], "speech") {
+        const KEYS: [&str; 4] = ["adapter", "voice", "rate", "max_seconds"];
+        for (key, value) in self.entries(node, &KEYS, "speech") {
             match key {
                 "adapter" => {
                     let kinds = [
@@ -165,6 +169,12 @@ impl Reader {
                     let parse = |t: &str| is_voice_name(t).then(|| t.to_owned());
                     if let Some(voice) = self.setting(value, VOICE_USAGE, parse) {
                         speech.voice = voice;
+                    }
+                }
+                "max_seconds" => {
+                    let parse = |t: &str| t.parse::<u32>().ok().filter(|s| (1..=3600).contains(s));
+                    if let Some(seconds) = self.setting(value, MAX_SECONDS_USAGE, parse) {
+                        speech.max_seconds = seconds;
                     }
                 }
                 _ => {

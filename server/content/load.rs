@@ -10,7 +10,7 @@ use std::sync::Arc;
 
 use crate::content::acts_file::{ActsFile, WrittenAct, read_acts_file, yaml::MAX_FILE_BYTES};
 use crate::content::commands::{CommandChecker, path_error_code};
-use crate::content::config::SiteConfig;
+use crate::content::config::{SiteConfig, SpeechConfig};
 use crate::content::config_file::{ConfigFile, parse_config};
 use crate::content::diagnostic::Diagnostic;
 use crate::content::model::{Act, Bundle, DEFAULT_VARIANT, Located, Pos, Variant};
@@ -56,8 +56,8 @@ pub fn load_bundle(root: &Path) -> LoadReport {
     };
     let settings = read_settings(&root, &mut diagnostics);
     let names = acts_file_names(&root, &mut diagnostics);
-    let files = read_acts_files(&root, &names, &mut diagnostics);
     let mut config = settings.config;
+    let files = read_acts_files(&root, &names, &config.speech, &mut diagnostics);
     let checker = CommandChecker::new(&root, &config);
     let mut merged = merge_acts(files, &checker, &config, &mut diagnostics);
     check_pages(&root, &mut merged, &mut diagnostics);
@@ -133,7 +133,12 @@ fn acts_file_names(root: &Path, out: &mut Vec<Diagnostic>) -> Vec<String> {
 }
 
 /// Reads and parses the acts files, several at a time; results keep the order of `names`.
-fn read_acts_files(root: &Path, names: &[String], out: &mut Vec<Diagnostic>) -> Vec<ActsFile> {
+fn read_acts_files(
+    root: &Path,
+    names: &[String],
+    speech: &SpeechConfig,
+    out: &mut Vec<Diagnostic>,
+) -> Vec<ActsFile> {
     let read_one = |name: &String| -> Result<ActsFile, Diagnostic> {
         let file: Arc<str> = Arc::from(name.as_str());
         let path = root.join(name);
@@ -147,7 +152,7 @@ fn read_acts_files(root: &Path, names: &[String], out: &mut Vec<Diagnostic>) -> 
                 message,
             ));
         }
-        Ok(read_acts_file(&file, &read_limited(&path, &file)?))
+        Ok(read_acts_file(&file, &read_limited(&path, &file)?, speech))
     };
     if names.is_empty() {
         return Vec::new();

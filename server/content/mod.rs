@@ -15,6 +15,8 @@
 //! - `highlight`: the areas of a `HIGHLIGHT` argument.
 //! - `operator_check`: what the operator console uses (act keys, map, visitor groups),
 //!   checked against the whole bundle.
+//! - `speech`: what the robot will really say: emoji, addresses, markup, placeholders and
+//!   length in spoken texts.
 //! - `suggest`: "did you mean" for labels, keys, verbs and file names.
 //! - `load`: putting it together: `load_bundle`.
 
@@ -31,6 +33,7 @@ mod load;
 mod operator_check;
 mod pages;
 mod paths;
+mod speech;
 mod suggest;
 
 pub use diagnostic::{Diagnostic, Severity};
@@ -38,4 +41,5 @@ pub use duration::parse_duration;
 pub use load::{LoadReport, load_bundle};
 pub use model::{Act, Bundle, CommandSpec, DEFAULT_VARIANT, Located, Pos, Variant, Verb};
 pub use paths::{BundleArea, PathError, resolve_in_bundle};
+pub use speech::speaking_time;
 pub use suggest::closest;

@@ -6,6 +6,10 @@ use crate::content::commands::WrittenCommand;
 use crate::content::diagnostic::Diagnostic;
 use crate::content::model::Located;
 
+use crate::content::speech::{SpokenText, check_spoken};
+
+use super::Reading;
+use super::texts::check_written;
 use super::yaml::{Kind, Node};
 
 /// The label, or `None` after reporting why it is unusable.
@@ -121,6 +125,7 @@ fn modified_key(text: &str) -> Option<char> {
 pub(super) fn read_alternatives(
     key: &str,
     value: &Node,
+    reading: &Reading<'_>,
     out: &mut Vec<Diagnostic>,
 ) -> Vec<Located<String>> {
     match &value.kind {
@@ -134,7 +139,7 @@ pub(super) fn read_alternatives(
         }
         Kind::Seq(items) => items
             .iter()
-            .filter_map(|item| read_alternative(item, out))
+            .filter_map(|item| read_alternative(item, reading, out))
             .collect(),
         Kind::Null => {
             let message = format!(
@@ -153,16 +158,22 @@ pub(super) fn read_alternatives(
             out.push(Diagnostic::error("bad-value", &value.pos, message));
             Vec::new()
         }
-        _ => read_alternative(value, out).into_iter().collect(),
+        _ => read_alternative(value, reading, out).into_iter().collect(),
     }
 }
 
-fn read_alternative(item: &Node, out: &mut Vec<Diagnostic>) -> Option<Located<String>> {
-    let text = match &item.kind {
-        Kind::Str { value, .. } if !value.trim().is_empty() => value.clone(),
+fn read_alternative(
+    item: &Node,
+    reading: &Reading<'_>,
+    out: &mut Vec<Diagnostic>,
+) -> Option<Located<String>> {
+    let (text, verbatim_at) = match &item.kind {
+        Kind::Str { value, verbatim_at } if !value.trim().is_empty() => {
+            (value.clone(), *verbatim_at)
+        }
         Kind::Guessed(text) => {
             out.push(unquoted_warning(item, text));
-            text.clone()
+            (text.clone(), Some(0))
         }
         Kind::Str { .. } | Kind::Null => {
             out.push(Diagnostic::error(
@@ -187,6 +198,13 @@ fn read_alternative(item: &Node, out: &mut Vec<Diagnostic>) -> Option<Located<St
             return None;
         }
     };
+    check_written(&reading.source, item, &text, out);
+    let spoken = SpokenText {
+        text: &text,
+        pos: &item.pos,
+        verbatim_at,
+    };
+    check_spoken(&spoken, reading.speech, out);
     Some(Located {
         value: text,
         pos: item.pos.clone(),

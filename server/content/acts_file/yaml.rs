@@ -9,6 +9,7 @@
 //! A syntax error stops the parser; for acts files we then parse each top-level list item on
 //! its own, so one broken act costs only itself and every error in the file is reported.
 
+use std::ops::Range;
 use std::sync::Arc;
 
 use serde_saphyr::{DuplicateKeyPolicy, NonFiniteFloatPolicy, Options, Spanned};
@@ -20,7 +21,10 @@ mod layout;
 mod raw;
 mod wording;
 
-use layout::{Item, position_of_byte, tab_diagnostics, tab_positions, top_level_items};
+use layout::{
+    Item, odd_space_diagnostics, odd_space_positions, position_of_byte, tab_diagnostics,
+    tab_positions, top_level_items,
+};
 
 /// The largest YAML file read, in bytes. A real acts file of 100,000 acts is about 25 MB.
 pub(crate) const MAX_FILE_BYTES: usize = 32 * 1024 * 1024;
@@ -30,6 +34,8 @@ pub(crate) const MAX_FILE_BYTES: usize = 32 * 1024 * 1024;
 pub(crate) struct Node {
     /// Where the node starts (for an alias: where the alias is used).
     pub pos: Pos,
+    /// The bytes of the file the node was read from, when the parser reported them (scalars).
+    pub span: Option<Range<usize>>,
     /// What it is.
     pub kind: Kind,
 }
@@ -127,10 +133,13 @@ pub(crate) fn parse(
             return out;
         }
     };
+    // Parse errors on these lines are explained better by the layout problem found there.
+    let odd_spaces = odd_space_positions(source);
     let tabs = tab_positions(source);
+    let explained: Vec<(u32, u32)> = tabs.iter().chain(&odd_spaces).copied().collect();
     let mut failed = false;
     match serde_saphyr::from_str_with_options::<Spanned<raw::Raw>>(source, options()) {
-        Ok(tree) => out.root = Some(raw::into_node(tree, file, source, 0)),
+        Ok(tree) => out.root = Some(raw::into_node(tree, file, source, raw::Origin::START)),
         Err(err) => {
             failed = true;
             let items = match recovery {
@@ -138,15 +147,17 @@ pub(crate) fn parse(
                 _ => None,
             };
             if let Some(items) = items {
-                parse_items(file, source, &items, syntax_code, &tabs, &mut out);
+                parse_items(file, source, &items, syntax_code, &explained, &mut out);
             }
             // Not split into items, or the problem lies between them: report it as found.
             if out.skipped_lines.is_empty() {
-                report_error(file, &err, 0, syntax_code, &tabs, &mut out.diagnostics);
+                report_error(file, &err, 0, syntax_code, &explained, &mut out.diagnostics);
             }
         }
     }
     out.diagnostics.extend(tab_diagnostics(file, &tabs, failed));
+    out.diagnostics
+        .extend(odd_space_diagnostics(file, &odd_spaces));
     out
 }
 
@@ -157,15 +168,19 @@ fn parse_items(
     source: &str,
     items: &[Item],
     syntax_code: &'static str,
-    tabs: &[(u32, u32)],
+    explained: &[(u32, u32)],
     out: &mut YamlFile,
 ) {
     let mut nodes = Vec::with_capacity(items.len());
     for item in items {
         let text = &source[item.bytes.clone()];
         let line_offset = item.lines.0 - 1;
+        let origin = raw::Origin {
+            line: line_offset,
+            byte: item.bytes.start,
+        };
         match serde_saphyr::from_str_with_options::<Spanned<raw::Raw>>(text, options()) {
-            Ok(tree) => match raw::into_node(tree, file, text, line_offset) {
+            Ok(tree) => match raw::into_node(tree, file, text, origin) {
                 Node {
                     kind: Kind::Seq(parsed),
                     ..
@@ -178,7 +193,7 @@ fn parse_items(
                     &err,
                     line_offset,
                     syntax_code,
-                    tabs,
+                    explained,
                     &mut out.diagnostics,
                 );
                 out.skipped_lines.push(item.lines);
@@ -188,18 +203,19 @@ fn parse_items(
     let pos = Pos::new(file.clone(), items.first().map_or(1, |i| i.lines.0), 1);
     out.root = Some(Node {
         pos,
+        span: None,
         kind: Kind::Seq(nodes),
     });
 }
 
-/// Adds the diagnostic for a parse error, unless a tab on that line (or the next, where the
-/// parser tends to notice it) already explains it.
+/// Adds the diagnostic for a parse error, unless a layout problem (a tab, a no-break space) on
+/// that line (or the next, where the parser tends to notice it) already explains it.
 fn report_error(
     file: &Arc<str>,
     err: &serde_saphyr::Error,
     line_offset: u32,
     syntax_code: &'static str,
-    tabs: &[(u32, u32)],
+    explained: &[(u32, u32)],
     out: &mut Vec<Diagnostic>,
 ) {
     let pos = match err.location() {
@@ -210,7 +226,7 @@ fn report_error(
         }
         None => Pos::new(file.clone(), 0, 0),
     };
-    let explained_by_tab = tabs
+    let explained_by_tab = explained
         .iter()
         .any(|&(line, _)| line == pos.line || line == pos.line + 1);
     if !explained_by_tab {

@@ -85,6 +85,70 @@ pub(super) fn tab_positions(source: &str) -> Vec<(u32, u32)> {
         .collect()
 }
 
+/// Spaces that are not YAML's space: the no-break space a word processor or web page puts
+/// in, and other typographic spaces.
+fn is_odd_space(c: char) -> bool {
+    matches!(
+        c,
+        '\u{a0}' | '\u{2000}'..='\u{200b}' | '\u{202f}' | '\u{205f}' | '\u{3000}'
+    )
+}
+
+/// (line, column) of each typographic space where YAML needs a plain one: in a line's
+/// indentation, after the `-` of a list item, or after the `:` of a key. Elsewhere, inside a
+/// text, such a space is harmless.
+pub(super) fn odd_space_positions(source: &str) -> Vec<(u32, u32)> {
+    let mut found = Vec::new();
+    for (i, line) in source.lines().enumerate() {
+        if !line.contains(is_odd_space) {
+            continue;
+        }
+        // Indentation and `- ` markers, then perhaps a key word and its `:`; then text.
+        let mut in_indent = true;
+        let mut in_key = false;
+        let mut after_marker = false;
+        for (column, c) in line.chars().enumerate() {
+            if is_odd_space(c) && (in_indent || after_marker) {
+                found.push((to_u32(i + 1), to_u32(column + 1)));
+                break;
+            }
+            after_marker = false;
+            match c {
+                ' ' | '\t' if in_indent => {}
+                '-' if in_indent => after_marker = true,
+                ':' if in_key => {
+                    after_marker = true;
+                    in_key = false;
+                }
+                c if (in_indent || in_key) && (c.is_alphanumeric() || c == '_') => {
+                    in_indent = false;
+                    in_key = true;
+                }
+                _ => {
+                    in_indent = false;
+                    in_key = false;
+                }
+            }
+        }
+    }
+    found
+}
+
+/// The error for each typographic space at a place where YAML needs a plain space.
+pub(super) fn odd_space_diagnostics(file: &Arc<str>, places: &[(u32, u32)]) -> Vec<Diagnostic> {
+    let message = "There is a no-break space here (typed by a word processor, or copied from a \
+                   web page or e-mail). It looks like a space, but YAML needs a plain space at \
+                   this place, so the line is not read as you see it. Delete it and type a \
+                   normal space.";
+    places
+        .iter()
+        .map(|&(line, column)| {
+            let pos = Pos::new(file.clone(), line, column);
+            Diagnostic::error("non-breaking-space", &pos, message)
+        })
+        .collect()
+}
+
 /// Tabs are an error when the file did not parse (they are the likely cause); when YAML
 /// still read the file they sit inside text or were ignored, so a warning suffices.
 pub(super) fn tab_diagnostics(
@@ -126,6 +190,13 @@ mod tests {
             tab_positions("a:\n\tb: 1\n  \t- c\nd: \te\n"),
             [(2, 1), (3, 3)]
         );
+    }
+
+    #[test]
+    fn finds_typographic_spaces_only_where_yaml_needs_a_plain_one() {
+        let source = "- Label: A\n  Text:\u{a0}hi\n  Text:\n    -\u{a0}Hello\n\u{a0} - x\n  \
+                      - ten\u{a0}am is fine\n";
+        assert_eq!(odd_space_positions(source), [(2, 8), (4, 6), (5, 1)]);
     }
 
     #[test]

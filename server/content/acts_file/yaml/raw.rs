@@ -107,15 +107,32 @@ pub(super) fn pos(file: &Arc<str>, location: &Location) -> Pos {
     )
 }
 
-/// Converts the serde tree into ours. `source` is the text that was parsed, which starts
-/// `line_offset` lines into the file. Recursion depth is bounded by the parser budget.
+/// Where a parsed text starts in its file: a top-level item parsed on its own starts some
+/// lines and bytes in.
+#[derive(Clone, Copy)]
+pub(super) struct Origin {
+    /// Lines before the text.
+    pub line: u32,
+    /// Bytes before the text.
+    pub byte: usize,
+}
+
+impl Origin {
+    /// The whole file.
+    pub const START: Origin = Origin { line: 0, byte: 0 };
+}
+
+/// Converts the serde tree into ours. `source` is the text that was parsed, which starts at
+/// `origin` in the file. Recursion depth is bounded by the parser budget.
 pub(super) fn into_node(
     spanned: Spanned<Raw>,
     file: &Arc<str>,
     source: &str,
-    line_offset: u32,
+    origin: Origin,
 ) -> Node {
-    let written = || source_text(source, &spanned.defined);
+    let range = byte_range(&spanned.defined);
+    let written = || range.clone().and_then(|r| source.get(r));
+    let is_scalar = matches!(spanned.value, Raw::Str(_) | Raw::Guessed(_));
     let kind = match spanned.value {
         Raw::Str(value) => {
             let verbatim_at = written().and_then(|w| verbatim_offset(w, &value));
@@ -126,7 +143,7 @@ pub(super) fn into_node(
         Raw::Seq(items) => Kind::Seq(
             items
                 .into_iter()
-                .map(|i| into_node(i, file, source, line_offset))
+                .map(|i| into_node(i, file, source, origin))
                 .collect(),
         ),
         Raw::Map(entries) => Kind::Map(
@@ -134,24 +151,27 @@ pub(super) fn into_node(
                 .into_iter()
                 .map(|(k, v)| {
                     (
-                        into_node(k, file, source, line_offset),
-                        into_node(v, file, source, line_offset),
+                        into_node(k, file, source, origin),
+                        into_node(v, file, source, origin),
                     )
                 })
                 .collect(),
         ),
     };
     let mut pos = pos(file, &spanned.referenced);
-    pos.line = pos.line.saturating_add(line_offset);
-    Node { pos, kind }
+    pos.line = pos.line.saturating_add(origin.line);
+    let span = range
+        .filter(|_| is_scalar)
+        .map(|r| r.start + origin.byte..r.end + origin.byte);
+    Node { pos, span, kind }
 }
 
-/// The source bytes a node was read from, when the parser reported them.
-fn source_text<'s>(source: &'s str, location: &Location) -> Option<&'s str> {
+/// The bytes of the parsed text a node was read from, when the parser reported them.
+fn byte_range(location: &Location) -> Option<std::ops::Range<usize>> {
     let span = location.span();
     let start = usize::try_from(span.byte_offset()?).ok()?;
     let len = usize::try_from(span.byte_len()?).ok()?;
-    source.get(start..start.checked_add(len)?)
+    Some(start..start.checked_add(len)?)
 }
 
 /// Where `value` starts inside `written` when it appears there unchanged on one line:

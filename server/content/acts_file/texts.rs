@@ -1,0 +1,206 @@
+//! Texts that YAML changed behind the author's back. A text can read fine in the editor and
+//! still reach the robot changed: ` #` starts a comment and cuts the sentence, a line indented
+//! one space too far is joined to the text above, a word processor's `–` bullet or “curly”
+//! quotes are not YAML's `-` and `"`. These checks compare what was written (the source bytes
+//! of the text) with what YAML made of it, and quote what the robot will really say.
+
+use crate::content::diagnostic::Diagnostic;
+use crate::content::model::Pos;
+
+use super::yaml::Node;
+
+/// Word-processor bullets and dashes that look like YAML's `-` but are text to YAML.
+const FAKE_BULLETS: [char; 5] = ['–', '—', '−', '•', '‒'];
+/// Opening and closing typographic quotes.
+const CURLY_OPEN: [char; 6] = ['“', '„', '‘', '‚', '«', '»'];
+const CURLY_CLOSE: [char; 5] = ['”', '“', '’', '‘', '»'];
+/// Texts longer than this are quoted by their start and end.
+const QUOTE_CHARS: usize = 160;
+
+/// The file being read.
+pub(crate) struct Source<'a> {
+    /// The whole text of the file.
+    pub text: &'a str,
+}
+
+/// How a text was written.
+#[derive(Clone, Copy, PartialEq, Eq)]
+enum Style {
+    /// Without quotes: YAML's comment and folding rules apply.
+    Plain,
+    /// In `"` or `'` quotes.
+    Quoted,
+    /// A `|` or `>` block.
+    Block,
+}
+
+/// Checks one text (an alternative) against how it was written.
+pub(crate) fn check_written(
+    source: &Source<'_>,
+    node: &Node,
+    value: &str,
+    out: &mut Vec<Diagnostic>,
+) {
+    if let Some(span) = &node.span
+        && let Some(written) = source.text.get(span.clone())
+    {
+        let style = match written.chars().next() {
+            Some('"' | '\'') => Style::Quoted,
+            Some('|' | '>') => Style::Block,
+            _ => Style::Plain,
+        };
+        if style == Style::Plain {
+            cut_by_comment(source, node, span.end, value, out);
+            joined_lines(source, node, written, value, out);
+        }
+    }
+    fake_bullet(node, value, out);
+    curly_quotes(node, value, out);
+}
+
+/// ` #` after a plain text starts a comment: the text ends before it.
+fn cut_by_comment(
+    source: &Source<'_>,
+    node: &Node,
+    end: usize,
+    value: &str,
+    out: &mut Vec<Diagnostic>,
+) {
+    let rest = source.text[end..].split('\n').next().unwrap_or_default();
+    let Some(hash) = rest.find('#') else { return };
+    if !rest[..hash].chars().all(char::is_whitespace) || hash == 0 {
+        return;
+    }
+    let comment = rest[hash + 1..].trim_end_matches('\r');
+    let pos = pos_at(source, node, end + hash);
+    let quoted = quote(value);
+    // `Room #4`: a number or word right after `#` is text, not a comment.
+    let glued = comment.starts_with(|c: char| c.is_alphanumeric());
+    let ends_sentence = value
+        .trim_end()
+        .ends_with(['.', '!', '?', '…', ')', '"', '”']);
+    let message = format!(
+        "YAML reads ` #` as the start of a comment, so the text ends before it and the robot \
+         says only: {quoted}. If `#{comment}` belongs to the text, put the whole text in quotes: \
+         `- \"{value} #{comment}\"`. If it is a note for people, put it on a line of its own."
+    );
+    out.push(if glued || !ends_sentence {
+        Diagnostic::error("text-cut-by-comment", &pos, message)
+    } else {
+        Diagnostic::warning("text-cut-by-comment", &pos, message)
+    });
+}
+
+/// A plain text over several lines is joined into one: a list item indented too far, a
+/// missing dash, or a line that simply goes on.
+fn joined_lines(
+    source: &Source<'_>,
+    node: &Node,
+    written: &str,
+    value: &str,
+    out: &mut Vec<Diagnostic>,
+) {
+    let Some(first_break) = written.find('\n') else {
+        return;
+    };
+    let start = node.span.as_ref().map_or(0, |s| s.start);
+    let mut offset = first_break + 1;
+    for line in written[first_break + 1..].split('\n') {
+        let content = line.trim_start_matches([' ', '\t']);
+        let at = start + offset + (line.len() - content.len());
+        offset += line.len() + 1;
+        let bullet = content
+            .chars()
+            .next()
+            .filter(|&c| c == '-' || FAKE_BULLETS.contains(&c));
+        if let Some(bullet) = bullet
+            && content[bullet.len_utf8()..].starts_with([' ', '\u{a0}'])
+        {
+            let message = format!(
+                "This line starts with `{bullet} ` but is indented differently from the `- ` \
+                 lines above, so YAML joins it to the text before it and the robot says: {}. \
+                 Start it in exactly the same column as the other `- ` lines (spaces only).",
+                quote(value)
+            );
+            out.push(Diagnostic::error(
+                "joined-lines",
+                &pos_at(source, node, at),
+                message,
+            ));
+            return;
+        }
+    }
+    let second_line = pos_at(source, node, start + first_break + 1).line;
+    let message = format!(
+        "This text goes on at line {second_line}, and YAML joins the lines into one text: {}. \
+         If these are separate alternatives, start each one with `- ` in the same column. If it \
+         is one text, write it on one line, or put it in quotes.",
+        quote(value)
+    );
+    out.push(Diagnostic::warning("joined-lines", &node.pos, message));
+}
+
+/// `– Hello`: Word's en dash bullet is text to YAML.
+fn fake_bullet(node: &Node, value: &str, out: &mut Vec<Diagnostic>) {
+    let Some(bullet) = value.chars().next().filter(|c| FAKE_BULLETS.contains(c)) else {
+        return;
+    };
+    if !value[bullet.len_utf8()..].starts_with(char::is_whitespace) {
+        return;
+    }
+    let message = format!(
+        "This text starts with `{bullet}`, a dash or bullet from a word processor. YAML lists \
+         need the plain minus sign `-` (the key next to 0), so this is read as text and the \
+         robot says: {}. Replace `{bullet}` with `-` on each line, in the same column as the \
+         other `- ` lines.",
+        quote(value)
+    );
+    out.push(Diagnostic::error("word-processor-dash", &node.pos, message));
+}
+
+/// “Hello”: typographic quotes are not YAML quotes; they stay in the text.
+fn curly_quotes(node: &Node, value: &str, out: &mut Vec<Diagnostic>) {
+    let trimmed = value.trim();
+    let opens = trimmed.starts_with(CURLY_OPEN);
+    let closes = trimmed.ends_with(CURLY_CLOSE);
+    if !(opens && closes) || trimmed.chars().count() < 2 {
+        return;
+    }
+    let message = format!(
+        "This text is in curly quotes, typed by a word processor. YAML takes only straight \
+         quotes (\" or ') as quotes, so the curly ones become part of what the robot says: {}. \
+         Replace them with straight quotes, or remove them.",
+        quote(value)
+    );
+    out.push(Diagnostic::warning("curly-quotes", &node.pos, message));
+}
+
+/// The position of byte `at` of the file, counted from the node's own start.
+fn pos_at(source: &Source<'_>, node: &Node, at: usize) -> Pos {
+    let start = node.span.as_ref().map_or(0, |s| s.start).min(at);
+    let Some(between) = source.text.get(start..at) else {
+        return node.pos.clone();
+    };
+    let lines = between.matches('\n').count();
+    let mut pos = node.pos.clone();
+    let after_break = between.rsplit('\n').next().unwrap_or_default();
+    let chars = u32::try_from(after_break.chars().count()).unwrap_or(0);
+    if lines == 0 {
+        pos.column = pos.column.saturating_add(chars);
+    } else {
+        pos.line = pos.line.saturating_add(u32::try_from(lines).unwrap_or(0));
+        pos.column = chars + 1;
+    }
+    pos
+}
+
+/// The text as the robot would say it, in quotes; long texts by their start and end.
+pub(crate) fn quote(value: &str) -> String {
+    let chars: Vec<char> = value.chars().collect();
+    if chars.len() <= QUOTE_CHARS {
+        return format!("\"{value}\"");
+    }
+    let head: String = chars[..90].iter().collect();
+    let tail: String = chars[chars.len() - 50..].iter().collect();
+    format!("\"{head} … {tail}\"")
+}

@@ -1,0 +1,356 @@
+//! What the robot will really say: checks on every spoken text (each `Text...` alternative and
+//! every `SAY` argument) for things a speech synthesiser reads out differently from what the
+//! author sees: emoji (read as their names), web and e-mail addresses (spelt out), markup and
+//! unfilled placeholders (read out as symbols), and texts too long for a visitor's tap.
+//!
+//! The rule for severity: an error when the robot would certainly say something the author did
+//! not mean (an emoji's name, `{name}`, a tag), a warning when it may be intended (an address,
+//! a long text). Texts far above the length limit are errors too.
+
+use std::time::Duration;
+
+use crate::content::config::SpeechConfig;
+use crate::content::diagnostic::Diagnostic;
+use crate::content::model::Pos;
+
+/// Texts over this many times `speech.max_seconds` are errors, not warnings.
+const FAR_ABOVE: u32 = 4;
+
+/// How long `text` takes to say at `rate_wpm`: words over rate, plus a short pause. The `log`
+/// speech adapter paces itself by this, and the length check estimates with it.
+pub fn speaking_time(text: &str, rate_wpm: u32) -> Duration {
+    let words = text.split_whitespace().count().max(1) as f64;
+    Duration::from_secs_f64(words * 60.0 / f64::from(rate_wpm.max(1)) + 0.1)
+}
+
+/// A spoken text and where it was written.
+pub(crate) struct SpokenText<'a> {
+    /// The text exactly as Docent will hand it to the speech device.
+    pub text: &'a str,
+    /// Where the text (or its opening quote) starts.
+    pub pos: &'a Pos,
+    /// Character offset from `pos` where `text` appears unchanged, if it does; lets a problem
+    /// point at the very character.
+    pub verbatim_at: Option<u32>,
+}
+
+impl SpokenText<'_> {
+    /// The position of the character at byte `at` of the text, or of the text's start.
+    fn pos_of(&self, at: usize) -> Pos {
+        let (Some(offset), Some(before)) = (self.verbatim_at, self.text.get(..at)) else {
+            return self.pos.clone();
+        };
+        let chars = u32::try_from(before.chars().count()).unwrap_or(0);
+        let mut pos = self.pos.clone();
+        pos.column = pos.column.saturating_add(offset).saturating_add(chars);
+        pos
+    }
+}
+
+/// Checks one spoken text; problems are appended to `out`.
+pub(crate) fn check_spoken(
+    spoken: &SpokenText<'_>,
+    speech: &SpeechConfig,
+    out: &mut Vec<Diagnostic>,
+) {
+    let text = spoken.text;
+    if let Some((at, emoji)) = text.char_indices().find(|&(_, c)| is_emoji(c)) {
+        let message = format!(
+            "This text contains the emoji {emoji}. The robot reads an emoji out by its name \
+             (for example \"smiling face with smiling eyes\"). Remove it, or write in words \
+             what the robot should say."
+        );
+        out.push(Diagnostic::error(
+            "speech-emoji",
+            &spoken.pos_of(at),
+            message,
+        ));
+    }
+    if let Some((at, address)) = find_address(text) {
+        let message = format!(
+            "The robot spells out `{address}` sign by sign (\"h t t p s colon slash slash…\"). \
+             Write it the way it should sound, for example \"our website, museum dot org\", \
+             and show the address on a page instead."
+        );
+        out.push(Diagnostic::warning(
+            "speech-address",
+            &spoken.pos_of(at),
+            message,
+        ));
+    }
+    if let Some((at, markup)) = find_markup(text) {
+        let message = format!(
+            "`{markup}` is formatting (HTML or Markdown), not words: the robot reads its signs \
+             out or stumbles over them. Remove it; speech has no bold or links."
+        );
+        out.push(Diagnostic::error(
+            "speech-markup",
+            &spoken.pos_of(at),
+            message,
+        ));
+    }
+    if let Some((at, placeholder)) = find_placeholder(text) {
+        let message = format!(
+            "`{placeholder}` looks like a placeholder that was never filled in. Docent does not \
+             replace anything in a text: the robot would say it as written. Write the real words."
+        );
+        out.push(Diagnostic::error(
+            "speech-placeholder",
+            &spoken.pos_of(at),
+            message,
+        ));
+    }
+    check_length(spoken, speech, out);
+}
+
+fn check_length(spoken: &SpokenText<'_>, speech: &SpeechConfig, out: &mut Vec<Diagnostic>) {
+    let limit = speech.max_seconds;
+    let seconds = speaking_time(spoken.text, speech.rate_wpm).as_secs_f64();
+    if seconds <= f64::from(limit) {
+        return;
+    }
+    let words = spoken.text.split_whitespace().count();
+    let said = format!(
+        "Saying this text takes about {} ({words} words at {} words per minute)",
+        spoken_duration(seconds),
+        speech.rate_wpm
+    );
+    let far = limit.saturating_mul(FAR_ABOVE);
+    if seconds > f64::from(far) {
+        let message = format!(
+            "{said}, far more than the {limit} s a text may take (`speech.max_seconds` in \
+             docent.yaml); texts over {far} s are refused, since a visitor's tap would start \
+             all of it and nobody could stop it but the operator. Was a whole document pasted \
+             here? Split it into short acts, one for each thing the visitor can ask."
+        );
+        out.push(Diagnostic::error("speech-too-long", spoken.pos, message));
+    } else {
+        let message = format!(
+            "{said}, more than the {limit} s a text may take (`speech.max_seconds` in \
+             docent.yaml). Visitors rarely listen that long: split it into shorter acts, or \
+             raise `speech.max_seconds` if this length is wanted."
+        );
+        out.push(Diagnostic::warning("speech-too-long", spoken.pos, message));
+    }
+}
+
+/// `45 s`, `2 min 10 s`.
+fn spoken_duration(seconds: f64) -> String {
+    let whole = seconds.round() as u64;
+    match (whole / 60, whole % 60) {
+        (0, s) => format!("{s} s"),
+        (m, 0) => format!("{m} min"),
+        (m, s) => format!("{m} min {s} s"),
+    }
+}
+
+/// Emoji and pictographs a synthesiser reads by name. Letters, digits, punctuation, currency
+/// and ordinary symbols (©, °, €) are not among them.
+fn is_emoji(c: char) -> bool {
+    matches!(u32::from(c),
+        0x1F000..=0x1FAFF     // mahjong to symbols and pictographs extended-A
+        | 0x2600..=0x27BF     // miscellaneous symbols, dingbats (☀ ✂ ❤)
+        | 0x2B00..=0x2BFF     // arrows and stars such as ⭐
+        | 0x1FC00..=0x1FFFD
+        | 0xFE0F              // emoji presentation selector
+        | 0x200D              // zero-width joiner inside emoji sequences
+        | 0x2300..=0x23FF     // ⌚ ⏰ and friends
+    )
+}
+
+/// The first web or e-mail address: `http://`, `https://`, `www.`, or `name@host.tld`.
+fn find_address(text: &str) -> Option<(usize, &str)> {
+    let word_at = |start: usize| {
+        let end = text[start..]
+            .find(char::is_whitespace)
+            .map_or(text.len(), |e| start + e);
+        let word = text[start..end].trim_end_matches(['.', ',', ';', ':', '!', '?', ')']);
+        (start, word)
+    };
+    let lower = text.to_ascii_lowercase();
+    for prefix in ["https://", "http://", "www."] {
+        if let Some(at) = lower.find(prefix)
+            && (at == 0 || !lower.as_bytes()[at - 1].is_ascii_alphanumeric())
+        {
+            return Some(word_at(at));
+        }
+    }
+    let at_sign = text.find('@')?;
+    let start = text[..at_sign]
+        .rfind(|c: char| c.is_whitespace() || c == '(' || c == '<')
+        .map_or(0, |s| s + 1);
+    let (start, word) = word_at(start);
+    let (user, host) = word.split_once('@')?;
+    let tld = host.rsplit_once('.').map(|(_, t)| t)?;
+    (!user.is_empty() && tld.len() >= 2 && tld.chars().all(|c| c.is_ascii_alphabetic()))
+        .then_some((start, word))
+}
+
+/// The first HTML tag (`<b>`, `</a>`, `<br/>`), HTML entity (`&amp;`) or Markdown emphasis or
+/// link (`**bold**`, `__bold__`, `[text](url)`).
+fn find_markup(text: &str) -> Option<(usize, &str)> {
+    let bytes = text.as_bytes();
+    for (at, c) in text.char_indices() {
+        let rest = &text[at..];
+        match c {
+            '<' => {
+                let inner = rest[1..].strip_prefix('/').unwrap_or(&rest[1..]);
+                let end = rest.find('>').filter(|&e| e < 200);
+                if inner.starts_with(|c: char| c.is_ascii_alphabetic())
+                    && let Some(end) = end
+                    && !rest[1..end].contains('<')
+                {
+                    return Some((at, &rest[..=end]));
+                }
+            }
+            '&' => {
+                let end = rest.find(';').filter(|&e| (2..=8).contains(&e))?;
+                let name = &rest[1..end];
+                if name.chars().all(|c| c.is_ascii_alphanumeric() || c == '#') {
+                    return Some((at, &rest[..=end]));
+                }
+            }
+            '*' | '_' if rest.len() > 2 && bytes[at + 1] == bytes[at] => {
+                let marker = &rest[..2];
+                if let Some(end) = rest[2..].find(marker)
+                    && end > 0
+                {
+                    return Some((at, &rest[..end + 4]));
+                }
+            }
+            '[' => {
+                if let Some(close) = rest.find("](") {
+                    let end = rest[close..].find(')').map(|e| close + e)?;
+                    return Some((at, &rest[..=end]));
+                }
+            }
+            _ => {}
+        }
+    }
+    None
+}
+
+/// The first unfilled placeholder: `{name}`, `{{name}}`, `${name}`, `%s`/`%d`/`%1`, a
+/// `[NAME]` in capitals, or `XXX`, `TODO`, `TBD`, `FIXME`, `Lorem ipsum`.
+fn find_placeholder(text: &str) -> Option<(usize, &str)> {
+    for (at, c) in text.char_indices() {
+        let rest = &text[at..];
+        let found = match c {
+            '{' => rest.find('}').map(|end| {
+                let doubled = rest[end + 1..].starts_with('}');
+                &rest[..=end + usize::from(doubled)]
+            }),
+            '$' if rest[1..].starts_with('{') => rest.find('}').map(|end| &rest[..=end]),
+            '%' => {
+                let spec = rest[1..].chars().next();
+                let after = rest.get(2..).and_then(|r| r.chars().next());
+                (matches!(spec, Some('s' | 'd')) && after.is_none_or(|c| !c.is_alphanumeric()))
+                    .then(|| &rest[..2])
+            }
+            '[' => rest.find(']').map(|end| &rest[..=end]).filter(|inner| {
+                let name = &inner[1..inner.len() - 1];
+                !name.is_empty()
+                    && name.chars().any(|c| c.is_ascii_uppercase())
+                    && name
+                        .chars()
+                        .all(|c| c.is_ascii_uppercase() || c == '_' || c == ' ')
+            }),
+            _ => None,
+        };
+        if let Some(found) = found {
+            return Some((at, found));
+        }
+    }
+    const WORDS: [&str; 5] = ["XXX", "TODO", "TBD", "FIXME", "Lorem ipsum"];
+    WORDS.iter().find_map(|w| {
+        let at = text.find(w)?;
+        let before_ok = text[..at]
+            .chars()
+            .next_back()
+            .is_none_or(|c| !c.is_alphanumeric());
+        let after_ok = text[at + w.len()..]
+            .chars()
+            .next()
+            .is_none_or(|c| !c.is_alphanumeric());
+        (before_ok && after_ok).then(|| (at, &text[at..at + w.len()]))
+    })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn codes(text: &str) -> Vec<(&'static str, u32)> {
+        let pos = Pos::new("acts.yaml", 4, 7);
+        let spoken = SpokenText {
+            text,
+            pos: &pos,
+            verbatim_at: Some(2),
+        };
+        let mut out = Vec::new();
+        check_spoken(
+            &spoken,
+            &crate::content::config::SiteConfig::default().speech,
+            &mut out,
+        );
+        out.iter().map(|d| (d.code, d.column)).collect()
+    }
+
+    #[test]
+    fn ordinary_texts_pass() {
+        for text in [
+            "Welcome to the museum! It is 20 °C in here, entry costs 5 € (10 % off today).",
+            "Room 4, 2nd floor; ask at the desk & enjoy.",
+            "The years 1980–1990 <- an arrow is fine, 3 < 4 and 5 > 2.",
+            "Our e-mail desk opens at 10:00. C# and F* are languages.",
+        ] {
+            assert_eq!(codes(text), [], "{text}");
+        }
+    }
+
+    #[test]
+    fn emoji_addresses_markup_and_placeholders_are_found_at_their_character() {
+        assert_eq!(codes("Hi 😊 there"), [("speech-emoji", 12)]);
+        assert_eq!(codes("See https://museum.org/x."), [("speech-address", 13)]);
+        assert_eq!(codes("Visit www.museum.org"), [("speech-address", 15)]);
+        assert_eq!(
+            codes("Mail info@museum.org today"),
+            [("speech-address", 14)]
+        );
+        assert_eq!(codes("This is <b>bold</b>"), [("speech-markup", 17)]);
+        assert_eq!(codes("Tom &amp; Jerry"), [("speech-markup", 13)]);
+        assert_eq!(codes("Really **important**"), [("speech-markup", 16)]);
+        assert_eq!(codes("Hello {name}, welcome"), [("speech-placeholder", 15)]);
+        assert_eq!(codes("Hello {{ name }}"), [("speech-placeholder", 15)]);
+        assert_eq!(codes("Opens at [TIME] today"), [("speech-placeholder", 18)]);
+        assert_eq!(codes("You are %s"), [("speech-placeholder", 17)]);
+        assert_eq!(
+            codes("TODO write the greeting"),
+            [("speech-placeholder", 9)]
+        );
+    }
+
+    #[test]
+    fn long_texts_warn_and_far_longer_ones_are_errors() {
+        // 160 words a minute: 30 s is 80 words.
+        let words = |n: usize| vec!["word"; n].join(" ");
+        assert_eq!(codes(&words(79)), []);
+        assert_eq!(codes(&words(81)), [("speech-too-long", 7)]);
+        let pos = Pos::new("a.yaml", 1, 1);
+        let long = words(400);
+        let spoken = SpokenText {
+            text: &long,
+            pos: &pos,
+            verbatim_at: None,
+        };
+        let mut out = Vec::new();
+        check_spoken(
+            &spoken,
+            &crate::content::config::SiteConfig::default().speech,
+            &mut out,
+        );
+        assert!(out[0].is_error());
+        assert!(out[0].message.contains("2 min 30 s"), "{}", out[0].message);
+        assert_eq!(spoken_duration(59.6), "1 min");
+    }
+}
