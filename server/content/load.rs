@@ -12,12 +12,14 @@ use crate::content::acts_file::{ActsFile, WrittenAct, read_acts_file, yaml::MAX_
 use crate::content::commands::{CommandChecker, path_error_code};
 use crate::content::config::{SiteConfig, SpeechConfig};
 use crate::content::config_file::{ConfigFile, parse_config};
+use crate::content::contexts::{check_declared, check_undeclared, contexts};
 use crate::content::diagnostic::Diagnostic;
-use crate::content::model::{Act, Bundle, DEFAULT_VARIANT, Located, Pos, Variant};
+use crate::content::model::{Act, Bundle, Located, Pos};
 use crate::content::operator_check::{KeyBindings, check_map, visitor_groups};
 use crate::content::pages::page_act_references;
 use crate::content::paths::{BundleArea, PathError};
 use crate::content::suggest::did_you_mean;
+use crate::content::unused::check_unused;
 
 /// The name of the settings file at the top of a bundle.
 const CONFIG_FILE: &str = "docent.yaml";
@@ -64,6 +66,10 @@ pub fn load_bundle(root: &Path) -> LoadReport {
     check_home(&checker, &config, settings.home.as_ref(), &mut diagnostics);
     check_idle_act(&merged, settings.idle_act.as_ref(), &mut diagnostics);
     check_map(&checker, &config, settings.map.as_ref(), &mut diagnostics);
+    check_undeclared(&config, &merged.acts, &mut diagnostics);
+    let idle = settings.idle_act.as_ref().map(|a| a.value.as_str());
+    let referenced = merged.page_acts.iter().map(String::as_str).chain(idle);
+    check_unused(&merged.acts, referenced, &mut diagnostics);
     let contexts = contexts(&config, &merged.acts);
     config.operator.visitor_groups =
         visitor_groups(&contexts, &settings.visitor_groups, &mut diagnostics);
@@ -236,7 +242,7 @@ fn merge_acts(
                 .iter()
                 .filter_map(|c| checker.check(c, out))
                 .collect();
-            check_contexts(config, &variants, out);
+            check_declared(config, &variants, out);
             if let Some(&first) = merged.index.get(&label.value) {
                 let first_pos = &merged.acts[first].pos;
                 let message = format!(
@@ -280,25 +286,6 @@ fn merge_acts(
         out.push(Diagnostic::error("duplicate-label", &act.pos, message));
     }
     merged
-}
-
-fn check_contexts(config: &SiteConfig, variants: &[Variant], out: &mut Vec<Diagnostic>) {
-    if config.contexts.is_empty() {
-        return;
-    }
-    for variant in variants
-        .iter()
-        .filter(|v| v.name != DEFAULT_VARIANT && !config.contexts.contains(&v.name))
-    {
-        let hint = did_you_mean(&variant.name, config.contexts.iter().map(String::as_str));
-        let message = format!(
-            "`{}` is not one of the contexts declared in docent.yaml ({}).{hint} Rename the \
-             key, or add it under `contexts:`.",
-            variant.name,
-            config.contexts.join(", ")
-        );
-        out.push(Diagnostic::error("unknown-context", &variant.pos, message));
-    }
 }
 
 fn check_pages(root: &Path, merged: &mut Merged, out: &mut Vec<Diagnostic>) {
@@ -360,66 +347,4 @@ fn check_home(
         Some(_) => Diagnostic::error(code, &pos, message),
         None => Diagnostic::warning(code, &pos, message),
     });
-}
-
-/// `Text`, then the declared contexts, or else every variant name found, sorted.
-fn contexts(config: &SiteConfig, acts: &[Act]) -> Vec<String> {
-    let rest: Vec<String> = if config.contexts.is_empty() {
-        let found: BTreeSet<&str> = acts
-            .iter()
-            .flat_map(|a| a.variants.iter().map(|v| v.name.as_str()))
-            .collect();
-        found.into_iter().map(str::to_owned).collect()
-    } else {
-        config.contexts.clone()
-    };
-    std::iter::once(DEFAULT_VARIANT.to_owned())
-        .chain(rest.into_iter().filter(|c| c != DEFAULT_VARIANT))
-        .collect()
-}
-
-#[cfg(test)]
-mod tests {
-    use super::*;
-
-    fn act(variants: &[&str]) -> Act {
-        let pos = Pos::new("acts.yaml", 1, 1);
-        let variants = variants
-            .iter()
-            .map(|name| Variant {
-                name: (*name).to_owned(),
-                pos: pos.clone(),
-                alternatives: Vec::new(),
-            })
-            .collect();
-        Act {
-            label: "A".to_owned(),
-            pos,
-            variants,
-            commands: Vec::new(),
-            group: None,
-            key: None,
-        }
-    }
-
-    #[test]
-    fn contexts_are_text_then_declared_or_found_names() {
-        let acts = [
-            act(&["TextGroup", "Text"]),
-            act(&["TextChild", "TextGroup"]),
-        ];
-        assert_eq!(
-            contexts(&SiteConfig::default(), &acts),
-            ["Text", "TextChild", "TextGroup"]
-        );
-        let declared = SiteConfig {
-            contexts: vec!["TextGroup".into(), "TextFormally".into()],
-            ..SiteConfig::default()
-        };
-        assert_eq!(
-            contexts(&declared, &acts),
-            ["Text", "TextGroup", "TextFormally"]
-        );
-        assert_eq!(contexts(&SiteConfig::default(), &[]), ["Text"]);
-    }
 }

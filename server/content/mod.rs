@@ -7,6 +7,7 @@
 //! Map:
 //! - `model`: the loaded data (acts, variants, commands, positions).
 //! - `config`: validated site settings; `config_file`: parsing `docent.yaml`.
+//! - `contexts`: the context names a bundle uses, and misspelt variant keys.
 //! - `acts_file`: parsing one acts file, keeping every position.
 //! - `commands`: parsing and checking `VERB argument` strings.
 //! - `pages`: finding `data-act` labels in HTML pages.
@@ -18,6 +19,7 @@
 //! - `speech`: what the robot will really say: emoji, addresses, markup, placeholders and
 //!   length in spoken texts.
 //! - `suggest`: "did you mean" for labels, keys, verbs and file names.
+//! - `unused`: acts that nothing triggers.
 //! - `load`: putting it together: `load_bundle`.
 
 pub mod config;
@@ -27,6 +29,7 @@ pub mod model;
 mod acts_file;
 mod commands;
 mod config_file;
+mod contexts;
 mod duration;
 mod highlight;
 mod load;
@@ -35,6 +38,7 @@ mod pages;
 mod paths;
 mod speech;
 mod suggest;
+mod unused;
 
 pub use diagnostic::{Diagnostic, Severity};
 pub use duration::parse_duration;
