@@ -57,8 +57,13 @@ fn the_papers_fig4_sample_loads_unchanged() {
     assert_eq!(
         warnings,
         [
+            // The figure's pages offer neither act, and each context is used once.
+            ("unused-act", "acts.yaml:1:10".to_owned()),
+            ("unused-act", "acts.yaml:7:10".to_owned()),
+            ("context-typo", "acts.yaml:16:3".to_owned()),
+            ("context-typo", "acts.yaml:18:3".to_owned()),
             ("media-format", "acts.yaml:25:15".to_owned()),
-            ("no-home-page", "pages/index.html:0:0".to_owned())
+            ("no-home-page", "pages/index.html:1:1".to_owned())
         ]
     );
     assert!(
@@ -300,7 +305,8 @@ fn diagnostics_are_sorted_by_file_line_and_column() {
     let mut sorted = order.clone();
     sorted.sort();
     assert_eq!(order, sorted);
-    assert_eq!(order.len(), 7, "{:#?}", report.diagnostics);
+    // Seven problems, and the unused act X of b.yaml.
+    assert_eq!(order.len(), 8, "{:#?}", report.diagnostics);
     assert!(report.bundle.is_none());
 }
 

@@ -213,7 +213,7 @@ fn a_missing_home_page_is_a_warning_unless_it_was_chosen() {
     let report = check(dir.path());
     assert_eq!(
         places(&report),
-        [("no-home-page", "pages/index.html:0:0".to_owned())]
+        [("no-home-page", "pages/index.html:1:1".to_owned())]
     );
     assert_eq!(report.diagnostics[0].severity, Severity::Warning);
     assert!(report.bundle.is_some());

@@ -91,7 +91,7 @@ pub(crate) fn read_acts_file(file: &Arc<str>, bytes: &[u8], speech: &SpeechConfi
                            entries) or delete the file.";
             out.diagnostics.push(Diagnostic::warning(
                 "empty-file",
-                &Pos::new(file.clone(), 0, 0),
+                &Pos::start_of(file.clone()),
                 message,
             ));
         }

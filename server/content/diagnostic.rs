@@ -28,9 +28,9 @@ pub struct Diagnostic {
     pub message: String,
     /// File relative to the bundle root, `/`-separated.
     pub file: String,
-    /// 1-based line (0 when the problem concerns the whole file or folder).
+    /// 1-based line; 1 when the problem concerns the whole file, never 0.
     pub line: u32,
-    /// 1-based column (0 when the problem concerns the whole file or folder).
+    /// 1-based column in characters; 1 when the problem concerns the whole file, never 0.
     pub column: u32,
 }
 

@@ -47,7 +47,7 @@ pub fn load_bundle(root: &Path) -> LoadReport {
             );
             diagnostics.push(Diagnostic::error(
                 "not-a-bundle",
-                &Pos::new(".", 0, 0),
+                &Pos::start_of(root.display().to_string()),
                 message,
             ));
             return LoadReport {
@@ -133,7 +133,11 @@ fn acts_file_names(root: &Path, out: &mut Vec<Diagnostic>) -> Vec<String> {
     if names.is_empty() {
         let message = "No acts files found. Acts are written in .yaml files at the top of the \
                        bundle folder, next to pages/ and media/ (for example acts.yaml).";
-        out.push(Diagnostic::error("no-acts", &Pos::new(".", 0, 0), message));
+        out.push(Diagnostic::error(
+            "no-acts",
+            &Pos::start_of("acts.yaml"),
+            message,
+        ));
     }
     names
 }
@@ -154,7 +158,7 @@ fn read_acts_files(
                            Copy the file into the bundle instead.";
             return Err(Diagnostic::error(
                 "path-outside-bundle",
-                &Pos::new(file, 0, 0),
+                &Pos::start_of(file),
                 message,
             ));
         }
@@ -199,7 +203,7 @@ fn read_limited(path: &Path, file: &Arc<str>) -> Result<Vec<u8>, Diagnostic> {
         .map_err(|e| {
             Diagnostic::error(
                 "unreadable-file",
-                &Pos::new(file.clone(), 0, 0),
+                &Pos::start_of(file.clone()),
                 format!("Docent could not read this file ({e}). Check that it is readable."),
             )
         })
@@ -333,7 +337,7 @@ fn check_home(
     };
     let pos = match explicit {
         Some(home) => home.pos.clone(),
-        None => Pos::new(format!("pages/{}", config.home), 0, 0),
+        None => Pos::start_of(format!("pages/{}", config.home)),
     };
     let code = match err {
         PathError::NotFound | PathError::NotAFile => "no-home-page",

@@ -12,6 +12,7 @@
 //! - `commands`: parsing and checking `VERB argument` strings.
 //! - `pages`: finding `data-act` labels in HTML pages.
 //! - `paths`: resolving a relative path inside the bundle (shared with the HTTP file routes).
+//! - `encoding`: files not saved as UTF-8, explained.
 //! - `duration`: `2s`, `500ms`, `1.5m`.
 //! - `highlight`: the areas of a `HIGHLIGHT` argument.
 //! - `operator_check`: what the operator console uses (act keys, map, visitor groups),
@@ -31,6 +32,7 @@ mod commands;
 mod config_file;
 mod contexts;
 mod duration;
+mod encoding;
 mod highlight;
 mod load;
 mod operator_check;

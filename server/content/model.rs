@@ -21,6 +21,12 @@ pub struct Pos {
 }
 
 impl Pos {
+    /// The start of `file` (1:1): for problems that concern a whole file, and for a missing
+    /// file at the place it was expected.
+    pub fn start_of(file: impl Into<Arc<str>>) -> Self {
+        Pos::new(file, 1, 1)
+    }
+
     /// A position in `file` at `line`:`column`.
     pub fn new(file: impl Into<Arc<str>>, line: u32, column: u32) -> Self {
         Pos {

@@ -47,6 +47,7 @@ pub(crate) fn check_written(
         let style = match written.chars().next() {
             Some('"' | '\'') => Style::Quoted,
             Some('|' | '>') => Style::Block,
+            _ if after_block_indicator(&source.text[..span.start]) => Style::Block,
             _ => Style::Plain,
         };
         if style == Style::Plain {
@@ -56,6 +57,15 @@ pub(crate) fn check_written(
     }
     fake_bullet(node, value, out);
     curly_quotes(node, value, out);
+}
+
+/// Whether text starting right after `before` is the body of a `|` or `>` block (the parser
+/// places a block's text at its first line, after the indicator and its options).
+fn after_block_indicator(before: &str) -> bool {
+    let last_line = before.trim_end().rsplit('\n').next().unwrap_or_default();
+    let header = last_line.split(" #").next().unwrap_or_default().trim_end();
+    let header = header.trim_end_matches(|c: char| c == '+' || c == '-' || c.is_ascii_digit());
+    header.ends_with(['|', '>'])
 }
 
 /// ` #` after a plain text starts a comment: the text ends before it.

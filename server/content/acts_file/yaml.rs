@@ -15,6 +15,7 @@ use std::sync::Arc;
 use serde_saphyr::{DuplicateKeyPolicy, NonFiniteFloatPolicy, Options, Spanned};
 
 use crate::content::diagnostic::Diagnostic;
+use crate::content::encoding::not_utf8;
 use crate::content::model::Pos;
 
 mod layout;
@@ -106,7 +107,7 @@ pub(crate) fn parse(
     syntax_code: &'static str,
     recovery: Recovery,
 ) -> YamlFile {
-    let whole_file = Pos::new(file.clone(), 0, 0);
+    let whole_file = Pos::start_of(file.clone());
     let mut out = YamlFile {
         root: None,
         diagnostics: Vec::new(),
@@ -122,17 +123,13 @@ pub(crate) fn parse(
             .push(Diagnostic::error("file-too-large", &whole_file, message));
         return out;
     }
-    let source = match std::str::from_utf8(bytes) {
-        Ok(text) => text,
-        Err(e) => {
-            let pos = position_of_byte(file, bytes, e.valid_up_to());
-            let message = "This file is not saved as UTF-8 text (the character here cannot \
-                           be read). Save it again choosing the UTF-8 encoding.";
-            out.diagnostics
-                .push(Diagnostic::error(syntax_code, &pos, message));
-            return out;
-        }
-    };
+    if let Some((at, message)) = not_utf8(bytes) {
+        let pos = position_of_byte(file, bytes, at);
+        out.diagnostics
+            .push(Diagnostic::error("file-encoding", &pos, message));
+        return out;
+    }
+    let source = std::str::from_utf8(bytes).unwrap_or_default();
     // Parse errors on these lines are explained better by the layout problem found there.
     let odd_spaces = odd_space_positions(source);
     let tabs = tab_positions(source);
@@ -224,7 +221,7 @@ fn report_error(
             pos.line = pos.line.saturating_add(line_offset);
             pos
         }
-        None => Pos::new(file.clone(), 0, 0),
+        None => Pos::start_of(file.clone()),
     };
     let explained_by_tab = explained
         .iter()
@@ -299,7 +296,7 @@ mod tests {
     #[test]
     fn refuses_files_over_the_size_limit() {
         let parsed = parse_acts(&" ".repeat(MAX_FILE_BYTES + 1));
-        assert_eq!(codes(&parsed), [("file-too-large", 0, 0)]);
+        assert_eq!(codes(&parsed), [("file-too-large", 1, 1)]);
         assert!(parsed.root.is_none());
     }
 
@@ -311,7 +308,7 @@ mod tests {
             "yaml-syntax",
             Recovery::SkipBrokenItems,
         );
-        assert_eq!(codes(&parsed), [("yaml-syntax", 2, 12)]);
+        assert_eq!(codes(&parsed), [("file-encoding", 2, 12)]);
     }
 
     #[test]
