@@ -1,6 +1,6 @@
 //! The `docent` command: parses the command line, sets up logging and calls into the library.
 
-use std::io::Write;
+use std::io::{IsTerminal, Write};
 use std::net::SocketAddr;
 use std::path::{Path, PathBuf};
 use std::process::ExitCode;
@@ -9,7 +9,7 @@ use anyhow::Context;
 use clap::{Parser, Subcommand, ValueEnum};
 use docent::access::{AccessMode, AccessSetup, Origin, decide_access};
 use docent::content::config::AdapterKind;
-use docent::content::{Diagnostic, load_bundle};
+use docent::content::{Colour, Diagnostic, load_bundle, render_diagnostics};
 use docent::serve::{ServeOptions, Server, run};
 use tokio::net::TcpListener;
 
@@ -32,6 +32,9 @@ enum Cmd {
         /// Output format.
         #[arg(long, value_enum, default_value_t = Format::Text)]
         format: Format,
+        /// Fail (exit 1) on warnings too, not only on errors.
+        #[arg(long)]
+        deny_warnings: bool,
     },
 }
 
@@ -82,7 +85,11 @@ enum Format {
 fn main() -> ExitCode {
     let cli = Cli::parse();
     let result = match cli.command {
-        Cmd::Check { bundle, format } => check(&bundle, format),
+        Cmd::Check {
+            bundle,
+            format,
+            deny_warnings,
+        } => check(&bundle, format, deny_warnings),
         Cmd::Serve(args) => serve(&args),
     };
     match result {
@@ -94,30 +101,35 @@ fn main() -> ExitCode {
     }
 }
 
-fn check(bundle: &Path, format: Format) -> anyhow::Result<ExitCode> {
+fn check(bundle: &Path, format: Format, deny_warnings: bool) -> anyhow::Result<ExitCode> {
     let report = load_bundle(bundle);
+    let (errors, warnings) = counts(&report.diagnostics);
     match format {
         Format::Json => println!("{}", serde_json::to_string_pretty(&report.diagnostics)?),
         Format::Text => {
-            print_diagnostics(&report.diagnostics);
-            let (errors, warnings) = counts(&report.diagnostics);
+            print!("{}", render(bundle, &report.diagnostics));
             println!(
                 "{}: {errors} error(s), {warnings} warning(s)",
                 bundle.display()
             );
         }
     }
-    Ok(if report.bundle.is_some() {
-        ExitCode::SUCCESS
-    } else {
+    let failed = errors > 0 || (deny_warnings && warnings > 0);
+    Ok(if failed {
         ExitCode::FAILURE
+    } else {
+        ExitCode::SUCCESS
     })
 }
 
-fn print_diagnostics(diagnostics: &[Diagnostic]) {
-    for d in diagnostics {
-        println!("{d}");
-    }
+/// The diagnostics drawn with their source lines, coloured on a terminal (unless `NO_COLOR`).
+fn render(bundle: &Path, diagnostics: &[Diagnostic]) -> String {
+    let colour = if std::io::stdout().is_terminal() && std::env::var_os("NO_COLOR").is_none() {
+        Colour::Styled
+    } else {
+        Colour::Plain
+    };
+    render_diagnostics(bundle, diagnostics, colour)
 }
 
 fn counts(diagnostics: &[Diagnostic]) -> (usize, usize) {
@@ -140,7 +152,7 @@ fn serve(args: &ServeArgs) -> anyhow::Result<ExitCode> {
         .with_writer(std::io::stderr)
         .init();
     let report = load_bundle(bundle_dir);
-    print_diagnostics(&report.diagnostics);
+    print!("{}", render(bundle_dir, &report.diagnostics));
     let Some(mut bundle) = report.bundle else {
         let (errors, _) = counts(&report.diagnostics);
         eprintln!(

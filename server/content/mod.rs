@@ -17,6 +17,7 @@
 //! - `highlight`: the areas of a `HIGHLIGHT` argument.
 //! - `operator_check`: what the operator console uses (act keys, map, visitor groups),
 //!   checked against the whole bundle.
+//! - `render`: diagnostics drawn for people (source line, caret, hint).
 //! - `speech`: what the robot will really say: emoji, addresses, markup, placeholders and
 //!   length in spoken texts.
 //! - `suggest`: "did you mean" for labels, keys, verbs and file names.
@@ -38,6 +39,7 @@ mod load;
 mod operator_check;
 mod pages;
 mod paths;
+mod render;
 mod speech;
 mod suggest;
 mod unused;
@@ -47,5 +49,6 @@ pub use duration::parse_duration;
 pub use load::{LoadReport, load_bundle};
 pub use model::{Act, Bundle, CommandSpec, DEFAULT_VARIANT, Located, Pos, Variant, Verb};
 pub use paths::{BundleArea, PathError, resolve_in_bundle};
+pub use render::{Colour, render_diagnostics};
 pub use speech::speaking_time;
 pub use suggest::closest;
