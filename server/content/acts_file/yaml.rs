@@ -148,7 +148,15 @@ pub(crate) fn parse(
             }
             // Not split into items, or the problem lies between them: report it as found.
             if out.skipped_lines.is_empty() {
-                report_error(file, &err, 0, syntax_code, &explained, &mut out.diagnostics);
+                report_error(
+                    file,
+                    source,
+                    &err,
+                    0,
+                    syntax_code,
+                    &explained,
+                    &mut out.diagnostics,
+                );
             }
         }
     }
@@ -187,6 +195,7 @@ fn parse_items(
             Err(err) => {
                 report_error(
                     file,
+                    source,
                     &err,
                     line_offset,
                     syntax_code,
@@ -209,6 +218,7 @@ fn parse_items(
 /// that line (or the next, where the parser tends to notice it) already explains it.
 fn report_error(
     file: &Arc<str>,
+    source: &str,
     err: &serde_saphyr::Error,
     line_offset: u32,
     syntax_code: &'static str,
@@ -227,7 +237,9 @@ fn report_error(
         .iter()
         .any(|&(line, _)| line == pos.line || line == pos.line + 1);
     if !explained_by_tab {
-        out.push(Diagnostic::error(syntax_code, &pos, wording::describe(err)));
+        let line = source.lines().nth(pos.line.saturating_sub(1) as usize);
+        let message = wording::describe(err, line.unwrap_or_default());
+        out.push(Diagnostic::error(syntax_code, &pos, message));
     }
 }
 

@@ -3,10 +3,11 @@
 
 use serde_saphyr::Error;
 
-/// A plain-language message for a parse error.
-pub(super) fn describe(err: &Error) -> String {
+/// A plain-language message for a parse error found on `line` (the text of the line the
+/// parser stopped at).
+pub(super) fn describe(err: &Error, line: &str) -> String {
     match err.without_snippet() {
-        Error::AliasError { error, .. } => describe(error),
+        Error::AliasError { error, .. } => describe(error, line),
         Error::Budget { .. }
         | Error::AliasReplayLimitExceeded { .. }
         | Error::AliasExpansionLimitExceeded { .. }
@@ -28,8 +29,81 @@ pub(super) fn describe(err: &Error) -> String {
         Error::Eof { .. } => "The file ends in the middle of something. Check for a quote or a \
             bracket that is opened but never closed."
             .to_owned(),
-        other => describe_parser_message(&message_of(other)),
+        other => {
+            let message = message_of(other);
+            describe_at_line(&message, line).unwrap_or_else(|| describe_parser_message(&message))
+        }
     }
+}
+
+/// Advice from the line itself, for the mistakes the parser's message alone does not tell
+/// apart: a dash without its space, a missing `- ` or colon, a key indented too far, quotes
+/// closed too early.
+fn describe_at_line(msg: &str, line: &str) -> Option<String> {
+    let lower = msg.to_lowercase();
+    let content = line.trim_start();
+    // `    Text: hi`: one key and its value (a text with its own `: ` is the other mistake).
+    let colons = content.matches(": ").count() + usize::from(content.ends_with(':'));
+    let indented_key = colons == 1
+        && content
+            .split_once(':')
+            .is_some_and(|(key, _)| key.chars().all(|c| c.is_alphanumeric() || c == '_'));
+    if lower.contains("trailing content after single-quoted") {
+        return Some(
+            "The text in single quotes ends at the next `'`, such as the apostrophe in \
+             `it's`, and YAML does not expect more after it. Inside single quotes write an \
+             apostrophe twice (`'it''s here'`), or put the text in double quotes instead."
+                .to_owned(),
+        );
+    }
+    if lower.contains("trailing content after double-quoted") {
+        return Some(
+            "The text in double quotes ends at the next `\"`, and YAML does not expect more \
+             after it. For quotation marks inside the text, put the whole text in single \
+             quotes ('say \"hi\" now'), or write \\\" for each inner quote."
+                .to_owned(),
+        );
+    }
+    if lower.contains("block sequence entries are not allowed") {
+        return Some(
+            "A list item (`- `) cannot start on the same line as its key. Move it to the next \
+             line, indented under the key, or drop the dash for a single text \
+             (`Text: Hello`)."
+                .to_owned(),
+        );
+    }
+    if lower.contains("mapping keys are not allowed") || content.starts_with("? ") {
+        return Some(
+            "A `?` followed by a space has a special meaning in YAML. If this is text, put it \
+             in quotes."
+                .to_owned(),
+        );
+    }
+    if lower.contains("mapping values are not allowed") && indented_key && !content.starts_with('-')
+    {
+        return Some(
+            "This key is indented differently from the keys above it. Keys of the same act \
+             (Label, Text, Cmds) must start in exactly the same column, two spaces in from \
+             the act's `- `."
+                .to_owned(),
+        );
+    }
+    if lower.contains("simple key expected") || lower.contains("could not find expected ':'") {
+        if content.starts_with('-') && !content[1..].starts_with([' ', '\t']) {
+            return Some(format!(
+                "A dash needs a space after it to start a list item: `- {}`.",
+                content[1..].trim_start()
+            ));
+        }
+        return Some(
+            "YAML expected a key with a colon here (such as `Text:`) or a list item starting \
+             with `- `. If this line is another alternative, start it with `- ` in the same \
+             column as the others; if it is a key, add the colon; if it goes on with the text \
+             above, indent it further."
+                .to_owned(),
+        );
+    }
+    None
 }
 
 /// Budget and alias-limit breaches repeat on every attempt; skipping an item cannot help.
@@ -157,7 +231,7 @@ mod tests {
     fn message(yaml: &str) -> String {
         let err =
             serde_saphyr::from_str::<serde::de::IgnoredAny>(yaml).expect_err("should not parse");
-        describe(&err)
+        describe(&err, yaml.lines().last().unwrap_or_default())
     }
 
     #[test]
@@ -170,5 +244,10 @@ mod tests {
         assert!(message("a: 1\n---\nb: 2\n").contains("second document"));
         assert!(message("Text: @home\n").contains("put it in quotes"));
         assert!(message("a:\n  - b\n c: d\n").contains("indented"));
+        assert!(message("a: b\n    c: d\n").contains("indented differently"));
+        assert!(message("a: 'it's'\n").contains("apostrophe twice"));
+        assert!(message("a: \"say \"hi\" now\"\n").contains("single quotes"));
+        assert!(message("a:\n  - b\n  -c\n").contains("`- c`"));
+        assert!(message("a: - b\n").contains("same line as its key"));
     }
 }
