@@ -9,7 +9,7 @@ use anyhow::Context;
 use clap::{Parser, Subcommand, ValueEnum};
 use docent::access::{AccessMode, AccessSetup, Origin, decide_access};
 use docent::content::config::AdapterKind;
-use docent::content::{Diagnostic, load_bundle};
+use docent::content::{Diagnostic, load_bundle, schema};
 use docent::serve::{ServeOptions, Server, run};
 use tokio::net::TcpListener;
 
@@ -33,6 +33,42 @@ enum Cmd {
         #[arg(long, value_enum, default_value_t = Format::Text)]
         format: Format,
     },
+    /// Print the JSON Schema of the acts file or of docent.yaml, for editors (VS Code's YAML
+    /// extension); `--out DIR` writes both files.
+    Schema {
+        /// Which schema to print.
+        #[arg(value_enum, required_unless_present = "out")]
+        which: Option<SchemaKind>,
+        /// Write `acts.schema.json` and `docent.schema.json` (or the one asked for) into DIR.
+        #[arg(long, value_name = "DIR")]
+        out: Option<PathBuf>,
+    },
+}
+
+/// The schemas `docent schema` knows.
+#[derive(Clone, Copy, PartialEq, Eq, ValueEnum)]
+enum SchemaKind {
+    /// The acts files (`acts.yaml`, ...).
+    Acts,
+    /// The settings file `docent.yaml`.
+    Config,
+}
+
+impl SchemaKind {
+    fn file_name(self) -> &'static str {
+        match self {
+            SchemaKind::Acts => "acts.schema.json",
+            SchemaKind::Config => "docent.schema.json",
+        }
+    }
+
+    fn text(self) -> String {
+        let schema = match self {
+            SchemaKind::Acts => schema::acts_schema(),
+            SchemaKind::Config => schema::config_schema(),
+        };
+        schema::to_file_text(&schema)
+    }
 }
 
 /// What `docent serve` takes.
@@ -84,6 +120,7 @@ fn main() -> ExitCode {
     let result = match cli.command {
         Cmd::Check { bundle, format } => check(&bundle, format),
         Cmd::Serve(args) => serve(&args),
+        Cmd::Schema { which, out } => write_schema(which, out.as_deref()),
     };
     match result {
         Ok(code) => code,
@@ -112,6 +149,25 @@ fn check(bundle: &Path, format: Format) -> anyhow::Result<ExitCode> {
     } else {
         ExitCode::FAILURE
     })
+}
+
+fn write_schema(which: Option<SchemaKind>, out: Option<&Path>) -> anyhow::Result<ExitCode> {
+    let Some(dir) = out else {
+        let text = which.map(SchemaKind::text).unwrap_or_default();
+        std::io::stdout().write_all(text.as_bytes())?;
+        return Ok(ExitCode::SUCCESS);
+    };
+    std::fs::create_dir_all(dir).with_context(|| format!("creating {}", dir.display()))?;
+    let kinds = which.map_or(vec![SchemaKind::Acts, SchemaKind::Config], |kind| {
+        vec![kind]
+    });
+    for kind in kinds {
+        let path = dir.join(kind.file_name());
+        std::fs::write(&path, kind.text())
+            .with_context(|| format!("writing {}", path.display()))?;
+        println!("wrote {}", path.display());
+    }
+    Ok(ExitCode::SUCCESS)
 }
 
 fn print_diagnostics(diagnostics: &[Diagnostic]) {

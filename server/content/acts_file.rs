@@ -46,7 +46,7 @@ pub(crate) struct ActsFile {
 }
 
 /// The keys an act may have besides `Text...` variants, for suggestions.
-const KEYS: [&str; 5] = ["Label", DEFAULT_VARIANT, "Cmds", "Group", "Key"];
+pub(crate) const KEYS: [&str; 5] = ["Label", DEFAULT_VARIANT, "Cmds", "Group", "Key"];
 
 /// Reads the acts file `file` (named relative to the bundle root) from its bytes.
 pub(crate) fn read_acts_file(file: &Arc<str>, bytes: &[u8]) -> ActsFile {
