@@ -1,10 +1,11 @@
 // render.js: the content report's DOM, built from GET /api/report's JSON. Acts are rendered in
-// chunks (one per animation frame) so a bundle of 10,000 acts shows its first acts at once and
-// the page stays responsive; `renderAll` finishes at once (before printing). Texts are set with
+// chunks, one per animation frame, each twice the one before: the first acts show at once, and
+// since every frame costs style and layout in proportion to the acts already in the page, few
+// frames (7 for 10,000 acts) keep the whole report fast; `renderAll` finishes at once (before printing). Texts are set with
 // textContent only: content never becomes markup here.
 
-/** Acts rendered per chunk. */
-const CHUNK = 400;
+/** Acts in the first chunk (more than a screen holds). */
+const FIRST_CHUNK = 150;
 
 /** An element `tag` with `className` and text or children. */
 function el(tag, className, ...children) {
@@ -90,10 +91,10 @@ export function renderActs(container, acts) {
     const end = Math.min(acts.length, next + size);
     for (; next < end; next += 1) fragment.append(actElement(acts[next]));
     container.append(fragment);
-    if (next < acts.length) requestAnimationFrame(() => chunk(CHUNK));
+    if (next < acts.length) requestAnimationFrame(() => chunk(size * 2));
     else finish();
   }
-  chunk(CHUNK);
+  chunk(FIRST_CHUNK);
   return { done, renderAll: () => next < acts.length && chunk(acts.length) };
 }
 

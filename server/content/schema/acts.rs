@@ -112,7 +112,7 @@ fn command() -> Value {
              declared in docent.yaml under `verbs:`.",
             built_in.join(", ")
         ),
-        "examples": Verb::BUILT_IN.iter().map(|v| example(v)).collect::<Vec<_>>(),
+        "examples": Verb::BUILT_IN.iter().map(example).collect::<Vec<_>>(),
         "anyOf": branches,
     })
 }
