@@ -9,7 +9,7 @@ use anyhow::Context;
 use clap::{Parser, Subcommand, ValueEnum};
 use docent::access::{AccessMode, AccessSetup, Origin, decide_access};
 use docent::content::config::AdapterKind;
-use docent::content::{Colour, Diagnostic, load_bundle, render_diagnostics};
+use docent::content::{Colour, Diagnostic, load_bundle, render_diagnostics, schema};
 use docent::serve::{ServeOptions, Server, run};
 use tokio::net::TcpListener;
 
@@ -36,6 +36,42 @@ enum Cmd {
         #[arg(long)]
         deny_warnings: bool,
     },
+    /// Print the JSON Schema of the acts file or of docent.yaml, for editors (VS Code's YAML
+    /// extension); `--out DIR` writes both files.
+    Schema {
+        /// Which schema to print.
+        #[arg(value_enum, required_unless_present = "out")]
+        which: Option<SchemaKind>,
+        /// Write `acts.schema.json` and `docent.schema.json` (or the one asked for) into DIR.
+        #[arg(long, value_name = "DIR")]
+        out: Option<PathBuf>,
+    },
+}
+
+/// The schemas `docent schema` knows.
+#[derive(Clone, Copy, PartialEq, Eq, ValueEnum)]
+enum SchemaKind {
+    /// The acts files (`acts.yaml`, ...).
+    Acts,
+    /// The settings file `docent.yaml`.
+    Config,
+}
+
+impl SchemaKind {
+    fn file_name(self) -> &'static str {
+        match self {
+            SchemaKind::Acts => "acts.schema.json",
+            SchemaKind::Config => "docent.schema.json",
+        }
+    }
+
+    fn text(self) -> String {
+        let schema = match self {
+            SchemaKind::Acts => schema::acts_schema(),
+            SchemaKind::Config => schema::config_schema(),
+        };
+        schema::to_file_text(&schema)
+    }
 }
 
 /// What `docent serve` takes.
@@ -91,6 +127,7 @@ fn main() -> ExitCode {
             deny_warnings,
         } => check(&bundle, format, deny_warnings),
         Cmd::Serve(args) => serve(&args),
+        Cmd::Schema { which, out } => write_schema(which, out.as_deref()),
     };
     match result {
         Ok(code) => code,
@@ -130,6 +167,25 @@ fn render(bundle: &Path, diagnostics: &[Diagnostic]) -> String {
         Colour::Plain
     };
     render_diagnostics(bundle, diagnostics, colour)
+}
+
+fn write_schema(which: Option<SchemaKind>, out: Option<&Path>) -> anyhow::Result<ExitCode> {
+    let Some(dir) = out else {
+        let text = which.map(SchemaKind::text).unwrap_or_default();
+        std::io::stdout().write_all(text.as_bytes())?;
+        return Ok(ExitCode::SUCCESS);
+    };
+    std::fs::create_dir_all(dir).with_context(|| format!("creating {}", dir.display()))?;
+    let kinds = which.map_or(vec![SchemaKind::Acts, SchemaKind::Config], |kind| {
+        vec![kind]
+    });
+    for kind in kinds {
+        let path = dir.join(kind.file_name());
+        std::fs::write(&path, kind.text())
+            .with_context(|| format!("writing {}", path.display()))?;
+        println!("wrote {}", path.display());
+    }
+    Ok(ExitCode::SUCCESS)
 }
 
 fn counts(diagnostics: &[Diagnostic]) -> (usize, usize) {

@@ -48,7 +48,7 @@ pub(crate) struct ActsFile {
 }
 
 /// The keys an act may have besides `Text...` variants, for suggestions.
-const KEYS: [&str; 5] = ["Label", DEFAULT_VARIANT, "Cmds", "Group", "Key"];
+pub(crate) const KEYS: [&str; 5] = ["Label", DEFAULT_VARIANT, "Cmds", "Group", "Key"];
 
 /// What reading the texts of one file needs besides its tree.
 pub(crate) struct Reading<'a> {

@@ -36,7 +36,7 @@ pub(crate) struct ConfigFile {
     pub diagnostics: Vec<Diagnostic>,
 }
 
-const TOP_KEYS: &[&str] = &[
+pub(crate) const TOP_KEYS: &[&str] = &[
     "home",
     "contexts",
     "speech",

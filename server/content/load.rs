@@ -89,6 +89,7 @@ pub fn load_bundle(root: &Path) -> LoadReport {
         index: merged.index,
         config,
         contexts,
+        diagnostics: diagnostics.clone(),
     });
     LoadReport {
         bundle,

@@ -23,10 +23,14 @@
 //! - `suggest`: "did you mean" for labels, keys, verbs and file names.
 //! - `unused`: acts that nothing triggers.
 //! - `load`: putting it together: `load_bundle`.
+//! - `schema`: JSON Schemas of the acts file and `docent.yaml`, for editors.
+//! - `report`: the content report (acts, pages, media, problems) behind `/report`.
 
 pub mod config;
 pub mod diagnostic;
 pub mod model;
+pub mod report;
+pub mod schema;
 
 mod acts_file;
 mod commands;

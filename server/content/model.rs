@@ -8,6 +8,7 @@ use std::path::PathBuf;
 use std::sync::Arc;
 
 use crate::content::config::SiteConfig;
+use crate::content::diagnostic::Diagnostic;
 
 /// Where something was written: a file relative to the bundle root, 1-based line and column.
 #[derive(Clone, Debug, PartialEq, Eq, Hash, PartialOrd, Ord, serde::Serialize)]
@@ -198,6 +199,8 @@ pub struct Bundle {
     pub contexts: Vec<String>,
     /// Labels that the bundle's pages trigger through `data-act` (what a kiosk may trigger).
     pub page_acts: Vec<String>,
+    /// The warnings found while loading (a bundle has no errors), for the content report.
+    pub diagnostics: Vec<Diagnostic>,
 }
 
 impl Bundle {

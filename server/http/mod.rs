@@ -5,6 +5,7 @@
 //! - `shells`: the kiosk (`/`) and projector (`/projector`) pages, askama templates.
 //! - `static_files`: `/static/...`, the shells' scripts and styles, embedded in the binary.
 //! - `operator`: the operator console (`/operator`) and its settings (`/api/operator`).
+//! - `report`: the content report (`/report`) and its data (`/api/report`).
 //! - `auth`: who is asking ([`auth::Peer`]) and whether they may ([`auth::Authorized`]).
 //! - `error`: [`AppError`], the one error type at the HTTP edge.
 
@@ -13,6 +14,7 @@ pub(crate) mod auth;
 mod error;
 mod files;
 mod operator;
+mod report;
 mod shells;
 mod static_files;
 
@@ -36,6 +38,7 @@ pub fn app(state: AppState) -> Router {
         .route("/projector", get(shells::projector))
         .route("/preview", get(shells::preview))
         .route("/operator", get(operator::console))
+        .route("/report", get(report::report_page))
         .route("/static/{*path}", get(static_files::serve_static))
         .route("/favicon.ico", get(api::no_favicon))
         .route("/healthz", get(api::health))
@@ -45,6 +48,7 @@ pub fn app(state: AppState) -> Router {
         .route("/api/context", get(api::get_context).put(api::put_context))
         .route("/api/state", get(api::get_state))
         .route("/api/operator", get(operator::settings))
+        .route("/api/report", get(report::get_report))
         .route("/pages/{*path}", get(files::serve_page))
         .route("/media/{*path}", get(files::serve_media))
         .route("/ws", get(ws_upgrade))

@@ -44,6 +44,18 @@ const FILES: &[(&str, &str, &str)] = &[
         CSS,
         include_str!("../../static/projector.css"),
     ),
+    // The content report (static/report/; it signs in with operator/signin.js).
+    (
+        "report/main.js",
+        JS,
+        include_str!("../../static/report/main.js"),
+    ),
+    (
+        "report/render.js",
+        JS,
+        include_str!("../../static/report/render.js"),
+    ),
+    ("report.css", CSS, include_str!("../../static/report.css")),
     // The operator console (static/operator/, one module per job).
     (
         "operator/main.js",

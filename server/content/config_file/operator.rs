@@ -10,11 +10,11 @@ use crate::content::suggest::did_you_mean;
 
 use super::{ConfigFile, Reader};
 
-const KEYS: &[&str] = &["map", "camera", "situations", "visitor_groups"];
+pub(crate) const KEYS: &[&str] = &["map", "camera", "situations", "visitor_groups"];
 /// Visitor groups the console offers, in the order it shows them.
 pub(crate) const VISITOR_GROUPS: &[&str] = &["single", "group", "children"];
 /// Picture formats Chromium shows in an `<img>`.
-const MAP_FORMATS: &[&str] = &["png", "jpg", "jpeg", "gif", "webp", "svg"];
+pub(crate) const MAP_FORMATS: &[&str] = &["png", "jpg", "jpeg", "gif", "webp", "svg"];
 /// Situations are marked with Alt+Shift+1 to 9.
 const MAX_SITUATIONS: usize = 9;
 

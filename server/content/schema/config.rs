@@ -1,0 +1,387 @@
+//! The schema of `docent.yaml`: every section `config_file*.rs` reads, with its keys and the
+//! shape of each value. Sections may be left empty (`speech:` alone), as the loader allows.
+
+use serde_json::{Value, json};
+
+use super::{DRAFT, VARIANT_KEY_PATTERN, any_case, choice, duration, section, words};
+use crate::content::config::Credential;
+use crate::content::config_file::TOP_KEYS;
+use crate::content::config_file::operator::{KEYS as OPERATOR_KEYS, MAP_FORMATS, VISITOR_GROUPS};
+use crate::content::model::Verb;
+
+/// The keys of the sections whose lists live inline in the loader's functions; the test
+/// `section_keys_are_the_loaders` asks the loader for each list and compares.
+const SPEECH_KEYS: &[&str] = &["adapter", "voice", "rate", "max_seconds"];
+const DISPLAY_KEYS: &[&str] = &["adapter"];
+const DRIVE_KEYS: &[&str] = &["adapter", "speed", "pose_rate", "bounds"];
+const BOUNDS_KEYS: &[&str] = &["min_x", "min_y", "max_x", "max_y"];
+const ADAPTERS_KEYS: &[&str] = &["timeout"];
+const KIOSK_KEYS: &[&str] = &["idle", "idle_act"];
+const PROJECTOR_KEYS: &[&str] = &["after_video", "highlight_edge"];
+const ACCESS_KEYS: &[&str] = &["operator_token", "dm_token"];
+const SITE_VERB_KEYS: &[&str] = &["adapter", "argument", "description"];
+
+/// The schema of a bundle's `docent.yaml`.
+pub fn config_schema() -> Value {
+    let mut schema = section(
+        TOP_KEYS,
+        top_level,
+        "Docent's settings for this bundle. Every setting is optional; leave out what you do \
+         not need.",
+    );
+    let fields = schema.as_object_mut().expect("section() builds an object");
+    fields.insert("$schema".into(), json!(DRAFT));
+    fields.insert("title".into(), json!("Docent settings (docent.yaml)"));
+    schema
+}
+
+fn top_level(key: &str) -> Value {
+    match key {
+        "home" => words("The page under pages/ the touchscreen starts on, e.g. `index.html`."),
+        "contexts" => {
+            let context = json!({
+                "type": "string",
+                "pattern": "^Text.",
+                "description": "A context: the name of a text variant key, e.g. `TextChild`.",
+            });
+            json!({
+                "description": "The text variants this bundle uses as contexts, e.g. \
+                                `[TextGroup, TextChild]`. Listing them lets `docent check` \
+                                catch a misspelt variant key.",
+                "anyOf": [
+                    { "type": "null" },
+                    context,
+                    { "type": "array", "items": context, "uniqueItems": true },
+                ],
+            })
+        }
+        "speech" => section(SPEECH_KEYS, speech, "How the robot speaks."),
+        "display" => section(
+            DISPLAY_KEYS,
+            |_| {
+                choice(
+                    &["display", "ws"],
+                    "Who shows pages and pictures: `display` (Docent's own touchscreen and projector pages, the default) or `ws` (a program connected over the websocket).",
+                )
+            },
+            "The touchscreen and the projector.",
+        ),
+        "drive" => section(DRIVE_KEYS, drive, "The robot's driving base."),
+        "adapters" => section(
+            ADAPTERS_KEYS,
+            |_| {
+                duration(
+                    "How long a device may take for one command before Docent reports it failed, e.g. `30s`. Not zero.",
+                )
+            },
+            "Settings shared by all devices.",
+        ),
+        "kiosk" => section(KIOSK_KEYS, kiosk, "How the touchscreen behaves."),
+        "projector" => section(PROJECTOR_KEYS, projector, "How the projector behaves."),
+        "verbs" => verbs(),
+        "access" => section(
+            ACCESS_KEYS,
+            access,
+            "Credentials the operator console and a dialog manager show to connect. Better \
+             kept out of the bundle: set DOCENT_OPERATOR_TOKEN and DOCENT_DM_TOKEN instead.",
+        ),
+        "operator" => section(OPERATOR_KEYS, operator, "What the operator console shows."),
+        // A key added to the loader without a schema here fails the tests (no description).
+        _ => json!({}),
+    }
+}
+
+fn speech(key: &str) -> Value {
+    match key {
+        "adapter" => choice(
+            &["espeak", "log", "ws", "browser"],
+            "Who speaks: `espeak` (this computer's speech synthesiser), `browser` (the \
+             touchscreen's browser), `ws` (a program connected over the websocket) or `log` \
+             (nobody: speech is only written to the log).",
+        ),
+        "voice" => json!({
+            "type": "string",
+            "pattern": "^[A-Za-z0-9+_/][A-Za-z0-9+_/-]*$",
+            "description": "The voice: a language such as `en`, `en-us` or `de`.",
+        }),
+        "rate" => json!({
+            "type": "integer",
+            "minimum": 40,
+            "maximum": 600,
+            "description": "Speaking speed in words per minute, from 40 to 600, e.g. `160`.",
+        }),
+        "max_seconds" => json!({
+            "type": "integer",
+            "minimum": 1,
+            "maximum": 3600,
+            "description": "The longest one text may take to say, in seconds (30 unless set). `docent check` warns above it, and refuses texts over four times as long.",
+        }),
+        _ => json!({}),
+    }
+}
+
+fn drive(key: &str) -> Value {
+    let number = |description: &str| json!({ "type": "number", "description": description });
+    match key {
+        "adapter" => choice(
+            &["sim", "ws"],
+            "Who drives: `sim` (a simulated robot, for trying things out) or `ws` (the real \
+             robot's program, connected over the websocket).",
+        ),
+        "speed" => json!({
+            "type": "number",
+            "exclusiveMinimum": 0,
+            "description": "The simulated driving speed in metres per second, e.g. `0.5`.",
+        }),
+        "pose_rate" => json!({
+            "type": "number",
+            "exclusiveMinimum": 0,
+            "maximum": 50,
+            "description": "How many position updates per second the simulated robot sends \
+                            (at most 50), e.g. `5`.",
+        }),
+        "bounds" => {
+            let mut bounds = section(
+                BOUNDS_KEYS,
+                |k| number(&format!("`{k}`: in metres; each min below its max.")),
+                "The area the robot drives in, in metres: \
+                 `{ min_x: 0, min_y: 0, max_x: 20, max_y: 12 }`.",
+            );
+            bounds["type"] = json!("object");
+            bounds["required"] = json!(BOUNDS_KEYS);
+            bounds
+        }
+        _ => json!({}),
+    }
+}
+
+fn kiosk(key: &str) -> Value {
+    match key {
+        "idle" => duration(
+            "How long the touchscreen waits without a touch before it goes back to the home \
+             page, e.g. `2m` or `90s`; `0s` turns this off.",
+        ),
+        "idle_act" => json!({
+            "type": "string",
+            "pattern": r"^\S+$",
+            "description": "The label of the act to trigger when the touchscreen goes idle, \
+                            e.g. `INVITE`.",
+        }),
+        _ => json!({}),
+    }
+}
+
+fn projector(key: &str) -> Value {
+    match key {
+        "after_video" => choice(
+            &["black", "hold"],
+            "What the projector shows when a video ends: `black` (the default) or `hold` (its \
+             last picture).",
+        ),
+        "highlight_edge" => json!({
+            "type": "number",
+            "minimum": 0,
+            "maximum": 0.5,
+            "description": "How soft the edge of a HIGHLIGHT area is, as a fraction of the \
+                            projected width: 0 (sharp) to 0.5, e.g. `0.02`.",
+        }),
+        _ => json!({}),
+    }
+}
+
+fn verbs() -> Value {
+    let built_in: Vec<&str> = Verb::BUILT_IN.iter().map(Verb::as_str).collect();
+    let verb = section(
+        SITE_VERB_KEYS,
+        |key| match key {
+            "adapter" => choice(
+                &["ws", "log"],
+                "Who carries the command out: `ws` (a program connected over the websocket, \
+                 the default) or `log` (nobody: it is only written to the log).",
+            ),
+            "argument" => choice(
+                &["required", "optional", "none"],
+                "Whether the command needs something after it: `required`, `optional` (the \
+                 default) or `none`.",
+            ),
+            "description" => words("What the command does, in a few words for people."),
+            _ => json!({}),
+        },
+        "One command of this site.",
+    );
+    json!({
+        "type": ["object", "null"],
+        "description": "This site's own commands, by name, e.g. \
+                        `verbs: { LIGHTS: { adapter: ws, argument: required } }`.",
+        "propertyNames": {
+            "pattern": "^[A-Z][A-Z0-9_]*$",
+            "not": { "enum": built_in },
+            "description": "A command name: capital letters, digits and `_`, starting with a \
+                            letter, and not one of the built-in commands.",
+        },
+        "additionalProperties": verb,
+    })
+}
+
+fn access(key: &str) -> Value {
+    let who = if key == "operator_token" {
+        "operator console"
+    } else {
+        "dialog manager"
+    };
+    json!({
+        "type": "string",
+        "pattern": format!("^[!-~]{{{},}}$", Credential::MIN_CHARS),
+        "description": format!(
+            "The credential the {who} shows to connect: at least {} characters, no spaces, \
+             e.g. the output of `openssl rand -hex 16`.",
+            Credential::MIN_CHARS
+        ),
+    })
+}
+
+fn operator(key: &str) -> Value {
+    match key {
+        "map" => {
+            let formats: Vec<String> = MAP_FORMATS.iter().map(|f| any_case(f)).collect();
+            json!({
+                "type": "string",
+                "pattern": format!(r"^\s*(pages|media)/.+\.({})\s*$", formats.join("|")),
+                "description": format!(
+                    "A picture of the area the robot drives in, spanning `drive: bounds`, \
+                     written from the bundle folder, e.g. `pages/images/map.png` ({}).",
+                    MAP_FORMATS.join(", ")
+                ),
+            })
+        }
+        "camera" => json!({
+            "description": "The camera the operator sees: `webrtc` (the touchscreen's own \
+                            camera, the default), `none`, or the address of an MJPEG stream \
+                            starting with http:// or https://.",
+            "anyOf": [
+                { "enum": ["webrtc", "none"] },
+                {
+                    "type": "string",
+                    "pattern": r#"^\s*[hH][tT][tT][pP][sS]?://[^/?#@\s"'<>`\\{}|^][^\s"'<>`\\{}|^]*\s*$"#,
+                },
+            ],
+        }),
+        "situations" => {
+            let name = words("A short name the operator marks, e.g. `question`.");
+            json!({
+                "description": "1 to 9 short names the operator marks during a session with \
+                                Alt+Shift+1 to 9, e.g. `[question, laughter, leaving]`.",
+                "anyOf": [
+                    { "type": "null" },
+                    name,
+                    { "type": "array", "minItems": 1, "maxItems": 9, "uniqueItems": true, "items": name },
+                ],
+            })
+        }
+        "visitor_groups" => section(
+            VISITOR_GROUPS,
+            |group| {
+                json!({
+                    "type": "string",
+                    "pattern": VARIANT_KEY_PATTERN,
+                    "description": format!(
+                        "The context the console switches to for the `{group}` visitor group: \
+                         `Text` or a text variant key, e.g. `TextChild`."
+                    ),
+                })
+            },
+            "Which context each visitor group button of the console switches to.",
+        ),
+        _ => json!({}),
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use std::sync::Arc;
+
+    use super::*;
+    use crate::content::config_file::parse_config;
+
+    /// The loader's key list at `path`, read from its unknown-key message (which lists every
+    /// key it knows there): the loader's own inline lists, without copying them.
+    fn loader_keys(path: &[&str]) -> Vec<String> {
+        let mut yaml = String::new();
+        for (depth, key) in path.iter().enumerate() {
+            yaml.push_str(&format!("{}{key}:\n", "  ".repeat(depth)));
+        }
+        yaml.push_str(&format!("{}zz_probe: 1\n", "  ".repeat(path.len())));
+        let file = parse_config(&Arc::from("docent.yaml"), yaml.as_bytes());
+        let message = file
+            .diagnostics
+            .iter()
+            .find(|d| d.code == "config-unknown-key")
+            .map(|d| d.message.clone())
+            .unwrap_or_else(|| panic!("no unknown-key problem for {path:?}: {yaml}"));
+        let list = message
+            .split_once("Known settings here: ")
+            .map(|(_, rest)| rest.trim_end_matches('.'))
+            .unwrap_or_else(|| panic!("no key list in {message}"));
+        let mut keys: Vec<String> = list.split(", ").map(str::to_owned).collect();
+        keys.sort();
+        keys
+    }
+
+    fn schema_keys(schema: &Value, path: &[&str]) -> Vec<String> {
+        let mut node = schema;
+        for key in path {
+            node = if *key == "*" {
+                &node["additionalProperties"]
+            } else {
+                &node["properties"][*key]
+            };
+        }
+        let properties = node["properties"].as_object().expect("a section");
+        for (key, value) in properties {
+            assert!(value["description"].is_string(), "{path:?}.{key}");
+        }
+        let mut keys: Vec<String> = properties.keys().cloned().collect();
+        keys.sort();
+        keys
+    }
+
+    #[test]
+    fn section_keys_are_the_loaders() {
+        let schema = config_schema();
+        for (probe, path) in [
+            (&[][..], &[][..]),
+            (&["speech"], &["speech"]),
+            (&["display"], &["display"]),
+            (&["drive"], &["drive"]),
+            (&["drive", "bounds"], &["drive", "bounds"]),
+            (&["adapters"], &["adapters"]),
+            (&["kiosk"], &["kiosk"]),
+            (&["projector"], &["projector"]),
+            (&["access"], &["access"]),
+            (&["operator"], &["operator"]),
+            (
+                &["operator", "visitor_groups"],
+                &["operator", "visitor_groups"],
+            ),
+            (&["verbs", "LIGHTS"], &["verbs", "*"]),
+        ] {
+            assert_eq!(
+                schema_keys(&schema, path),
+                loader_keys(probe),
+                "section {probe:?}"
+            );
+        }
+    }
+
+    #[test]
+    fn every_section_rejects_other_keys() {
+        let schema = config_schema();
+        assert_eq!(schema["additionalProperties"], false);
+        for key in TOP_KEYS {
+            let section = &schema["properties"][*key];
+            if section.get("properties").is_some() {
+                assert_eq!(section["additionalProperties"], false, "{key}");
+            }
+        }
+    }
+}
