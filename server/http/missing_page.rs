@@ -76,7 +76,12 @@ impl MissingPage {
 /// Whether a request for `rel` under `/pages/` comes from a browser showing a page: it asks
 /// for HTML, is a navigation, or names an HTML file without asking for JSON.
 pub fn wants_page(headers: &HeaderMap, rel: &str) -> bool {
-    let text = |name: &str| headers.get(name).and_then(|v| v.to_str().ok()).unwrap_or("");
+    let text = |name: &str| {
+        headers
+            .get(name)
+            .and_then(|v| v.to_str().ok())
+            .unwrap_or("")
+    };
     let accept = text(header::ACCEPT.as_str()).to_ascii_lowercase();
     if accept.contains("text/html") {
         return true;
@@ -154,7 +159,9 @@ fn percent_decode(text: &str) -> String {
     let mut out = Vec::with_capacity(bytes.len());
     let mut i = 0;
     while i < bytes.len() {
-        let hex = bytes.get(i + 1..i + 3).and_then(|h| std::str::from_utf8(h).ok());
+        let hex = bytes
+            .get(i + 1..i + 3)
+            .and_then(|h| std::str::from_utf8(h).ok());
         match (bytes[i], hex.and_then(|h| u8::from_str_radix(h, 16).ok())) {
             (b'%', Some(byte)) => {
                 out.push(byte);
@@ -262,7 +269,12 @@ mod tests {
         );
         assert_eq!(referrer_page("http://127.0.0.1:8080/"), "/");
         assert_eq!(referrer_page("http://host"), "/");
-        assert_eq!(referrer_page(&format!("http://h/{}", "a".repeat(400))).chars().count(), 301);
+        assert_eq!(
+            referrer_page(&format!("http://h/{}", "a".repeat(400)))
+                .chars()
+                .count(),
+            301
+        );
     }
 
     #[test]
@@ -287,12 +299,21 @@ mod tests {
         };
         let html = page.render().expect("renders");
         assert!(html.contains("This page is not available."), "{html}");
-        assert!(html.contains(r#"<base href="/pages/start%20page.html">"#), "{html}");
-        assert!(html.contains(r#"<link rel="stylesheet" href="css/site.css">"#), "{html}");
+        assert!(
+            html.contains(r#"<base href="/pages/start%20page.html">"#),
+            "{html}"
+        );
+        assert!(
+            html.contains(r#"<link rel="stylesheet" href="css/site.css">"#),
+            "{html}"
+        );
         assert!(
             html.contains(r#"<a class="docent-home" href="/pages/start%20page.html""#),
             "{html}"
         );
-        assert!(!html.contains("data-act"), "the way home triggers nothing: {html}");
+        assert!(
+            !html.contains("data-act"),
+            "the way home triggers nothing: {html}"
+        );
     }
 }

@@ -9,6 +9,7 @@ use axum::response::{IntoResponse, Response};
 
 use crate::content::config::{AdapterKind, Camera, SiteConfig};
 use crate::http::AppError;
+use crate::http::missing_page::MissingPage;
 use crate::state::AppState;
 
 /// The websocket every shell connects to.
@@ -36,11 +37,15 @@ pub struct KioskShell<'a> {
     pub rate: u32,
     /// Whether the kiosk answers the operator console's camera calls (`operator.camera: webrtc`).
     pub webrtc_camera: bool,
+    /// The friendly "not available" page (`pages/missing/missing.html`), shown in place of a
+    /// page the browser could not load at all; empty: the browser's own error screen.
+    pub unavailable_page: &'a str,
 }
 
 impl<'a> KioskShell<'a> {
-    /// The shell for a bundle with these settings.
-    pub fn new(config: &'a SiteConfig) -> Self {
+    /// The shell for a bundle with these settings, showing `unavailable_page` when a page
+    /// cannot be loaded.
+    pub fn new(config: &'a SiteConfig, unavailable_page: &'a str) -> Self {
         KioskShell {
             ws_path: WS_PATH,
             pages_path: "/pages/",
@@ -51,6 +56,7 @@ impl<'a> KioskShell<'a> {
             voice: &config.speech.voice,
             rate: config.speech.rate_wpm,
             webrtc_camera: config.operator.camera == Camera::WebRtc,
+            unavailable_page,
         }
     }
 }
@@ -115,7 +121,16 @@ pub async fn preview() -> Response {
 /// `GET /`: the kiosk shell.
 pub async fn kiosk(State(state): State<AppState>) -> Response {
     let bundle = state.dispatcher.bundle();
-    html(KioskShell::new(&bundle.config).render())
+    let (root, home) = (bundle.root.clone(), bundle.config.home.clone());
+    // It reads the home page for its stylesheets: off the threads that carry triggers.
+    let unavailable = tokio::task::spawn_blocking(move || MissingPage::new(&root, &home).render())
+        .await
+        .map_err(|e| askama::Error::Custom(Box::new(e)));
+    let unavailable = match unavailable.and_then(|page| page) {
+        Ok(page) => page,
+        Err(e) => return AppError::internal(e).into_response(),
+    };
+    html(KioskShell::new(&bundle.config, &unavailable).render())
 }
 
 /// `GET /projector`: the projector shell.
@@ -171,8 +186,14 @@ mod tests {
         };
         config.kiosk.idle = Duration::from_secs(90);
         config.kiosk.idle_act = Some("INVITE".to_owned());
-        let page = KioskShell::new(&config).render().expect("renders");
+        let page = KioskShell::new(&config, "<p>gone</p>")
+            .render()
+            .expect("renders");
         assert!(page.starts_with("<!doctype html>"), "{page}");
+        assert!(
+            page.contains(r#"data-unavailable="&#60;p&#62;gone&#60;/p&#62;""#),
+            "{page}"
+        );
         assert!(page.contains(r#"data-ws="/ws""#), "{page}");
         assert!(page.contains(r#"data-pages="/pages/""#), "{page}");
         assert!(
@@ -185,21 +206,21 @@ mod tests {
         assert_eq!(page.matches("<iframe").count(), 2);
 
         config.kiosk.idle_act = None;
-        let page = KioskShell::new(&config).render().expect("renders");
+        let page = KioskShell::new(&config, "").render().expect("renders");
         assert!(!page.contains("data-idle-act"), "{page}");
     }
 
     #[test]
     fn the_kiosk_shell_answers_camera_calls_only_with_a_webrtc_camera() {
         let mut config = SiteConfig::default();
-        let page = KioskShell::new(&config).render().expect("renders");
+        let page = KioskShell::new(&config, "").render().expect("renders");
         assert!(page.contains(r#"data-camera="webrtc""#), "{page}");
         for camera in [
             Camera::None,
             Camera::Url("http://192.168.1.20:8081/stream.mjpg".to_owned()),
         ] {
             config.operator.camera = camera;
-            let page = KioskShell::new(&config).render().expect("renders");
+            let page = KioskShell::new(&config, "").render().expect("renders");
             assert!(!page.contains("data-camera"), "{page}");
         }
     }
