@@ -87,10 +87,17 @@ impl<'a> ProjectorShell<'a> {
     }
 }
 
-/// `pages/preview/preview.html`: the kiosk and the projector side by side, for authors.
+/// `pages/preview/preview.html`: for authors, the act list, the words being spoken, and the
+/// kiosk and the projector side by side.
 #[derive(Template)]
 #[template(path = "preview/preview.html")]
-pub struct PreviewPage {
+pub struct PreviewPage<'a> {
+    /// Websocket path, e.g. `/ws`: the preview fires acts as an operator.
+    pub ws_path: &'a str,
+    /// False on an `--open` development server: the preview fires acts without signing in.
+    pub needs_credential: bool,
+    /// Words per minute of speech, for showing texts as long as they take to say.
+    pub rate: u32,
     /// The touchscreen's width in CSS pixels.
     pub kiosk_width: u32,
     /// The touchscreen's height.
@@ -101,10 +108,14 @@ pub struct PreviewPage {
     pub projector_height: u32,
 }
 
-impl Default for PreviewPage {
-    /// The sizes the examples are made for: a 1280x800 touchscreen, a 1280x720 projector.
-    fn default() -> Self {
+impl<'a> PreviewPage<'a> {
+    /// The preview at the sizes the examples are made for: a 1280x800 touchscreen, a
+    /// 1280x720 projector.
+    pub fn new(config: &'a SiteConfig, needs_credential: bool) -> Self {
         PreviewPage {
+            ws_path: WS_PATH,
+            needs_credential,
+            rate: config.speech.rate_wpm,
             kiosk_width: 1280,
             kiosk_height: 800,
             projector_width: 1280,
@@ -113,9 +124,11 @@ impl Default for PreviewPage {
     }
 }
 
-/// `GET /preview`: both screens in one window (`docent serve --preview` opens it).
-pub async fn preview() -> Response {
-    html(PreviewPage::default().render())
+/// `GET /preview`: acts, speech and both screens in one window (`docent serve --preview`
+/// opens it). Open to anyone like the console: firing acts needs the operator's credential.
+pub async fn preview(State(state): State<AppState>) -> Response {
+    let bundle = state.dispatcher.bundle();
+    html(PreviewPage::new(&bundle.config, !state.access.is_open()).render())
 }
 
 /// `GET /`: the kiosk shell.
@@ -163,12 +176,23 @@ mod tests {
     use crate::content::config::AfterVideo;
 
     #[test]
-    fn the_preview_shows_both_screens_at_their_sizes() {
-        let page = PreviewPage::default().render().expect("renders");
+    fn the_preview_shows_both_screens_at_their_sizes_and_the_acts() {
+        let config = SiteConfig::default();
+        let page = PreviewPage::new(&config, true).render().expect("renders");
         assert!(
-            page.contains(r#"<iframe src="/" title="touchscreen" width="1280" height="800">"#),
+            page.contains(
+                r#"<iframe src="/?preview" title="touchscreen" width="1280" height="800">"#
+            ),
             "{page}"
         );
+        for id in [
+            "act-list", "search", "speaking", "no-voice", "signin", "link",
+        ] {
+            assert!(page.contains(&format!(r#"id="{id}""#)), "no #{id}");
+        }
+        assert!(page.contains(r#"data-credential="required""#), "{page}");
+        let page = PreviewPage::new(&config, false).render().expect("renders");
+        assert!(page.contains(r#"data-credential="open""#), "{page}");
         assert!(
             page.contains(
                 r#"<iframe src="/projector" title="projector" width="1280" height="720">"#
