@@ -10,6 +10,7 @@ use crate::access::Access;
 use crate::adapters::Devices;
 use crate::dispatch::Dispatcher;
 use crate::events::{ClientRole, Hub};
+use crate::http::MissingPageReports;
 use crate::lifecycle::Lifecycle;
 use crate::operator::{Proposals, Visits};
 use crate::sync::lock;
@@ -44,6 +45,8 @@ pub struct AppState {
     pub proposals: Arc<Proposals>,
     /// The visitor session marked by operators.
     pub visits: Arc<Visits>,
+    /// The allowance of `page.missing` reports (a flood of bad links is not all logged).
+    pub missing_pages: Arc<MissingPageReports>,
     clients: Arc<Clients>,
 }
 
@@ -78,6 +81,7 @@ impl AppState {
             access: Arc::new(access),
             proposals: Arc::default(),
             visits: Arc::default(),
+            missing_pages: Arc::default(),
             clients: Arc::default(),
         }
     }

@@ -1,21 +1,32 @@
-// docent-page.js: added by the server to every HTML page under /pages/. Makes elements with
-// `data-act="LABEL"` trigger their act when tapped (with press feedback), fires the acts of
-// `data-act-after="20s"` elements after their delay while the page is shown, defines the
-// `window.docent` API for page scripts, and hardens the page for public touch use (no context
-// menu, selection, drag, zoom or navigation out of the bundle). It talks to Docent through the
-// kiosk shell (`parent.docentShell`, static/kiosk.js); opened on its own it only warns.
+// docent-page.js: added by the server to every HTML page under /pages/, as the first thing in
+// its <head> and as a classic (not module) script, so `window.docent` exists before any script
+// of the page runs: an inline script may call `docent.trigger("X")` or `docent.on(...)` at once.
+// Makes elements with `data-act="LABEL"` trigger their act when tapped (with press feedback),
+// fires the acts of `data-act-after="20s"` elements after their delay while the page is shown,
+// and hardens the page for public touch use (no context menu, selection, drag, zoom or
+// navigation out of the bundle). It talks to Docent through the kiosk shell
+// (`parent.docentShell`, static/kiosk.js); calls made before the shell is reachable wait for
+// it until the page has loaded, and opened on its own the page only warns.
+// The API: docent.trigger(label, {context, interrupt}) -> Promise of the `triggered` or
+// `error` frame; docent.on(type, fn) -> stop function; docent.ready(fn): fn runs once the
+// page's document is parsed (its elements exist), at once if it already is.
+
+(() => {
+"use strict";
+if (window.docent) return; // a page that also includes this script itself
 
 const PRESS_MS = 150;
 const REPEAT_GUARD_MS = 400;
 const PAGES_PREFIX = "/pages/";
 
-const shell = (() => {
+/** The kiosk shell's API, or undefined (not framed yet, or opened on its own). */
+function findShell() {
   try {
     return window.parent !== window ? window.parent.docentShell : undefined;
   } catch {
     return undefined; // a parent from elsewhere
   }
-})();
+}
 
 /** Parses `500ms`, `20s`, `1.5s` or `1m` into milliseconds; `null` when it is none of these. */
 function parseDelay(text) {
@@ -27,26 +38,83 @@ function parseDelay(text) {
 const cleanups = [];
 addEventListener("pagehide", () => cleanups.splice(0).forEach((stop) => stop()));
 
+// Calls made while no shell is reachable: run as soon as one is, or answered "no shell" once
+// the page has loaded without one. Never dropped without a word.
+const waiting = [];
+let settled = false; // the page has loaded: a missing shell will not come any more
+
+function withShell(use, without) {
+  const shell = findShell();
+  if (shell) return use(shell);
+  if (settled || window.parent === window) return without();
+  return new Promise((resolve) => waiting.push({ use, without, resolve }));
+}
+
+function flush() {
+  const shell = findShell();
+  if (!shell && !settled) return;
+  for (const call of waiting.splice(0)) call.resolve(shell ? call.use(shell) : call.without());
+}
+
+function noShell(what) {
+  console.warn(`docent: not inside the kiosk shell; ${what}`);
+}
+
+const readyCallbacks = [];
+let parsed = document.readyState !== "loading";
+function runReady() {
+  parsed = true;
+  flush();
+  for (const fn of readyCallbacks.splice(0)) {
+    try {
+      fn(window.docent);
+    } catch (error) {
+      console.error("docent: a docent.ready function failed", error);
+    }
+  }
+}
+
 window.docent = Object.freeze({
   /** Triggers an act; resolves with Docent's `triggered` or `error` frame. */
   trigger(label, { context = null, interrupt = false } = {}) {
-    if (!shell) {
-      console.warn(`docent: not inside the kiosk shell; act ${label} not triggered`);
-      return Promise.resolve({ type: "error", code: "no-shell", message: "not in the kiosk shell" });
-    }
-    return shell.trigger(label, { context, interrupt });
+    return Promise.resolve(withShell(
+      (shell) => shell.trigger(label, { context, interrupt }),
+      () => {
+        noShell(`act ${label} not triggered`);
+        return { type: "error", code: "no-shell", message: "not in the kiosk shell" };
+      },
+    ));
   },
   /** Calls `fn` for each frame or shell event of this type while the page is shown. */
   on(event, fn) {
-    if (!shell) {
-      console.warn(`docent: not inside the kiosk shell; "${event}" will never happen`);
-      return () => {};
-    }
-    const stop = shell.on(event, fn);
-    cleanups.push(stop);
-    return stop;
+    let stop = null;
+    let stopped = false;
+    const listen = (shell) => {
+      if (stopped) return;
+      stop = shell.on(event, fn);
+      cleanups.push(stop);
+    };
+    const result = withShell(listen, () => noShell(`"${event}" will never happen`));
+    if (result instanceof Promise) result.catch(() => {});
+    return () => {
+      stopped = true;
+      stop?.();
+    };
+  },
+  /** Runs `fn(docent)` once the page's elements exist (at once, later, if they already do). */
+  ready(fn) {
+    if (typeof fn !== "function") throw new TypeError("docent.ready needs a function");
+    if (parsed) queueMicrotask(() => fn(window.docent));
+    else readyCallbacks.push(fn);
   },
 });
+
+if (parsed) queueMicrotask(runReady);
+else document.addEventListener("DOMContentLoaded", runReady, { once: true });
+addEventListener("load", () => {
+  settled = true;
+  flush();
+}, { once: true });
 
 // Taps on data-act elements: feedback while pressed (at least PRESS_MS), one trigger per tap.
 const lastFired = new WeakMap();
@@ -85,15 +153,17 @@ document.addEventListener("click", (event) => {
 }, { capture: true });
 
 // Timers: each data-act-after element fires its act once, after its delay. Leaving the page
-// unloads it, and its timers with it.
-for (const element of document.querySelectorAll("[data-act-after]")) {
-  const delay = parseDelay(element.dataset.actAfter);
-  if (delay === null || !element.dataset.act) {
-    console.warn("docent: data-act-after needs data-act and a delay like 500ms, 20s or 1m", element);
-    continue;
+// unloads it, and its timers with it. The elements exist once the document is parsed.
+window.docent.ready(() => {
+  for (const element of document.querySelectorAll("[data-act-after]")) {
+    const delay = parseDelay(element.dataset.actAfter);
+    if (delay === null || !element.dataset.act) {
+      console.warn("docent: data-act-after needs data-act and a delay like 500ms, 20s or 1m", element);
+      continue;
+    }
+    setTimeout(() => window.docent.trigger(element.dataset.act), delay);
   }
-  setTimeout(() => window.docent.trigger(element.dataset.act), delay);
-}
+});
 
 // Hardening for public use.
 const style = document.createElement("style");
@@ -105,7 +175,8 @@ img, a { -webkit-user-drag: none; }
 [data-act] { cursor: pointer; transition: transform 80ms ease-out, filter 80ms ease-out; }
 .docent-pressed { transform: scale(0.97); filter: brightness(0.85); }
 `;
-document.head.prepend(style); // first, so the page's own styles win
+// First, so the page's own styles win. This script runs inside <head> while it is parsed.
+(document.head ?? document.documentElement).prepend(style);
 
 const editable = (target) => target.closest?.("input, textarea, [contenteditable]");
 const block = (event) => event.preventDefault();
@@ -139,3 +210,4 @@ document.addEventListener("submit", (event) => {
   if (!insideBundle(new URL(event.target.action, location.href))) block(event);
 }, { capture: true });
 window.open = () => null;
+})();

@@ -52,6 +52,7 @@ function show(page) {
   const next = frames[1 - front];
   next.onload = () => {
     if (wanted !== page) return; // overtaken by a later page
+    if (!reachable(next)) return; // the friendly page takes its place and loads next
     next.onload = null;
     watchActivity(next);
     next.classList.add("shown");
@@ -63,6 +64,7 @@ function show(page) {
     front = 1 - front;
     emit("page", { page });
   };
+  next.removeAttribute("srcdoc"); // it would win over src
   next.src = pagesPath + encodePath(page);
 }
 
@@ -97,6 +99,7 @@ function reportShown(frame) {
     return;
   }
   if (!frame.classList.contains("shown") && page !== wanted) return;
+  if (frame.contentDocument?.querySelector('meta[name="docent-page"][content="missing"]')) return;
   if (page === serverPage) return;
   serverPage = page;
   socket.send({ type: "page", page });
@@ -182,7 +185,23 @@ for (const type of ["contextmenu", "selectstart", "dragstart", "gesturestart"]) 
   addEventListener(type, (event) => event.preventDefault(), { capture: true });
 }
 
-for (const frame of frames) frame.addEventListener("load", () => reportShown(frame));
+// A page the browser could not load at all (Docent unreachable: no answer, not even a 404)
+// shows the shell's own copy of the friendly "not available" page, with its way home, instead
+// of the browser's error screen. An error screen is a document of another origin.
+function reachable(frame) {
+  try {
+    return frame.contentDocument !== null;
+  } catch {
+    return false;
+  }
+}
+function coverFailure(frame) {
+  if (reachable(frame) || !config.unavailable) return false;
+  frame.srcdoc = config.unavailable;
+  return true;
+}
+
+for (const frame of frames) frame.addEventListener("load", () => coverFailure(frame) || reportShown(frame));
 
 if (config.speech === "browser") {
   startBrowserSpeech({ path: config.ws || "/ws", voice: config.voice, wpm: Number(config.rate) });

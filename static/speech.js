@@ -3,11 +3,45 @@
 // Web Speech API, one utterance at a time, in order; it answers `started`, then `done` when the
 // utterance ends or `failed` with the browser's error (e.g. `synthesis-failed` where the
 // browser has no voices). A `cancel` frame silences it and drops what is queued.
+// In the author's preview (the kiosk shell loaded as `/?preview`), a browser without a voice
+// (headless, or no speech installed) shows each text instead: the SAY runs as long as the text
+// would take to say at the configured rate, so acts go on as they would, and the preview says
+// that speech is shown as text only (`detectVoice`, also used by preview.js).
 
 import { keepConnected } from "./socket.js";
 
 /** Words per minute at the Web Speech API's rate 1 (a typical default voice). */
 const NORMAL_WPM = 170;
+/** How long the browser may take to list its voices (they often arrive a moment late). */
+const VOICE_WAIT_MS = 1_000;
+/** A text shown instead of spoken stays at least this long, so that it can be read. */
+const MIN_TEXT_MS = 1_500;
+
+/**
+ * Whether this browser can speak: it has the Web Speech API and at least one voice, once
+ * `voiceschanged` has fired or `waitMs` have passed.
+ * @returns {Promise<boolean>}
+ */
+export function detectVoice({ waitMs = VOICE_WAIT_MS } = {}) {
+  const synth = window.speechSynthesis;
+  if (!synth || typeof window.SpeechSynthesisUtterance !== "function") return Promise.resolve(false);
+  if ((synth.getVoices?.() ?? []).length > 0) return Promise.resolve(true);
+  return new Promise((resolve) => {
+    const decide = () => {
+      clearTimeout(timer);
+      synth.removeEventListener?.("voiceschanged", decide);
+      resolve((synth.getVoices?.() ?? []).length > 0);
+    };
+    const timer = setTimeout(decide, waitMs);
+    synth.addEventListener?.("voiceschanged", decide);
+  });
+}
+
+/** How long saying `text` takes at `wpm` words per minute, in ms (at least MIN_TEXT_MS). */
+export function speakingMs(text, wpm) {
+  const words = String(text ?? "").split(/\s+/).filter(Boolean).length;
+  return Math.max(MIN_TEXT_MS, (words / (Number(wpm) || NORMAL_WPM)) * 60_000);
+}
 
 /**
  * Starts browser speech. `voice` is a language tag (`en-us`) or a voice name; `wpm` the rate.
@@ -17,6 +51,36 @@ export function startBrowserSpeech({ path, voice, wpm }) {
   const synth = window.speechSynthesis;
   const queue = [];
   let speaking = null;
+  let textTimer = null;
+  // Only the preview falls back to text; a kiosk without a voice fails its SAY commands.
+  const preview = new URLSearchParams(location.search).has("preview");
+  let hasVoice = preview ? null : true; // null: still finding out
+  if (preview) {
+    detectVoice().then((found) => {
+      hasVoice = found;
+      next();
+    });
+  }
+
+  /** Shows instead of speaking: started now, done after the time saying it would take. */
+  const showAsText = (command) => {
+    speaking = command.id;
+    socket.send({ type: "started", id: command.id });
+    textTimer = setTimeout(() => {
+      textTimer = null;
+      if (speaking !== command.id) return;
+      speaking = null;
+      socket.send({ type: "done", id: command.id });
+      next();
+    }, speakingMs(command.arg, wpm));
+  };
+  const silence = () => {
+    queue.length = 0;
+    speaking = null;
+    clearTimeout(textTimer);
+    textTimer = null;
+    synth?.cancel();
+  };
 
   const pickVoice = () => {
     const voices = synth?.getVoices?.() ?? [];
@@ -30,8 +94,9 @@ export function startBrowserSpeech({ path, voice, wpm }) {
   };
 
   const next = () => {
-    if (speaking || queue.length === 0) return;
+    if (speaking || queue.length === 0 || hasVoice === null) return;
     const command = queue.shift();
+    if (!hasVoice) return showAsText(command);
     if (!synth) {
       socket.send({ type: "failed", id: command.id, reason: "this browser cannot speak (no Web Speech API)" });
       return next();
@@ -65,17 +130,13 @@ export function startBrowserSpeech({ path, voice, wpm }) {
         queue.push(frame);
         next();
       } else if (frame.type === "cancel") {
-        queue.length = 0;
-        speaking = null;
-        synth?.cancel();
+        silence();
       }
     },
     onOnline: (online) => {
       if (!online) {
         // The server fails what a lost connection owed; start clean on the next one.
-        queue.length = 0;
-        speaking = null;
-        synth?.cancel();
+        silence();
       }
     },
   });

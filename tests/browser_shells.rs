@@ -115,7 +115,7 @@ async fn html_pages_get_the_page_script_and_other_files_are_untouched() {
     assert_eq!((status, kind.as_str()), (200, "text/html"));
     assert!(
         text(&body).starts_with(
-            "<!doctype html>\n<html><head><script type=\"module\" \
+            "<!doctype html>\n<html><head><script \
              src=\"/static/docent-page.js\"></script><title>home</title>"
         ),
         "{}",
@@ -131,7 +131,8 @@ async fn html_pages_get_the_page_script_and_other_files_are_untouched() {
         (200, "image/png", IMAGE)
     );
 
-    let (status, body) = server.get("/pages/missing.html").await;
+    // An API client (JSON) gets the JSON error; browsers get a page (tests/bundle_files.rs).
+    let (status, body) = server.get("/pages/missing.png").await;
     assert_eq!((status, body["code"].as_str()), (404, Some("not-found")));
     server.stop().await;
 }

@@ -96,3 +96,102 @@ async fn bundle_files_are_served_and_no_path_leaves_the_bundle() {
     }
     server.stop().await;
 }
+
+/// The status, the `Content-Type` and the body of a raw answer.
+fn parts(response: &str) -> (String, &str) {
+    let (head, body) = response.split_once("\r\n\r\n").unwrap_or((response, ""));
+    let kind = head
+        .lines()
+        .find_map(|l| {
+            l.to_ascii_lowercase()
+                .strip_prefix("content-type: ")
+                .map(str::to_owned)
+        })
+        .unwrap_or_default();
+    (kind, body)
+}
+
+#[tokio::test]
+async fn a_missing_page_answers_a_browser_with_the_friendly_page_and_an_api_client_with_json() {
+    let b = TempBundle::new("- Label: A\n  Text: [a]\n")
+        .with_file(
+            "pages/index.html",
+            "<!doctype html><head><link rel=\"stylesheet\" href=\"css/site.css\"></head><p>home",
+        )
+        .with_file("pages/css/site.css", "body { color: teal }");
+    let server = TestServer::start(b.path()).await;
+    let browser = "Accept: text/html,application/xhtml+xml,*/*;q=0.8\r\n";
+    let from = "Referer: http://docent/pages/index.html\r\n";
+
+    for (path, extra) in [
+        ("/pages/gone.html", ""),
+        ("/pages/gone.html", "Accept: */*\r\n"),
+        ("/pages/gone.html", browser),
+        ("/pages/Index.html", browser), // miscased: not found either
+        ("/pages/sub/", browser),
+        ("/pages/images/gone.png", browser),
+    ] {
+        let (status, response) = raw_get(&server, path, &format!("{extra}{from}")).await;
+        let (kind, body) = parts(&response);
+        assert_eq!(status, 404, "{path}");
+        assert_eq!(kind, "text/html; charset=utf-8", "{path}: {response}");
+        assert!(body.contains("This page is not available."), "{body}");
+        assert!(body.contains(r#"<a class="docent-home" href="/pages/index.html""#));
+        assert!(body.contains(r#"<link rel="stylesheet" href="css/site.css">"#));
+        assert!(body.contains(r#"<script src="/static/docent-page.js"></script>"#));
+        assert!(
+            !body.contains("not-found") && !body.contains("spelled"),
+            "{body}"
+        );
+    }
+    for (path, extra) in [
+        ("/pages/gone.html", "Accept: application/json\r\n"),
+        ("/pages/images/gone.png", "Accept: */*\r\n"),
+        ("/pages/images/gone.png", ""),
+        ("/media/gone.html", browser),
+    ] {
+        let (status, response) = raw_get(&server, path, extra).await;
+        let (kind, body) = parts(&response);
+        assert_eq!((status, kind.as_str()), (404, "application/json"), "{path}");
+        assert!(body.contains(r#""code":"not-found""#), "{path}: {body}");
+    }
+
+    let missing: Vec<_> = server
+        .stop()
+        .await
+        .into_iter()
+        .filter(|e| e["type"] == "page.missing")
+        .map(|e| (e["page"].as_str().unwrap().to_owned(), e["from"].clone()))
+        .collect();
+    let from = serde_json::json!("index.html");
+    let pages = [
+        "gone.html",
+        "gone.html",
+        "gone.html",
+        "Index.html",
+        "sub/",
+        "images/gone.png",
+    ];
+    let expected: Vec<_> = pages
+        .iter()
+        .map(|p| (p.to_string(), from.clone()))
+        .collect();
+    assert_eq!(missing, expected, "only the friendly answers are logged");
+}
+
+#[tokio::test]
+async fn a_flood_of_missing_pages_is_not_all_logged() {
+    let b = TempBundle::new("- Label: A\n  Text: [a]\n");
+    let server = TestServer::start(b.path()).await;
+    for i in 0..60 {
+        let (status, _) = raw_get(&server, &format!("/pages/nothing-{i}.html"), "").await;
+        assert_eq!(status, 404);
+    }
+    let logged = server.stop().await;
+    let logged = logged
+        .iter()
+        .filter(|e| e["type"] == "page.missing")
+        .count();
+    // The burst of 20, plus what refilled (2 a second) while the 60 requests ran.
+    assert!((20..30).contains(&logged), "{logged} logged");
+}

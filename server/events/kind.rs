@@ -218,6 +218,17 @@ pub enum EventKind {
         /// The `HIGHLIGHT` areas lit on the projector, as written; `None` when cleared.
         highlight: Option<String>,
     },
+    /// A browser asked for a page that is not in the bundle (a broken link or `DISPLAY_PAGE`);
+    /// it was shown the friendly "not available" page.
+    #[serde(rename = "page.missing")]
+    PageMissing {
+        /// The page asked for, relative to `pages/`, as requested.
+        page: String,
+        /// Where the request came from (its `Referer`): the page under `pages/` that linked
+        /// to it, or the path of another page of this server (`/`: the kiosk shell); `None`
+        /// when the browser did not say.
+        from: Option<String>,
+    },
     /// The drive base's pose.
     #[serde(rename = "pose")]
     Pose {

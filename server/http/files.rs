@@ -3,16 +3,19 @@
 //! then served by tower-http's `ServeFile` (content type, ranges for video seeking). HTML pages
 //! under `/pages/` are the exception: the server adds the page script (`docent-page.js`, the
 //! `data-act` taps and the `docent` JS API) to them, so authors include nothing themselves.
+//! It goes first in `<head>` as a classic script, so `docent` exists before any script of the
+//! page runs. A page that is not there answers a browser with a friendly page
+//! ([`missing_page`](super::missing_page)), never with JSON.
 
 use axum::extract::rejection::PathRejection;
 use axum::extract::{Path, Request, State};
-use axum::http::header;
+use axum::http::{HeaderMap, header};
 use axum::response::{IntoResponse, Response};
 use tower::ServiceExt;
 use tower_http::services::ServeFile;
 
 use crate::content::{BundleArea, PathError, resolve_in_bundle};
-use crate::http::AppError;
+use crate::http::{AppError, missing_page};
 use crate::state::AppState;
 
 /// `GET /pages/{path}`: a touchscreen page or its assets.
@@ -41,7 +44,11 @@ async fn serve(
 ) -> Response {
     let Path(rel) = match path {
         Ok(path) => path,
-        Err(e) => return AppError::not_found(format!("no such file: {e}")).into_response(),
+        Err(e) => {
+            let rel = req.uri().path().trim_start_matches("/pages/").to_owned();
+            let error = AppError::not_found(format!("no such file: {e}"));
+            return not_found(&state, area, &rel, req.headers(), error).await;
+        }
     };
     let root = state.dispatcher.bundle().root.clone();
     // Resolving reads directories: keep it off the threads that carry triggers.
@@ -56,11 +63,13 @@ async fn serve(
         Ok(file) => file,
         // Every refusal looks like "not found": a request must not learn what exists outside.
         Err(PathError::Outside | PathError::NotFound | PathError::NotAFile) => {
-            return AppError::not_found(format!("no such file: {rel}")).into_response();
+            let error = AppError::not_found(format!("no such file: {rel}"));
+            return not_found(&state, area, &rel, req.headers(), error).await;
         }
         Err(PathError::Miscased { actual }) => {
             let message = format!("no such file: {rel} (the file is spelled {actual})");
-            return AppError::not_found(message).into_response();
+            let error = AppError::not_found(message);
+            return not_found(&state, area, &rel, req.headers(), error).await;
         }
     };
     if area == BundleArea::Pages && is_html(&file) {
@@ -76,8 +85,23 @@ async fn serve(
     }
 }
 
-/// The tag added to every HTML page under `/pages/`.
-const PAGE_SCRIPT: &[u8] = b"<script type=\"module\" src=\"/static/docent-page.js\"></script>";
+/// A missing file: the friendly page for a browser asking for a page, else the JSON `error`.
+async fn not_found(
+    state: &AppState,
+    area: BundleArea,
+    rel: &str,
+    headers: &HeaderMap,
+    error: AppError,
+) -> Response {
+    if area == BundleArea::Pages && missing_page::wants_page(headers, rel) {
+        return missing_page::answer(state, rel, headers).await;
+    }
+    error.into_response()
+}
+
+/// The tag added to every HTML page under `/pages/`: a classic script, not a module, so that
+/// it runs where it stands (first in `<head>`), before the page's own scripts.
+const PAGE_SCRIPT: &[u8] = b"<script src=\"/static/docent-page.js\"></script>";
 
 /// HTML pages larger than this are served untouched (no page script) rather than read whole.
 const MAX_REWRITTEN_BYTES: u64 = 16 * 1024 * 1024;

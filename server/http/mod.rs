@@ -2,6 +2,7 @@
 //!
 //! - `api`: the trigger API (`/api/...`, `/healthz`).
 //! - `files`: bundle files under `/pages/` and `/media/`, never outside the bundle.
+//! - `missing_page`: the friendly 404 page a touchscreen shows for a page that is not there.
 //! - `shells`: the kiosk (`/`) and projector (`/projector`) pages, askama templates.
 //! - `static_files`: `/static/...`, the shells' scripts and styles, embedded in the binary.
 //! - `operator`: the operator console (`/operator`) and its settings (`/api/operator`).
@@ -13,6 +14,7 @@ mod api;
 pub(crate) mod auth;
 mod error;
 mod files;
+mod missing_page;
 mod operator;
 mod report;
 mod shells;
@@ -24,6 +26,7 @@ use tower_http::limit::RequestBodyLimitLayer;
 use tower_http::trace::TraceLayer;
 
 pub use error::AppError;
+pub use missing_page::MissingPageReports;
 
 use crate::state::AppState;
 use crate::ws::ws_upgrade;

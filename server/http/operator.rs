@@ -76,7 +76,7 @@ pub fn settings_json(config: &SiteConfig) -> Value {
 
 /// A bundle-relative path (`pages/images/map.png`) as the URL path it is served at, each
 /// segment percent-encoded.
-fn url_path(path: &str) -> String {
+pub(super) fn url_path(path: &str) -> String {
     let mut url = String::with_capacity(path.len() + 1);
     for segment in path.split('/') {
         url.push('/');

@@ -9,6 +9,7 @@ use axum::response::{IntoResponse, Response};
 
 use crate::content::config::{AdapterKind, Camera, SiteConfig};
 use crate::http::AppError;
+use crate::http::missing_page::MissingPage;
 use crate::state::AppState;
 
 /// The websocket every shell connects to.
@@ -36,11 +37,15 @@ pub struct KioskShell<'a> {
     pub rate: u32,
     /// Whether the kiosk answers the operator console's camera calls (`operator.camera: webrtc`).
     pub webrtc_camera: bool,
+    /// The friendly "not available" page (`pages/missing/missing.html`), shown in place of a
+    /// page the browser could not load at all; empty: the browser's own error screen.
+    pub unavailable_page: &'a str,
 }
 
 impl<'a> KioskShell<'a> {
-    /// The shell for a bundle with these settings.
-    pub fn new(config: &'a SiteConfig) -> Self {
+    /// The shell for a bundle with these settings, showing `unavailable_page` when a page
+    /// cannot be loaded.
+    pub fn new(config: &'a SiteConfig, unavailable_page: &'a str) -> Self {
         KioskShell {
             ws_path: WS_PATH,
             pages_path: "/pages/",
@@ -51,6 +56,7 @@ impl<'a> KioskShell<'a> {
             voice: &config.speech.voice,
             rate: config.speech.rate_wpm,
             webrtc_camera: config.operator.camera == Camera::WebRtc,
+            unavailable_page,
         }
     }
 }
@@ -81,10 +87,17 @@ impl<'a> ProjectorShell<'a> {
     }
 }
 
-/// `pages/preview/preview.html`: the kiosk and the projector side by side, for authors.
+/// `pages/preview/preview.html`: for authors, the act list, the words being spoken, and the
+/// kiosk and the projector side by side.
 #[derive(Template)]
 #[template(path = "preview/preview.html")]
-pub struct PreviewPage {
+pub struct PreviewPage<'a> {
+    /// Websocket path, e.g. `/ws`: the preview fires acts as an operator.
+    pub ws_path: &'a str,
+    /// False on an `--open` development server: the preview fires acts without signing in.
+    pub needs_credential: bool,
+    /// Words per minute of speech, for showing texts as long as they take to say.
+    pub rate: u32,
     /// The touchscreen's width in CSS pixels.
     pub kiosk_width: u32,
     /// The touchscreen's height.
@@ -95,10 +108,14 @@ pub struct PreviewPage {
     pub projector_height: u32,
 }
 
-impl Default for PreviewPage {
-    /// The sizes the examples are made for: a 1280x800 touchscreen, a 1280x720 projector.
-    fn default() -> Self {
+impl<'a> PreviewPage<'a> {
+    /// The preview at the sizes the examples are made for: a 1280x800 touchscreen, a
+    /// 1280x720 projector.
+    pub fn new(config: &'a SiteConfig, needs_credential: bool) -> Self {
         PreviewPage {
+            ws_path: WS_PATH,
+            needs_credential,
+            rate: config.speech.rate_wpm,
             kiosk_width: 1280,
             kiosk_height: 800,
             projector_width: 1280,
@@ -107,15 +124,26 @@ impl Default for PreviewPage {
     }
 }
 
-/// `GET /preview`: both screens in one window (`docent serve --preview` opens it).
-pub async fn preview() -> Response {
-    html(PreviewPage::default().render())
+/// `GET /preview`: acts, speech and both screens in one window (`docent serve --preview`
+/// opens it). Open to anyone like the console: firing acts needs the operator's credential.
+pub async fn preview(State(state): State<AppState>) -> Response {
+    let bundle = state.dispatcher.bundle();
+    html(PreviewPage::new(&bundle.config, !state.access.is_open()).render())
 }
 
 /// `GET /`: the kiosk shell.
 pub async fn kiosk(State(state): State<AppState>) -> Response {
     let bundle = state.dispatcher.bundle();
-    html(KioskShell::new(&bundle.config).render())
+    let (root, home) = (bundle.root.clone(), bundle.config.home.clone());
+    // It reads the home page for its stylesheets: off the threads that carry triggers.
+    let unavailable = tokio::task::spawn_blocking(move || MissingPage::new(&root, &home).render())
+        .await
+        .map_err(|e| askama::Error::Custom(Box::new(e)));
+    let unavailable = match unavailable.and_then(|page| page) {
+        Ok(page) => page,
+        Err(e) => return AppError::internal(e).into_response(),
+    };
+    html(KioskShell::new(&bundle.config, &unavailable).render())
 }
 
 /// `GET /projector`: the projector shell.
@@ -148,12 +176,23 @@ mod tests {
     use crate::content::config::AfterVideo;
 
     #[test]
-    fn the_preview_shows_both_screens_at_their_sizes() {
-        let page = PreviewPage::default().render().expect("renders");
+    fn the_preview_shows_both_screens_at_their_sizes_and_the_acts() {
+        let config = SiteConfig::default();
+        let page = PreviewPage::new(&config, true).render().expect("renders");
         assert!(
-            page.contains(r#"<iframe src="/" title="touchscreen" width="1280" height="800">"#),
+            page.contains(
+                r#"<iframe src="/?preview" title="touchscreen" width="1280" height="800">"#
+            ),
             "{page}"
         );
+        for id in [
+            "act-list", "search", "speaking", "no-voice", "signin", "link",
+        ] {
+            assert!(page.contains(&format!(r#"id="{id}""#)), "no #{id}");
+        }
+        assert!(page.contains(r#"data-credential="required""#), "{page}");
+        let page = PreviewPage::new(&config, false).render().expect("renders");
+        assert!(page.contains(r#"data-credential="open""#), "{page}");
         assert!(
             page.contains(
                 r#"<iframe src="/projector" title="projector" width="1280" height="720">"#
@@ -171,8 +210,14 @@ mod tests {
         };
         config.kiosk.idle = Duration::from_secs(90);
         config.kiosk.idle_act = Some("INVITE".to_owned());
-        let page = KioskShell::new(&config).render().expect("renders");
+        let page = KioskShell::new(&config, "<p>gone</p>")
+            .render()
+            .expect("renders");
         assert!(page.starts_with("<!doctype html>"), "{page}");
+        assert!(
+            page.contains(r#"data-unavailable="&#60;p&#62;gone&#60;/p&#62;""#),
+            "{page}"
+        );
         assert!(page.contains(r#"data-ws="/ws""#), "{page}");
         assert!(page.contains(r#"data-pages="/pages/""#), "{page}");
         assert!(
@@ -185,21 +230,21 @@ mod tests {
         assert_eq!(page.matches("<iframe").count(), 2);
 
         config.kiosk.idle_act = None;
-        let page = KioskShell::new(&config).render().expect("renders");
+        let page = KioskShell::new(&config, "").render().expect("renders");
         assert!(!page.contains("data-idle-act"), "{page}");
     }
 
     #[test]
     fn the_kiosk_shell_answers_camera_calls_only_with_a_webrtc_camera() {
         let mut config = SiteConfig::default();
-        let page = KioskShell::new(&config).render().expect("renders");
+        let page = KioskShell::new(&config, "").render().expect("renders");
         assert!(page.contains(r#"data-camera="webrtc""#), "{page}");
         for camera in [
             Camera::None,
             Camera::Url("http://192.168.1.20:8081/stream.mjpg".to_owned()),
         ] {
             config.operator.camera = camera;
-            let page = KioskShell::new(&config).render().expect("renders");
+            let page = KioskShell::new(&config, "").render().expect("renders");
             assert!(!page.contains("data-camera"), "{page}");
         }
     }
