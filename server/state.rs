@@ -12,8 +12,9 @@ use crate::dispatch::Dispatcher;
 use crate::events::{ClientRole, Hub};
 use crate::lifecycle::Lifecycle;
 use crate::operator::{Proposals, Visits};
+use crate::reload::ReloadStatus;
 use crate::sync::lock;
-use crate::ws::outbox::Outbox;
+use crate::ws::outbox::{Frame, Outbox};
 use crate::ws::protocol::StateView;
 
 /// A connected websocket client, as `GET /api/state` lists it.
@@ -44,6 +45,8 @@ pub struct AppState {
     pub proposals: Arc<Proposals>,
     /// The visitor session marked by operators.
     pub visits: Arc<Visits>,
+    /// What live reload has to tell operators (a refused save, a missing folder).
+    pub reload: Arc<ReloadStatus>,
     clients: Arc<Clients>,
 }
 
@@ -78,6 +81,7 @@ impl AppState {
             access: Arc::new(access),
             proposals: Arc::default(),
             visits: Arc::default(),
+            reload: Arc::default(),
             clients: Arc::default(),
         }
     }
@@ -101,6 +105,18 @@ impl AppState {
     /// Forgets a client.
     pub fn client_left(&self, id: u64) {
         lock(&self.clients.connected).remove(&id);
+    }
+
+    /// Sends `frame` to every connected client in `role` (a bundle change for kiosks).
+    pub fn send_to_role(&self, role: ClientRole, frame: &str) {
+        let outboxes: Vec<Outbox> = (lock(&self.clients.connected).values())
+            .filter(|c| c.info.role == role)
+            .map(|c| c.outbox.clone())
+            .collect();
+        // Sent outside the lock, which every hello and goodbye needs.
+        for outbox in outboxes {
+            outbox.send(Frame::from(frame.to_owned()));
+        }
     }
 
     /// Connected clients by id.
@@ -152,6 +168,7 @@ impl AppState {
             display: self.devices.display.snapshot(),
             pose: self.devices.drive.as_ref().map(|d| d.pose()),
             context: self.dispatcher.context(),
+            reload: self.reload.view(),
         }
     }
 }
