@@ -181,13 +181,26 @@ async fn triggers_across_good_and_broken_saves_all_get_their_normal_answer() {
     let refused = watcher.event("bundle.refused").await;
     let problem = &refused["diagnostics"][0];
     assert_eq!(
-        (&problem["code"], &problem["file"], &problem["line"], &problem["column"]),
-        (&json!("unknown-verb"), &json!("acts.yaml"), &json!(5), &json!(7))
+        (
+            &problem["code"],
+            &problem["file"],
+            &problem["line"],
+            &problem["column"]
+        ),
+        (
+            &json!("unknown-verb"),
+            &json!("acts.yaml"),
+            &json!(5),
+            &json!(7)
+        )
     );
     assert_eq!(server.said().await, "Hello two");
     // A console joining now sees the refusal too.
     let late = server.operator().await;
-    assert_eq!(late.welcome["state"]["reload"]["refused"][0]["code"], "unknown-verb");
+    assert_eq!(
+        late.welcome["state"]["reload"]["refused"][0]["code"],
+        "unknown-verb"
+    );
 
     // The fix goes live and the banner's state is cleared.
     std::fs::write(bundle.path().join("acts.yaml"), acts("Hello four")).expect("save");
@@ -201,14 +214,26 @@ async fn triggers_across_good_and_broken_saves_all_get_their_normal_answer() {
     let ws = ws.await.expect("ws loop");
     assert!(!http.is_empty() && !ws.is_empty());
     for (status, text) in &http {
-        assert_eq!(*status, 202, "an HTTP trigger failed during reloads: {text}");
+        assert_eq!(
+            *status, 202,
+            "an HTTP trigger failed during reloads: {text}"
+        );
     }
     for frame in &ws {
-        assert_eq!(frame["type"], "triggered", "a websocket trigger failed: {frame}");
+        assert_eq!(
+            frame["type"], "triggered",
+            "a websocket trigger failed: {frame}"
+        );
     }
     let order = ["Hello one", "Hello two", "Hello four"];
-    let http_texts: Vec<String> = http.iter().map(|(_, t)| t.as_str().unwrap_or("").to_owned()).collect();
-    let ws_texts: Vec<String> = ws.iter().map(|f| f["text"].as_str().unwrap_or("").to_owned()).collect();
+    let http_texts: Vec<String> = http
+        .iter()
+        .map(|(_, t)| t.as_str().unwrap_or("").to_owned())
+        .collect();
+    let ws_texts: Vec<String> = ws
+        .iter()
+        .map(|f| f["text"].as_str().unwrap_or("").to_owned())
+        .collect();
     assert_progression(&http_texts, &order, "Hello broken");
     assert_progression(&ws_texts, &order, "Hello broken");
     server.stop().await;
@@ -282,7 +307,11 @@ async fn a_deleted_bundle_folder_is_reported_and_the_last_good_bundle_keeps_serv
     std::fs::remove_dir_all(bundle.path()).expect("delete the bundle");
     let gone = watcher.event("bundle.watch-failed").await;
     assert_eq!(gone["code"], "folder-missing");
-    assert!(gone["message"].as_str().is_some_and(|m| m.contains("is gone")));
+    assert!(
+        gone["message"]
+            .as_str()
+            .is_some_and(|m| m.contains("is gone"))
+    );
     assert_eq!(server.said().await, "Hello");
     let late = server.operator().await;
     assert!(late.welcome["state"]["reload"]["trouble"].is_string());

@@ -49,7 +49,10 @@ struct Args {
 
 fn main() -> ExitCode {
     let args = Args::parse();
-    let runtime = match tokio::runtime::Builder::new_current_thread().enable_all().build() {
+    let runtime = match tokio::runtime::Builder::new_current_thread()
+        .enable_all()
+        .build()
+    {
         Ok(runtime) => runtime,
         Err(e) => {
             eprintln!("docent-reload-bench: {e}");
@@ -75,8 +78,10 @@ async fn run(args: &Args) -> Result<(), Error> {
     let acts_file = first_acts_file(&bundle)?;
     let server = Server::start(&args.docent, &bundle)?;
     let (mut ws, _) = connect_async(server.url.as_str()).await?;
-    ws.send(Message::text(json!({"type": "hello", "role": "operator"}).to_string()))
-        .await?;
+    ws.send(Message::text(
+        json!({"type": "hello", "role": "operator"}).to_string(),
+    ))
+    .await?;
     let mut took = Vec::with_capacity(args.saves);
     let mut server_ms = Vec::with_capacity(args.saves);
     for n in 0..args.saves {
@@ -181,7 +186,11 @@ fn generate(bundle: &Path, acts: usize) -> Result<(), Error> {
         for i in (p * 10)..((p * 10 + 10).min(acts)) {
             html.push_str(&format!("<button data-act=\"ACT_{i}\">Act {i}</button>\n"));
         }
-        let name = if p == 0 { "index.html".to_owned() } else { format!("page-{p}.html") };
+        let name = if p == 0 {
+            "index.html".to_owned()
+        } else {
+            format!("page-{p}.html")
+        };
         fs::write(bundle.join("pages").join(name), html)?;
     }
     Ok(())

@@ -79,7 +79,7 @@ impl Dispatcher {
     /// and the change is published.
     pub fn replace_bundle(&self, bundle: Arc<Bundle>) -> Arc<Bundle> {
         let mut context = lock(&self.context);
-        let known = bundle.contexts.iter().any(|c| *c == *context);
+        let known = bundle.contexts.contains(&*context);
         let old = self.bundle.swap(bundle);
         if !known {
             *context = DEFAULT_VARIANT.to_owned();

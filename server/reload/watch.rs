@@ -4,7 +4,7 @@
 //! watcher's errors. Reads (including Docent's own, while reloading) and hidden or back-up
 //! files (`.acts.yaml.swp`, `acts.yaml~`) are not changes.
 
-use std::path::{Path, PathBuf};
+use std::path::Path;
 use std::time::Duration;
 
 use notify_debouncer_full::notify::{EventKind, RecommendedWatcher, RecursiveMode};
@@ -65,7 +65,7 @@ impl BundleWatcher {
 }
 
 /// `path` relative to `root`, `/`-separated; `None` outside it or for hidden and back-up files.
-fn relative(root: &Path, path: &PathBuf) -> Option<String> {
+fn relative(root: &Path, path: &Path) -> Option<String> {
     let rel = path.strip_prefix(root).ok()?;
     let mut parts = Vec::new();
     for part in rel.components() {
@@ -88,7 +88,7 @@ mod tests {
     #[test]
     fn hidden_and_backup_files_are_not_changes() {
         let root = Path::new("/b");
-        let rel = |p: &str| relative(root, &PathBuf::from(p));
+        let rel = |p: &str| relative(root, Path::new(p));
         assert_eq!(rel("/b/acts.yaml").as_deref(), Some("acts.yaml"));
         assert_eq!(rel("/b/pages/a b.html").as_deref(), Some("pages/a b.html"));
         assert_eq!(rel("/b").as_deref(), Some("."));
