@@ -11,6 +11,8 @@
 //! - [`corpus`]: the JSON Lines corpus writer.
 //! - [`http`]: the route table and HTTP handlers; [`ws`]: the websocket protocol.
 //! - [`operator`]: pending proposals (mixed initiative) and visitor-session marks.
+//! - [`reload`]: live reload: watching the bundle folder, swapping in a good save, refusing a
+//!   broken one.
 //! - [`serve`]: wiring it together and running with graceful shutdown.
 //! - [`state`], [`lifecycle`], [`sync`]: shared handles and small helpers.
 
@@ -23,6 +25,7 @@ pub mod events;
 pub mod http;
 pub mod lifecycle;
 pub mod operator;
+pub mod reload;
 pub mod serve;
 pub mod state;
 pub mod sync;

@@ -10,6 +10,7 @@ use clap::{Parser, Subcommand, ValueEnum};
 use docent::access::{AccessMode, AccessSetup, Origin, decide_access};
 use docent::content::config::AdapterKind;
 use docent::content::{Colour, Diagnostic, load_bundle, render_diagnostics, schema};
+use docent::reload::ReloadOptions;
 use docent::serve::{ServeOptions, Server, run};
 use tokio::net::TcpListener;
 
@@ -95,6 +96,10 @@ struct ServeArgs {
     /// For authors: speak in the browser and open the kiosk and projector side by side.
     #[arg(long)]
     preview: bool,
+    /// Do not watch the bundle: saved files are not checked and put live while serving (they
+    /// are by default; see docs/CONFIG.md, "Live reload").
+    #[arg(long)]
+    no_watch: bool,
     /// Development only: no credentials for operator and dialog-manager clients. Allowed
     /// only with a loopback --listen address.
     #[arg(long)]
@@ -244,6 +249,12 @@ fn serve(args: &ServeArgs) -> anyhow::Result<ExitCode> {
         let server = Server::start(bundle, &options).context("starting the server")?;
         for warning in &server.warnings {
             tracing::warn!("{warning}");
+        }
+        if !args.no_watch {
+            server.watch(ReloadOptions {
+                speech_override: (mode == Mode::Preview).then_some(AdapterKind::Browser),
+                ..ReloadOptions::default()
+            });
         }
         // A closed stdout (a supervisor that stopped reading) must not stop the server.
         let _ = writeln!(

@@ -22,6 +22,7 @@ use crate::dispatch::Dispatcher;
 use crate::events::{EventKind, Hub, Source};
 use crate::http::app;
 use crate::lifecycle::Lifecycle;
+use crate::reload::ReloadOptions;
 use crate::state::AppState;
 
 /// How long shutdown waits for connections and adapters to finish.
@@ -80,6 +81,12 @@ impl Server {
             corpus,
             warnings,
         })
+    }
+
+    /// Watches the bundle folder and puts every good save live (see [`crate::reload`]). Call
+    /// within the tokio runtime, before [`run`]; without it the bundle stays as started.
+    pub fn watch(&self, options: ReloadOptions) {
+        crate::reload::watch(&self.state, options);
     }
 
     /// The shared state (for tests and embedding).

@@ -13,8 +13,9 @@ use crate::events::{ClientRole, Hub};
 use crate::http::MissingPageReports;
 use crate::lifecycle::Lifecycle;
 use crate::operator::{Proposals, Visits};
+use crate::reload::ReloadStatus;
 use crate::sync::lock;
-use crate::ws::outbox::Outbox;
+use crate::ws::outbox::{Frame, Outbox};
 use crate::ws::protocol::StateView;
 
 /// A connected websocket client, as `GET /api/state` lists it.
@@ -47,6 +48,8 @@ pub struct AppState {
     pub visits: Arc<Visits>,
     /// The allowance of `page.missing` reports (a flood of bad links is not all logged).
     pub missing_pages: Arc<MissingPageReports>,
+    /// What live reload has to tell operators (a refused save, a missing folder).
+    pub reload: Arc<ReloadStatus>,
     clients: Arc<Clients>,
 }
 
@@ -82,6 +85,7 @@ impl AppState {
             proposals: Arc::default(),
             visits: Arc::default(),
             missing_pages: Arc::default(),
+            reload: Arc::default(),
             clients: Arc::default(),
         }
     }
@@ -105,6 +109,18 @@ impl AppState {
     /// Forgets a client.
     pub fn client_left(&self, id: u64) {
         lock(&self.clients.connected).remove(&id);
+    }
+
+    /// Sends `frame` to every connected client in `role` (a bundle change for kiosks).
+    pub fn send_to_role(&self, role: ClientRole, frame: &str) {
+        let outboxes: Vec<Outbox> = (lock(&self.clients.connected).values())
+            .filter(|c| c.info.role == role)
+            .map(|c| c.outbox.clone())
+            .collect();
+        // Sent outside the lock, which every hello and goodbye needs.
+        for outbox in outboxes {
+            outbox.send(Frame::from(frame.to_owned()));
+        }
     }
 
     /// Connected clients by id.
@@ -156,6 +172,7 @@ impl AppState {
             display: self.devices.display.snapshot(),
             pose: self.devices.drive.as_ref().map(|d| d.pose()),
             context: self.dispatcher.context(),
+            reload: self.reload.view(),
         }
     }
 }

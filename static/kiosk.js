@@ -4,6 +4,9 @@
 // timers. Returns home after the configured idle time without touch (and may trigger the idle
 // act), and offers `window.docentShell` to the page script (docent-page.js). With
 // `data-camera="webrtc"` it also answers the operator console's camera calls (camera-kiosk.js).
+// When a saved bundle goes live (`changed`), it reloads its page if that page, or a file other
+// than a page (a stylesheet, script or picture it may use), changed; and reloads itself when
+// its own settings changed.
 
 import { answerCameraCalls } from "./camera-kiosk.js";
 import { encodePath, keepConnected } from "./socket.js";
@@ -68,6 +71,25 @@ function show(page) {
   next.src = pagesPath + encodePath(page);
 }
 
+/** Loads the page on show again (its file changed), through the same flash-free swap. */
+function reloadPage() {
+  const page = wanted;
+  wanted = null;
+  show(page);
+}
+
+/** A saved bundle went live: reload what it changed (docs/PROTOCOL.md, `changed`). */
+function bundleChanged(frame) {
+  if (frame.shell) {
+    location.reload();
+    return;
+  }
+  const pages = Array.isArray(frame.pages) ? frame.pages : [];
+  const mine = wanted && pages.includes(wanted);
+  const asset = pages.some((file) => !/\.html?$/i.test(file));
+  if (wanted && (mine || asset)) reloadPage();
+}
+
 /** Touches inside a page do not reach the shell's document: listen in the frame too. */
 function watchActivity(frame) {
   try {
@@ -126,6 +148,8 @@ const socket = keepConnected({
       activity();
       serverPage = frame.arg;
       show(frame.arg);
+    } else if (frame.type === "changed") {
+      bundleChanged(frame);
     } else if ((frame.type === "triggered" || frame.type === "error") && pending.has(frame.ref)) {
       pending.get(frame.ref)(frame);
       pending.delete(frame.ref);

@@ -1,5 +1,9 @@
 //! Choosing among an act's alternative texts: random, but never the same alternative twice in a
 //! row for the same act and variant (paper, 3.1: avoids "a tedious listening experience").
+//!
+//! The memory is keyed by label and variant name, not by position: a live reload reorders acts,
+//! and a label keeps its meaning across reloads. If the act lost alternatives, a remembered
+//! choice beyond the new count is ignored.
 
 use std::collections::HashMap;
 
@@ -9,7 +13,9 @@ use rand::{RngExt, SeedableRng};
 /// The random choice of alternatives, with memory of the last one per act and variant.
 pub struct Chooser {
     rng: StdRng,
-    last: HashMap<(usize, usize), usize>,
+    /// Act label → variant name → the alternative chosen last. Nested so that a lookup by
+    /// `&str` allocates nothing; only a first choice for an act or variant does.
+    last: HashMap<String, HashMap<String, usize>>,
 }
 
 impl Chooser {
@@ -25,12 +31,12 @@ impl Chooser {
         }
     }
 
-    /// Picks one of `count` alternatives of variant `variant` of act `act`.
-    pub fn pick(&mut self, act: usize, variant: usize, count: usize) -> usize {
+    /// Picks one of `count` alternatives of variant `variant` of the act labelled `act`.
+    pub fn pick(&mut self, act: &str, variant: &str, count: usize) -> usize {
         if count <= 1 {
             return 0;
         }
-        let previous = self.last.get(&(act, variant)).copied();
+        let previous = (self.last.get(act)).and_then(|v| v.get(variant).copied());
         let choice = match previous {
             // Choose among the others: skip over the previous index.
             Some(prev) if prev < count => {
@@ -39,7 +45,16 @@ impl Chooser {
             }
             _ => self.rng.random_range(0..count),
         };
-        self.last.insert((act, variant), choice);
+        let variants = match self.last.get_mut(act) {
+            Some(variants) => variants,
+            None => self.last.entry(act.to_owned()).or_default(),
+        };
+        match variants.get_mut(variant) {
+            Some(last) => *last = choice,
+            None => {
+                variants.insert(variant.to_owned(), choice);
+            }
+        }
         choice
     }
 }
@@ -51,7 +66,7 @@ mod tests {
     #[test]
     fn never_repeats_back_to_back_and_uses_every_alternative() {
         let mut chooser = Chooser::new(Some(7));
-        let picks: Vec<usize> = (0..300).map(|_| chooser.pick(0, 0, 3)).collect();
+        let picks: Vec<usize> = (0..300).map(|_| chooser.pick("A", "Text", 3)).collect();
         assert!(picks.windows(2).all(|w| w[0] != w[1]));
         for alt in 0..3 {
             assert!(
@@ -64,17 +79,20 @@ mod tests {
     #[test]
     fn two_alternatives_alternate_and_one_is_always_chosen() {
         let mut chooser = Chooser::new(None);
-        let picks: Vec<usize> = (0..10).map(|_| chooser.pick(1, 0, 2)).collect();
+        let picks: Vec<usize> = (0..10).map(|_| chooser.pick("B", "Text", 2)).collect();
         assert!(picks.windows(2).all(|w| w[0] != w[1]));
-        assert_eq!(chooser.pick(2, 0, 1), 0);
-        assert_eq!(chooser.pick(2, 0, 1), 0);
+        assert_eq!(chooser.pick("C", "Text", 1), 0);
+        assert_eq!(chooser.pick("C", "Text", 1), 0);
     }
 
     #[test]
     fn the_same_seed_gives_the_same_choices() {
         let run = |seed| {
             let mut c = Chooser::new(Some(seed));
-            (0..50).map(|i| c.pick(i % 4, i % 2, 5)).collect::<Vec<_>>()
+            let (acts, variants) = (["A", "B", "C", "D"], ["Text", "TextChild"]);
+            (0..50)
+                .map(|i| c.pick(acts[i % 4], variants[i % 2], 5))
+                .collect::<Vec<_>>()
         };
         assert_eq!(run(42), run(42));
         assert_ne!(run(42), run(43));
@@ -84,10 +102,23 @@ mod tests {
     fn memory_is_kept_per_act_and_variant() {
         let mut chooser = Chooser::new(Some(1));
         for _ in 0..50 {
-            let a = chooser.pick(0, 0, 2);
-            let b = chooser.pick(0, 1, 2);
-            assert_ne!(a, chooser.pick(0, 0, 2));
-            assert_ne!(b, chooser.pick(0, 1, 2));
+            let a = chooser.pick("A", "Text", 2);
+            let b = chooser.pick("A", "TextChild", 2);
+            assert_ne!(a, chooser.pick("A", "Text", 2));
+            assert_ne!(b, chooser.pick("A", "TextChild", 2));
         }
+    }
+
+    #[test]
+    fn memory_follows_the_label_and_survives_fewer_alternatives() {
+        let mut chooser = Chooser::new(Some(3));
+        // A reload may leave an act with fewer alternatives: the old choice is out of range.
+        for _ in 0..20 {
+            chooser.pick("A", "Text", 5);
+            let after = chooser.pick("A", "Text", 2);
+            assert!(after < 2);
+        }
+        let first = chooser.pick("GREET", "Text", 2);
+        assert_ne!(first, chooser.pick("GREET", "Text", 2));
     }
 }

@@ -73,6 +73,25 @@ impl Dispatcher {
         self.bundle.load_full()
     }
 
+    /// Puts `bundle` live in place of the current one (live reload) and returns the one it
+    /// replaced. Triggers from now on resolve in `bundle`; acts already running keep the
+    /// commands they resolved. A current context the new bundle lacks falls back to `Text`,
+    /// and the change is published.
+    pub fn replace_bundle(&self, bundle: Arc<Bundle>) -> Arc<Bundle> {
+        let mut context = lock(&self.context);
+        let known = bundle.contexts.contains(&*context);
+        let old = self.bundle.swap(bundle);
+        if !known {
+            *context = DEFAULT_VARIANT.to_owned();
+            self.hub.publish(EventKind::ContextChanged {
+                source: Source::Server,
+                context: DEFAULT_VARIANT.to_owned(),
+            });
+        }
+        drop(context);
+        old
+    }
+
     /// The event hub.
     pub fn hub(&self) -> &Hub {
         &self.hub
@@ -98,16 +117,11 @@ impl Dispatcher {
             None => lock(&self.context).clone(),
         };
         let act = &bundle.acts[index];
-        let variant = (act.variants.iter().enumerate())
-            .find(|(_, v)| v.name == context)
-            .or_else(|| {
-                act.variants
-                    .iter()
-                    .enumerate()
-                    .find(|(_, v)| v.name == DEFAULT_VARIANT)
-            });
-        let choice = variant.map(|(vi, v)| {
-            let alt = lock(&self.chooser).pick(index, vi, v.alternatives.len());
+        let variant = (act.variants.iter())
+            .find(|v| v.name == context)
+            .or_else(|| act.variants.iter().find(|v| v.name == DEFAULT_VARIANT));
+        let choice = variant.map(|v| {
+            let alt = lock(&self.chooser).pick(&act.label, &v.name, v.alternatives.len());
             (v, alt, v.alternatives[alt].value.as_str())
         });
         let trigger = self.next_id();
@@ -227,8 +241,10 @@ impl Dispatcher {
 
     /// Changes the current context.
     pub fn set_context(&self, context: &str, source: Source) -> Result<(), TriggerError> {
-        let context = self.known_context(&self.bundle.load(), context)?;
+        // Checked under the lock, against the bundle live then: a reload (which takes the lock
+        // too) cannot slip in between and leave a context its bundle does not have.
         let mut current = lock(&self.context);
+        let context = self.known_context(&self.bundle.load(), context)?;
         *current = context.clone();
         // Logged under the lock, so the log's last change is the context in force.
         self.hub

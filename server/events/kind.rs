@@ -359,6 +359,44 @@ pub enum EventKind {
         /// The marking client.
         client: u64,
     },
+    /// A saved bundle without errors went live in place of the running one.
+    #[serde(rename = "bundle.reloaded")]
+    BundleReloaded {
+        /// Acts in the new bundle.
+        acts: usize,
+        /// Contexts in the new bundle.
+        contexts: usize,
+        /// Acts the new bundle's pages offer to a touchscreen.
+        page_acts: usize,
+        /// Warnings the check found (errors would have refused it).
+        warnings: usize,
+        /// Files changed since the last bundle went live, relative to the bundle folder.
+        changed: Vec<String>,
+        /// Milliseconds from the first change seen to the new bundle being live.
+        elapsed_ms: u64,
+        /// Settings changed in `docent.yaml` that take effect only after a restart (or a
+        /// reload of a screen), each as a sentence for the operator; empty when none.
+        not_applied: Vec<String>,
+    },
+    /// A saved bundle had errors: it was refused and the last good one keeps running.
+    #[serde(rename = "bundle.refused")]
+    BundleRefused {
+        /// Every problem found, errors and warnings, as `docent check --format json` gives them.
+        diagnostics: Vec<crate::content::Diagnostic>,
+        /// Files changed since the last bundle went live, relative to the bundle folder.
+        changed: Vec<String>,
+        /// Milliseconds the check took.
+        elapsed_ms: u64,
+    },
+    /// The bundle folder cannot be watched or read any more (deleted, renamed, a watcher
+    /// error); the last good bundle keeps running.
+    #[serde(rename = "bundle.watch-failed")]
+    BundleWatchFailed {
+        /// `folder-missing` or `watcher-error`.
+        code: &'static str,
+        /// What happened and what to do, in plain words.
+        message: String,
+    },
     /// A websocket client's credential was refused; the connection was closed.
     #[serde(rename = "client.refused")]
     ClientRefused {

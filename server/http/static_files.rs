@@ -148,6 +148,11 @@ const FILES: &[(&str, &str, &str)] = &[
         include_str!("../../static/operator/proposals.js"),
     ),
     (
+        "operator/reloadbanner.js",
+        JS,
+        include_str!("../../static/operator/reloadbanner.js"),
+    ),
+    (
         "operator/search.js",
         JS,
         include_str!("../../static/operator/search.js"),

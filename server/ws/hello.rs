@@ -83,19 +83,26 @@ impl Session {
         if role == ClientRole::Projector {
             state.devices.display.projector_joined(self.client);
         }
+        // Subscribed before the state is read: an event (a refused save, a context change)
+        // published in between then arrives after the welcome instead of falling between them.
+        let events = match (role, &display_rx) {
+            (ClientRole::Operator | ClientRole::Dm, None) if events => {
+                Some(state.hub.subscribe_with_history())
+            }
+            _ => None,
+        };
         let mut view = state.state_view();
         view.display = display;
         self.send(welcome_frame(self.client, role, &view));
-        let feed = match (role, display_rx) {
-            (_, Some(rx)) => Some(Feed::Display(role, rx)),
-            (ClientRole::Operator | ClientRole::Dm, None) if events => {
-                let (rx, history) = state.hub.subscribe_with_history();
+        let feed = match (display_rx, events) {
+            (Some(rx), _) => Some(Feed::Display(role, rx)),
+            (None, Some((rx, history))) => {
                 for event in history {
                     self.outbox.send(Frame::from(event_frame(&event)));
                 }
                 Some(Feed::Events(rx))
             }
-            _ => None,
+            (None, None) => None,
         };
         if let (Some(feed), Some(tx)) = (feed, self.feed.take()) {
             let _ = tx.send(feed);

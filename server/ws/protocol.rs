@@ -6,9 +6,10 @@ use serde::{Deserialize, Serialize};
 use crate::adapters::{Command, Display, Pose};
 use crate::dispatch::ResolvedCommand;
 use crate::events::{ClientRole, Event};
+use crate::reload::ReloadView;
 
 /// The protocol version sent in `welcome`.
-pub const PROTOCOL_VERSION: u32 = 2;
+pub const PROTOCOL_VERSION: u32 = 3;
 
 /// Largest text frame Docent reads; larger ones are answered with an error.
 pub const MAX_FRAME_BYTES: usize = 16 * 1024;
@@ -163,6 +164,9 @@ pub struct StateView {
     pub pose: Option<Pose>,
     /// The current context.
     pub context: String,
+    /// Live reload: a refused save's problems, a folder that cannot be watched, settings not
+    /// yet in effect (the operator console's banner).
+    pub reload: ReloadView,
 }
 
 #[derive(Serialize)]
@@ -231,6 +235,10 @@ enum ServerFrame<'a> {
         from: u64,
         role: ClientRole,
         data: &'a serde_json::Value,
+    },
+    Changed {
+        pages: &'a [&'a str],
+        shell: bool,
     },
     Error {
         code: &'a str,
@@ -336,6 +344,12 @@ pub fn marked_frame(
 /// `signal`: signalling data relayed from client `from`.
 pub fn signal_frame(from: u64, role: ClientRole, data: &serde_json::Value) -> String {
     encode(&ServerFrame::Signal { from, role, data })
+}
+
+/// `changed`: a saved bundle went live; `pages` are the files under `pages/` changed since the
+/// last one, `shell` says the kiosk shell's own settings changed (it reloads itself).
+pub fn changed_frame(pages: &[&str], shell: bool) -> String {
+    encode(&ServerFrame::Changed { pages, shell })
 }
 
 /// `error`: what went wrong with a client's frame; the connection stays open.

@@ -4,7 +4,8 @@
 // the server has it). Signing in, the one websocket as an operator and lockouts are access.js;
 // the server's frames and events reach the panels through events.js; Stop, which never waits
 // (over HTTP when the websocket cannot or does not answer), is stop.js; keys.js the keyboard.
-// What is left here: firing acts, answering proposals, marks, the notice line, and loading the
+// The live-reload banner (a refused save, a folder gone) is reloadbanner.js; after a good save
+// the act list is loaded again. What is left here: firing acts, answering proposals, marks, the notice line, and loading the
 // acts and the console's settings.
 
 import { readActs, textsFor } from "./acts.js";
@@ -23,6 +24,7 @@ import { createMap } from "./map.js";
 import { createMarks } from "./marks.js";
 import { showPreview } from "./preview.js";
 import { createProposals } from "./proposals.js";
+import { createReloadBanner } from "./reloadbanner.js";
 import { createStop } from "./stop.js";
 import * as store from "./store.js";
 
@@ -97,6 +99,11 @@ const marks = createMarks({
   },
 });
 
+const reloadBanner = createReloadBanner({
+  element: byId("reload-banner"),
+  onReloaded: () => loadActs().catch((error) => notice(`The acts could not be loaded: ${error.message}`)),
+});
+
 // --- the server -----------------------------------------------------------------------------
 
 const access = createAccess({
@@ -112,7 +119,10 @@ const access = createAccess({
     name: byId("signin-name"),
     error: byId("signin-error"),
   },
-  onFrame: (frame) => events.onFrame(frame),
+  onFrame: (frame) => {
+    reloadBanner.onFrame(frame);
+    events.onFrame(frame);
+  },
   onOnline: () => loadSettings(),
   onSignedOut: () => camera.stop(),
 });

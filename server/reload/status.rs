@@ -1,0 +1,81 @@
+//! What live reload has to tell the operators right now: the problems of a refused save, a
+//! bundle folder that cannot be watched, settings that are not yet in effect. Connected consoles
+//! learn of changes from the `bundle.*` events; a console joining later reads the same thing
+//! from the `reload` field of its `welcome` state, so the banner never depends on when it joined.
+
+use std::sync::Mutex;
+
+use serde::Serialize;
+
+use crate::content::Diagnostic;
+use crate::sync::lock;
+
+/// The live-reload part of the state a client is welcomed with (`state.reload`).
+#[derive(Clone, Debug, Default, PartialEq, Serialize)]
+pub struct ReloadView {
+    /// The problems of the last save when it was refused; `None` once a good save is live.
+    pub refused: Option<Vec<Diagnostic>>,
+    /// Why the bundle folder cannot be watched (deleted, renamed, a watcher error).
+    pub trouble: Option<String>,
+    /// Settings changed since start-up that are not in effect yet, as sentences.
+    pub not_applied: Vec<String>,
+}
+
+/// The shared live-reload status. Cheap to read; changed only by the reload loop.
+#[derive(Debug, Default)]
+pub struct ReloadStatus {
+    view: Mutex<ReloadView>,
+}
+
+impl ReloadStatus {
+    /// A copy of the current status.
+    pub fn view(&self) -> ReloadView {
+        lock(&self.view).clone()
+    }
+
+    /// A good bundle went live: refusals and troubles are over.
+    pub fn went_live(&self, not_applied: Vec<String>) {
+        *lock(&self.view) = ReloadView {
+            refused: None,
+            trouble: None,
+            not_applied,
+        };
+    }
+
+    /// A save was refused with these problems.
+    pub fn refused(&self, diagnostics: Vec<Diagnostic>) {
+        let mut view = lock(&self.view);
+        view.refused = Some(diagnostics);
+        view.trouble = None;
+    }
+
+    /// The folder cannot be watched or read.
+    pub fn trouble(&self, message: String) {
+        lock(&self.view).trouble = Some(message);
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::content::Pos;
+
+    #[test]
+    fn a_good_save_clears_a_refusal_and_a_trouble() {
+        let status = ReloadStatus::default();
+        let problem = Diagnostic::error("unknown-verb", &Pos::new("acts.yaml", 3, 5), "x");
+        status.refused(vec![problem.clone()]);
+        status.trouble("gone".into());
+        assert_eq!(status.view().refused, Some(vec![problem]));
+        assert_eq!(status.view().trouble.as_deref(), Some("gone"));
+        status.went_live(vec!["restart".into()]);
+        assert_eq!(
+            status.view(),
+            ReloadView {
+                refused: None,
+                trouble: None,
+                not_applied: vec!["restart".into()],
+            }
+        );
+    }
+}

@@ -1,0 +1,90 @@
+// reloadbanner.js: the live-reload banner. While `docent serve` watches the bundle, a save with
+// errors is refused and the last good bundle keeps running; until a good save is live this
+// banner lists the problems, each at its file, line and column. It also says when the bundle
+// folder cannot be watched (deleted, renamed) and which changed settings are not in effect yet
+// (they need a restart). A console joining later reads the same from `welcome` (state.reload);
+// a console already connected follows the `bundle.*` events.
+
+const EMPTY = { refused: null, trouble: null, not_applied: [] };
+
+/**
+ * @param {{element: HTMLElement, onReloaded: (event: object) => void}} options `element`: the
+ *          banner (hidden when there is nothing to say); `onReloaded`: a good save went live
+ * @returns {{onFrame: (frame: object) => void}}
+ */
+export function createReloadBanner({ element, onReloaded }) {
+  let view = { ...EMPTY };
+
+  function problemLine(d) {
+    const li = document.createElement("li");
+    li.dataset.code = d.code;
+    const where = document.createElement("strong");
+    where.textContent = `${d.file}, line ${d.line}, column ${d.column}`;
+    const kind = d.severity === "warning" ? "warning" : "error";
+    li.append(where, `: ${d.message} (${kind}: ${d.code})`);
+    return li;
+  }
+
+  function paragraph(text, className) {
+    const p = document.createElement("p");
+    p.className = className;
+    p.textContent = text;
+    return p;
+  }
+
+  function render() {
+    element.replaceChildren();
+    const refused = view.refused ?? [];
+    const errors = refused.filter((d) => d.severity !== "warning").length;
+    if (view.refused) {
+      element.append(
+        paragraph(
+          `The last save of the bundle has ${errors} error(s) and was not put live; the last good version keeps running until they are fixed:`,
+          "reload-title",
+        ),
+      );
+      const list = document.createElement("ul");
+      list.className = "reload-problems";
+      list.append(...refused.map(problemLine));
+      element.append(list);
+    }
+    if (view.trouble) element.append(paragraph(view.trouble, "reload-trouble"));
+    if (view.not_applied.length > 0) {
+      element.append(paragraph("Saved but not in effect yet:", "reload-title"));
+      const list = document.createElement("ul");
+      list.className = "reload-not-applied";
+      for (const sentence of view.not_applied) {
+        const li = document.createElement("li");
+        li.textContent = sentence;
+        list.append(li);
+      }
+      element.append(list);
+    }
+    element.hidden = !view.refused && !view.trouble && view.not_applied.length === 0;
+    element.dataset.state = view.refused || view.trouble ? "refused" : "ok";
+  }
+
+  function onFrame(frame) {
+    if ((frame.type === "welcome" || frame.type === "state") && frame.state?.reload) {
+      view = { ...EMPTY, ...frame.state.reload };
+      render();
+      return;
+    }
+    if (frame.type !== "event") return;
+    const e = frame.event ?? {};
+    if (e.type === "bundle.refused") {
+      view = { ...view, refused: e.diagnostics ?? [], trouble: null };
+    } else if (e.type === "bundle.watch-failed") {
+      view = { ...view, trouble: e.message ?? e.code };
+    } else if (e.type === "bundle.reloaded") {
+      view = { ...EMPTY, not_applied: e.not_applied ?? [] };
+      onReloaded(e);
+    } else {
+      return;
+    }
+    render();
+  }
+
+  render();
+  return { onFrame };
+}
