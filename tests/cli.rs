@@ -165,7 +165,7 @@ fn preview_serves_both_screens_and_speaks_in_the_browser() {
         .expect("a preview line");
     let url = preview.split_whitespace().nth(1).unwrap().to_owned();
     let page = reqwest::blocking_get(&url);
-    assert!(page.contains("<iframe src=\"/\""), "{page}");
+    assert!(page.contains("<iframe src=\"/?preview\""), "{page}");
     assert!(page.contains("<iframe src=\"/projector\""), "{page}");
     let kiosk = reqwest::blocking_get(&url.replace("/preview", "/"));
     assert!(kiosk.contains("data-speech=\"browser\""), "{kiosk}");
