@@ -9,7 +9,8 @@
 //! - `config`: validated site settings; `config_file`: parsing `docent.yaml`.
 //! - `acts_file`: parsing one acts file, keeping every position.
 //! - `commands`: parsing and checking `VERB argument` strings.
-//! - `pages`: finding `data-act` labels in HTML pages.
+//! - `pages`: checking HTML pages (acts, links, pictures, encoding, hidden content).
+//! - `media`: what a media file really is (by its first bytes) and whether Chromium shows it.
 //! - `paths`: resolving a relative path inside the bundle (shared with the HTTP file routes).
 //! - `duration`: `2s`, `500ms`, `1.5m`.
 //! - `highlight`: the areas of a `HIGHLIGHT` argument.
@@ -28,6 +29,7 @@ mod config_file;
 mod duration;
 mod highlight;
 mod load;
+mod media;
 mod operator_check;
 mod pages;
 mod paths;
