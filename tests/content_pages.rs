@@ -86,7 +86,11 @@ fn broken_data_act_quoting_is_reported_at_the_value() {
     );
     assert!(report.diagnostics[0].message.contains("data-act=\"MAP\""));
     assert!(report.diagnostics[1].message.contains("curly quotes"));
-    assert!(report.diagnostics[2].message.contains("data-act=\"WELCOME\""));
+    assert!(
+        report.diagnostics[2]
+            .message
+            .contains("data-act=\"WELCOME\"")
+    );
 }
 
 #[test]
@@ -96,7 +100,11 @@ fn an_unknown_data_act_label_gets_a_suggestion() {
         places(&report),
         [("unknown-act", "pages/start.html:2:14".to_owned())]
     );
-    assert!(report.diagnostics[0].message.contains("Did you mean `WELCOME`?"));
+    assert!(
+        report.diagnostics[0]
+            .message
+            .contains("Did you mean `WELCOME`?")
+    );
 }
 
 #[test]
@@ -113,9 +121,15 @@ fn links_to_missing_or_miscased_files_are_reported_at_the_link() {
     let dir = bundle(&[
         ("acts.yaml", ACTS),
         ("pages/start.html", &page),
-        ("pages/style.css", "h1 {\n  background: url(\"images/missing.png\");\n}\n"),
+        (
+            "pages/style.css",
+            "h1 {\n  background: url(\"images/missing.png\");\n}\n",
+        ),
     ]);
-    write_bytes(&dir, &[("pages/images/map.png", PNG), ("media/clip.webm", WEBM)]);
+    write_bytes(
+        &dir,
+        &[("pages/images/map.png", PNG), ("media/clip.webm", WEBM)],
+    );
     let report = check(dir.path());
     let broken: Vec<String> = only(&report, "broken-link")
         .iter()
@@ -265,7 +279,10 @@ fn triggered_labels_must_exist_and_be_offered_by_a_page() {
         ("acts.yaml", ACTS),
         ("docent.yaml", "kiosk:\n  idle_act: WELCOME\n"),
         ("pages/start.html", &page),
-        ("pages/js/show.js", "setTimeout(() => {\n  docent.trigger(`SECRET`);\n  docent.trigger('WELCOME');\n}, 10);\n"),
+        (
+            "pages/js/show.js",
+            "setTimeout(() => {\n  docent.trigger(`SECRET`);\n  docent.trigger('WELCOME');\n}, 10);\n",
+        ),
     ]);
     let report = check(dir.path());
     assert_eq!(
@@ -275,6 +292,14 @@ fn triggered_labels_must_exist_and_be_offered_by_a_page() {
             ("unknown-act", "pages/start.html:4:44".to_owned()),
         ]
     );
-    assert!(report.diagnostics[0].message.contains("data-act=\"SECRET\""));
-    assert!(report.diagnostics[1].message.contains("Did you mean `SLIDE`?"));
+    assert!(
+        report.diagnostics[0]
+            .message
+            .contains("data-act=\"SECRET\"")
+    );
+    assert!(
+        report.diagnostics[1]
+            .message
+            .contains("Did you mean `SLIDE`?")
+    );
 }

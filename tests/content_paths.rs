@@ -59,8 +59,15 @@ fn file_arguments_are_checked_through_the_bundle_gate() {
         messages[3]
     );
     assert!(messages[4].contains("is a folder"), "{}", messages[4]);
-    assert!(messages[6].contains("ffmpeg -i \"media/film.mpg\""), "{}", messages[6]);
-    assert_eq!(only(&report, "media-unplayable")[0].severity, Severity::Error);
+    assert!(
+        messages[6].contains("ffmpeg -i \"media/film.mpg\""),
+        "{}",
+        messages[6]
+    );
+    assert_eq!(
+        only(&report, "media-unplayable")[0].severity,
+        Severity::Error
+    );
 }
 
 #[cfg(unix)]

@@ -275,8 +275,13 @@ impl<'a> CommandChecker<'a> {
         let Ok(path) = resolve_in_bundle(self.root, BundleArea::Media, file) else {
             return; // Reported by `check_file`.
         };
-        self.sniffs
-            .check(&path, &format!("media/{file}"), ShownBy::Projector, pos, out);
+        self.sniffs.check(
+            &path,
+            &format!("media/{file}"),
+            ShownBy::Projector,
+            pos,
+            out,
+        );
     }
 
     fn check_file(&self, area: BundleArea, rel: &str, pos: &Pos, out: &mut Vec<Diagnostic>) {

@@ -306,7 +306,8 @@ fn check_pages(
     out: &mut Vec<Diagnostic>,
 ) {
     let PageLabels { offered, triggered } = read_pages(checker, out);
-    let known = |label: &str| merged.index.contains_key(label) || merged.unread_labels.contains(label);
+    let known =
+        |label: &str| merged.index.contains_key(label) || merged.unread_labels.contains(label);
     for Located { value, pos } in &offered {
         if known(value) {
             continue;

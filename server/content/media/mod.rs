@@ -160,7 +160,10 @@ fn misnamed(
             let as_image = PROJECTOR_IMAGES.contains(&ext);
             as_image != (real.kind == Kind::Image)
         }
-        _ => wrong_kind(real.kind, by) || named_kind.is_some_and(|k| (k == Kind::Image) != (real.kind == Kind::Image)),
+        _ => {
+            wrong_kind(real.kind, by)
+                || named_kind.is_some_and(|k| (k == Kind::Image) != (real.kind == Kind::Image))
+        }
     };
     if breaks {
         let message = format!(
@@ -273,7 +276,10 @@ mod tests {
             converted_name("pages/img/photo.jpg", "jpg"),
             "pages/img/photo-converted.jpg"
         );
-        assert_eq!(converted_name("media/a.b/film", "webm"), "media/a.b/film.webm");
+        assert_eq!(
+            converted_name("media/a.b/film", "webm"),
+            "media/a.b/film.webm"
+        );
     }
 
     #[test]

@@ -224,9 +224,11 @@ fn iso_media(head: &[u8]) -> &'static Format {
     let has = |brand: &[u8]| brands.contains(&brand);
     if has(b"avif") || has(b"avis") {
         &AVIF
-    } else if ["heic", "heix", "hevc", "hevx", "heim", "heis", "mif1", "msf1"]
-        .iter()
-        .any(|b| major == b.as_bytes())
+    } else if [
+        "heic", "heix", "hevc", "hevx", "heim", "heis", "mif1", "msf1",
+    ]
+    .iter()
+    .any(|b| major == b.as_bytes())
     {
         &HEIC
     } else if major == b"qt  " {

@@ -206,16 +206,45 @@ mod tests {
     #[test]
     fn links_resolve_like_a_browser() {
         use BundleArea::{Media, Pages};
-        assert_eq!(resolve("tour/a.html", "b.html"), bundle(Pages, "tour/b.html"));
-        assert_eq!(resolve("tour/a.html", "../img/x.png?v=2#top"), bundle(Pages, "img/x.png"));
-        assert_eq!(resolve("a.html", "../media/Film%20One.webm"), bundle(Media, "Film One.webm"));
+        assert_eq!(
+            resolve("tour/a.html", "b.html"),
+            bundle(Pages, "tour/b.html")
+        );
+        assert_eq!(
+            resolve("tour/a.html", "../img/x.png?v=2#top"),
+            bundle(Pages, "img/x.png")
+        );
+        assert_eq!(
+            resolve("a.html", "../media/Film%20One.webm"),
+            bundle(Media, "Film One.webm")
+        );
         assert_eq!(resolve("a.html", "/media/x.png"), bundle(Media, "x.png"));
         assert_eq!(resolve("a.html", "img\\x.png"), bundle(Pages, "img/x.png"));
-        assert_eq!(resolve("a.html", "../../x.png"), Target::Server { path: "/x.png".into() });
+        assert_eq!(
+            resolve("a.html", "../../x.png"),
+            Target::Server {
+                path: "/x.png".into()
+            }
+        );
         assert_eq!(resolve("a.html", "https://example.org"), Target::Internet);
-        assert_eq!(resolve("a.html", "C:\\Users\\me\\x.png"), Target::OwnComputer);
-        for not_a_file in ["#top", "", "mailto:a@b", "tel:1", "data:image/png;base64,x", "javascript:void(0)", "/static/docent.css"] {
-            assert_eq!(resolve("a.html", not_a_file), Target::NotAFile, "{not_a_file}");
+        assert_eq!(
+            resolve("a.html", "C:\\Users\\me\\x.png"),
+            Target::OwnComputer
+        );
+        for not_a_file in [
+            "#top",
+            "",
+            "mailto:a@b",
+            "tel:1",
+            "data:image/png;base64,x",
+            "javascript:void(0)",
+            "/static/docent.css",
+        ] {
+            assert_eq!(
+                resolve("a.html", not_a_file),
+                Target::NotAFile,
+                "{not_a_file}"
+            );
         }
     }
 

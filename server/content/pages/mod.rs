@@ -8,8 +8,8 @@
 //! `docent.trigger` literals) are returned for `load` to check against the acts.
 
 mod links;
-mod script;
 mod scan;
+mod script;
 mod text;
 
 use std::sync::Arc;
@@ -59,10 +59,7 @@ pub(crate) fn check_pages(checker: &CommandChecker<'_>, out: &mut Vec<Diagnostic
             continue;
         };
         let file: Arc<str> = Arc::from(format!("pages/{rel}"));
-        let page = PageFile {
-            checker,
-            rel: &rel,
-        };
+        let page = PageFile { checker, rel: &rel };
         match kind {
             FileKind::Page => {
                 let Some(source) = SourceText::decode(file, &bytes, out) else {
@@ -256,7 +253,11 @@ fn broken_quoting(value: &str) -> Option<String> {
     }
     let shown: String = value.chars().take(40).collect();
     let shown = shown.replace(['\n', '\r'], " ");
-    let more = if value.chars().count() > 40 { "…" } else { "" };
+    let more = if value.chars().count() > 40 {
+        "…"
+    } else {
+        ""
+    };
     Some(format!(
         "The quotes around this `data-act` value do not match, so the browser reads the label \
          as `{shown}{more}` (and may swallow what follows). Write `data-act=\"{label}\"`, with \
@@ -287,7 +288,10 @@ fn check_act_after(source: &SourceText, after: &Value, has_act: bool, out: &mut 
 fn check_charset(source: &SourceText, charsets: &[Value], out: &mut Vec<Diagnostic>) {
     for charset in charsets {
         let name = charset.text.trim();
-        if name.is_empty() || name.eq_ignore_ascii_case("utf-8") || name.eq_ignore_ascii_case("utf8") {
+        if name.is_empty()
+            || name.eq_ignore_ascii_case("utf-8")
+            || name.eq_ignore_ascii_case("utf8")
+        {
             continue;
         }
         let message = format!(
@@ -295,7 +299,11 @@ fn check_charset(source: &SourceText, charsets: &[Value], out: &mut Vec<Diagnost
              letters such as ä, é or ß would show wrongly. Write `<meta charset=\"utf-8\">` \
              instead (and keep saving the file as UTF-8)."
         );
-        out.push(Diagnostic::error("page-charset", &source.pos(charset.at), message));
+        out.push(Diagnostic::error(
+            "page-charset",
+            &source.pos(charset.at),
+            message,
+        ));
     }
     if charsets.iter().all(|c| c.text.trim().is_empty()) && !source.text.is_ascii() {
         let message = "This page has letters beyond plain English but does not say it is \

@@ -86,8 +86,17 @@ pub(crate) struct PageScan {
 /// Elements whose content is text up to their own end tag (or inert, for `template`): left
 /// open, they swallow everything after them.
 const SWALLOWING: &[&str] = &[
-    "script", "style", "textarea", "title", "template", "xmp", "iframe", "noembed", "noframes",
-    "noscript", "plaintext",
+    "script",
+    "style",
+    "textarea",
+    "title",
+    "template",
+    "xmp",
+    "iframe",
+    "noembed",
+    "noframes",
+    "noscript",
+    "plaintext",
 ];
 
 /// Reads `html` (UTF-8, without byte-order mark).
@@ -238,9 +247,9 @@ fn link_use(element: &str, attr: &str) -> Option<LinkUse> {
         ("a" | "area", "href") => LinkUse::Navigate,
         ("img", "src") | ("video", "poster") | ("input", "src") => LinkUse::Image,
         ("video" | "audio" | "source", "src") => LinkUse::Player,
-        ("link", "href") | ("script" | "iframe" | "embed" | "track", "src") | ("object", "data") => {
-            LinkUse::Resource
-        }
+        ("link", "href")
+        | ("script" | "iframe" | "embed" | "track", "src")
+        | ("object", "data") => LinkUse::Resource,
         _ => return None,
     })
 }
@@ -284,7 +293,13 @@ mod tests {
         let html = "<a data-act='OK' href=x.html style=\"background: url(a.png)\">ok</a>\
                     <style>p{}</style><script>docent.trigger('A')</script>";
         let found = scan(html);
-        assert_eq!(found.acts, [Value { text: "OK".into(), at: 13 }]);
+        assert_eq!(
+            found.acts,
+            [Value {
+                text: "OK".into(),
+                at: 13
+            }]
+        );
         assert_eq!(found.links[0].value.at, html.find("x.html").expect("link"));
         assert_eq!(found.css.len(), 2);
         assert_eq!(found.css[1].text, "p{}");

@@ -36,20 +36,14 @@ pub(crate) fn act_delay(text: &str) -> Option<Duration> {
 fn is_js_space(c: char) -> bool {
     matches!(
         c,
-        '\t' | '\n'
-            | '\u{b}'
-            | '\u{c}'
-            | '\r'
-            | ' '
-            | '\u{a0}'
-            | '\u{1680}'
-            | '\u{2000}'..='\u{200a}'
-            | '\u{2028}'
-            | '\u{2029}'
-            | '\u{202f}'
-            | '\u{205f}'
-            | '\u{3000}'
-            | '\u{feff}'
+        '\t' | '\n' | '\u{b}' | '\u{c}' | '\r' | ' ' | '\u{a0}' | '\u{1680}' | '\u{2000}'
+            ..='\u{200a}'
+                | '\u{2028}'
+                | '\u{2029}'
+                | '\u{202f}'
+                | '\u{205f}'
+                | '\u{3000}'
+                | '\u{feff}'
     )
 }
 
@@ -66,12 +60,16 @@ pub(crate) fn trigger_literals(js: &str) -> Vec<(String, usize)> {
                 i = js[i..].find('\n').map_or(bytes.len(), |n| i + n);
             }
             b'/' if bytes.get(i + 1) == Some(&b'*') => {
-                i = js[i + 2..].find("*/").map_or(bytes.len(), |n| i + 2 + n + 2);
+                i = js[i + 2..]
+                    .find("*/")
+                    .map_or(bytes.len(), |n| i + 2 + n + 2);
             }
             quote @ (b'"' | b'\'' | b'`') => i = string_end(bytes, i + 1, quote),
             c if c.is_ascii_alphabetic() || c == b'_' || c == b'$' => {
                 let start = i;
-                while i < bytes.len() && (bytes[i].is_ascii_alphanumeric() || b"_$".contains(&bytes[i])) {
+                while i < bytes.len()
+                    && (bytes[i].is_ascii_alphanumeric() || b"_$".contains(&bytes[i]))
+                {
                     i += 1;
                 }
                 if &js[start..i] == "docent"
@@ -127,7 +125,9 @@ mod tests {
         assert_eq!(act_delay(" 1.5 m\n"), Some(Duration::from_secs(90)));
         assert_eq!(act_delay("500ms"), Some(Duration::from_millis(500)));
         assert_eq!(act_delay("\u{a0}2s"), Some(Duration::from_secs(2)));
-        for bad in ["20", "20 sec", "2,5s", ".5s", "5.s", "1h", "20S", "-1s", "", "1e3ms"] {
+        for bad in [
+            "20", "20 sec", "2,5s", ".5s", "5.s", "1h", "20S", "-1s", "", "1e3ms",
+        ] {
             assert_eq!(act_delay(bad), None, "{bad:?}");
         }
     }
