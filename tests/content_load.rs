@@ -56,10 +56,7 @@ fn the_papers_fig4_sample_loads_unchanged() {
         .collect();
     assert_eq!(
         warnings,
-        [
-            ("media-format", "acts.yaml:25:15".to_owned()),
-            ("no-home-page", "pages/index.html:0:0".to_owned())
-        ]
+        [("no-home-page", "pages/index.html:0:0".to_owned())]
     );
     assert!(
         report
@@ -157,7 +154,7 @@ fn every_fig4_act_keeps_the_place_of_each_part() {
     );
     assert_eq!(
         commands("RUN_VIDEO_EXHIBIT"),
-        [(spec(Verb::Project, "Exhibit/video.mpg"), at(25, 7))]
+        [(spec(Verb::Project, "Exhibit/video.mp4"), at(25, 7))]
     );
 }
 

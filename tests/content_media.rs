@@ -250,3 +250,23 @@ fn pictures_and_videos_of_pages_are_judged_by_content_at_the_attribute() {
             .contains("ffmpeg -i \"pages/images/scan.tif\" \"pages/images/scan.png\"")
     );
 }
+
+#[test]
+fn the_papers_original_mpeg_video_is_refused() {
+    // Fig. 4 of the paper projects `Exhibit/video.mpg`; the projector never showed it.
+    let acts = yaml(&[
+        "- Label: RUN_VIDEO_EXHIBIT",
+        "  Cmds:",
+        "    - PROJECT Exhibit/video.mpg",
+    ]);
+    let dir = bundle(&[
+        ("acts.yaml", &acts),
+        ("media/Exhibit/video.mpg", "placeholder"),
+    ]);
+    let report = check(dir.path());
+    assert_eq!(
+        places(&report),
+        [("media-unplayable", "acts.yaml:3:15".to_owned())]
+    );
+    assert!(report.bundle.is_none());
+}
