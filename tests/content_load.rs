@@ -62,7 +62,6 @@ fn the_papers_fig4_sample_loads_unchanged() {
             ("unused-act", "acts.yaml:7:10".to_owned()),
             ("context-typo", "acts.yaml:16:3".to_owned()),
             ("context-typo", "acts.yaml:18:3".to_owned()),
-            ("media-format", "acts.yaml:25:15".to_owned()),
             ("no-home-page", "pages/index.html:1:1".to_owned())
         ]
     );
@@ -162,7 +161,7 @@ fn every_fig4_act_keeps_the_place_of_each_part() {
     );
     assert_eq!(
         commands("RUN_VIDEO_EXHIBIT"),
-        [(spec(Verb::Project, "Exhibit/video.mpg"), at(25, 7))]
+        [(spec(Verb::Project, "Exhibit/video.mp4"), at(25, 7))]
     );
 }
 

@@ -39,8 +39,7 @@ fn file_arguments_are_checked_through_the_bundle_gate() {
             ("missing-file", "acts.yaml:6:20".to_owned()),
             ("missing-file", "acts.yaml:7:20".to_owned()),
             ("missing-file", "acts.yaml:8:15".to_owned()),
-            ("media-format", "acts.yaml:8:15".to_owned()),
-            ("media-format", "acts.yaml:9:15".to_owned()),
+            ("media-unplayable", "acts.yaml:9:15".to_owned()),
             ("missing-file", "acts.yaml:10:15".to_owned()),
         ]
     );
@@ -60,8 +59,15 @@ fn file_arguments_are_checked_through_the_bundle_gate() {
         messages[3]
     );
     assert!(messages[4].contains("is a folder"), "{}", messages[4]);
-    assert!(messages[7].contains("WebM"), "{}", messages[7]);
-    assert_eq!(only(&report, "media-format")[0].severity, Severity::Warning);
+    assert!(
+        messages[6].contains("ffmpeg -i \"media/film.mpg\""),
+        "{}",
+        messages[6]
+    );
+    assert_eq!(
+        only(&report, "media-unplayable")[0].severity,
+        Severity::Error
+    );
 }
 
 #[cfg(unix)]
@@ -172,7 +178,7 @@ fn page_labels_are_checked_at_the_attribute_value() {
     let page = yaml(&[
         "<!doctype html>",
         "<button data-act=\"WELCOM\">a</button>",
-        "<a data-act='OK' href=x>b</a>",
+        "<a data-act='OK' href=#x>b</a>",
         "<div data-act=GONE></div>",
         "<!-- <b data-act=\"OLD\"> -->",
     ]);

@@ -46,7 +46,7 @@ async fn every_act_of_the_paper_sample_resolves_into_its_commands() {
         commands(&video),
         vec![
             say("Let me show you a video about this exhibit."),
-            ("PROJECT".into(), Some("Exhibit/video.mpg".into()))
+            ("PROJECT".into(), Some("Exhibit/video.mp4".into()))
         ]
     );
     assert!(video["trigger"].as_u64().unwrap() > where_from["trigger"].as_u64().unwrap());

@@ -138,10 +138,10 @@ async fn display_clients_get_commands_and_late_ones_get_the_current_state() {
     let shown = projector.recv_type("command").await;
     assert_eq!(
         (shown["verb"].as_str(), shown["arg"].as_str()),
-        (Some("PROJECT"), Some("Exhibit/video.mpg"))
+        (Some("PROJECT"), Some("Exhibit/video.mp4"))
     );
     let changed = op
-        .event_where(|e| e["type"] == "display.changed" && e["projector"] == "Exhibit/video.mpg")
+        .event_where(|e| e["type"] == "display.changed" && e["projector"] == "Exhibit/video.mp4")
         .await;
     assert_eq!(changed["page"], "Welcome/Welcome.html");
     let late = server
@@ -153,7 +153,7 @@ async fn display_clients_get_commands_and_late_ones_get_the_current_state() {
     );
     assert_eq!(
         late.welcome["state"]["display"]["projector"],
-        "Exhibit/video.mpg"
+        "Exhibit/video.mp4"
     );
     server.stop().await;
 }

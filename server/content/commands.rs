@@ -13,6 +13,7 @@ use crate::content::config::{ArgRule, SiteConfig};
 use crate::content::diagnostic::Diagnostic;
 use crate::content::duration::parse_duration;
 use crate::content::highlight::{parse_highlight, words_with_offsets};
+use crate::content::media::{MediaSniffs, ShownBy};
 use crate::content::model::{CommandSpec, Located, Pos, Verb};
 use crate::content::paths::{BundleArea, PathError, list_files, resolve_in_bundle};
 use crate::content::speech::{SpokenText, check_spoken};
@@ -29,13 +30,6 @@ pub(crate) struct WrittenCommand {
     /// lets argument problems point at the argument itself.
     pub verbatim_at: Option<u32>,
 }
-
-/// Video and audio formats Chromium (kiosk and projector) cannot play.
-const UNPLAYABLE_VIDEO: &[&str] = &[
-    "mpg", "mpeg", "mpe", "m1v", "m2v", "vob", "avi", "wmv", "asf", "flv", "f4v", "rm", "rmvb",
-    "3gp", "3g2",
-];
-const UNPLAYABLE_AUDIO: &[&str] = &["wma", "aif", "aiff", "amr", "mid", "midi", "ra"];
 
 const SAY_USAGE: &str = "SAY needs the text to speak, e.g. `SAY Welcome to the museum`.";
 const PROJECT_USAGE: &str =
@@ -60,6 +54,8 @@ pub(crate) struct CommandChecker<'a> {
     media: OnceCell<Vec<String>>,
     /// Verdicts per path: many acts show the same few pages, and each check lists folders.
     verdicts: RefCell<HashMap<(BundleArea, String), Option<PathProblem>>>,
+    /// What media files really are, read once however many acts and pages show them.
+    sniffs: MediaSniffs,
 }
 
 impl<'a> CommandChecker<'a> {
@@ -71,7 +67,18 @@ impl<'a> CommandChecker<'a> {
             pages: OnceCell::new(),
             media: OnceCell::new(),
             verdicts: RefCell::new(HashMap::new()),
+            sniffs: MediaSniffs::default(),
         }
+    }
+
+    /// The canonical bundle root.
+    pub fn root(&self) -> &Path {
+        self.root
+    }
+
+    /// The media formats sniffed so far, shared with the page checks.
+    pub fn media(&self) -> &MediaSniffs {
+        &self.sniffs
     }
 
     /// The parsed command, or `None` after reporting why it is unusable. Warnings may be
@@ -173,7 +180,7 @@ impl<'a> CommandChecker<'a> {
             (Verb::DisplayPage, None) => Some((&cmd.pos, DISPLAY_PAGE_USAGE.to_owned())),
             (Verb::Project, Some(file)) => {
                 self.check_file(BundleArea::Media, file, arg_pos, out);
-                media_format(file, arg_pos, out);
+                self.media_format(file, arg_pos, out);
                 None
             }
             (Verb::DisplayPage, Some(file)) => {
@@ -275,6 +282,20 @@ impl<'a> CommandChecker<'a> {
         }
     }
 
+    /// A `PROJECT` file the projector cannot show, judged by its content (see `media`).
+    fn media_format(&self, file: &str, pos: &Pos, out: &mut Vec<Diagnostic>) {
+        let Ok(path) = resolve_in_bundle(self.root, BundleArea::Media, file) else {
+            return; // Reported by `check_file`.
+        };
+        self.sniffs.check(
+            &path,
+            &format!("media/{file}"),
+            ShownBy::Projector,
+            pos,
+            out,
+        );
+    }
+
     fn check_file(&self, area: BundleArea, rel: &str, pos: &Pos, out: &mut Vec<Diagnostic>) {
         if let Some((err, message)) = self.path_problem(area, rel) {
             out.push(Diagnostic::error(path_error_code(&err), pos, message));
@@ -346,25 +367,6 @@ pub(crate) fn path_error_code(err: &PathError) -> &'static str {
         PathError::Miscased { .. } => "miscased-file",
         PathError::NotFound | PathError::NotAFile => "missing-file",
     }
-}
-
-fn media_format(file: &str, pos: &Pos, out: &mut Vec<Diagnostic>) {
-    let Some((_, ext)) = file.rsplit_once('.') else {
-        return;
-    };
-    let ext = ext.to_ascii_lowercase();
-    let advice = if UNPLAYABLE_VIDEO.contains(&ext.as_str()) {
-        "Convert the video to WebM (VP9 or AV1 video with Opus sound), or to MP4 with H.264 video."
-    } else if UNPLAYABLE_AUDIO.contains(&ext.as_str()) {
-        "Convert the sound to WebM or Ogg with Opus, or to MP3."
-    } else {
-        return;
-    };
-    out.push(Diagnostic::warning(
-        "media-format",
-        pos,
-        format!("The projector's browser (Chromium) cannot play `.{ext}` files. {advice}"),
-    ));
 }
 
 #[cfg(test)]

@@ -46,21 +46,33 @@ const SAVE_AS_UTF8: &str = "Open the file and save it again with the encoding UT
                             settings, Unicode (UTF-8); VS Code: the encoding in the status bar, \
                             Save with encoding, UTF-8).";
 
-/// Why `bytes` are not UTF-8, in words, and the byte offset to report it at: the start for
-/// UTF-16, else the first byte that is not UTF-8. `None` when the bytes are UTF-8.
-pub(crate) fn not_utf8(bytes: &[u8]) -> Option<(usize, String)> {
-    let error = std::str::from_utf8(bytes).err()?;
-    let utf16 = bytes.starts_with(&[0xFF, 0xFE])
-        || bytes.starts_with(&[0xFE, 0xFF])
-        || bytes.iter().take(200).filter(|&&b| b == 0).count() > 10;
-    if utf16 {
+/// Why a file's bytes are not UTF-8.
+#[derive(Debug)]
+pub(crate) struct NotUtf8 {
+    /// The byte offset to report it at: the start for UTF-16, else the first byte that is not
+    /// UTF-8.
+    pub at: usize,
+    /// UTF-16: no part of the file reads as text.
+    pub utf16: bool,
+    /// What happened and how to save the file as UTF-8, in words.
+    pub message: String,
+}
+
+/// Why `bytes` are not UTF-8, or `None` when they are.
+pub(crate) fn not_utf8(bytes: &[u8]) -> Option<NotUtf8> {
+    // UTF-16 without a byte-order mark can be valid UTF-8 (NUL bytes and ASCII): look first.
+    if is_utf16(bytes) {
         let message = format!(
             "This file is saved as UTF-16 (called \"Unicode\" in Notepad), but Docent reads \
              only UTF-8. {SAVE_AS_UTF8}"
         );
-        return Some((0, message));
+        return Some(NotUtf8 {
+            at: 0,
+            utf16: true,
+            message,
+        });
     }
-    let at = error.valid_up_to();
+    let at = std::str::from_utf8(bytes).err()?.valid_up_to();
     let character = bytes.get(at).and_then(|&b| windows_1252(b));
     let guess = match character {
         Some(c) => format!(
@@ -73,7 +85,20 @@ pub(crate) fn not_utf8(bytes: &[u8]) -> Option<(usize, String)> {
         "This file is not saved as UTF-8, so Docent cannot read the character here.{guess} \
          {SAVE_AS_UTF8}"
     );
-    Some((at, message))
+    Some(NotUtf8 {
+        at,
+        utf16: false,
+        message,
+    })
+}
+
+/// A UTF-16 byte-order mark, or NUL bytes every other byte as in UTF-16 text without one.
+fn is_utf16(bytes: &[u8]) -> bool {
+    if bytes.starts_with(b"\xff\xfe") || bytes.starts_with(b"\xfe\xff") {
+        return true;
+    }
+    let head = &bytes[..bytes.len().min(64)];
+    head.len() >= 4 && head.iter().filter(|&&b| b == 0).count() * 3 >= head.len()
 }
 
 /// The character byte `b` stands for in Windows-1252, for bytes outside ASCII.
@@ -92,17 +117,22 @@ mod tests {
     #[test]
     fn windows_1252_and_utf16_are_told_apart_and_named() {
         assert!(not_utf8("Öffnungszeiten".as_bytes()).is_none());
-        let (at, message) = not_utf8(b"- Label: A\n  Text: \xd6ffnungszeiten\n").expect("1252");
-        assert_eq!(at, 19);
-        assert!(message.contains("probably `Ö`"), "{message}");
-        let (_, message) = not_utf8(b"caf\x80").expect("1252");
-        assert!(message.contains("`€`"), "{message}");
+        let found = not_utf8(b"- Label: A\n  Text: \xd6ffnungszeiten\n").expect("1252");
+        assert_eq!((found.at, found.utf16), (19, false));
+        assert!(found.message.contains("probably `Ö`"), "{}", found.message);
+        let found = not_utf8(b"caf\x80").expect("1252");
+        assert!(found.message.contains("`€`"), "{}", found.message);
         let utf16: Vec<u8> = [0xFF, 0xFE]
             .into_iter()
             .chain("- Label: A".encode_utf16().flat_map(u16::to_le_bytes))
             .collect();
-        let (at, message) = not_utf8(&utf16).expect("utf-16");
-        assert_eq!(at, 0);
-        assert!(message.contains("UTF-16"), "{message}");
+        let found = not_utf8(&utf16).expect("utf-16");
+        assert_eq!((found.at, found.utf16), (0, true));
+        assert!(found.message.contains("UTF-16"), "{}", found.message);
+        let no_mark: Vec<u8> = "- Label: A"
+            .encode_utf16()
+            .flat_map(u16::to_le_bytes)
+            .collect();
+        assert!(not_utf8(&no_mark).expect("utf-16").utf16);
     }
 }

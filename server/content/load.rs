@@ -16,7 +16,7 @@ use crate::content::contexts::{check_declared, check_undeclared, contexts};
 use crate::content::diagnostic::Diagnostic;
 use crate::content::model::{Act, Bundle, Located, Pos};
 use crate::content::operator_check::{KeyBindings, check_map, visitor_groups};
-use crate::content::pages::page_act_references;
+use crate::content::pages::{PageLabels, check_pages as read_pages};
 use crate::content::paths::{BundleArea, PathError};
 use crate::content::suggest::did_you_mean;
 use crate::content::unused::check_unused;
@@ -62,7 +62,7 @@ pub fn load_bundle(root: &Path) -> LoadReport {
     let files = read_acts_files(&root, &names, &config.speech, &mut diagnostics);
     let checker = CommandChecker::new(&root, &config);
     let mut merged = merge_acts(files, &checker, &config, &mut diagnostics);
-    check_pages(&root, &mut merged, &mut diagnostics);
+    check_pages(&checker, &config, &mut merged, &mut diagnostics);
     check_home(&checker, &config, settings.home.as_ref(), &mut diagnostics);
     check_idle_act(&merged, settings.idle_act.as_ref(), &mut diagnostics);
     check_map(&checker, &config, settings.map.as_ref(), &mut diagnostics);
@@ -84,6 +84,7 @@ pub fn load_bundle(root: &Path) -> LoadReport {
     );
     let bundle = (errors == 0).then(|| Bundle {
         page_acts: std::mem::take(&mut merged.page_acts),
+        page_offers: std::mem::take(&mut merged.page_offers),
         root: root.clone(),
         acts: merged.acts,
         index: merged.index,
@@ -217,6 +218,7 @@ struct Merged {
     index: HashMap<String, usize>,
     unread_labels: HashSet<String>,
     page_acts: Vec<String>,
+    page_offers: Vec<Located<String>>,
 }
 
 fn merge_acts(
@@ -293,10 +295,20 @@ fn merge_acts(
     merged
 }
 
-fn check_pages(root: &Path, merged: &mut Merged, out: &mut Vec<Diagnostic>) {
-    let references = page_act_references(root);
-    for Located { value, pos } in &references {
-        if merged.index.contains_key(value) || merged.unread_labels.contains(value) {
+/// Checks the pages (see `pages`), then the act labels they use: every `data-act` value and
+/// `docent.trigger` literal must name an act, and a triggered act must be one a kiosk may
+/// trigger (offered by some page's `data-act`, or the idle act).
+fn check_pages(
+    checker: &CommandChecker<'_>,
+    config: &SiteConfig,
+    merged: &mut Merged,
+    out: &mut Vec<Diagnostic>,
+) {
+    let PageLabels { offered, triggered } = read_pages(checker, out);
+    let known =
+        |label: &str| merged.index.contains_key(label) || merged.unread_labels.contains(label);
+    for Located { value, pos } in &offered {
+        if known(value) {
             continue;
         }
         let hint = did_you_mean(value, merged.index.keys().map(String::as_str));
@@ -306,8 +318,28 @@ fn check_pages(root: &Path, merged: &mut Merged, out: &mut Vec<Diagnostic>) {
         );
         out.push(Diagnostic::error("unknown-act", pos, message));
     }
-    let labels: BTreeSet<String> = references.into_iter().map(|r| r.value).collect();
+    let labels: BTreeSet<String> = offered.iter().map(|r| r.value.clone()).collect();
+    for Located { value, pos } in &triggered {
+        if !known(value) {
+            let hint = did_you_mean(value, merged.index.keys().map(String::as_str));
+            let message = format!(
+                "This page script triggers the act `{value}`, but no act has that label.\
+                 {hint} Fix the label in `docent.trigger(...)` or add the act."
+            );
+            out.push(Diagnostic::error("unknown-act", pos, message));
+        } else if !labels.contains(value) && config.kiosk.idle_act.as_deref() != Some(value) {
+            let message = format!(
+                "This page script triggers the act `{value}`, but no page offers it with \
+                 `data-act`, so the touchscreen is refused it and nothing happens. Add a \
+                 button with `data-act=\"{value}\"` to a page (it may be hidden: \
+                 `<span data-act=\"{value}\" hidden></span>`), or trigger an act a page \
+                 offers."
+            );
+            out.push(Diagnostic::error("trigger-not-offered", pos, message));
+        }
+    }
     merged.page_acts = labels.into_iter().collect();
+    merged.page_offers = offered;
 }
 
 /// The act `kiosk: idle_act:` names must exist.

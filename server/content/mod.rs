@@ -10,7 +10,8 @@
 //! - `contexts`: the context names a bundle uses, and misspelt variant keys.
 //! - `acts_file`: parsing one acts file, keeping every position.
 //! - `commands`: parsing and checking `VERB argument` strings.
-//! - `pages`: finding `data-act` labels in HTML pages.
+//! - `pages`: checking HTML pages (acts, links, pictures, encoding, hidden content).
+//! - `media`: what a media file really is (by its first bytes) and whether Chromium shows it.
 //! - `paths`: resolving a relative path inside the bundle (shared with the HTTP file routes).
 //! - `encoding`: files not saved as UTF-8, explained.
 //! - `duration`: `2s`, `500ms`, `1.5m`.
@@ -40,6 +41,7 @@ mod duration;
 mod encoding;
 mod highlight;
 mod load;
+mod media;
 mod operator_check;
 mod pages;
 mod paths;

@@ -199,6 +199,8 @@ pub struct Bundle {
     pub contexts: Vec<String>,
     /// Labels that the bundle's pages trigger through `data-act` (what a kiosk may trigger).
     pub page_acts: Vec<String>,
+    /// Every `data-act` value of the pages, in file order, with its place in the page.
+    pub page_offers: Vec<Located<String>>,
     /// The warnings found while loading (a bundle has no errors), for the content report.
     pub diagnostics: Vec<Diagnostic>,
 }

@@ -12,7 +12,6 @@ use serde::Serialize;
 
 use crate::content::diagnostic::Diagnostic;
 use crate::content::model::{Bundle, Verb};
-use crate::content::pages::page_act_references;
 use crate::content::paths::{BundleArea, list_files, resolve_in_bundle};
 
 /// Pages larger than this are not searched for media names (as `pages.rs` does for acts).
@@ -103,7 +102,7 @@ pub fn content_report(bundle: &Bundle) -> ContentReport {
     let root = bundle.root.as_path();
     let mut offers: BTreeMap<String, Vec<Offer>> = BTreeMap::new();
     let mut offered_on: BTreeMap<&str, Vec<String>> = BTreeMap::new();
-    for found in page_act_references(root) {
+    for found in bundle.page_offers.iter().cloned() {
         let page = found.pos.file.trim_start_matches("pages/").to_owned();
         if let Some(act) = bundle.act(&found.value) {
             let pages = offered_on.entry(act.label.as_str()).or_default();

@@ -123,10 +123,10 @@ pub(crate) fn parse(
             .push(Diagnostic::error("file-too-large", &whole_file, message));
         return out;
     }
-    if let Some((at, message)) = not_utf8(bytes) {
-        let pos = position_of_byte(file, bytes, at);
+    if let Some(found) = not_utf8(bytes) {
+        let pos = position_of_byte(file, bytes, found.at);
         out.diagnostics
-            .push(Diagnostic::error("file-encoding", &pos, message));
+            .push(Diagnostic::error("file-encoding", &pos, found.message));
         return out;
     }
     let source = std::str::from_utf8(bytes).unwrap_or_default();

@@ -1,0 +1,299 @@
+//! Media by content: what a `PROJECT` file or a picture or video of a page really is (see
+//! [`sniff`]), whether the projector or a page can show it, and the `ffmpeg` command that
+//! converts it when not.
+//!
+//! Each file is read once (the first few KB), however many acts and pages use it.
+
+pub(crate) mod sniff;
+
+use std::cell::RefCell;
+use std::collections::HashMap;
+use std::io::Read;
+use std::path::{Path, PathBuf};
+
+use crate::content::diagnostic::Diagnostic;
+use crate::content::model::Pos;
+use sniff::{Format, Kind, SNIFF_BYTES, by_extension};
+
+/// File endings the projector shows as pictures; kept equal to `IMAGES` in
+/// `static/projector.js`, which picks the element by the ending.
+const PROJECTOR_IMAGES: &[&str] = &["png", "jpg", "jpeg", "gif", "webp", "svg"];
+/// File endings the projector plays as videos; `VIDEOS` in `static/projector.js`.
+const PROJECTOR_VIDEOS: &[&str] = &["webm", "mp4", "ogv"];
+
+/// Where a file is shown, which decides what it must be.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub(crate) enum ShownBy {
+    /// `PROJECT`: the projector picks a picture or a video element by the file's ending.
+    Projector,
+    /// A page's `<img>`, `srcset`, `poster` or CSS `url()`.
+    PageImage,
+    /// A page's `<video>` or `<audio>` source.
+    PagePlayer,
+}
+
+/// The first bytes of each media file, sniffed once.
+#[derive(Default)]
+pub(crate) struct MediaSniffs {
+    formats: RefCell<HashMap<PathBuf, Option<&'static Format>>>,
+}
+
+impl MediaSniffs {
+    /// The format of the file at `path` (a path the bundle gate returned), or `None` when
+    /// its first bytes match no known format or it cannot be read.
+    pub fn format_of(&self, path: &Path) -> Option<&'static Format> {
+        if let Some(format) = self.formats.borrow().get(path) {
+            return *format;
+        }
+        let mut head = Vec::with_capacity(SNIFF_BYTES);
+        let read = std::fs::File::open(path)
+            .and_then(|f| f.take(SNIFF_BYTES as u64).read_to_end(&mut head));
+        let format = read.ok().and_then(|_| sniff::sniff(&head));
+        self.formats.borrow_mut().insert(path.to_owned(), format);
+        format
+    }
+
+    /// Reports at `pos` why the file `shown` (named from the bundle root, e.g.
+    /// `media/film.mov`, found at `path`) cannot be shown where it is used, if it cannot.
+    pub fn check(
+        &self,
+        path: &Path,
+        shown: &str,
+        by: ShownBy,
+        pos: &Pos,
+        out: &mut Vec<Diagnostic>,
+    ) {
+        let ext = shown
+            .rsplit_once('.')
+            .map(|(_, ext)| ext.to_ascii_lowercase())
+            .filter(|ext| !ext.contains('/'))
+            .unwrap_or_default();
+        let named = by_extension(&ext);
+        let content = self.format_of(path);
+        if by == ShownBy::Projector
+            && !PROJECTOR_IMAGES.contains(&ext.as_str())
+            && !PROJECTOR_VIDEOS.contains(&ext.as_str())
+        {
+            let what = content.or(named);
+            let advice = what.map_or(String::new(), |f| convert_advice(shown, f, by));
+            let message = format!(
+                "The projector shows pictures ending in .{} and plays videos ending in .{}; \
+                 `{shown}` is none of these, so nothing would be shown.{advice}",
+                PROJECTOR_IMAGES.join(", ."),
+                PROJECTOR_VIDEOS.join(", .")
+            );
+            out.push(Diagnostic::error("media-unplayable", pos, message));
+            return;
+        }
+        match (content, named) {
+            (Some(real), _) if !real.shows => {
+                let disguise = match named {
+                    Some(n) if !real.extensions.contains(&ext.as_str()) => format!(
+                        " although its name ends in .{ext} (renaming a file does not change \
+                         what is inside: {} still cannot show it)",
+                        n.name
+                    ),
+                    _ => String::new(),
+                };
+                let message = format!(
+                    "`{shown}` is {}{disguise}, which Chromium on the kiosk and projector \
+                     cannot show.{}",
+                    described(real),
+                    convert_advice(shown, real, by)
+                );
+                out.push(Diagnostic::error("media-unplayable", pos, message));
+            }
+            (Some(real), _) if !real.extensions.contains(&ext.as_str()) => {
+                misnamed(shown, &ext, real, by, pos, out);
+            }
+            (Some(real), _) if wrong_kind(real.kind, by) => {
+                let message = format!(
+                    "`{shown}` is {}, but it is used here as {}. Use a {} here, or show this \
+                     file with the right element.",
+                    described(real),
+                    expected_kind(by),
+                    expected_kind(by)
+                );
+                out.push(Diagnostic::error("media-misnamed", pos, message));
+            }
+            (Some(_), _) => {}
+            (None, Some(name)) if !name.shows => {
+                let message = format!(
+                    "`{shown}` is named as {}, which Chromium on the kiosk and projector \
+                     cannot show.{}",
+                    described(name),
+                    convert_advice(shown, name, by)
+                );
+                out.push(Diagnostic::error("media-unplayable", pos, message));
+            }
+            (None, Some(name)) => {
+                let message = format!(
+                    "`{shown}` is named as {}, but its content is not one: the file may be \
+                     damaged, empty, or something else saved under this name. Open it on a \
+                     computer to check, and save or export it again as {}.",
+                    described(name),
+                    name.name
+                );
+                out.push(Diagnostic::warning("media-unrecognised", pos, message));
+            }
+            (None, None) => {}
+        }
+    }
+}
+
+/// A playable file whose name says another format.
+fn misnamed(
+    shown: &str,
+    ext: &str,
+    real: &'static Format,
+    by: ShownBy,
+    pos: &Pos,
+    out: &mut Vec<Diagnostic>,
+) {
+    let usual = real.extensions[0];
+    let rename = format!("Rename it to end in .{usual} (and change the places that name it).");
+    // The projector, and the page element, choose by the name: a video named as a picture
+    // (or the other way round) is never shown.
+    let named_kind = by_extension(ext).map(|f| f.kind);
+    let breaks = match by {
+        ShownBy::Projector => {
+            let as_image = PROJECTOR_IMAGES.contains(&ext);
+            as_image != (real.kind == Kind::Image)
+        }
+        _ => {
+            wrong_kind(real.kind, by)
+                || named_kind.is_some_and(|k| (k == Kind::Image) != (real.kind == Kind::Image))
+        }
+    };
+    if breaks {
+        let message = format!(
+            "`{shown}` is {}, but its name ends in .{ext}, so it is shown as {} and never \
+             appears. {rename}",
+            described(real),
+            expected_kind(by_kind_of_ext(ext, by)),
+        );
+        out.push(Diagnostic::error("media-misnamed", pos, message));
+    } else {
+        let message = format!(
+            "`{shown}` is {}, but its name ends in .{ext}. It shows, but the name misleads \
+             people and programs. {rename}",
+            described(real)
+        );
+        out.push(Diagnostic::warning("media-misnamed", pos, message));
+    }
+}
+
+fn by_kind_of_ext(ext: &str, by: ShownBy) -> ShownBy {
+    match by {
+        ShownBy::Projector if PROJECTOR_IMAGES.contains(&ext) => ShownBy::PageImage,
+        ShownBy::Projector => ShownBy::PagePlayer,
+        other => other,
+    }
+}
+
+fn wrong_kind(kind: Kind, by: ShownBy) -> bool {
+    match by {
+        ShownBy::Projector => false,
+        ShownBy::PageImage => kind != Kind::Image,
+        ShownBy::PagePlayer => kind == Kind::Image,
+    }
+}
+
+fn expected_kind(by: ShownBy) -> &'static str {
+    match by {
+        ShownBy::PageImage => "a picture",
+        ShownBy::PagePlayer | ShownBy::Projector => "a video or sound",
+    }
+}
+
+fn described(format: &Format) -> String {
+    let what = match format.kind {
+        Kind::Image => "picture",
+        Kind::Video => "video",
+        Kind::Audio => "sound file",
+    };
+    format!("a {} {what}", format.name)
+}
+
+/// How to convert `shown` (named from the bundle root) into something `by` shows, as a
+/// command to run in the bundle folder.
+fn convert_advice(shown: &str, format: &Format, by: ShownBy) -> String {
+    let picture = format.kind == Kind::Image;
+    if format.name == sniff::MIDI.name {
+        return " ffmpeg cannot turn MIDI notes into sound: export the music as MP3 or WAV \
+                 from your music program, then convert it to WebM."
+            .to_owned();
+    }
+    let (ext, options) = match (picture, format.name) {
+        (true, "HEIC" | "JPEG 2000" | "JPEG XL") => ("jpg", " -q:v 2"),
+        (true, _) => ("png", ""),
+        (false, _) if format.kind == Kind::Audio && by == ShownBy::PagePlayer => {
+            ("mp3", " -vn -c:a libmp3lame -q:a 2")
+        }
+        (false, _) if format.kind == Kind::Audio => ("webm", " -vn -c:a libopus"),
+        (false, _) => ("webm", " -c:v libvpx-vp9 -b:v 0 -crf 32 -c:a libopus"),
+    };
+    let output = converted_name(shown, ext);
+    let mut advice = format!(
+        " Convert it with ffmpeg (https://ffmpeg.org), in a terminal opened in the bundle \
+         folder:\n    ffmpeg -i \"{shown}\"{options} \"{output}\"\nthen use `{output}` instead."
+    );
+    if format.name == sniff::HEIC.name {
+        advice.push_str(
+            " ffmpeg reads HEIC photos from version 7.1 on; with an older one, open the photo \
+             in the phone's or computer's Photos app (or Preview on a Mac) and export it as \
+             JPEG.",
+        );
+    } else if format.name == sniff::PSD.name {
+        advice.push_str(" Or export the picture as PNG from your drawing program.");
+    }
+    advice
+}
+
+/// `shown` with its ending replaced by `ext`; `-converted` is added when that would be the
+/// same name (a HEIC photo named `.jpg`).
+fn converted_name(shown: &str, ext: &str) -> String {
+    let stem = match shown.rsplit_once('.') {
+        Some((stem, old)) if !old.contains('/') => stem,
+        _ => shown,
+    };
+    let candidate = format!("{stem}.{ext}");
+    if candidate == shown {
+        format!("{stem}-converted.{ext}")
+    } else {
+        candidate
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn converted_names_never_overwrite_the_original() {
+        assert_eq!(converted_name("media/film.mov", "webm"), "media/film.webm");
+        assert_eq!(
+            converted_name("pages/img/photo.jpg", "jpg"),
+            "pages/img/photo-converted.jpg"
+        );
+        assert_eq!(
+            converted_name("media/a.b/film", "webm"),
+            "media/a.b/film.webm"
+        );
+    }
+
+    #[test]
+    fn advice_is_a_command_to_copy() {
+        let advice = convert_advice("media/film.mov", &sniff::QUICKTIME, ShownBy::Projector);
+        assert!(
+            advice.contains(
+                "ffmpeg -i \"media/film.mov\" -c:v libvpx-vp9 -b:v 0 -crf 32 -c:a libopus \
+                 \"media/film.webm\""
+            ),
+            "{advice}"
+        );
+        let advice = convert_advice("pages/a.heic", &sniff::HEIC, ShownBy::PageImage);
+        assert!(advice.contains("ffmpeg -i \"pages/a.heic\" -q:v 2 \"pages/a.jpg\""));
+        assert!(advice.contains("Preview"));
+    }
+}
