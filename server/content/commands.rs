@@ -6,7 +6,7 @@
 
 use std::cell::{OnceCell, RefCell};
 use std::collections::HashMap;
-use std::path::Path;
+use std::path::{Path, PathBuf};
 use std::sync::Arc;
 
 use crate::content::config::{ArgRule, SiteConfig};
@@ -15,7 +15,9 @@ use crate::content::duration::parse_duration;
 use crate::content::highlight::{parse_highlight, words_with_offsets};
 use crate::content::media::{MediaSniffs, ShownBy};
 use crate::content::model::{CommandSpec, Located, Pos, Verb};
-use crate::content::paths::{BundleArea, PathError, list_files, resolve_in_bundle};
+use crate::content::paths::{
+    BundleArea, Listing, PathError, list_files, read_listing, resolve_listed,
+};
 use crate::content::speech::{SpokenText, check_spoken};
 use crate::content::suggest::{closest, did_you_mean};
 
@@ -54,6 +56,9 @@ pub(crate) struct CommandChecker<'a> {
     media: OnceCell<Vec<String>>,
     /// Verdicts per path: many acts show the same few pages, and each check lists folders.
     verdicts: RefCell<HashMap<(BundleArea, String), Option<PathProblem>>>,
+    /// Paths resolved, and folders listed, during this load.
+    resolved: RefCell<HashMap<(BundleArea, String), Result<PathBuf, PathError>>>,
+    listings: RefCell<HashMap<PathBuf, Listing>>,
     /// What media files really are, read once however many acts and pages show them.
     sniffs: MediaSniffs,
 }
@@ -67,6 +72,8 @@ impl<'a> CommandChecker<'a> {
             pages: OnceCell::new(),
             media: OnceCell::new(),
             verdicts: RefCell::new(HashMap::new()),
+            resolved: RefCell::new(HashMap::new()),
+            listings: RefCell::new(HashMap::new()),
             sniffs: MediaSniffs::default(),
         }
     }
@@ -284,7 +291,7 @@ impl<'a> CommandChecker<'a> {
 
     /// A `PROJECT` file the projector cannot show, judged by its content (see `media`).
     fn media_format(&self, file: &str, pos: &Pos, out: &mut Vec<Diagnostic>) {
-        let Ok(path) = resolve_in_bundle(self.root, BundleArea::Media, file) else {
+        let Ok(path) = self.resolve(BundleArea::Media, file) else {
             return; // Reported by `check_file`.
         };
         self.sniffs.check(
@@ -313,8 +320,30 @@ impl<'a> CommandChecker<'a> {
         verdict
     }
 
+    /// [`resolve_in_bundle`] for the checks: each folder is listed once and each path
+    /// resolved once per load.
+    pub fn resolve(&self, area: BundleArea, rel: &str) -> Result<PathBuf, PathError> {
+        let key = (area, rel.to_owned());
+        if let Some(found) = self.resolved.borrow().get(&key) {
+            return found.clone();
+        }
+        let list = |dir: &Path| -> Listing {
+            if let Some(listing) = self.listings.borrow().get(dir) {
+                return listing.clone();
+            }
+            let listing = read_listing(dir);
+            self.listings
+                .borrow_mut()
+                .insert(dir.to_owned(), listing.clone());
+            listing
+        };
+        let found = resolve_listed(self.root, area, rel, &list);
+        self.resolved.borrow_mut().insert(key, found.clone());
+        found
+    }
+
     fn judge_path(&self, area: BundleArea, rel: &str) -> Option<PathProblem> {
-        let err = resolve_in_bundle(self.root, area, rel).err()?;
+        let err = self.resolve(area, rel).err()?;
         let folder = area.dir_name();
         let message = match &err {
             PathError::Outside => format!(

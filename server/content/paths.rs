@@ -9,6 +9,7 @@
 use std::ffi::OsString;
 use std::fs;
 use std::path::{Path, PathBuf};
+use std::sync::Arc;
 
 /// The bundle folders that files may be served from.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
@@ -56,13 +57,37 @@ pub enum PathError {
 /// a regular file inside the area folder. The area folder itself must be a real folder: if
 /// `pages` is a link, everything under it counts as outside.
 pub fn resolve_in_bundle(root: &Path, area: BundleArea, rel: &str) -> Result<PathBuf, PathError> {
+    resolve_listed(root, area, rel, &read_listing)
+}
+
+/// The names in a folder, or `None` when it cannot be read.
+pub(crate) type Listing = Option<Arc<[OsString]>>;
+
+/// The names in `dir`, read now.
+pub(crate) fn read_listing(dir: &Path) -> Listing {
+    let names: Vec<OsString> = fs::read_dir(dir)
+        .ok()?
+        .flatten()
+        .map(|e| e.file_name())
+        .collect();
+    Some(names.into())
+}
+
+/// [`resolve_in_bundle`] with folder listings from `list`: a check resolving thousands of
+/// paths in one folder reads it once (the same rules, so the same answers).
+pub(crate) fn resolve_listed(
+    root: &Path,
+    area: BundleArea,
+    rel: &str,
+    list: &dyn Fn(&Path) -> Listing,
+) -> Result<PathBuf, PathError> {
     let components = split_relative(rel)?;
     let area_dir = root.join(area.dir_name());
     let mut current = area_dir.clone();
     let mut actual_names: Vec<String> = Vec::with_capacity(components.len());
     let mut miscased = false;
     for component in &components {
-        match find_entry(&current, component)? {
+        match find_entry(list(&current), component)? {
             Entry::Exact => {
                 actual_names.push((*component).to_owned());
                 current.push(component);
@@ -120,19 +145,18 @@ enum Entry {
     CaseDiffers(OsString),
 }
 
-/// Looks `name` up in the listing of `dir`, so that case is compared exactly even where the
-/// file system itself ignores it.
-fn find_entry(dir: &Path, name: &str) -> Result<Entry, PathError> {
-    let listing = fs::read_dir(dir).map_err(|_| PathError::NotFound)?;
+/// Looks `name` up in the listing of a folder, so that case is compared exactly even where
+/// the file system itself ignores it.
+fn find_entry(listing: Listing, name: &str) -> Result<Entry, PathError> {
+    let listing = listing.ok_or(PathError::NotFound)?;
     let wanted = name.to_lowercase();
     let mut case_matches: Vec<OsString> = Vec::new();
-    for entry in listing.flatten() {
-        let entry_name = entry.file_name();
+    for entry_name in listing.iter() {
         if entry_name == name {
             return Ok(Entry::Exact);
         }
         if entry_name.to_string_lossy().to_lowercase() == wanted {
-            case_matches.push(entry_name);
+            case_matches.push(entry_name.clone());
         }
     }
     // On a case-sensitive system `a.html` and `A.html` may both exist: pick one stably.

@@ -18,7 +18,7 @@ use crate::content::commands::CommandChecker;
 use crate::content::diagnostic::Diagnostic;
 use crate::content::media::ShownBy;
 use crate::content::model::Located;
-use crate::content::paths::{BundleArea, list_files, resolve_in_bundle};
+use crate::content::paths::{BundleArea, list_files};
 use links::{Target, css_urls, resolve, srcset_urls};
 use scan::{LinkUse, PageScan, Unclosed, Value};
 use text::SourceText;
@@ -49,7 +49,7 @@ pub(crate) fn check_pages(checker: &CommandChecker<'_>, out: &mut Vec<Diagnostic
             _ => continue,
         };
         // Through the gate: a file symlinked from outside the bundle is never read.
-        let Ok(path) = resolve_in_bundle(checker.root(), BundleArea::Pages, &rel) else {
+        let Ok(path) = checker.resolve(BundleArea::Pages, &rel) else {
             continue;
         };
         if std::fs::metadata(&path).map_or(true, |m| m.len() > MAX_PAGE_BYTES) {
@@ -191,7 +191,7 @@ impl PageFile<'_, '_> {
                     LinkUse::Player => ShownBy::PagePlayer,
                     LinkUse::Navigate | LinkUse::Resource => return,
                 };
-                if let Ok(path) = resolve_in_bundle(self.checker.root(), area, &rel) {
+                if let Ok(path) = self.checker.resolve(area, &rel) {
                     let shown = format!("{}/{rel}", area.dir_name());
                     self.checker.media().check(&path, &shown, by, &pos, out);
                 }
