@@ -28,13 +28,6 @@ function findShell() {
   }
 }
 
-/** Parses `500ms`, `20s`, `1.5s` or `1m` into milliseconds; `null` when it is none of these. */
-function parseDelay(text) {
-  const match = /^\s*(\d+(?:\.\d+)?)\s*(ms|s|m)\s*$/.exec(text ?? "");
-  if (!match) return null;
-  return Number(match[1]) * { ms: 1, s: 1000, m: 60_000 }[match[2]];
-}
-
 const cleanups = [];
 addEventListener("pagehide", () => cleanups.splice(0).forEach((stop) => stop()));
 
@@ -156,8 +149,9 @@ document.addEventListener("click", (event) => {
 // unloads it, and its timers with it. The elements exist once the document is parsed.
 window.docent.ready(() => {
   for (const element of document.querySelectorAll("[data-act-after]")) {
-    const delay = parseDelay(element.dataset.actAfter);
-    if (delay === null || !element.dataset.act) {
+    // The server read the delay once (docent check uses the same rule) and added it in ms.
+    const delay = Number.parseInt(element.dataset.actAfterMs ?? "", 10);
+    if (!Number.isFinite(delay) || !element.dataset.act) {
       console.warn("docent: data-act-after needs data-act and a delay like 500ms, 20s or 1m", element);
       continue;
     }

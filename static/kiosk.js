@@ -146,8 +146,8 @@ const socket = keepConnected({
     } else if (frame.type === "command" && frame.verb === "DISPLAY_PAGE") {
       // A page change by the robot counts as activity: a tour is not an idle kiosk.
       activity();
-      serverPage = frame.arg;
-      show(frame.arg);
+      serverPage = frame.args.page;
+      show(frame.args.page);
     } else if (frame.type === "changed") {
       bundleChanged(frame);
     } else if ((frame.type === "triggered" || frame.type === "error") && pending.has(frame.ref)) {

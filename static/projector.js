@@ -3,16 +3,14 @@
 // screen goes black again, or holds the last frame (`projector: after_video: hold`).
 // A HIGHLIGHT command hides any image or video and lights its areas in white on black, each
 // `left top width height` in fractions of the screen, `ellipse` for an oval, several areas
-// separated by `;` (checked by `docent check`); HIGHLIGHT alone, or a PROJECT, clears them.
+// separated by `;`; the server sends them parsed (`args.areas`), as it sends whether a PROJECT
+// file is a picture or a video (`args.kind`). HIGHLIGHT alone, or a PROJECT, clears them.
 // The soft edge is `projector: highlight_edge` (a fraction of the width), as a blur.
 // A video projected by a PROJECT command is answered with the command's id: `done` when it
 // ends, `failed` on a media error, so that the server's WAIT can follow the film. Ids belong to
 // one connection: after a reconnect the server has already settled them, so they are dropped.
 
 import { encodePath, keepConnected } from "./socket.js";
-
-const IMAGES = new Set(["png", "jpg", "jpeg", "gif", "webp", "svg"]);
-const VIDEOS = new Set(["webm", "mp4", "ogv"]);
 
 const config = document.body.dataset;
 const mediaPath = config.media || "/media/";
@@ -49,29 +47,20 @@ function black() {
   stage.replaceChildren();
 }
 
-/** The areas of a HIGHLIGHT argument; words that are not an area are skipped. */
-function parseAreas(arg) {
-  const areas = [];
-  for (const part of (arg ?? "").split(";")) {
-    const words = part.trim().split(/\s+/).filter(Boolean);
-    const numbers = words.slice(0, 4).map(Number);
-    if (numbers.length < 4 || numbers.some((n) => !Number.isFinite(n))) continue;
-    const [left, top, width, height] = numbers;
-    areas.push({ left, top, width, height, ellipse: words[4] === "ellipse" });
-  }
-  return areas;
-}
-
-/** Lights the areas of `arg` on black, hiding any image or video; null or "" clears. */
-function highlight(arg, { again = true } = {}) {
+/**
+ * Lights `areas` (parsed by the server: `{left, top, width, height, shape}` fractions) on
+ * black, hiding any image or video; `arg` is the command as written, which says whether the
+ * same areas are on show already; null or "" clears.
+ */
+function highlight(arg, areas, { again = true } = {}) {
   const wanted = arg || null;
   if (!again && wanted === highlighted && projected === null) return;
   projected = null;
   highlighted = wanted;
   stage.replaceChildren(
-    ...parseAreas(wanted).map(({ left, top, width, height, ellipse }) => {
+    ...(areas ?? []).map(({ left, top, width, height, shape }) => {
       const area = document.createElement("div");
-      area.className = ellipse ? "docent-highlight ellipse" : "docent-highlight";
+      area.className = shape === "ellipse" ? "docent-highlight ellipse" : "docent-highlight";
       Object.assign(area.style, {
         left: `${left * 100}%`,
         top: `${top * 100}%`,
@@ -83,7 +72,8 @@ function highlight(arg, { again = true } = {}) {
   );
 }
 
-function project(file, { again = true, id = null } = {}) {
+/** Shows `file` as the server says it is (`kind`: "image" or "video"); null is black. */
+function project(file, kind, { again = true, id = null } = {}) {
   if (highlighted !== null) {
     highlighted = null;
     for (const area of stage.querySelectorAll(".docent-highlight")) area.remove();
@@ -93,9 +83,8 @@ function project(file, { again = true, id = null } = {}) {
   projected = file ?? null;
   if (!file) return black();
   ended.delete(file);
-  const extension = file.split(".").pop().toLowerCase();
   const src = mediaPath + encodePath(file);
-  if (IMAGES.has(extension)) {
+  if (kind === "image") {
     const image = new Image();
     image.className = "docent-media loading";
     image.alt = "";
@@ -103,7 +92,7 @@ function project(file, { again = true, id = null } = {}) {
     image.onerror = () => console.error(`docent: cannot show ${src}`);
     stage.append(image);
     image.src = src;
-  } else if (VIDEOS.has(extension)) {
+  } else if (kind === "video") {
     const video = document.createElement("video");
     const from = connection;
     let answered = false;
@@ -154,12 +143,15 @@ link = keepConnected({
     if (frame.type === "welcome") connection += 1;
     if (frame.type === "welcome" || frame.type === "state") {
       const display = frame.state?.display ?? {};
-      if (display.highlight) highlight(display.highlight, { again: false });
-      else project(display.projector ?? null, { again: false });
+      if (display.highlight) {
+        highlight(display.highlight, display.highlight_areas, { again: false });
+      } else {
+        project(display.projector ?? null, display.projector_kind, { again: false });
+      }
     } else if (frame.type === "command" && frame.verb === "PROJECT") {
-      project(frame.arg ?? null, { id: frame.id ?? null });
+      project(frame.args.file, frame.args.kind, { id: frame.id ?? null });
     } else if (frame.type === "command" && frame.verb === "HIGHLIGHT") {
-      highlight(frame.arg ?? null);
+      highlight(frame.arg ?? null, frame.args.areas);
     }
   },
 });

@@ -195,3 +195,20 @@ async fn a_flood_of_missing_pages_is_not_all_logged() {
     // The burst of 20, plus what refilled (2 a second) while the 60 requests ran.
     assert!((20..30).contains(&logged), "{logged} logged");
 }
+
+/// One grammar for page timers: the server reads `data-act-after` with the checker's rule and
+/// serves the delay in milliseconds, which is all the page script reads.
+#[tokio::test]
+async fn timer_delays_are_served_in_milliseconds_read_by_the_checkers_rule() {
+    let page = "<!doctype html><div data-act=\"NEXT\" data-act-after=\" 1.5 s \"></div>";
+    let bundle =
+        TempBundle::new("- Label: NEXT\n  Text: Next\n").with_file("pages/slides.html", page);
+    let server = TestServer::start(bundle.path()).await;
+    let (status, html) = raw_get(&server, "/pages/slides.html", "").await;
+    assert_eq!(status, 200, "{html}");
+    assert!(
+        html.contains(r#"data-act-after=" 1.5 s " data-act-after-ms="1500""#),
+        "{html}"
+    );
+    server.stop().await;
+}

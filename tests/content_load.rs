@@ -8,7 +8,7 @@ use std::path::{Path, PathBuf};
 
 use common::check::loaded;
 use docent::content::config::{AccessSettings, AdapterKind, ArgRule};
-use docent::content::{Bundle, CommandSpec, Pos, Severity, Verb, load_bundle};
+use docent::content::{Args, Bundle, CommandSpec, MediaKind, Pos, Severity, Verb, load_bundle};
 
 fn repo(rel: &str) -> PathBuf {
     Path::new(env!("CARGO_MANIFEST_DIR")).join(rel)
@@ -151,17 +151,27 @@ fn every_fig4_act_keeps_the_place_of_each_part() {
             .map(|c| (c.value.clone(), c.pos.clone()))
             .collect()
     };
-    let spec = |verb, arg: &str| CommandSpec {
+    let spec = |verb, arg: &str, args| CommandSpec {
         verb,
         arg: Some(arg.to_owned()),
+        args,
     };
+    let page = "Welcome/Welcome.html";
     assert_eq!(
         commands("WELCOME"),
-        [(spec(Verb::DisplayPage, "Welcome/Welcome.html"), at(5, 7))]
+        [(
+            spec(Verb::DisplayPage, page, Args::Page { page: page.into() }),
+            at(5, 7)
+        )]
     );
+    let file = "Exhibit/video.mp4";
+    let video = Args::Project {
+        file: file.into(),
+        kind: MediaKind::Video,
+    };
     assert_eq!(
         commands("RUN_VIDEO_EXHIBIT"),
-        [(spec(Verb::Project, "Exhibit/video.mp4"), at(25, 7))]
+        [(spec(Verb::Project, file, video), at(25, 7))]
     );
 }
 
@@ -236,7 +246,10 @@ fn a_single_string_is_accepted_where_a_list_is_expected() {
         act.commands[0].value,
         CommandSpec {
             verb: Verb::Wait,
-            arg: Some("2s".to_owned())
+            arg: Some("2s".to_owned()),
+            args: Args::Wait {
+                pause: Some(std::time::Duration::from_secs(2))
+            }
         }
     );
     assert_eq!(act.commands[0].pos, at(4, 9));
@@ -279,11 +292,15 @@ fn site_settings_shape_the_bundle() {
         [
             &CommandSpec {
                 verb: Verb::Site("LIGHTS".into()),
-                arg: Some("on".to_owned())
+                arg: Some("on".to_owned()),
+                args: Args::Site {
+                    arg: Some("on".to_owned())
+                }
             },
             &CommandSpec {
                 verb: Verb::Wait,
-                arg: None
+                arg: None,
+                args: Args::Wait { pause: None }
             },
         ]
     );

@@ -60,7 +60,7 @@ async fn the_log_holds_every_event_with_its_fields_in_sequence() {
     assert!(monos.windows(2).all(|w| w[0] <= w[1]));
     for e in &log {
         fields(e, &["v", "seq", "time", "mono_us", "type"]);
-        assert_eq!(e["v"], 1);
+        assert_eq!(e["v"], 2);
         assert!(e["time"].as_str().unwrap().ends_with('Z'));
     }
     assert_eq!(log[0]["type"], "server.started");
@@ -114,6 +114,10 @@ async fn the_log_holds_every_event_with_its_fields_in_sequence() {
     assert_eq!(
         (sent_say["arg"].as_str(), sent_say["adapter"].as_str()),
         (Some("Hello everyone"), Some("log"))
+    );
+    assert_eq!(
+        sent_say["args"],
+        serde_json::json!({"text": "Hello everyone"})
     );
     for kind in [
         "display.changed",

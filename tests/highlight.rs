@@ -56,6 +56,12 @@ async fn projectors_get_highlight_commands_and_late_ones_the_current_areas() {
             Some("0.10 0.20 0.35 0.25; 0.6 0.6 0.3 0.3 ellipse")
         )
     );
+    // Parsed once, by the server: the projector draws these numbers as they are.
+    let areas = json!([
+        {"left": 0.10, "top": 0.20, "width": 0.35, "height": 0.25, "shape": "rect"},
+        {"left": 0.6, "top": 0.6, "width": 0.3, "height": 0.3, "shape": "ellipse"}
+    ]);
+    assert_eq!(command["args"], json!({ "areas": areas }), "{command}");
     let event = changed(&mut op).await;
     assert_eq!(
         event["highlight"],
@@ -71,6 +77,7 @@ async fn projectors_get_highlight_commands_and_late_ones_the_current_areas() {
         "{display}"
     );
     assert_eq!(display["projector"], Value::Null, "{display}");
+    assert_eq!(display["highlight_areas"], areas, "{display}");
     let (status, state) = server.get("/api/state").await;
     assert_eq!(status, 200, "{state}");
     assert_eq!(
@@ -82,6 +89,7 @@ async fn projectors_get_highlight_commands_and_late_ones_the_current_areas() {
     let command = early.recv_type("command").await;
     assert_eq!(command["verb"], "HIGHLIGHT");
     assert_eq!(command["arg"], Value::Null, "{command}");
+    assert_eq!(command["args"], json!({ "areas": [] }), "{command}");
     assert_eq!(changed(&mut op).await["highlight"], Value::Null);
     let after = projector(&server).await;
     let display = &after.welcome["state"]["display"];

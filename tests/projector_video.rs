@@ -57,6 +57,11 @@ async fn the_say_after_a_wait_follows_the_projectors_done() {
     let command = proj.recv_type("command").await;
     assert_eq!(command["verb"], "PROJECT", "{command}");
     assert_eq!(command["arg"], "clip.webm", "{command}");
+    assert_eq!(
+        command["args"],
+        serde_json::json!({"file": "clip.webm", "kind": "video"}),
+        "{command}"
+    );
     assert_eq!(command["id"], project, "{command}");
     proj.send(json!({"type": "done", "id": project})).await;
 

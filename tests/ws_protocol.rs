@@ -16,7 +16,7 @@ async fn fig4() -> TestServer {
 async fn a_trigger_is_answered_with_its_ref_and_resolved_commands() {
     let server = fig4().await;
     let mut op = server.operator().await;
-    assert_eq!(op.welcome["protocol"], 3);
+    assert_eq!(op.welcome["protocol"], 4);
     assert_eq!(op.welcome["role"], "operator");
     assert_eq!(op.welcome["state"]["context"], "Text");
     op.send(

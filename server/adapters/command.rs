@@ -6,7 +6,7 @@ use std::sync::Arc;
 
 use tokio::sync::oneshot;
 
-use crate::content::Verb;
+use crate::content::{Args, Verb};
 use crate::events::{ActRef, EventKind, Hub};
 
 /// A command on its way to an adapter. Cheap to clone.
@@ -18,8 +18,10 @@ pub struct Command {
     pub act: Arc<ActRef>,
     /// What to do.
     pub verb: Verb,
-    /// Its argument.
+    /// Its argument as written (for logs, the corpus and status displays).
     pub arg: Option<Arc<str>>,
+    /// Its argument parsed at load: what adapters act on.
+    pub args: Arc<Args>,
 }
 
 impl Command {

@@ -16,23 +16,11 @@ use serde::Serialize;
 use tokio::sync::broadcast;
 
 use crate::adapters::{Adapter, AdapterStatus, CancelScope, Command, Outcome, Reply};
-use crate::content::Verb;
+use crate::content::{Area, Args, MediaKind, Verb};
 use crate::events::{ClientRole, EventKind, Hub};
 use crate::sync::lock;
 use crate::ws::outbox::Frame;
 use crate::ws::protocol::command_frame;
-
-/// File extensions the projector plays as videos (as in `static/projector.js`).
-const VIDEO_EXTENSIONS: [&str; 3] = ["webm", "mp4", "ogv"];
-
-/// Whether the projector plays `file` as a video, by its extension.
-pub fn is_video(file: &str) -> bool {
-    file.rsplit_once('.').is_some_and(|(_, ext)| {
-        VIDEO_EXTENSIONS
-            .iter()
-            .any(|video| ext.eq_ignore_ascii_case(video))
-    })
-}
 
 /// How many display frames a slow client may fall behind before it is resynchronised.
 const DISPLAY_CHANNEL_CAPACITY: usize = 256;
@@ -44,8 +32,13 @@ pub struct Display {
     pub page: Option<String>,
     /// File under `media/` on the projector; `None` is black.
     pub projector: Option<String>,
-    /// The `HIGHLIGHT` argument lit on the projector instead of a file; `None` when cleared.
+    /// Whether the projector shows `projector` as a picture or plays it as a video.
+    pub projector_kind: Option<MediaKind>,
+    /// The `HIGHLIGHT` argument lit on the projector instead of a file, as written; `None`
+    /// when cleared.
     pub highlight: Option<String>,
+    /// The areas of `highlight`, parsed at load: what the projector draws.
+    pub highlight_areas: Option<Vec<Area>>,
 }
 
 /// The display state and the channels to display clients. Shared by the adapter and the
@@ -72,8 +65,7 @@ impl DisplayState {
         DisplayState {
             current: Mutex::new(Display {
                 page: home,
-                projector: None,
-                highlight: None,
+                ..Display::default()
             }),
             kiosk: broadcast::channel(DISPLAY_CHANNEL_CAPACITY).0,
             projector: broadcast::channel(DISPLAY_CHANNEL_CAPACITY).0,
@@ -175,22 +167,27 @@ impl Adapter for DisplayAdapter {
 
     fn submit(&self, command: Command, reply: Reply) {
         let arg = command.arg.as_deref().map(str::to_owned);
-        let video = command.verb == Verb::Project && arg.as_deref().is_some_and(is_video);
+        let mut video = false;
         let mut current = self.state.lock();
-        let channel = match command.verb {
-            Verb::DisplayPage => {
+        let channel = match (&command.verb, &*command.args) {
+            (Verb::DisplayPage, _) => {
                 current.page = arg;
                 &self.state.kiosk
             }
             // The projector shows a file or highlights, never both: each replaces the other.
-            Verb::Project => {
+            (Verb::Project, Args::Project { kind, .. }) => {
+                video = *kind == MediaKind::Video;
                 current.projector = arg;
+                current.projector_kind = Some(*kind);
                 current.highlight = None;
+                current.highlight_areas = None;
                 &self.state.projector
             }
-            Verb::Highlight => {
+            (Verb::Highlight, Args::Highlight { areas }) => {
                 current.highlight = arg;
+                current.highlight_areas = Some(areas.clone());
                 current.projector = None;
+                current.projector_kind = None;
                 &self.state.projector
             }
             _ => {

@@ -9,8 +9,8 @@ use serde::Serialize;
 
 use crate::adapters::worker::{Task, Worker};
 use crate::adapters::{Adapter, AdapterStatus, CancelScope, Command, Outcome, Reply};
-use crate::content::Verb;
 use crate::content::config::DriveConfig;
+use crate::content::{Args, Verb};
 use crate::events::{EventKind, Hub};
 use crate::lifecycle::Lifecycle;
 use crate::sync::lock;
@@ -80,29 +80,6 @@ impl DriveSim {
     pub fn waypoint(&self) -> Option<Waypoint> {
         lock(&self.state).waypoint
     }
-}
-
-/// Parses `x y [heading]`.
-pub fn parse_waypoint(arg: &str) -> Option<Waypoint> {
-    let numbers: Vec<f64> = arg
-        .split_whitespace()
-        .map(str::parse)
-        .collect::<Result<_, _>>()
-        .ok()?;
-    match numbers[..] {
-        [x, y] => Some(Waypoint {
-            x,
-            y,
-            heading: None,
-        }),
-        [x, y, h] => Some(Waypoint {
-            x,
-            y,
-            heading: Some(h),
-        }),
-        _ => None,
-    }
-    .filter(|w| w.x.is_finite() && w.y.is_finite() && w.heading.is_none_or(f64::is_finite))
 }
 
 struct Base {
@@ -190,12 +167,12 @@ impl Drop for Halt<'_> {
 impl Task for Base {
     async fn run(&self, command: &Command) -> Outcome {
         match command.verb {
-            Verb::SetWaypoint => match command.arg.as_deref().and_then(parse_waypoint) {
-                Some(w) => {
-                    lock(&self.state).waypoint = Some(w);
+            Verb::SetWaypoint => match *command.args {
+                Args::Waypoint { x, y, heading } => {
+                    lock(&self.state).waypoint = Some(Waypoint { x, y, heading });
                     Outcome::Done
                 }
-                None => Outcome::Failed("SET_WAYPOINT needs x y [heading] as numbers".into()),
+                _ => Outcome::Failed("SET_WAYPOINT came without a waypoint".into()),
             },
             Verb::DriveStart => self.drive().await,
             // The dispatcher cancels any running drive before a DRIVE_STOP gets here.
@@ -220,27 +197,5 @@ impl Adapter for DriveSim {
 
     fn status(&self) -> AdapterStatus {
         self.worker.status()
-    }
-}
-
-#[cfg(test)]
-mod tests {
-    use super::*;
-
-    #[test]
-    fn waypoints_take_two_or_three_finite_numbers() {
-        assert_eq!(
-            parse_waypoint("1 2"),
-            Some(Waypoint {
-                x: 1.0,
-                y: 2.0,
-                heading: None
-            })
-        );
-        assert_eq!(parse_waypoint(" 1.5  -2 90 ").unwrap().heading, Some(90.0));
-        assert_eq!(parse_waypoint("1"), None);
-        assert_eq!(parse_waypoint("1 2 3 4"), None);
-        assert_eq!(parse_waypoint("one 2"), None);
-        assert_eq!(parse_waypoint("NaN 2"), None);
     }
 }

@@ -9,6 +9,7 @@ use std::collections::HashMap;
 use std::path::{Path, PathBuf};
 use std::sync::Arc;
 
+use crate::content::args::Args;
 use crate::content::config::{ArgRule, SiteConfig};
 use crate::content::diagnostic::Diagnostic;
 use crate::content::duration::parse_duration;
@@ -124,9 +125,19 @@ impl<'a> CommandChecker<'a> {
         if out[before..].iter().any(Diagnostic::is_error) {
             return None;
         }
+        let Some(args) = Args::parse(&verb, arg) else {
+            // The checks above accept only what parses; this is Docent's fault, not the author's.
+            let message = format!(
+                "Docent accepted this command but could not read its argument. Please report \
+                 this as a bug in Docent, with this line: `{trimmed}`."
+            );
+            out.push(Diagnostic::error("bad-argument", &cmd.pos, message));
+            return None;
+        };
         let spec = CommandSpec {
             verb,
             arg: arg.map(str::to_owned),
+            args,
         };
         Some(Located {
             value: spec,
@@ -426,7 +437,10 @@ mod tests {
             spec,
             Some(CommandSpec {
                 verb: Verb::Say,
-                arg: Some("Hello there".to_owned())
+                arg: Some("Hello there".to_owned()),
+                args: Args::Say {
+                    text: "Hello there".to_owned()
+                }
             })
         );
         assert!(problems.is_empty());
@@ -435,7 +449,8 @@ mod tests {
             spec,
             Some(CommandSpec {
                 verb: Verb::DriveStop,
-                arg: None
+                arg: None,
+                args: Args::None {}
             })
         );
     }

@@ -2,7 +2,7 @@
 //! light in white on black, separated by `;`. Each area is `left top width height`, fractions
 //! of the projected width and height, optionally followed by its shape, `rect` (the default)
 //! or `ellipse`: `HIGHLIGHT 0.10 0.20 0.35 0.25; 0.6 0.6 0.2 0.2 ellipse`. `HIGHLIGHT` alone
-//! clears the projector. The projector page (`static/projector.js`) reads the same syntax.
+//! clears the projector. The projector page gets the parsed areas (`content::Args`).
 
 /// How a HIGHLIGHT argument is written, for messages.
 pub const HIGHLIGHT_USAGE: &str = "HIGHLIGHT needs an area as four fractions of the projected \
@@ -15,7 +15,8 @@ pub const HIGHLIGHT_USAGE: &str = "HIGHLIGHT needs an area as four fractions of 
 const EPSILON: f64 = 1e-9;
 
 /// The outline of a lit area.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+#[derive(Clone, Copy, Debug, PartialEq, Eq, serde::Serialize)]
+#[serde(rename_all = "lowercase")]
 pub enum Shape {
     /// `rect` (the default): a rectangle.
     Rect,
@@ -24,7 +25,7 @@ pub enum Shape {
 }
 
 /// One lit area, in fractions of the projected width (`left`, `width`) and height.
-#[derive(Clone, Copy, Debug, PartialEq)]
+#[derive(Clone, Copy, Debug, PartialEq, serde::Serialize)]
 pub struct Area {
     /// Distance from the left edge.
     pub left: f64,

@@ -5,6 +5,7 @@
 //! decides whether a path stays inside a bundle. Loading does no network I/O.
 //!
 //! Map:
+//! - `args`: a command's argument as a typed value, parsed once at load.
 //! - `model`: the loaded data (acts, variants, commands, positions).
 //! - `config`: validated site settings; `config_file`: parsing `docent.yaml`.
 //! - `contexts`: the context names a bundle uses, and misspelt variant keys.
@@ -27,6 +28,7 @@
 //! - `schema`: JSON Schemas of the acts file and `docent.yaml`, for editors.
 //! - `report`: the content report (acts, pages, media, problems) behind `/report`.
 
+pub mod args;
 pub mod config;
 pub mod diagnostic;
 pub mod model;
@@ -50,10 +52,13 @@ mod speech;
 mod suggest;
 mod unused;
 
+pub use args::{Args, MediaKind};
 pub use diagnostic::{Diagnostic, Severity};
 pub use duration::parse_duration;
+pub use highlight::{Area, Shape};
 pub use load::{LoadReport, load_bundle};
 pub use model::{Act, Bundle, CommandSpec, DEFAULT_VARIANT, Located, Pos, Variant, Verb};
+pub use pages::act_delay;
 pub use paths::{BundleArea, PathError, resolve_in_bundle};
 pub use render::{Colour, render_diagnostics};
 pub use speech::speaking_time;

@@ -7,6 +7,7 @@ use std::fmt;
 use std::path::PathBuf;
 use std::sync::Arc;
 
+use crate::content::args::Args;
 use crate::content::config::SiteConfig;
 use crate::content::diagnostic::Diagnostic;
 
@@ -175,13 +176,16 @@ impl fmt::Display for Verb {
     }
 }
 
-/// One command of an act: a verb and its argument (everything after the first space, trimmed).
+/// One command of an act: a verb and its argument (everything after the first space, trimmed),
+/// as written and parsed.
 #[derive(Clone, Debug, PartialEq)]
 pub struct CommandSpec {
     /// What to do.
     pub verb: Verb,
-    /// The argument as written, or `None` when there is none.
+    /// The argument as written, or `None` when there is none (for logs and the corpus).
     pub arg: Option<String>,
+    /// The argument parsed: what the dispatcher and the devices act on.
+    pub args: Args,
 }
 
 /// A loaded, checked content bundle. Only the loader builds one, and only when it has no errors.

@@ -23,7 +23,7 @@ use tokio_util::sync::CancellationToken;
 pub use request::{ResolvedCommand, TriggerError, TriggerRequest, Triggered};
 
 use crate::adapters::{AdapterStatus, CancelScope, Command, Outcome, Reply, Router};
-use crate::content::{Bundle, DEFAULT_VARIANT, Verb, closest};
+use crate::content::{Args, Bundle, DEFAULT_VARIANT, Verb, closest};
 use crate::events::{ActRef, EventKind, Hub, Source};
 use crate::lifecycle::Lifecycle;
 use crate::sync::lock;
@@ -135,10 +135,15 @@ impl Dispatcher {
         });
         let mut commands = Vec::with_capacity(act.commands.len() + 1);
         if let Some((_, _, text)) = choice {
-            commands.push(self.command(&act_ref, Verb::Say, Some(text)));
+            let say = Args::Say {
+                text: text.to_owned(),
+            };
+            commands.push(self.command(&act_ref, Verb::Say, Some(text), say));
         }
         for c in &act.commands {
-            commands.push(self.command(&act_ref, c.value.verb.clone(), c.value.arg.as_deref()));
+            let spec = &c.value;
+            let args = spec.args.clone();
+            commands.push(self.command(&act_ref, spec.verb.clone(), spec.arg.as_deref(), args));
         }
         let triggered = Triggered {
             trigger,
@@ -208,6 +213,7 @@ impl Dispatcher {
             act: Arc::clone(&command.act),
             verb: command.verb.to_string(),
             arg: command.arg.as_deref().map(str::to_owned),
+            args: Arc::clone(&command.args),
             adapter: adapter.map_or("none", |a| a.name()),
         });
         let reply = Reply::new(self.hub.clone(), command.clone(), waiter);
@@ -306,12 +312,13 @@ impl Dispatcher {
         error
     }
 
-    fn command(&self, act: &Arc<ActRef>, verb: Verb, arg: Option<&str>) -> Command {
+    fn command(&self, act: &Arc<ActRef>, verb: Verb, arg: Option<&str>, args: Args) -> Command {
         Command {
             id: self.next_id(),
             act: Arc::clone(act),
             verb,
             arg: arg.map(Into::into),
+            args: Arc::new(args),
         }
     }
 

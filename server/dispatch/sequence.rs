@@ -13,7 +13,7 @@ use tokio::sync::oneshot;
 use tokio_util::sync::CancellationToken;
 
 use crate::adapters::{Command, Outcome, Reply};
-use crate::content::{Verb, parse_duration};
+use crate::content::{Args, Verb};
 use crate::dispatch::Dispatcher;
 use crate::events::EventKind;
 
@@ -116,9 +116,13 @@ impl Sequence {
             act: Arc::clone(&command.act),
             verb: command.verb.to_string(),
             arg: command.arg.as_deref().map(str::to_owned),
+            args: Arc::clone(&command.args),
             adapter: "dispatcher",
         });
-        let pause = command.arg.as_deref().and_then(parse_duration);
+        let pause = match *command.args {
+            Args::Wait { pause } => pause,
+            _ => None,
+        };
         let reply = Reply::new(hub, command, None);
         reply.started();
         // A pause leaves earlier commands outstanding for a later plain WAIT to wait for.

@@ -5,6 +5,7 @@ use std::time::SystemTime;
 
 use serde::Serialize;
 
+use crate::content::Args;
 use crate::events::EVENT_FORMAT_VERSION;
 
 /// Who asked for something: the trigger API's callers and the server itself.
@@ -155,8 +156,10 @@ pub enum EventKind {
         act: Arc<ActRef>,
         /// Verb.
         verb: String,
-        /// Argument.
+        /// Argument as written.
         arg: Option<String>,
+        /// The argument parsed (the `args` of `command` frames; format 2).
+        args: Arc<Args>,
         /// The adapter it went to.
         adapter: &'static str,
     },

@@ -12,5 +12,6 @@ mod kind;
 pub use hub::{CorpusMsg, EVENT_CHANNEL_CAPACITY, HISTORY_LEN, Hub};
 pub use kind::{ActRef, ClientRole, Event, EventKind, Source};
 
-/// Version of the event format, written into every corpus line as `v`.
-pub const EVENT_FORMAT_VERSION: u32 = 1;
+/// Version of the event format, written into every corpus line as `v`. 2: `command.sent`
+/// carries the parsed `args`.
+pub const EVENT_FORMAT_VERSION: u32 = 2;

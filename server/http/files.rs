@@ -15,6 +15,7 @@ use tower::ServiceExt;
 use tower_http::services::ServeFile;
 
 use crate::content::{BundleArea, PathError, resolve_in_bundle};
+use crate::http::act_timers::with_act_timers;
 use crate::http::{AppError, missing_page};
 use crate::state::AppState;
 
@@ -123,7 +124,8 @@ async fn serve_html(file: &std::path::Path) -> std::io::Result<Option<Response>>
         (header::CONTENT_TYPE, "text/html"),
         (header::CACHE_CONTROL, "no-cache"),
     ];
-    Ok(Some((headers, with_page_script(&page)).into_response()))
+    let page = with_page_script(&with_act_timers(page));
+    Ok(Some((headers, page).into_response()))
 }
 
 /// Inserts [`PAGE_SCRIPT`] right after the `<head>` tag, else after the doctype, else first.

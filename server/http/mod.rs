@@ -2,6 +2,7 @@
 //!
 //! - `api`: the trigger API (`/api/...`, `/healthz`).
 //! - `files`: bundle files under `/pages/` and `/media/`, never outside the bundle.
+//! - `act_timers`: pages served with their `data-act-after` delays in milliseconds.
 //! - `missing_page`: the friendly 404 page a touchscreen shows for a page that is not there.
 //! - `shells`: the kiosk (`/`) and projector (`/projector`) pages, askama templates.
 //! - `static_files`: `/static/...`, the shells' scripts and styles, embedded in the binary.
@@ -10,6 +11,7 @@
 //! - `auth`: who is asking ([`auth::Peer`]) and whether they may ([`auth::Authorized`]).
 //! - `error`: [`AppError`], the one error type at the HTTP edge.
 
+mod act_timers;
 mod api;
 pub(crate) mod auth;
 mod error;

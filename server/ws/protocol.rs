@@ -4,12 +4,13 @@
 use serde::{Deserialize, Serialize};
 
 use crate::adapters::{Command, Display, Pose};
+use crate::content::Args;
 use crate::dispatch::ResolvedCommand;
 use crate::events::{ClientRole, Event};
 use crate::reload::ReloadView;
 
-/// The protocol version sent in `welcome`.
-pub const PROTOCOL_VERSION: u32 = 3;
+/// The protocol version sent in `welcome`. 4: `command` frames carry the parsed `args`.
+pub const PROTOCOL_VERSION: u32 = 4;
 
 /// Largest text frame Docent reads; larger ones are answered with an error.
 pub const MAX_FRAME_BYTES: usize = 16 * 1024;
@@ -200,6 +201,7 @@ enum ServerFrame<'a> {
         label: &'a str,
         verb: &'a str,
         arg: Option<&'a str>,
+        args: &'a Args,
     },
     Cancel {
         verbs: Option<&'a [String]>,
@@ -292,6 +294,7 @@ pub fn command_frame(c: &Command) -> String {
         label: &c.act.label,
         verb: c.verb.as_str(),
         arg: c.arg.as_deref(),
+        args: &c.args,
     })
 }
 

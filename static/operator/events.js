@@ -5,8 +5,6 @@
 // fetch for an older connection is dropped). The live events also give this computer's clock
 // offset from the server's, by which proposals show their age.
 
-import { parseWaypoint } from "./map.js";
-
 /**
  * @param {{panels: {live: object, clients: object, history: object, proposals: object,
  *          marks: object, map: object}, context: object, camera: object,
@@ -46,7 +44,8 @@ export function createEvents({ panels, context, camera, operatorName, name, stop
     proposals.event(e);
     marks.event(e);
     if (e.type === "pose") map.pose(e);
-    else if (e.type === "command.sent" && e.verb === "SET_WAYPOINT") map.waypoint(parseWaypoint(e.arg));
+    // The server parsed the waypoint at load: `args` is {x, y, heading}.
+    else if (e.type === "command.sent" && e.verb === "SET_WAYPOINT") map.waypoint(e.args ?? null);
     else if (e.type === "context.changed") context.changed(e);
   }
 

@@ -46,8 +46,3 @@ export function createMap({ panel, view, text }) {
   };
 }
 
-/** The waypoint of a `SET_WAYPOINT x y [heading]` argument, or null. */
-export function parseWaypoint(arg) {
-  const [x, y] = String(arg ?? "").trim().split(/\s+/).map(Number);
-  return Number.isFinite(x) && Number.isFinite(y) ? { x, y } : null;
-}

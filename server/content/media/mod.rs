@@ -11,15 +11,10 @@ use std::collections::HashMap;
 use std::io::Read;
 use std::path::{Path, PathBuf};
 
+use crate::content::args::{PROJECTOR_IMAGES, PROJECTOR_VIDEOS};
 use crate::content::diagnostic::Diagnostic;
 use crate::content::model::Pos;
 use sniff::{Format, Kind, SNIFF_BYTES, by_extension};
-
-/// File endings the projector shows as pictures; kept equal to `IMAGES` in
-/// `static/projector.js`, which picks the element by the ending.
-const PROJECTOR_IMAGES: &[&str] = &["png", "jpg", "jpeg", "gif", "webp", "svg"];
-/// File endings the projector plays as videos; `VIDEOS` in `static/projector.js`.
-const PROJECTOR_VIDEOS: &[&str] = &["webm", "mp4", "ogv"];
 
 /// Where a file is shown, which decides what it must be.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]

@@ -23,7 +23,7 @@ use links::{Target, css_urls, resolve, srcset_urls};
 use scan::{LinkUse, PageScan, Unclosed, Value};
 use text::SourceText;
 
-pub(crate) use script::act_delay;
+pub use script::act_delay;
 
 /// Files larger than this are not read; no real touchscreen page comes near it.
 const MAX_PAGE_BYTES: u64 = 8 * 1024 * 1024;

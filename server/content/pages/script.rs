@@ -3,10 +3,11 @@
 
 use std::time::Duration;
 
-/// The delay a `data-act-after` value asks for, by the page script's rule
-/// (`parseDelay` in `static/docent-page.js`: `^\s*(\d+(?:\.\d+)?)\s*(ms|s|m)\s*$`), or `None`
-/// when the page script cannot read it and would trigger nothing.
-pub(crate) fn act_delay(text: &str) -> Option<Duration> {
+/// The delay a `data-act-after` value asks for (`500ms`, `20s`, `1.5s`, `1m`: a number and
+/// its unit, spaces allowed around them), or `None` when it is not one. The one rule: the
+/// server serves pages with the delay added in milliseconds (`http::act_timers`), which is
+/// all the page script reads.
+pub fn act_delay(text: &str) -> Option<Duration> {
     let text = text.trim_matches(is_js_space);
     let digits = |s: &str| s.find(|c: char| !c.is_ascii_digit()).unwrap_or(s.len());
     let whole = digits(text);
