@@ -5,6 +5,8 @@
 // browser's error screen; and `docent` is there for a page's own inline scripts at load.
 
 import assert from 'node:assert/strict';
+import { rmSync } from 'node:fs';
+import { join } from 'node:path';
 import { after, before, test } from 'node:test';
 
 import { launchBrowser, newTouchContext, watchExceptions } from './lib/browser.mjs';
@@ -27,7 +29,8 @@ const html = (title, { head = '', body = '' } = {}) =>
   `<link rel="stylesheet" href="css/site.css">${head}<title>${title}</title></head>\n` +
   `<body><h1>${title}</h1>${body}</body></html>\n`;
 
-/** Runs `body(ctx)` with a server on a bundle of `pages`, a touch page and an operator. */
+/** Runs `body(ctx)` with a server on a bundle of `pages`, a touch page and an operator;
+ * `ctx.dir` is the bundle folder. */
 async function withKiosk(pages, body) {
   const files = { 'acts.yaml': ACTS, 'pages/css/site.css': STYLE };
   for (const [name, contents] of Object.entries(pages)) files[`pages/${name}`] = contents;
@@ -38,7 +41,7 @@ async function withKiosk(pages, body) {
   try {
     const page = await context.newPage();
     const errors = watchExceptions(page);
-    await body({ server, page, operator });
+    await body({ server, page, operator, dir });
     assert.deepEqual(errors, [], 'uncaught exceptions in the kiosk');
   } finally {
     operator.close();
@@ -71,12 +74,16 @@ async function waitForUnavailable(page, { srcdoc = false } = {}) {
   return shownContentFrame(page);
 }
 
-test('a link to a missing page shows the friendly page in the bundle style, its button goes home, the corpus has it', { timeout: 60_000 }, async () => {
+test('a link to a page deleted while Docent runs shows the friendly page in the bundle style, its button goes home, the corpus has it', { timeout: 60_000 }, async () => {
   const server = await withKiosk(
     {
       'index.html': html('Welcome', { body: '<a id="broken" href="opening%20hours.html">Opening hours</a><button data-act="HELLO">Hi</button>' }),
+      // `docent check` refuses a link to a missing page, so the page exists at the start and
+      // is deleted while Docent runs (the save is refused; the file is gone all the same).
+      'opening hours.html': html('Opening hours'),
     },
-    async ({ server, page, operator }) => {
+    async ({ server, page, operator, dir }) => {
+      rmSync(join(dir, 'pages', 'opening hours.html'));
       const home = await openShell(page, server, 'index.html');
       await home.locator('#broken').tap();
 

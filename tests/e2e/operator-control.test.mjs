@@ -43,7 +43,8 @@ test('Esc stops a long SAY and a running drive; Alt+<Key> fires an act', { timeo
   const bundle = makeBundle({
     'docent.yaml': [
       'home: index.html',
-      'speech: {adapter: log, rate: 60}',
+      // A story of two minutes, on purpose: allowed up to 150 s (the default would refuse it).
+      'speech: {adapter: log, rate: 60, max_seconds: 150}',
       'drive:',
       '  speed: 0.2',
       '  pose_rate: 20',
