@@ -473,4 +473,30 @@ fn every_diagnostic_code_is_in_the_authoring_guide() {
         missing.is_empty(),
         "not in the table of docs/AUTHORING.md: {missing:?}"
     );
+    // Each code also has its own entry in "Problems, one by one" (its heading is the anchor
+    // messages link to), with a broken example and its fix: at least two code blocks.
+    let (_, one_by_one) = guide
+        .split_once("\n## Problems, one by one\n")
+        .expect("a \"Problems, one by one\" section in docs/AUTHORING.md");
+    let without_example: Vec<&String> = codes
+        .iter()
+        .filter(|code| {
+            let heading = format!("\n#### `{code}`\n");
+            let Some((_, entry)) = one_by_one.split_once(&heading) else {
+                return true;
+            };
+            // The entry ends at the next heading (a `#` comment inside an example does not).
+            let end = ["\n## ", "\n### ", "\n#### "]
+                .iter()
+                .filter_map(|next| entry.find(next))
+                .min()
+                .unwrap_or(entry.len());
+            entry[..end].matches("```").count() < 4
+        })
+        .collect();
+    assert!(
+        without_example.is_empty(),
+        "no entry with a broken example and its fix in \"Problems, one by one\" of \
+         docs/AUTHORING.md: {without_example:?}"
+    );
 }
