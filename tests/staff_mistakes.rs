@@ -9,6 +9,8 @@ mod common;
 
 #[path = "staff_mistakes/acts_cases.rs"]
 mod acts_cases;
+#[path = "staff_mistakes/command_cases.rs"]
+mod command_cases;
 #[path = "staff_mistakes/edits.rs"]
 mod edits;
 #[path = "staff_mistakes/page_cases.rs"]
@@ -144,7 +146,7 @@ fn yaml_traps_are_reported_at_their_line() {
 
 #[test]
 fn command_mistakes_are_reported_at_their_line() {
-    run(acts_cases::COMMANDS);
+    run(command_cases::COMMANDS);
 }
 
 #[test]
@@ -163,7 +165,7 @@ fn every_listed_not_yet_caught_case_exists_and_the_suite_is_large_enough() {
         acts_cases::WORD_AND_NOTEPAD,
         acts_cases::COPY_PASTE,
         acts_cases::YAML_TRAPS,
-        acts_cases::COMMANDS,
+        command_cases::COMMANDS,
         page_cases::PAGES,
         page_cases::MEDIA_AND_BUNDLE,
     ]

@@ -2,7 +2,7 @@
 //! pictures, Notepad saves, renamed files. Expectations as in `acts_cases.rs`.
 
 use super::Mistake;
-use super::acts_cases::{HEIC, TIFF};
+use super::command_cases::{HEIC, TIFF};
 use super::edits::Edit::{self, *};
 
 const fn replace(file: &'static str, find: &'static str, with: &'static str) -> Edit {
