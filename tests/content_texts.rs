@@ -68,9 +68,10 @@ fn a_missing_dash_joins_two_sentences_with_a_warning() {
         "      We close at six.",
     ]);
     let report = check(bundle(&[("acts.yaml", &acts)]).path());
-    assert_eq!(places(&report), [place("joined-lines", "acts.yaml:3:7")]);
+    // At the line that needs its `- `, naming the line it is joined to.
+    assert_eq!(places(&report), [place("joined-lines", "acts.yaml:4:7")]);
     assert_eq!(report.diagnostics[0].severity, Severity::Warning);
-    assert!(report.diagnostics[0].message.contains("at line 4"));
+    assert!(report.diagnostics[0].message.contains("text of line 3"));
 }
 
 #[test]

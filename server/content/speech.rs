@@ -67,11 +67,20 @@ pub(crate) fn check_spoken(
         ));
     }
     if let Some((at, address)) = find_address(text) {
-        let message = format!(
-            "The robot spells out `{address}` sign by sign (\"h t t p s colon slash slash…\"). \
-             Write it the way it should sound, for example \"our website, museum dot org\", \
-             and show the address on a page instead."
-        );
+        let message = if address.contains('@') {
+            format!(
+                "The robot reads the e-mail address `{address}` sign by sign (\"at\", \"dot\", \
+                 every letter it cannot say as a word). Write it the way it should sound, for \
+                 example \"write to our desk, see the address on my screen\", and show the \
+                 address on a page instead."
+            )
+        } else {
+            format!(
+                "The robot spells out `{address}` sign by sign (\"h t t p s colon slash \
+                 slash…\"). Write it the way it should sound, for example \"our website, museum \
+                 dot org\", and show the address on a page instead."
+            )
+        };
         out.push(Diagnostic::warning(
             "speech-address",
             &spoken.pos_of(at),

@@ -53,10 +53,27 @@ pub(crate) fn check_written(
         if style == Style::Plain {
             cut_by_comment(source, node, span.end, value, out);
             joined_lines(source, node, written, value, out);
+            dash_without_space(node, value, out);
         }
     }
     fake_bullet(node, value, out);
     curly_quotes(node, value, out);
+}
+
+/// `-Hello`: a dash glued to the text is text to YAML, not a list item.
+fn dash_without_space(node: &Node, value: &str, out: &mut Vec<Diagnostic>) {
+    let Some(rest) = value.strip_prefix('-') else {
+        return;
+    };
+    if !rest.starts_with(char::is_alphabetic) {
+        return; // `-20 degrees`, `--`: not a slip
+    }
+    let message = format!(
+        "This text starts with a dash right before a word, so YAML reads it as text, not as a \
+         list item, and the robot says: {}. Put a space after the dash: `- {rest}`.",
+        quote(value)
+    );
+    out.push(Diagnostic::error("dash-without-space", &node.pos, message));
 }
 
 /// Whether text starting right after `before` is the body of a `|` or `>` block (the parser
@@ -126,10 +143,15 @@ fn joined_lines(
         if let Some(bullet) = bullet
             && content[bullet.len_utf8()..].starts_with([' ', '\u{a0}'])
         {
+            let why = if bullet == '-' {
+                "is indented differently from the `- ` lines above".to_owned()
+            } else {
+                format!("`{bullet}` is a word processor's dash, which YAML takes as text")
+            };
             let message = format!(
-                "This line starts with `{bullet} ` but is indented differently from the `- ` \
-                 lines above, so YAML joins it to the text before it and the robot says: {}. \
-                 Start it in exactly the same column as the other `- ` lines (spaces only).",
+                "This line starts with `{bullet} ` but {why}, so YAML joins it to the text before \
+                 it and the robot says: {}. Start it with `- ` in exactly the same column as the \
+                 other `- ` lines (spaces only).",
                 quote(value)
             );
             out.push(Diagnostic::error(
@@ -140,14 +162,18 @@ fn joined_lines(
             return;
         }
     }
-    let second_line = pos_at(source, node, start + first_break + 1).line;
+    // Reported where the author acts: the first line that goes on (a missing `- ` goes there).
+    let second = &written[first_break + 1..];
+    let indent = second.len() - second.trim_start_matches([' ', '\t']).len();
+    let at = pos_at(source, node, start + first_break + 1 + indent);
     let message = format!(
-        "This text goes on at line {second_line}, and YAML joins the lines into one text: {}. \
-         If these are separate alternatives, start each one with `- ` in the same column. If it \
-         is one text, write it on one line, or put it in quotes.",
+        "This line goes on with the text of line {}, and YAML joins the lines into one text: {}. \
+         If it is a separate alternative, start it with `- ` in the same column as the others. \
+         If it is one text, write it on one line, or put it in quotes.",
+        node.pos.line,
         quote(value)
     );
-    out.push(Diagnostic::warning("joined-lines", &node.pos, message));
+    out.push(Diagnostic::warning("joined-lines", &at, message));
 }
 
 /// `– Hello`: Word's en dash bullet is text to YAML.

@@ -24,7 +24,7 @@ mod wording;
 
 use layout::{
     Item, odd_space_diagnostics, odd_space_positions, position_of_byte, tab_diagnostics,
-    tab_positions, top_level_items,
+    tab_positions, top_level_items, unclosed_bracket_before,
 };
 
 /// The largest YAML file read, in bytes. A real acts file of 100,000 acts is about 25 MB.
@@ -237,6 +237,18 @@ fn report_error(
         .iter()
         .any(|&(line, _)| line == pos.line || line == pos.line + 1);
     if !explained_by_tab {
+        // A bracket left open is noticed only lines later: report it where it was opened.
+        if wording::about_brackets(err)
+            && let Some((line, column)) = unclosed_bracket_before(source, pos.line, pos.column)
+        {
+            let open = Pos::new(file.clone(), line, column);
+            out.push(Diagnostic::error(
+                syntax_code,
+                &open,
+                wording::UNCLOSED_BRACKET,
+            ));
+            return;
+        }
         let line = source.lines().nth(pos.line.saturating_sub(1) as usize);
         let message = wording::describe(err, line.unwrap_or_default());
         out.push(Diagnostic::error(syntax_code, &pos, message));

@@ -85,6 +85,40 @@ pub(super) fn tab_positions(source: &str) -> Vec<(u32, u32)> {
         .collect()
 }
 
+/// The last `[` or `{` opened before `line`:`column` and not closed by then (outside quotes
+/// and comments), as (line, column): where an "unclosed bracket" error really starts, since
+/// the parser only notices it lines later.
+pub(super) fn unclosed_bracket_before(source: &str, line: u32, column: u32) -> Option<(u32, u32)> {
+    let mut open: Vec<(u32, u32)> = Vec::new();
+    for (index, text) in source.lines().enumerate().take(line as usize) {
+        let number = to_u32(index + 1);
+        let mut quote: Option<char> = None;
+        let mut previous = ' ';
+        for (i, c) in text.chars().enumerate() {
+            let col = to_u32(i + 1);
+            if number == line && col >= column {
+                break;
+            }
+            match (quote, c) {
+                (Some('"'), '"') if previous != '\\' => quote = None,
+                (Some('\''), '\'') => quote = None,
+                (Some(_), _) => {}
+                (None, '"' | '\'') if !open.is_empty() || previous.is_whitespace() => {
+                    quote = Some(c)
+                }
+                (None, '#') if previous.is_whitespace() => break,
+                (None, '[' | '{') => open.push((number, col)),
+                (None, ']' | '}') => {
+                    open.pop();
+                }
+                _ => {}
+            }
+            previous = c;
+        }
+    }
+    open.last().copied()
+}
+
 /// Spaces that are not YAML's space: the no-break space a word processor or web page puts
 /// in, and other typographic spaces.
 fn is_odd_space(c: char) -> bool {
@@ -197,6 +231,16 @@ mod tests {
         let source = "- Label: A\n  Text:\u{a0}hi\n  Text:\n    -\u{a0}Hello\n\u{a0} - x\n  \
                       - ten\u{a0}am is fine\n";
         assert_eq!(odd_space_positions(source), [(2, 8), (4, 6), (5, 1)]);
+    }
+
+    #[test]
+    fn finds_the_bracket_left_open() {
+        let source = "home: x\ncontexts: [A, B\nkiosk:\n  idle: 2s\n";
+        assert_eq!(unclosed_bracket_before(source, 4, 7), Some((2, 11)));
+        assert_eq!(
+            unclosed_bracket_before("a: [x, '[', \"]\"] # [\nb: c\n", 2, 2),
+            None
+        );
     }
 
     #[test]

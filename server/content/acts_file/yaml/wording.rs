@@ -106,6 +106,25 @@ fn describe_at_line(msg: &str, line: &str) -> Option<String> {
     None
 }
 
+/// The message for a `[` or `{` that is never closed, reported at the bracket.
+pub(super) const UNCLOSED_BRACKET: &str = "This bracket is opened but never closed, so YAML reads \
+    everything after it as part of the list. Add the closing `]` (or `}`) at the end of the \
+    list, on this line, or put a text with brackets in quotes.";
+
+/// Whether the parser's complaint may come from a bracket opened earlier and never closed.
+pub(super) fn about_brackets(err: &Error) -> bool {
+    let lower = message_of(err.without_snippet()).to_lowercase();
+    [
+        "placement of ':'",
+        "expected ',' or ']'",
+        "expected ',' or '}'",
+        "bracket",
+    ]
+    .iter()
+    .any(|needle| lower.contains(needle))
+        || matches!(err.without_snippet(), Error::Eof { .. })
+}
+
 /// Budget and alias-limit breaches repeat on every attempt; skipping an item cannot help.
 pub(super) fn recoverable(err: &Error) -> bool {
     !matches!(
