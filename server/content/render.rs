@@ -77,8 +77,9 @@ fn caret_span(line: &str, column: u32) -> std::ops::Range<usize> {
         .nth(column.saturating_sub(1) as usize)
         .map_or(line.len(), |(i, _)| i);
     let rest = &line[start..];
+    // A word ends at a space, or at the quote or bracket closing an attribute or a list.
     let word = rest
-        .find(char::is_whitespace)
+        .find(|c: char| c.is_whitespace() || matches!(c, '"' | '\'' | '<' | '>' | ',' | ']'))
         .unwrap_or(rest.len())
         .max(rest.chars().next().map_or(0, char::len_utf8));
     start..start + word
@@ -130,6 +131,10 @@ mod tests {
         assert_eq!(caret_span("    - SAY2 Hello", 7), 6..10);
         assert_eq!(caret_span("é x", 3), 3..4);
         assert_eq!(caret_span("ab", 9), 2..2);
+        assert_eq!(
+            caret_span(r#"<b data-act="WHERE_FORM">Ask</b>"#, 14),
+            13..23
+        );
     }
 
     #[test]

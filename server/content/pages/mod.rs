@@ -101,10 +101,10 @@ impl PageFile<'_, '_> {
             report_unclosed(source, first, out);
         }
         if found.stopped.is_some() {
-            let message = "Docent could not follow this page's markup to the end (a \
-                           `<script>` or `<textarea>` inside an `<svg>` or `<select>` can do \
-                           this), so the rest of the page was not checked. Check it in the \
-                           preview.";
+            let message = "Docent could not follow this page's markup to the end (an element \
+                           where HTML does not allow it, such as a `<style>` or `<title>` inside \
+                           a `<select>`, can do this), so the rest of the page was not checked. \
+                           Move that element out, or check the page in the preview.";
             out.push(Diagnostic::warning(
                 "page-not-checked",
                 &source.pos(0),
