@@ -30,12 +30,15 @@ function problems(validate, yamlText) {
   return validate(data) ? [] : validate.errors;
 }
 
-/** `docent check` of a bundle made of `files` (and a home page): the JSON diagnostics. */
+/**
+ * `docent check` of a bundle made of `files` (and a home page): the JSON diagnostics, but for
+ * `unused-act` (nothing triggers these small bundles' acts; the schema cannot know that).
+ */
 function check(files) {
   const dir = makeBundle({ 'pages/index.html': '<p>Welcome</p>', ...files });
   try {
     const out = spawnSync(docentBin(), ['check', dir, '--format', 'json'], { encoding: 'utf8' });
-    return JSON.parse(out.stdout);
+    return JSON.parse(out.stdout).filter((d) => d.code !== 'unused-act');
   } finally {
     removeTemp(dir);
   }
