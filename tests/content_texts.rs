@@ -244,6 +244,35 @@ fn files_not_saved_as_utf8_name_the_encoding_and_the_character() {
 }
 
 #[test]
+fn an_unreadable_file_is_the_only_problem_reported_for_it() {
+    let mut utf16 = vec![0xFF, 0xFE];
+    utf16.extend(
+        "- Label: HELLO\n  Text: Hi\n"
+            .encode_utf16()
+            .flat_map(u16::to_le_bytes),
+    );
+    let dir = bundle(&[
+        ("pages/index.html", "<button data-act=\"HELLO\">Hi</button>"),
+        (
+            "docent.yaml",
+            "contexts: [TextChild\nkiosk:\n  idle_act: OTHER\n",
+        ),
+        ("other.yaml", "- Label: OTHER\n  Text: Anyone there?\n"),
+    ]);
+    std::fs::write(dir.path().join("acts.yaml"), utf16).expect("write");
+    // No `unknown-act` for the page's HELLO (it is in the file that cannot be read), and no
+    // `unused-act` for OTHER (the idle act, in the settings that cannot be read).
+    let report = check_all(dir.path());
+    assert_eq!(
+        places(&report),
+        [
+            place("file-encoding", "acts.yaml:1:1"),
+            place("config-syntax", "docent.yaml:1:11"),
+        ]
+    );
+}
+
+#[test]
 fn a_byte_order_mark_and_windows_line_ends_pass_and_no_carriage_return_is_spoken() {
     let acts = "\u{feff}- Label: A\r\n  Text:\r\n    - |\r\n      Two lines\r\n      of text\r\n    \
                 - \"Quoted over\r\n      two lines\"\r\n  Cmds:\r\n    - SAY Later\r\n";

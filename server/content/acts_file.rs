@@ -45,6 +45,8 @@ pub(crate) struct ActsFile {
     /// Labels seen in parts skipped because of YAML errors: not checked, but pages naming
     /// them should not be reported as naming unknown acts.
     pub unread_labels: Vec<String>,
+    /// Nothing of the file could be read (an encoding or size problem): its labels are unknown.
+    pub unreadable: bool,
 }
 
 /// The keys an act may have besides `Text...` variants, for suggestions.
@@ -72,12 +74,16 @@ pub(crate) fn read_acts_file(file: &Arc<str>, bytes: &[u8], speech: &SpeechConfi
         acts: Vec::new(),
         diagnostics: parsed.diagnostics,
         unread_labels: Vec::new(),
+        unreadable: false,
     };
     if !parsed.skipped_lines.is_empty() {
         let source = String::from_utf8_lossy(bytes);
         out.unread_labels = labels_in_lines(&source, &parsed.skipped_lines);
     }
-    let Some(root) = parsed.root else { return out };
+    let Some(root) = parsed.root else {
+        out.unreadable = out.diagnostics.iter().any(Diagnostic::is_error);
+        return out;
+    };
     match &root.kind {
         Kind::Seq(items) => {
             for item in items {

@@ -57,6 +57,11 @@ pub fn load_bundle(root: &Path) -> LoadReport {
         }
     };
     let settings = read_settings(&root, &mut diagnostics);
+    // A docent.yaml YAML could not read drops every setting (the idle act, the contexts):
+    // warnings that follow from the defaults would only mislead.
+    let settings_unread = diagnostics
+        .iter()
+        .any(|d| d.code == "config-syntax" || d.code == "file-encoding");
     let names = acts_file_names(&root, &mut diagnostics);
     let mut config = settings.config;
     let files = read_acts_files(&root, &names, &config.speech, &mut diagnostics);
@@ -66,10 +71,12 @@ pub fn load_bundle(root: &Path) -> LoadReport {
     check_home(&checker, &config, settings.home.as_ref(), &mut diagnostics);
     check_idle_act(&merged, settings.idle_act.as_ref(), &mut diagnostics);
     check_map(&checker, &config, settings.map.as_ref(), &mut diagnostics);
-    check_undeclared(&config, &merged.acts, &mut diagnostics);
-    let idle = settings.idle_act.as_ref().map(|a| a.value.as_str());
-    let referenced = merged.page_acts.iter().map(String::as_str).chain(idle);
-    check_unused(&merged.acts, referenced, &mut diagnostics);
+    if !settings_unread {
+        check_undeclared(&config, &merged.acts, &mut diagnostics);
+        let idle = settings.idle_act.as_ref().map(|a| a.value.as_str());
+        let referenced = merged.page_acts.iter().map(String::as_str).chain(idle);
+        check_unused(&merged.acts, referenced, &mut diagnostics);
+    }
     let contexts = contexts(&config, &merged.acts);
     config.operator.visitor_groups =
         visitor_groups(&contexts, &settings.visitor_groups, &mut diagnostics);
@@ -217,8 +224,18 @@ struct Merged {
     acts: Vec<Act>,
     index: HashMap<String, usize>,
     unread_labels: HashSet<String>,
+    /// An acts file could not be read at all: any label may be in it, so none is called
+    /// unknown (the file's own error comes first).
+    incomplete: bool,
     page_acts: Vec<String>,
     page_offers: Vec<Located<String>>,
+}
+
+impl Merged {
+    /// Whether `label` is an act, or may be one in a part of the acts that could not be read.
+    fn knows(&self, label: &str) -> bool {
+        self.incomplete || self.index.contains_key(label) || self.unread_labels.contains(label)
+    }
 }
 
 fn merge_acts(
@@ -234,6 +251,7 @@ fn merge_acts(
     for mut file in files {
         out.append(&mut file.diagnostics);
         merged.unread_labels.extend(file.unread_labels);
+        merged.incomplete |= file.unreadable;
         for written in file.acts {
             let WrittenAct {
                 label: Some(label),
@@ -305,8 +323,7 @@ fn check_pages(
     out: &mut Vec<Diagnostic>,
 ) {
     let PageLabels { offered, triggered } = read_pages(checker, out);
-    let known =
-        |label: &str| merged.index.contains_key(label) || merged.unread_labels.contains(label);
+    let known = |label: &str| merged.knows(label);
     for Located { value, pos } in &offered {
         if known(value) {
             continue;
@@ -347,7 +364,7 @@ fn check_idle_act(merged: &Merged, idle_act: Option<&Located<String>>, out: &mut
     let Some(Located { value, pos }) = idle_act else {
         return;
     };
-    if merged.index.contains_key(value) || merged.unread_labels.contains(value) {
+    if merged.knows(value) {
         return;
     }
     let hint = did_you_mean(value, merged.index.keys().map(String::as_str));

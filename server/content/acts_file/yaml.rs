@@ -235,7 +235,7 @@ fn report_error(
     };
     let explained_by_tab = explained
         .iter()
-        .any(|&(line, _)| line == pos.line || line == pos.line + 1);
+        .any(|&(line, _)| line.abs_diff(pos.line) <= 1);
     if !explained_by_tab {
         // A bracket left open is noticed only lines later: report it where it was opened.
         if wording::about_brackets(err)
