@@ -7,7 +7,7 @@
 // shows the words being spoken now (a SAY from its `command.started` to its end, from the
 // events every operator gets), and it says so when this browser has no voice (speech.js).
 
-import { createAccess } from "./operator/access.js";
+import { accessElements, createAccess } from "./operator/access.js";
 import { createActList } from "./operator/actlist.js";
 import { readActs } from "./operator/acts.js";
 import { byId, h } from "./operator/dom.js";
@@ -132,16 +132,7 @@ async function loadActs() {
 const access = createAccess({
   path: config.ws || "/ws",
   open: config.credential === "open",
-  link: byId("link"),
-  banner: byId("lockout"),
-  signout: byId("signout"),
-  form: {
-    dialog: byId("signin"),
-    form: byId("signin-form"),
-    token: byId("signin-token"),
-    name: byId("signin-name"),
-    error: byId("signin-error"),
-  },
+  ...accessElements(byId),
   onFrame: (frame) => {
     if (frame.type === "event") onEvent(frame.event);
     else if (frame.type === "error" && String(frame.ref ?? "").startsWith("preview-")) {

@@ -10,6 +10,26 @@ import { connect } from "./connection.js";
 import * as signin from "./signin.js";
 
 /**
+ * The elements `createAccess` works with, by the ids the console and the preview share
+ * (`link`, `lockout`, `signout`, and the `signin` dialog's).
+ * @param {(id: string) => HTMLElement} byId
+ */
+export function accessElements(byId) {
+  return {
+    link: byId("link"),
+    banner: byId("lockout"),
+    signout: byId("signout"),
+    form: {
+      dialog: byId("signin"),
+      form: byId("signin-form"),
+      token: byId("signin-token"),
+      name: byId("signin-name"),
+      error: byId("signin-error"),
+    },
+  };
+}
+
+/**
  * @param {{path: string, open: boolean, link: HTMLElement, banner: HTMLElement,
  *          signout: HTMLElement, form: {dialog: HTMLDialogElement, form: HTMLFormElement,
  *          token: HTMLInputElement, name: HTMLInputElement, error: HTMLElement},

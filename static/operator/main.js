@@ -9,7 +9,7 @@
 // acts and the console's settings.
 
 import { readActs, textsFor } from "./acts.js";
-import { createAccess } from "./access.js";
+import { accessElements, createAccess } from "./access.js";
 import { createActList } from "./actlist.js";
 import * as api from "./api.js";
 import { createCameraPanel } from "./camerapanel.js";
@@ -109,16 +109,7 @@ const reloadBanner = createReloadBanner({
 const access = createAccess({
   path: config.ws || "/ws",
   open,
-  link: byId("link"),
-  banner: byId("lockout"),
-  signout: byId("signout"),
-  form: {
-    dialog: byId("signin"),
-    form: byId("signin-form"),
-    token: byId("signin-token"),
-    name: byId("signin-name"),
-    error: byId("signin-error"),
-  },
+  ...accessElements(byId),
   onFrame: (frame) => {
     reloadBanner.onFrame(frame);
     events.onFrame(frame);
