@@ -149,12 +149,14 @@ enum Entry {
 /// the file system itself ignores it.
 fn find_entry(listing: Listing, name: &str) -> Result<Entry, PathError> {
     let listing = listing.ok_or(PathError::NotFound)?;
+    // The exact name first, without lower-casing every entry: a folder of 1,000 pages is
+    // searched for each of them.
+    if listing.iter().any(|entry_name| entry_name == name) {
+        return Ok(Entry::Exact);
+    }
     let wanted = name.to_lowercase();
     let mut case_matches: Vec<OsString> = Vec::new();
     for entry_name in listing.iter() {
-        if entry_name == name {
-            return Ok(Entry::Exact);
-        }
         if entry_name.to_string_lossy().to_lowercase() == wanted {
             case_matches.push(entry_name.clone());
         }
