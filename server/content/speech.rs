@@ -176,10 +176,9 @@ fn find_address(text: &str) -> Option<(usize, &str)> {
         let word = text[start..end].trim_end_matches(['.', ',', ';', ':', '!', '?', ')']);
         (start, word)
     };
-    let lower = text.to_ascii_lowercase();
     for prefix in ["https://", "http://", "www."] {
-        if let Some(at) = lower.find(prefix)
-            && (at == 0 || !lower.as_bytes()[at - 1].is_ascii_alphanumeric())
+        if let Some(at) = find_ignoring_case(text, prefix)
+            && (at == 0 || !text.as_bytes()[at - 1].is_ascii_alphanumeric())
         {
             return Some(word_at(at));
         }
@@ -193,6 +192,14 @@ fn find_address(text: &str) -> Option<(usize, &str)> {
     let tld = host.rsplit_once('.').map(|(_, t)| t)?;
     (!user.is_empty() && tld.len() >= 2 && tld.chars().all(|c| c.is_ascii_alphabetic()))
         .then_some((start, word))
+}
+
+/// The byte offset of the first `needle` (ASCII, lower case) in `text`, whatever the case of
+/// its letters. Every spoken text is searched, so no lower-case copy is made.
+fn find_ignoring_case(text: &str, needle: &str) -> Option<usize> {
+    text.as_bytes()
+        .windows(needle.len())
+        .position(|window| window.eq_ignore_ascii_case(needle.as_bytes()))
 }
 
 /// The first HTML tag (`<b>`, `</a>`, `<br/>`), HTML entity (`&amp;`) or Markdown emphasis or
@@ -337,6 +344,14 @@ mod tests {
             codes("TODO write the greeting"),
             [("speech-placeholder", 9)]
         );
+    }
+
+    #[test]
+    fn addresses_are_found_in_any_case() {
+        assert_eq!(codes("See HTTPS://Museum.org"), [("speech-address", 13)]);
+        assert_eq!(codes("Visit WWW.museum.org"), [("speech-address", 15)]);
+        assert_eq!(codes("Not an awww.address"), []);
+        assert_eq!(find_ignoring_case("ab", "abc"), None);
     }
 
     #[test]
