@@ -10,7 +10,7 @@
 //! - `config`: validated site settings; `config_file`: parsing `docent.yaml`.
 //! - `contexts`: the context names a bundle uses, and misspelt variant keys.
 //! - `acts_file`: parsing one acts file, keeping every position.
-//! - `commands`: parsing and checking `VERB argument` strings.
+//! - `commands`: parsing and checking `VERB argument` strings, and the files they name.
 //! - `pages`: checking HTML pages (acts, links, pictures, encoding, hidden content).
 //! - `media`: what a media file really is (by its first bytes) and whether Chromium shows it.
 //! - `paths`: resolving a relative path inside the bundle (shared with the HTTP file routes).
