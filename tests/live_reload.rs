@@ -10,12 +10,10 @@ use std::sync::Arc;
 use std::sync::atomic::{AtomicBool, Ordering};
 use std::time::Duration;
 
-use common::{DEADLINE, OPERATOR_TOKEN, TempBundle, WsClient, test_access};
-use docent::content::load_bundle;
+use common::{OPERATOR_TOKEN, TempBundle, TestServer, WsClient};
 use docent::reload::ReloadOptions;
-use docent::serve::{ServeOptions, Server, run};
+use docent::serve::Server;
 use serde_json::{Value, json};
-use tokio::sync::oneshot;
 use tokio::task::JoinHandle;
 
 /// Short, so the tests run quickly; editors' bursts are not what is tested here.
@@ -29,77 +27,36 @@ const BROKEN: &str = "- Label: GREET\n  Text:\n    - Hello broken\n  Cmds:\n    
 const HOME: &str = "<!doctype html><title>home</title><button data-act=\"GREET\">hi</button>";
 
 /// A server watching its bundle.
-struct Watched {
-    addr: std::net::SocketAddr,
-    shutdown: Option<oneshot::Sender<()>>,
-    task: JoinHandle<std::io::Result<()>>,
-    _corpus: tempfile::TempDir,
+struct Watched(TestServer);
+
+impl std::ops::Deref for Watched {
+    type Target = TestServer;
+
+    fn deref(&self) -> &TestServer {
+        &self.0
+    }
 }
 
 impl Watched {
     async fn start(bundle: &Path) -> Self {
-        let report = load_bundle(bundle);
-        let loaded = report.bundle.expect("the first bundle has no errors");
-        let corpus = tempfile::tempdir().expect("corpus dir");
-        let options = ServeOptions {
-            seed: Some(1),
-            corpus_dir: corpus.path().to_owned(),
-            speech_wav: None,
-            access: test_access(),
+        let watch = |server: &Server| {
+            server.watch(ReloadOptions {
+                debounce: TEST_DEBOUNCE,
+                ..ReloadOptions::default()
+            });
         };
-        let server = Server::start(loaded, &options).expect("server starts");
-        server.watch(ReloadOptions {
-            debounce: TEST_DEBOUNCE,
-            ..ReloadOptions::default()
-        });
-        let listener = tokio::net::TcpListener::bind("127.0.0.1:0")
-            .await
-            .expect("bind");
-        let addr = listener.local_addr().expect("addr");
-        let (tx, rx) = oneshot::channel::<()>();
-        let task = tokio::spawn(run(listener, server, async move {
-            let _ = rx.await;
-        }));
-        Watched {
-            addr,
-            shutdown: Some(tx),
-            task,
-            _corpus: corpus,
-        }
+        Watched(TestServer::start_prepared(bundle, |_| {}, watch).await)
     }
 
-    /// A websocket client that said `hello` and read its welcome.
-    async fn client(&self, mut hello: Value) -> WsClient {
-        if hello["role"] == "operator" {
-            hello["token"] = OPERATOR_TOKEN.into();
-        }
-        let mut client = WsClient::connect(&format!("ws://{}/ws", self.addr)).await;
-        client.send(hello).await;
-        client.welcome = client.recv_type("welcome").await;
-        client
-    }
-
-    async fn operator(&self) -> WsClient {
-        self.client(json!({"type": "hello", "role": "operator"}))
-            .await
-    }
-
-    /// The text an HTTP trigger of GREET is answered with.
+    /// What GREET says now, triggered over HTTP.
     async fn said(&self) -> String {
         let (status, body) = http_trigger(self.addr, &reqwest::Client::new()).await;
         assert_eq!(status, 202, "{body}");
         body["text"].as_str().expect("a text").to_owned()
     }
 
-    async fn stop(mut self) {
-        if let Some(tx) = self.shutdown.take() {
-            let _ = tx.send(());
-        }
-        tokio::time::timeout(DEADLINE, self.task)
-            .await
-            .expect("shutdown in time")
-            .expect("join")
-            .expect("run");
+    async fn stop(self) {
+        self.0.stop().await;
     }
 }
 

@@ -98,6 +98,16 @@ impl TestServer {
 
     /// Serves `bundle`, letting the test adjust the options.
     pub async fn start_with(bundle: &Path, adjust: impl FnOnce(&mut ServeOptions)) -> Self {
+        Self::start_prepared(bundle, adjust, |_| {}).await
+    }
+
+    /// Serves `bundle` with adjusted options, letting the test prepare the started server
+    /// before it serves (e.g. watch the bundle).
+    pub async fn start_prepared(
+        bundle: &Path,
+        adjust: impl FnOnce(&mut ServeOptions),
+        prepare: impl FnOnce(&Server),
+    ) -> Self {
         let report = load_bundle(bundle);
         let loaded = report
             .bundle
@@ -111,6 +121,7 @@ impl TestServer {
         };
         adjust(&mut options);
         let server = Server::start(loaded, &options).expect("server starts");
+        prepare(&server);
         let corpus_file = server.corpus_path();
         let listener = tokio::net::TcpListener::bind("127.0.0.1:0")
             .await
