@@ -18,6 +18,9 @@ use crate::content::diagnostic::Diagnostic;
 use crate::content::encoding::not_utf8;
 use crate::content::model::Pos;
 
+mod fast;
+#[cfg(test)]
+mod fast_tests;
 mod layout;
 mod raw;
 mod wording;
@@ -31,7 +34,7 @@ use layout::{
 pub(crate) const MAX_FILE_BYTES: usize = 32 * 1024 * 1024;
 
 /// A YAML node and where it starts.
-#[derive(Debug)]
+#[derive(Debug, PartialEq)]
 pub(crate) struct Node {
     /// Where the node starts (for an alias: where the alias is used).
     pub pos: Pos,
@@ -42,7 +45,7 @@ pub(crate) struct Node {
 }
 
 /// The shape of a node.
-#[derive(Debug)]
+#[derive(Debug, PartialEq)]
 pub(crate) enum Kind {
     /// Text. `verbatim_at` is the character offset from `pos` where `value` appears word for
     /// word in the source (0 when plain, 1 when quoted), if it does.
@@ -135,8 +138,15 @@ pub(crate) fn parse(
     let tabs = tab_positions(source);
     let explained: Vec<(u32, u32)> = tabs.iter().chain(&odd_spaces).copied().collect();
     let mut failed = false;
-    match serde_saphyr::from_str_with_options::<Spanned<raw::Raw>>(source, options()) {
-        Ok(tree) => out.root = Some(raw::into_node(tree, file, source, raw::Origin::START)),
+    // The fast reader handles the common case; anything else (errors included) goes through
+    // serde-saphyr, for its exact messages and positions.
+    let parsed = match fast::read(file, source) {
+        Some(root) => Ok(root),
+        None => serde_saphyr::from_str_with_options::<Spanned<raw::Raw>>(source, options())
+            .map(|tree| raw::into_node(tree, file, source, raw::Origin::START)),
+    };
+    match parsed {
+        Ok(root) => out.root = Some(root),
         Err(err) => {
             failed = true;
             let items = match recovery {

@@ -176,7 +176,7 @@ fn byte_range(location: &Location) -> Option<std::ops::Range<usize>> {
 
 /// Where `value` starts inside `written` when it appears there unchanged on one line:
 /// 0 for plain text, 1 inside quotes.
-fn verbatim_offset(written: &str, value: &str) -> Option<u32> {
+pub(super) fn verbatim_offset(written: &str, value: &str) -> Option<u32> {
     if written.contains('\n') {
         return None;
     }
