@@ -90,6 +90,16 @@ const HANDLED: &[&str] = &[
     "- \"quoted key\": v\n  'single': w\n  3: number key\n  yes: bool key\n",
     "plain\n",
     "%YAML 1.2\n---\na: b\n",
+    "---\n",
+    "--- |\n  x\n",
+    "? \n: v\n",
+    ": v\n",
+    "[a, [b, [c]]]\n",
+    "{a: {b: {c: d}}}\n",
+    "a: 'multi\n  line single'\nb: >+\n  x\n\n",
+    "- |2\n   indented\n",
+    "a: \"\\x41\\U0001F600\"\n",
+    "- é: [ü, ö, 1.5]\n  日本: {語: yes}\n",
 ];
 
 /// Snippets the fast reader leaves to serde-saphyr (which may accept or refuse them).
@@ -106,6 +116,8 @@ const LEFT_TO_SERDE: &[&str] = &[
     "- [a, b\n",
     "a:\n\t- x\n",
     "Text: hi: there\n",
+    "a: ...\n",
+    "- ---\n",
 ];
 
 #[test]
@@ -135,4 +147,12 @@ fn a_large_generated_file_reads_the_same() {
         })
         .collect();
     assert!(same_tree("big.yaml", &source));
+}
+
+#[test]
+fn deep_nesting_is_left_to_the_serde_budget() {
+    let deep = format!("{}x{}\n", "[".repeat(70), "]".repeat(70));
+    assert!(!same_tree("deep.yaml", &deep));
+    let fine = format!("{}x{}\n", "[".repeat(40), "]".repeat(40));
+    assert!(same_tree("fine.yaml", &fine));
 }
