@@ -10,15 +10,15 @@
 import { accessElements, createAccess } from "./operator/access.js";
 import { createActList } from "./operator/actlist.js";
 import { readActs } from "./operator/acts.js";
-import { byId, h } from "./operator/dom.js";
+import { byId, createNotice, h } from "./operator/dom.js";
 import { detectVoice } from "./speech.js";
 
 const NOTICE_MS = 6_000;
+const notice = createNotice(byId("notice"), NOTICE_MS);
 const ENDED = new Set(["command.done", "command.failed", "command.cancelled"]);
 
 const config = document.body.dataset;
 let refCount = 0;
-let noticeTimer = null;
 
 // --- screens ------------------------------------------------------------------------------
 
@@ -83,13 +83,6 @@ detectVoice().then((found) => {
 
 // --- acts ---------------------------------------------------------------------------------
 
-function notice(message) {
-  const el = byId("notice");
-  el.textContent = message;
-  el.hidden = false;
-  clearTimeout(noticeTimer);
-  noticeTimer = setTimeout(() => (el.hidden = true), NOTICE_MS);
-}
 
 const list = createActList({
   element: byId("act-list"),

@@ -50,3 +50,18 @@ export function shorten(text, max = 80) {
   const s = String(text ?? "");
   return s.length > max ? `${s.slice(0, max - 1)}…` : s;
 }
+
+/**
+ * A notice shown in `element` for `ms`, a later one replacing it; returns `show(message)`.
+ * @param {HTMLElement} element
+ * @param {number} ms
+ */
+export function createNotice(element, ms) {
+  let timer = null;
+  return (message) => {
+    element.textContent = message;
+    element.hidden = false;
+    clearTimeout(timer);
+    timer = setTimeout(() => (element.hidden = true), ms);
+  };
+}

@@ -15,7 +15,7 @@ import * as api from "./api.js";
 import { createCameraPanel } from "./camerapanel.js";
 import { createClients } from "./clients.js";
 import { createContext } from "./context.js";
-import { byId } from "./dom.js";
+import { byId, createNotice } from "./dom.js";
 import { createEvents } from "./events.js";
 import { createHistory } from "./history.js";
 import { bindKeys } from "./keys.js";
@@ -29,6 +29,7 @@ import { createStop } from "./stop.js";
 import * as store from "./store.js";
 
 const NOTICE_MS = 6_000;
+const notice = createNotice(byId("notice"), NOTICE_MS);
 const NO_SETTINGS = { map: null, camera: { kind: "none" }, situations: [], visitor_groups: {} };
 
 const config = document.body.dataset;
@@ -37,7 +38,6 @@ const open = config.credential === "open";
 let lastFired = null;
 let refCount = 0;
 let settings = null; // GET /api/operator, once loaded
-let noticeTimer = null;
 
 // --- panels ---------------------------------------------------------------------------------
 
@@ -177,13 +177,6 @@ function answerProposal(kind, id) {
   send({ type: kind, proposal: id, ref: ref(kind) }, `${kind} proposal ${id}`);
 }
 
-function notice(message) {
-  const el = byId("notice");
-  el.textContent = message;
-  el.hidden = false;
-  clearTimeout(noticeTimer);
-  noticeTimer = setTimeout(() => (el.hidden = true), NOTICE_MS);
-}
 
 search.addEventListener("input", () => list.setQuery(search.value));
 
