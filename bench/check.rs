@@ -2,7 +2,8 @@
 //! 10,000 acts (two alternatives, a context variant and two commands each, over 10 acts files)
 //! and 1,000 pages (each offering acts, linking pages, showing a picture), as a museum with a
 //! big info terminal would have. Run with
-//! `cargo run --release --example check-bench -- [--acts N] [--pages N] [--runs N]`.
+//! `cargo run --release --example check-bench -- [--acts N] [--pages N] [--runs N]`, or with
+//! `--write DIR` to write the bundle only (to time `docent check DIR` as a whole).
 //! The bundle is written to a temporary folder; the figures are wall-clock times of the whole
 //! check, as `docent check` runs it (settings, acts files in parallel, commands, pages, media).
 
@@ -35,6 +36,14 @@ fn main() -> std::io::Result<()> {
         arg("--pages", 1_000),
         arg("--runs", 15),
     );
+    // `--write DIR` only writes the bundle, to time the `docent check` command itself.
+    if let Some(out) = args
+        .iter()
+        .position(|a| a == "--write")
+        .and_then(|i| args.get(i + 1))
+    {
+        return write_bundle(Path::new(out), acts, pages);
+    }
     let dir = std::env::temp_dir().join(format!("docent-check-bench-{}", std::process::id()));
     write_bundle(&dir, acts, pages)?;
     let mut times = Vec::with_capacity(runs);

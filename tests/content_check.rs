@@ -426,6 +426,37 @@ fn an_oversized_acts_file_is_refused_without_reading_it_whole() {
 }
 
 #[test]
+fn deeply_nested_yaml_is_refused_with_a_message_not_a_crash() {
+    // Pasted or generated YAML can nest far deeper than acts ever do; the readers recurse,
+    // so the check must give them the stack room to refuse it (this test runs on a small
+    // debug thread stack, as `docent check` runs on the main thread).
+    for depth in [70, 2_000] {
+        let nested = format!("{}x{}", "[".repeat(depth), "]".repeat(depth));
+        let acts = format!("- Label: A\n  Text: hi\n- Label: B\n  Text: {nested}\n");
+        let dir = bundle(&[("acts.yaml", &acts)]);
+        let report = check(dir.path());
+        let (code, place) = places(&report).into_iter().next().expect("a problem");
+        assert_eq!(code, "yaml-syntax", "{depth}: {:?}", report.diagnostics);
+        assert!(place.starts_with("acts.yaml:4:"), "{depth}: {place}");
+        let message = &report.diagnostics[0].message;
+        assert!(message.contains("nested"), "{depth}: {message}");
+        assert!(report.bundle.is_none());
+        assert_plain(&report);
+        // The settings file is read the same way.
+        let settings = format!("contexts: {nested}\n");
+        let dir = bundle(&[
+            ("acts.yaml", "- Label: A\n  Text: hi\n"),
+            ("docent.yaml", &settings),
+        ]);
+        let report = check(dir.path());
+        let (code, place) = places(&report).into_iter().next().expect("a problem");
+        assert_eq!(code, "config-syntax", "{depth}: {:?}", report.diagnostics);
+        assert!(place.starts_with("docent.yaml:1:"), "{depth}: {place}");
+        assert_plain(&report);
+    }
+}
+
+#[test]
 fn an_act_with_variants_but_no_default_text_is_warned_about() {
     let b = common::TempBundle::new("- Label: KIDS\n  TextChild: [Hi kids]\n");
     let report = docent::content::load_bundle(b.path());

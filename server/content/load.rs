@@ -1,22 +1,20 @@
-//! Putting a bundle together: settings, acts files (read in parallel, merged in file-name
-//! order), commands, labels across files, pages and the home page. Every problem found is
+//! Putting a bundle together: settings, the acts files and pages (read on every core by
+//! `gather`), acts merged in file-name order, labels across files, and the home page. Every problem found is
 //! collected; loading never stops at the first.
 
 use std::collections::{BTreeMap, BTreeSet, HashMap, HashSet};
-use std::io::Read;
-use std::num::NonZeroUsize;
 use std::path::Path;
 use std::sync::Arc;
 
-use crate::content::acts_file::{ActsFile, WrittenAct, read_acts_file, yaml::MAX_FILE_BYTES};
 use crate::content::commands::{CommandChecker, path_error_code};
-use crate::content::config::{SiteConfig, SpeechConfig};
+use crate::content::config::SiteConfig;
 use crate::content::config_file::{ConfigFile, parse_config};
-use crate::content::contexts::{check_declared, check_undeclared, contexts};
+use crate::content::contexts::{check_undeclared, contexts};
 use crate::content::diagnostic::Diagnostic;
+use crate::content::gather::{CheckedAct, CheckedFile, gather, on_reading_stack, read_limited};
 use crate::content::model::{Act, Bundle, Located, Pos};
 use crate::content::operator_check::{KeyBindings, check_map, visitor_groups};
-use crate::content::pages::{PageLabels, check_pages as read_pages};
+use crate::content::pages::PageLabels;
 use crate::content::paths::{BundleArea, PathError};
 use crate::content::suggest::did_you_mean;
 use crate::content::unused::check_unused;
@@ -35,6 +33,10 @@ pub struct LoadReport {
 
 /// Loads and checks the bundle in the folder `root`.
 pub fn load_bundle(root: &Path) -> LoadReport {
+    on_reading_stack(|| load(root))
+}
+
+fn load(root: &Path) -> LoadReport {
     let started = std::time::Instant::now();
     let mut diagnostics = Vec::new();
     let root = match root.canonicalize() {
@@ -64,10 +66,10 @@ pub fn load_bundle(root: &Path) -> LoadReport {
         .any(|d| d.code == "config-syntax" || d.code == "file-encoding");
     let names = acts_file_names(&root, &mut diagnostics);
     let mut config = settings.config;
-    let files = read_acts_files(&root, &names, &config.speech, &mut diagnostics);
+    let gathered = gather(&root, &names, &config, &mut diagnostics);
     let checker = CommandChecker::new(&root, &config);
-    let mut merged = merge_acts(files, &checker, &config, &mut diagnostics);
-    check_pages(&checker, &config, &mut merged, &mut diagnostics);
+    let mut merged = merge_acts(gathered.files, &mut diagnostics);
+    check_page_labels(gathered.pages, &config, &mut merged, &mut diagnostics);
     check_home(&checker, &config, settings.home.as_ref(), &mut diagnostics);
     check_idle_act(&merged, settings.idle_act.as_ref(), &mut diagnostics);
     check_map(&checker, &config, settings.map.as_ref(), &mut diagnostics);
@@ -151,73 +153,6 @@ fn acts_file_names(root: &Path, out: &mut Vec<Diagnostic>) -> Vec<String> {
     names
 }
 
-/// Reads and parses the acts files, several at a time; results keep the order of `names`.
-fn read_acts_files(
-    root: &Path,
-    names: &[String],
-    speech: &SpeechConfig,
-    out: &mut Vec<Diagnostic>,
-) -> Vec<ActsFile> {
-    let read_one = |name: &String| -> Result<ActsFile, Diagnostic> {
-        let file: Arc<str> = Arc::from(name.as_str());
-        let path = root.join(name);
-        // A symlinked acts file must still live inside the bundle.
-        if !path.canonicalize().is_ok_and(|p| p.starts_with(root)) {
-            let message = "This acts file is a link to a place outside the bundle folder. \
-                           Copy the file into the bundle instead.";
-            return Err(Diagnostic::error(
-                "path-outside-bundle",
-                &Pos::start_of(file),
-                message,
-            ));
-        }
-        Ok(read_acts_file(&file, &read_limited(&path, &file)?, speech))
-    };
-    if names.is_empty() {
-        return Vec::new();
-    }
-    let threads = std::thread::available_parallelism()
-        .map_or(1, NonZeroUsize::get)
-        .min(names.len());
-    let chunk = names.len().div_ceil(threads);
-    let results: Vec<Result<ActsFile, Diagnostic>> = std::thread::scope(|scope| {
-        let workers: Vec<_> = names
-            .chunks(chunk)
-            .map(|part| scope.spawn(move || part.iter().map(read_one).collect::<Vec<_>>()))
-            .collect();
-        workers
-            .into_iter()
-            .flat_map(|worker| {
-                worker
-                    .join()
-                    .unwrap_or_else(|panic| std::panic::resume_unwind(panic))
-            })
-            .collect()
-    });
-    results
-        .into_iter()
-        .filter_map(|result| result.map_err(|problem| out.push(problem)).ok())
-        .collect()
-}
-
-/// The file's bytes, reading at most one byte past the size limit (the parser reports it).
-fn read_limited(path: &Path, file: &Arc<str>) -> Result<Vec<u8>, Diagnostic> {
-    let limit = u64::try_from(MAX_FILE_BYTES)
-        .unwrap_or(u64::MAX)
-        .saturating_add(1);
-    let mut bytes = Vec::new();
-    std::fs::File::open(path)
-        .and_then(|f| f.take(limit).read_to_end(&mut bytes))
-        .map(|_| bytes)
-        .map_err(|e| {
-            Diagnostic::error(
-                "unreadable-file",
-                &Pos::start_of(file.clone()),
-                format!("Docent could not read this file ({e}). Check that it is readable."),
-            )
-        })
-}
-
 /// The acts of all files merged, with everything that needs them all.
 #[derive(Default)]
 struct Merged {
@@ -238,36 +173,22 @@ impl Merged {
     }
 }
 
-fn merge_acts(
-    files: Vec<ActsFile>,
-    checker: &CommandChecker<'_>,
-    config: &SiteConfig,
-    out: &mut Vec<Diagnostic>,
-) -> Merged {
+fn merge_acts(files: Vec<CheckedFile>, out: &mut Vec<Diagnostic>) -> Merged {
     let mut merged = Merged::default();
     let mut keys = KeyBindings::default();
     // Later places of each label used more than once, reported at the first place at the end.
     let mut again: Vec<(usize, Pos)> = Vec::new();
-    for mut file in files {
-        out.append(&mut file.diagnostics);
+    for file in files {
         merged.unread_labels.extend(file.unread_labels);
         merged.incomplete |= file.unreadable;
-        for written in file.acts {
-            let WrittenAct {
-                label: Some(label),
+        for act in file.acts {
+            let CheckedAct {
+                label,
                 variants,
                 commands,
                 group,
                 key,
-            } = written
-            else {
-                continue;
-            };
-            let commands = commands
-                .iter()
-                .filter_map(|c| checker.check(c, out))
-                .collect();
-            check_declared(config, &variants, out);
+            } = act;
             if let Some(&first) = merged.index.get(&label.value) {
                 let first_pos = &merged.acts[first].pos;
                 let message = format!(
@@ -313,16 +234,16 @@ fn merge_acts(
     merged
 }
 
-/// Checks the pages (see `pages`), then the act labels they use: every `data-act` value and
-/// `docent.trigger` literal must name an act, and a triggered act must be one a kiosk may
-/// trigger (offered by some page's `data-act`, or the idle act).
-fn check_pages(
-    checker: &CommandChecker<'_>,
+/// The act labels the pages use: every `data-act` value and `docent.trigger` literal must
+/// name an act, and a triggered act must be one a kiosk may trigger (offered by some page's
+/// `data-act`, or the idle act).
+fn check_page_labels(
+    labels: PageLabels,
     config: &SiteConfig,
     merged: &mut Merged,
     out: &mut Vec<Diagnostic>,
 ) {
-    let PageLabels { offered, triggered } = read_pages(checker, out);
+    let PageLabels { offered, triggered } = labels;
     let known = |label: &str| merged.knows(label);
     for Located { value, pos } in &offered {
         if known(value) {

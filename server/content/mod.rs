@@ -24,6 +24,7 @@
 //!   length in spoken texts.
 //! - `suggest`: "did you mean" for labels, keys, verbs and file names.
 //! - `unused`: acts that nothing triggers.
+//! - `gather`: reading the acts files and pages on every core.
 //! - `load`: putting it together: `load_bundle`.
 //! - `schema`: JSON Schemas of the acts file and `docent.yaml`, for editors.
 //! - `report`: the content report (acts, pages, media, problems) behind `/report`.
@@ -41,6 +42,7 @@ mod config_file;
 mod contexts;
 mod duration;
 mod encoding;
+mod gather;
 mod highlight;
 mod load;
 mod media;

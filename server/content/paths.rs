@@ -6,6 +6,7 @@
 //! A path is accepted only when its canonical form stays inside the area folder, so neither
 //! `..` nor a symlink can reach outside the bundle.
 
+use std::collections::HashMap;
 use std::ffi::OsString;
 use std::fs;
 use std::path::{Path, PathBuf};
@@ -60,17 +61,33 @@ pub fn resolve_in_bundle(root: &Path, area: BundleArea, rel: &str) -> Result<Pat
     resolve_listed(root, area, rel, &read_listing)
 }
 
-/// The names in a folder, or `None` when it cannot be read.
-pub(crate) type Listing = Option<Arc<[OsString]>>;
+/// The names in a folder with what each is, or `None` when it cannot be read.
+pub(crate) type Listing = Option<Arc<HashMap<OsString, EntryType>>>;
+
+/// What a folder entry is, as the listing tells it (links not followed).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub(crate) enum EntryType {
+    File,
+    Folder,
+    /// A link, a special file, or a type the system did not say.
+    Other,
+}
 
 /// The names in `dir`, read now.
 pub(crate) fn read_listing(dir: &Path) -> Listing {
-    let names: Vec<OsString> = fs::read_dir(dir)
+    let names = fs::read_dir(dir)
         .ok()?
         .flatten()
-        .map(|e| e.file_name())
+        .map(|entry| {
+            let kind = match entry.file_type() {
+                Ok(kind) if kind.is_file() => EntryType::File,
+                Ok(kind) if kind.is_dir() => EntryType::Folder,
+                _ => EntryType::Other,
+            };
+            (entry.file_name(), kind)
+        })
         .collect();
-    Some(names.into())
+    Some(Arc::new(names))
 }
 
 /// [`resolve_in_bundle`] with folder listings from `list`: a check resolving thousands of
@@ -86,8 +103,19 @@ pub(crate) fn resolve_listed(
     let mut current = area_dir.clone();
     let mut actual_names: Vec<String> = Vec::with_capacity(components.len());
     let mut miscased = false;
-    for component in &components {
-        match find_entry(list(&current), component)? {
+    // Whether the listings show a real folder at every step and a regular file at the end,
+    // no link anywhere: then `current` already is the canonical path (`root` is canonical).
+    let mut plain = find_entry(list(root), area.dir_name())
+        .is_ok_and(|(entry, kind)| matches!(entry, Entry::Exact) && kind == EntryType::Folder);
+    for (i, component) in components.iter().enumerate() {
+        let (entry, kind) = find_entry(list(&current), component)?;
+        let wanted = if i + 1 == components.len() {
+            EntryType::File
+        } else {
+            EntryType::Folder
+        };
+        plain &= kind == wanted;
+        match entry {
             Entry::Exact => {
                 actual_names.push((*component).to_owned());
                 current.push(component);
@@ -99,19 +127,24 @@ pub(crate) fn resolve_listed(
             }
         }
     }
-    // Canonicalizing resolves every symlink; the containment test is on the real location,
-    // and comes before the case check so that no answer tells what exists outside.
-    let canonical = current.canonicalize().map_err(|_| PathError::NotFound)?;
-    if !canonical.starts_with(&area_dir) {
-        return Err(PathError::Outside);
-    }
+    let canonical = if plain {
+        current
+    } else {
+        // Canonicalizing resolves every symlink; the containment test is on the real
+        // location, and comes before the case check so that no answer tells what exists
+        // outside.
+        let canonical = current.canonicalize().map_err(|_| PathError::NotFound)?;
+        if !canonical.starts_with(&area_dir) {
+            return Err(PathError::Outside);
+        }
+        canonical
+    };
     if miscased {
         return Err(PathError::Miscased {
             actual: actual_names.join("/"),
         });
     }
-    let metadata = fs::metadata(&canonical).map_err(|_| PathError::NotFound)?;
-    if !metadata.is_file() {
+    if !plain && !fs::metadata(&canonical).is_ok_and(|m| m.is_file()) {
         return Err(PathError::NotAFile);
     }
     Ok(canonical)
@@ -147,26 +180,20 @@ enum Entry {
 
 /// Looks `name` up in the listing of a folder, so that case is compared exactly even where
 /// the file system itself ignores it.
-fn find_entry(listing: Listing, name: &str) -> Result<Entry, PathError> {
+fn find_entry(listing: Listing, name: &str) -> Result<(Entry, EntryType), PathError> {
     let listing = listing.ok_or(PathError::NotFound)?;
     // The exact name first, without lower-casing every entry: a folder of 1,000 pages is
     // searched for each of them.
-    if listing.iter().any(|entry_name| entry_name == name) {
-        return Ok(Entry::Exact);
+    if let Some(&kind) = listing.get(std::ffi::OsStr::new(name)) {
+        return Ok((Entry::Exact, kind));
     }
     let wanted = name.to_lowercase();
-    let mut case_matches: Vec<OsString> = Vec::new();
-    for entry_name in listing.iter() {
-        if entry_name.to_string_lossy().to_lowercase() == wanted {
-            case_matches.push(entry_name.clone());
-        }
-    }
     // On a case-sensitive system `a.html` and `A.html` may both exist: pick one stably.
-    case_matches.sort();
-    case_matches
-        .into_iter()
-        .next()
-        .map(Entry::CaseDiffers)
+    listing
+        .iter()
+        .filter(|(entry_name, _)| entry_name.to_string_lossy().to_lowercase() == wanted)
+        .min_by(|a, b| a.0.cmp(b.0))
+        .map(|(real, &kind)| (Entry::CaseDiffers(real.clone()), kind))
         .ok_or(PathError::NotFound)
 }
 

@@ -196,6 +196,12 @@ fn describe_parser_message(msg: &str) -> String {
              is not valid. Write \\\\ for a backslash, or use single quotes instead.",
         ),
         (
+            &["recursion limit", "nesting depth", "too deep"],
+            "Brackets or indented lists here are nested inside one another far deeper than acts \
+             ever need (YAML reads at most 64 levels). Was something pasted here? Acts need only \
+             a few levels: check for stray `[` or `{`, or put the text in quotes.",
+        ),
+        (
             &["expected ',' or ']'", "bracket '['"],
             "A list in square brackets [ ] is not closed properly. Check for a missing `]` or a \
              missing comma, or put text containing brackets in quotes.",

@@ -1,0 +1,242 @@
+//! Reading a bundle's files on every core: each acts file (parsed, texts checked, commands
+//! checked) and the pages are jobs taken in turn by a few worker threads. Results come back in
+//! job order, so what is reported never depends on which thread ran what.
+//!
+//! Every thread reading YAML gets a large stack (`on_reading_stack`): nesting is recursive to
+//! read, and a file nested as deep as the parser's budget allows must be refused with a
+//! message, not crash the load on a small thread stack (tokio's blocking threads have 2 MiB).
+
+use std::io::Read;
+use std::num::NonZeroUsize;
+use std::path::Path;
+use std::sync::Arc;
+use std::sync::atomic::{AtomicUsize, Ordering};
+
+use crate::content::acts_file::{WrittenAct, read_acts_file, yaml::MAX_FILE_BYTES};
+use crate::content::commands::CommandChecker;
+use crate::content::config::SiteConfig;
+use crate::content::contexts::check_declared;
+use crate::content::diagnostic::Diagnostic;
+use crate::content::model::{CommandSpec, Located, Pos, Variant};
+use crate::content::pages::{PageLabels, check_pages};
+
+/// Stack of each thread reading YAML: room for nesting up to the parsers' depth limit.
+const READING_STACK_BYTES: usize = 32 << 20;
+
+/// Runs `work` on a thread with room for deep YAML, or here if no thread can be started.
+pub(super) fn on_reading_stack<T: Send>(work: impl FnOnce() -> T + Send) -> T {
+    let mut work = Some(work);
+    let done = std::thread::scope(|scope| {
+        let slot = &mut work;
+        let handle = reading_thread()
+            .spawn_scoped(scope, move || slot.take().map(|work| work()))
+            .ok()?;
+        handle
+            .join()
+            .unwrap_or_else(|panic| std::panic::resume_unwind(panic))
+    });
+    // No thread to spare (a process limit): still load, on this thread's stack.
+    done.unwrap_or_else(|| work.take().map(|work| work()).expect("the work runs once"))
+}
+
+fn reading_thread() -> std::thread::Builder {
+    std::thread::Builder::new()
+        .name("bundle check".into())
+        .stack_size(READING_STACK_BYTES)
+}
+
+/// One acts file, read and checked.
+pub(super) struct CheckedFile {
+    /// Its labelled acts, in written order, commands checked.
+    pub acts: Vec<CheckedAct>,
+    /// Labels seen in parts skipped because of YAML errors.
+    pub unread_labels: Vec<String>,
+    /// Nothing of the file could be read: any label may be in it.
+    pub unreadable: bool,
+}
+
+/// An act with a label, its commands parsed and checked.
+pub(super) struct CheckedAct {
+    pub label: Located<String>,
+    pub variants: Vec<Variant>,
+    /// The usable commands, in written order.
+    pub commands: Vec<Located<CommandSpec>>,
+    pub group: Option<String>,
+    pub key: Option<Located<char>>,
+}
+
+/// Everything read from the bundle's files.
+pub(super) struct Gathered {
+    /// The acts files that could be opened, in the order of the names given.
+    pub files: Vec<CheckedFile>,
+    /// The act labels the pages use.
+    pub pages: PageLabels,
+}
+
+/// One unit of work for a worker.
+#[derive(Clone, Copy)]
+enum Job<'n> {
+    Pages,
+    ActsFile(&'n str),
+}
+
+/// What a job produced, with the problems it found.
+enum Done {
+    Pages(PageLabels),
+    ActsFile(Option<CheckedFile>),
+}
+
+/// Reads the acts files `names` (top-level files of `root`) and checks every page, using
+/// every core. Problems are appended to `out` in job order: the pages', then each file's.
+pub(super) fn gather(
+    root: &Path,
+    names: &[String],
+    config: &SiteConfig,
+    out: &mut Vec<Diagnostic>,
+) -> Gathered {
+    // The pages first: they are the largest single job, so the files fill in around them.
+    let jobs: Vec<Job<'_>> = std::iter::once(Job::Pages)
+        .chain(names.iter().map(|name| Job::ActsFile(name)))
+        .collect();
+    let workers = std::thread::available_parallelism()
+        .map_or(1, NonZeroUsize::get)
+        .min(jobs.len());
+    let next = AtomicUsize::new(0);
+    let work = || {
+        // Each worker has its own checker: its caches are per thread, and a folder listed or
+        // a file sniffed twice costs less than threads waiting on one another.
+        let checker = CommandChecker::new(root, config);
+        let mut done = Vec::new();
+        loop {
+            let i = next.fetch_add(1, Ordering::Relaxed);
+            let Some(&job) = jobs.get(i) else {
+                return done;
+            };
+            let mut problems = Vec::new();
+            let result = run(job, &checker, config, &mut problems);
+            done.push((i, result, problems));
+        }
+    };
+    let mut results = std::thread::scope(|scope| {
+        let handles: Vec<_> = (0..workers)
+            .filter_map(|_| reading_thread().spawn_scoped(scope, work).ok())
+            .collect();
+        // No thread could be started (a process limit): do the work here rather than fail.
+        let mut results = if handles.is_empty() {
+            work()
+        } else {
+            Vec::new()
+        };
+        for handle in handles {
+            results.extend(
+                handle
+                    .join()
+                    .unwrap_or_else(|panic| std::panic::resume_unwind(panic)),
+            );
+        }
+        results
+    });
+    results.sort_by_key(|(i, ..)| *i);
+    let mut gathered = Gathered {
+        files: Vec::with_capacity(names.len()),
+        pages: PageLabels::default(),
+    };
+    for (_, result, mut problems) in results {
+        out.append(&mut problems);
+        match result {
+            Done::Pages(labels) => gathered.pages = labels,
+            Done::ActsFile(file) => gathered.files.extend(file),
+        }
+    }
+    gathered
+}
+
+fn run(
+    job: Job<'_>,
+    checker: &CommandChecker<'_>,
+    config: &SiteConfig,
+    out: &mut Vec<Diagnostic>,
+) -> Done {
+    match job {
+        Job::Pages => Done::Pages(check_pages(checker, out)),
+        Job::ActsFile(name) => Done::ActsFile(read_checked(name, checker, config, out)),
+    }
+}
+
+/// One acts file read, its texts and commands checked; `None` when it cannot be opened.
+fn read_checked(
+    name: &str,
+    checker: &CommandChecker<'_>,
+    config: &SiteConfig,
+    out: &mut Vec<Diagnostic>,
+) -> Option<CheckedFile> {
+    let file: Arc<str> = Arc::from(name);
+    let path = checker.root().join(name);
+    // A symlinked acts file must still live inside the bundle.
+    if !path
+        .canonicalize()
+        .is_ok_and(|p| p.starts_with(checker.root()))
+    {
+        let message = "This acts file is a link to a place outside the bundle folder. Copy the \
+                       file into the bundle instead.";
+        out.push(Diagnostic::error(
+            "path-outside-bundle",
+            &Pos::start_of(file),
+            message,
+        ));
+        return None;
+    }
+    let bytes = read_limited(&path, &file).map_err(|p| out.push(p)).ok()?;
+    let mut read = read_acts_file(&file, &bytes, &config.speech);
+    out.append(&mut read.diagnostics);
+    let acts = read
+        .acts
+        .into_iter()
+        .filter_map(|written| {
+            let WrittenAct {
+                label,
+                variants,
+                commands,
+                group,
+                key,
+            } = written;
+            // An act without a usable label is reported by the reader and goes no further.
+            let label = label?;
+            let commands = commands
+                .iter()
+                .filter_map(|c| checker.check(c, out))
+                .collect();
+            check_declared(config, &variants, out);
+            Some(CheckedAct {
+                label,
+                variants,
+                commands,
+                group,
+                key,
+            })
+        })
+        .collect();
+    Some(CheckedFile {
+        acts,
+        unread_labels: read.unread_labels,
+        unreadable: read.unreadable,
+    })
+}
+
+/// The file's bytes, reading at most one byte past the size limit (the parser reports it).
+pub(super) fn read_limited(path: &Path, file: &Arc<str>) -> Result<Vec<u8>, Diagnostic> {
+    let limit = u64::try_from(MAX_FILE_BYTES)
+        .unwrap_or(u64::MAX)
+        .saturating_add(1);
+    let mut bytes = Vec::new();
+    std::fs::File::open(path)
+        .and_then(|f| f.take(limit).read_to_end(&mut bytes))
+        .map(|_| bytes)
+        .map_err(|e| {
+            Diagnostic::error(
+                "unreadable-file",
+                &Pos::start_of(file.clone()),
+                format!("Docent could not read this file ({e}). Check that it is readable."),
+            )
+        })
+}
