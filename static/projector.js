@@ -6,9 +6,14 @@
 // separated by `;`; the server sends them parsed (`args.areas`), as it sends whether a PROJECT
 // file is a picture or a video (`args.kind`). HIGHLIGHT alone, or a PROJECT, clears them.
 // The soft edge is `projector: highlight_edge` (a fraction of the width), as a blur.
-// A video projected by a PROJECT command is answered with the command's id: `done` when it
-// ends, `failed` on a media error, so that the server's WAIT can follow the film. Ids belong to
-// one connection: after a reconnect the server has already settled them, so they are dropped.
+//
+// Every command is reported with its id, and only what happened (docs/PROTOCOL.md): `done`
+// once a picture is decoded and painted, or highlights painted; for a video `started` when it
+// plays and `done` (with `held` when its last frame stays) when it ends; `failed` with the
+// browser's own reason when it cannot be shown. Ids belong to one connection: after a
+// reconnect the server has already settled them, so they are dropped. The welcome and state
+// frames never start a film: a film plays only from its command, and the server's state never
+// names one that is over (a held film's last frame is shown again, silent).
 
 import { encodePath, keepConnected } from "./socket.js";
 
@@ -21,42 +26,74 @@ stage.style.setProperty("--highlight-edge", Number.isFinite(edge) ? String(edge)
 
 let projected = null; // the file on show or loading; null is black
 let highlighted = null; // the HIGHLIGHT argument on show; null is none
-const ended = new Set(); // videos that played to their end (not replayed by a reconnect)
 let connection = 0; // counts welcomes: a command id is answered only on its own connection
 let link = null; // the socket, set once connected
 
-/** Answers the PROJECT command `id` (from connection `from`), if there is one to answer. */
-function answer(id, from, frame) {
-  if (id == null || from !== connection || !link) return;
-  link.send({ ...frame, id });
+/** A reporter for command `id` (null: nothing to report), answering at most once. */
+function reporter(id) {
+  const from = connection;
+  let settled = false;
+  const send = (frame) => {
+    if (id == null || from !== connection || !link) return;
+    link.send({ ...frame, id });
+  };
+  return {
+    started: () => !settled && send({ type: "started" }),
+    done: (extra = {}) => {
+      if (settled) return;
+      settled = true;
+      send({ type: "done", ...extra });
+    },
+    failed: (reason) => {
+      if (settled) return;
+      settled = true;
+      send({ type: "failed", reason });
+    },
+  };
 }
 
-/** Replaces what is on the stage by `element` once it is ready to be seen. */
+/** Runs `then` once what is on the stage now has been painted. */
+function afterPaint(then) {
+  requestAnimationFrame(() => requestAnimationFrame(then));
+}
+
+/** Replaces what is on the stage by `element` once it is ready to be seen; false if overtaken. */
 function reveal(element, file) {
-  if (projected !== file) {
+  if (projected !== file || !element.isConnected) {
     element.remove();
-    return;
+    return false;
   }
   element.classList.remove("loading");
   for (const other of [...stage.children]) {
     if (other !== element) other.remove();
   }
+  return true;
 }
 
 function black() {
+  projected = null;
   stage.replaceChildren();
+}
+
+/** Why `src` could not be loaded, asking the server when the browser does not say. */
+async function whyNotLoaded(src, file) {
+  try {
+    const res = await fetch(src, { method: "HEAD", cache: "no-store" });
+    if (res.status === 404) return `the projector cannot find ${file} (404 Not Found)`;
+    if (!res.ok) return `the projector cannot load ${file} (HTTP ${res.status})`;
+  } catch (error) {
+    return `the projector cannot load ${file}: ${error}`;
+  }
+  return `the projector cannot decode ${file} as a picture`;
 }
 
 /**
  * Lights `areas` (parsed by the server: `{left, top, width, height, shape}` fractions) on
- * black, hiding any image or video; `arg` is the command as written, which says whether the
- * same areas are on show already; null or "" clears.
+ * black, hiding any image or video; `arg` is the command as written; null or "" clears.
  */
-function highlight(arg, areas, { again = true } = {}) {
-  const wanted = arg || null;
-  if (!again && wanted === highlighted && projected === null) return;
+function highlight(arg, areas, report = reporter(null)) {
   projected = null;
-  highlighted = wanted;
+  highlighted = arg || null;
   stage.replaceChildren(
     ...(areas ?? []).map(({ left, top, width, height, shape }) => {
       const area = document.createElement("div");
@@ -70,69 +107,110 @@ function highlight(arg, areas, { again = true } = {}) {
       return area;
     }),
   );
+  afterPaint(() => report.done());
 }
 
-/** Shows `file` as the server says it is (`kind`: "image" or "video"); null is black. */
-function project(file, kind, { again = true, id = null } = {}) {
-  if (highlighted !== null) {
-    highlighted = null;
-    for (const area of stage.querySelectorAll(".docent-highlight")) area.remove();
-  }
-  if (!again && file === projected) return;
-  if (!again && file && ended.has(file)) return; // a welcome after a reconnect: it is over
-  projected = file ?? null;
-  if (!file) return black();
-  ended.delete(file);
+/** Shows the picture `file`; reports it once decoded and painted. */
+function showPicture(file, report) {
   const src = mediaPath + encodePath(file);
-  if (kind === "image") {
-    const image = new Image();
-    image.className = "docent-media loading";
-    image.alt = "";
-    image.onload = () => reveal(image, file);
-    image.onerror = () => console.error(`docent: cannot show ${src}`);
-    stage.append(image);
-    image.src = src;
-  } else if (kind === "video") {
-    const video = document.createElement("video");
-    const from = connection;
-    let answered = false;
-    const settle = (frame) => {
-      if (answered) return;
-      answered = true;
-      answer(id, from, frame);
-    };
-    const fail = (reason) => settle({ type: "failed", reason });
-    video.className = "docent-media loading";
-    video.autoplay = true;
-    video.playsInline = true;
-    video.addEventListener("loadeddata", () => reveal(video, file), { once: true });
-    video.addEventListener("error", () => {
-      console.error(`docent: cannot play ${src}`);
-      fail(`the projector cannot play ${file} (media error ${video.error?.code ?? "unknown"})`);
+  const image = new Image();
+  image.className = "docent-media loading";
+  image.alt = "";
+  stage.append(image);
+  image.src = src;
+  image
+    .decode()
+    .then(() => {
+      if (reveal(image, file)) afterPaint(() => report.done());
+    })
+    .catch(async () => {
+      console.error(`docent: cannot show ${src}`);
+      image.remove();
+      const reason = await whyNotLoaded(src, file);
+      if (projected === file) black();
+      report.failed(reason);
     });
-    video.addEventListener("ended", () => {
-      settle({ type: "done" });
-      ended.add(file);
-      if (!holdAfterVideo && projected === file) {
-        projected = null;
-        black();
-      }
-    });
-    stage.append(video);
+}
+
+/**
+ * Plays the video `file` from its command (`report` answers it), or, with `held`, shows its
+ * last frame silently without playing (a welcome after a film that ended on hold).
+ */
+function playFilm(file, report, { held = false } = {}) {
+  const src = mediaPath + encodePath(file);
+  const video = document.createElement("video");
+  video.className = "docent-media loading";
+  video.playsInline = true;
+  const fail = (reason) => {
+    console.error(`docent: cannot play ${src}: ${reason}`);
+    if (projected === file && video.isConnected) black();
+    report.failed(reason);
+  };
+  video.addEventListener("error", () => {
+    const error = video.error;
+    const detail = error?.message || `media error ${error?.code ?? "unknown"}`;
+    fail(`the projector cannot play ${file}: ${detail}`);
+  });
+  stage.append(video);
+  if (held) {
+    video.muted = true;
+    video.preload = "auto";
+    video.addEventListener("loadedmetadata", () => (video.currentTime = video.duration), { once: true });
+    video.addEventListener("seeked", () => reveal(video, file), { once: true });
     video.src = src;
-    video.play().catch((error) => {
-      // Without the kiosk launcher's autoplay flag, a browser only plays muted videos.
-      console.warn("docent: the browser refused to play with sound; playing muted", error);
-      video.muted = true;
-      video.play().catch((e) => {
-        console.error(`docent: cannot play ${src}`, e);
-        if (video.error == null) fail(`the projector cannot play ${file}: ${e}`);
-      });
-    });
-  } else {
-    console.warn(`docent: the projector shows images and videos only, not ${file}`);
-    black();
+    return;
   }
+  video.autoplay = true;
+  video.addEventListener("loadeddata", () => reveal(video, file), { once: true });
+  video.addEventListener("playing", () => report.started(), { once: true });
+  video.addEventListener("ended", () => {
+    if (projected !== file || !video.isConnected) return;
+    report.done(holdAfterVideo ? { held: true } : {});
+    if (!holdAfterVideo) black();
+  });
+  video.src = src;
+  video.play().catch((error) => {
+    if (video.error != null || !video.isConnected) return; // the error event reports it
+    // Without the kiosk launcher's autoplay flag, a browser only plays muted videos.
+    console.warn("docent: the browser refused to play with sound; playing muted", error);
+    video.muted = true;
+    video.play().catch((e) => {
+      if (video.error == null) fail(`the projector cannot play ${file}: ${e}`);
+    });
+  });
+}
+
+/** Projects `file` as the server says it is (`kind`: "image" or "video"); null is black. */
+function project(file, kind, report = reporter(null)) {
+  highlighted = null;
+  if (!file) {
+    black();
+    return report.done();
+  }
+  stage.querySelectorAll(".docent-highlight").forEach((area) => area.remove());
+  stage.querySelectorAll("video").forEach((video) => video.pause()); // replaced: it ends here
+  projected = file;
+  if (kind === "image") return showPicture(file, report);
+  if (kind === "video") return playFilm(file, report);
+  black();
+  report.failed(`the projector shows pictures and videos only, not ${file}`);
+}
+
+/** A welcome or state frame: shows the server's display state, never starting a film. */
+function showState(display = {}) {
+  if (display.highlight) {
+    if (display.highlight !== highlighted || projected !== null) highlight(display.highlight, display.highlight_areas);
+    return;
+  }
+  const file = display.projector ?? null;
+  if (file === projected && file !== null) return; // on show already (a film plays on)
+  const state = display.projector_state;
+  if (!file || (display.projector_kind === "video" && state !== "held")) return black();
+  highlighted = null;
+  projected = file;
+  stage.replaceChildren();
+  if (display.projector_kind === "video") playFilm(file, reporter(null), { held: true });
+  else showPicture(file, reporter(null));
 }
 
 link = keepConnected({
@@ -142,16 +220,14 @@ link = keepConnected({
   onFrame: (frame) => {
     if (frame.type === "welcome") connection += 1;
     if (frame.type === "welcome" || frame.type === "state") {
-      const display = frame.state?.display ?? {};
-      if (display.highlight) {
-        highlight(display.highlight, display.highlight_areas, { again: false });
-      } else {
-        project(display.projector ?? null, display.projector_kind, { again: false });
-      }
+      showState(frame.state?.display);
     } else if (frame.type === "command" && frame.verb === "PROJECT") {
-      project(frame.args.file, frame.args.kind, { id: frame.id ?? null });
+      project(frame.args.file, frame.args.kind, reporter(frame.id ?? null));
     } else if (frame.type === "command" && frame.verb === "HIGHLIGHT") {
-      highlight(frame.arg ?? null, frame.args.areas);
+      highlight(frame.arg ?? null, frame.args.areas, reporter(frame.id ?? null));
+    } else if (frame.type === "cancel") {
+      black(); // a stop: the film or picture on its way ends here
+      highlighted = null;
     }
   },
 });

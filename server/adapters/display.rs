@@ -1,29 +1,65 @@
-//! The `display` adapter: `DISPLAY_PAGE`, `PROJECT` and `HIGHLIGHT` change the server's display
-//! state and go to every connected kiosk or projector client. A client that connects later gets the current
-//! state at once, taken under the same lock as changes, so it neither misses nor repeats one.
+//! The `display` adapter's state: what the touchscreen and the projector show, and the
+//! commands they still owe a report for. `DISPLAY_PAGE`, `PROJECT` and `HIGHLIGHT` go to every
+//! connected kiosk or projector client; a client that connects later gets the current state at
+//! once, taken under the same lock as changes, so it neither misses nor repeats one.
 //!
-//! A `PROJECT` of a video (by its extension, the list `static/projector.js` plays) is done
-//! when a projector client reports the film's end (`done`, or `failed` on a media error), so a
-//! `WAIT` can sequence speech after it. The first answer from any projector settles it. With
-//! no projector connected it is done at once: there is no film to wait for. A later `PROJECT`
-//! or `HIGHLIGHT`, or a stop, cancels the one still playing; the last projector leaving fails
-//! it. Images, highlights and pages are done at once.
+//! No outcome is claimed that a screen did not report (docs/ADAPTERS.md has the rules):
+//! - With no client of its screen connected a command fails at once ("no projector
+//!   connected", "no touchscreen connected").
+//! - Otherwise it is done when the first client reports it: a page revealed, a picture or
+//!   highlight painted, a film ended. A film reports `started` when it plays. A `failed`
+//!   report (the browser's own reason) fails it; so does every recipient leaving, and a report
+//!   (for a film: its start) missing after `adapters: timeout`.
+//! - A later command for the same screen cancels one still waiting; a stop cancels all (and
+//!   blacks out the projector).
+//!
+//! The projector's state follows its reports: `loading` until shown, then `shown`, a film
+//! `playing` then black, or `held` when the projector keeps its last frame
+//! (`projector: after_video: hold`, reported by the page with its `done`). A failed or
+//! cancelled projection is black. A projector that connects is never sent a film to play: the
+//! state never names one that is over, and the page starts films only from commands.
 
-use std::collections::{BTreeMap, HashSet};
-use std::sync::{Arc, Mutex};
+mod adapter;
+mod books;
+
+use std::sync::{Arc, Mutex, Weak};
+use std::time::Duration;
 
 use serde::Serialize;
-use tokio::sync::broadcast;
+use tokio::sync::{Notify, broadcast};
+use tokio::time::Instant;
+use tokio_util::sync::CancellationToken;
 
-use crate::adapters::{Adapter, AdapterStatus, CancelScope, Command, Outcome, Reply};
-use crate::content::{Area, Args, MediaKind, Verb};
+use crate::adapters::Outcome;
+use crate::content::{Area, MediaKind};
 use crate::events::{ClientRole, EventKind, Hub};
+use crate::lifecycle::Lifecycle;
 use crate::sync::lock;
 use crate::ws::outbox::Frame;
-use crate::ws::protocol::command_frame;
+use crate::ws::protocol::cancel_frame;
+
+pub use adapter::DisplayAdapter;
+use books::{Awaiting, Books, Showing};
 
 /// How many display frames a slow client may fall behind before it is resynchronised.
 const DISPLAY_CHANNEL_CAPACITY: usize = 256;
+
+/// What the projector is doing with what the display state names, as it reported.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize)]
+#[serde(rename_all = "snake_case")]
+pub enum ProjectorState {
+    /// Nothing on screen.
+    #[default]
+    Black,
+    /// Sent; no projector has reported it shown yet.
+    Loading,
+    /// A picture, or highlight areas, painted.
+    Shown,
+    /// A film playing.
+    Playing,
+    /// A film ended, its last frame held on screen.
+    Held,
+}
 
 /// What the touchscreen and projector show.
 #[derive(Clone, Debug, Default, PartialEq, Serialize)]
@@ -39,207 +75,278 @@ pub struct Display {
     pub highlight: Option<String>,
     /// The areas of `highlight`, parsed at load: what the projector draws.
     pub highlight_areas: Option<Vec<Area>>,
+    /// What the projector reported about `projector` or `highlight`.
+    pub projector_state: ProjectorState,
 }
 
-/// The display state and the channels to display clients. Shared by the adapter and the
-/// websocket connections.
+/// A touchscreen or a projector.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Screen {
+    /// A kiosk shell.
+    Kiosk,
+    /// A projector shell.
+    Projector,
+}
+
+impl Screen {
+    /// The screen a client with `role` is, if any.
+    pub fn of(role: ClientRole) -> Option<Screen> {
+        match role {
+            ClientRole::Kiosk => Some(Screen::Kiosk),
+            ClientRole::Projector => Some(Screen::Projector),
+            _ => None,
+        }
+    }
+
+    fn name(self) -> &'static str {
+        match self {
+            Screen::Kiosk => "touchscreen",
+            Screen::Projector => "projector",
+        }
+    }
+}
+
+/// A screen's report on a command it was sent (`started`, `done`, `failed` frames).
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub enum ScreenReport {
+    /// A film began to play.
+    Started,
+    /// Shown (a page, a picture, highlights) or, for a film, ended; `held` says the film's
+    /// last frame stays on screen.
+    Done {
+        /// The projector keeps the film's last frame.
+        held: bool,
+    },
+    /// It could not be shown, for this reason.
+    Failed(String),
+}
+
+/// The display state as changed by commands and screens' reports.
+struct Current {
+    display: Display,
+    /// The command whose picture, film or highlight the projector state is about.
+    projecting: Option<u64>,
+}
+
+/// The display state, the channels to display clients and the reports they owe. Shared by
+/// the adapter and the websocket connections.
 pub struct DisplayState {
-    current: Mutex<Display>,
+    current: Mutex<Current>,
     kiosk: broadcast::Sender<Frame>,
     projector: broadcast::Sender<Frame>,
-    /// Connected projector clients and the video commands they are playing. Locked after
-    /// `current` when both are needed; no reply is finished under it.
-    films: Mutex<Films>,
-}
-
-/// Projector clients and the `PROJECT` commands of videos waiting for their end.
-#[derive(Default)]
-struct Films {
-    projectors: HashSet<u64>,
-    playing: BTreeMap<u64, Reply>,
+    /// Locked after `current` when both are needed; no reply is finished under it.
+    books: Mutex<Books>,
+    hub: Hub,
+    /// How long a screen may take to report a command (`adapters: timeout`).
+    timeout: Duration,
+    /// Wakes the clock when the earliest due report may have changed.
+    wake: Arc<Notify>,
 }
 
 impl DisplayState {
-    /// Starts with the kiosk on `home` and the projector black.
-    pub fn new(home: Option<String>) -> Self {
-        DisplayState {
-            current: Mutex::new(Display {
-                page: home,
-                ..Display::default()
+    /// Starts with the kiosk on `home` and the projector black; a report missing after
+    /// `timeout` fails its command (the clock runs as a task of `life`).
+    pub fn start(home: Option<String>, timeout: Duration, hub: Hub, life: &Lifecycle) -> Arc<Self> {
+        let state = Arc::new(DisplayState {
+            current: Mutex::new(Current {
+                display: Display {
+                    page: home,
+                    ..Display::default()
+                },
+                projecting: None,
             }),
             kiosk: broadcast::channel(DISPLAY_CHANNEL_CAPACITY).0,
             projector: broadcast::channel(DISPLAY_CHANNEL_CAPACITY).0,
-            films: Mutex::default(),
+            books: Mutex::default(),
+            hub,
+            timeout,
+            wake: Arc::new(Notify::new()),
+        });
+        let clock = run_clock(
+            Arc::downgrade(&state),
+            Arc::clone(&state.wake),
+            life.shutdown.clone(),
+        );
+        life.spawn(clock);
+        state
+    }
+
+    /// A kiosk or projector client said hello: commands for its screen now wait for it.
+    pub fn joined(&self, role: ClientRole, client: u64) {
+        if let Some(screen) = Screen::of(role) {
+            lock(&self.books).join(screen, client);
         }
     }
 
-    /// A projector client said hello: videos projected from now on wait for its answer.
-    pub fn projector_joined(&self, client: u64) {
-        lock(&self.films).projectors.insert(client);
-    }
-
-    /// A projector client left; when it was the last one, the videos still playing fail.
-    pub fn projector_left(&self, client: u64) {
-        let orphans = {
-            let mut films = lock(&self.films);
-            films.projectors.remove(&client);
-            match films.projectors.is_empty() {
-                true => std::mem::take(&mut films.playing),
-                false => BTreeMap::new(),
-            }
+    /// A kiosk or projector client left; commands only it could report on fail.
+    pub fn left(&self, role: ClientRole, client: u64) {
+        let Some(screen) = Screen::of(role) else {
+            return;
         };
-        for reply in orphans.into_values() {
-            reply.finish(Outcome::Failed("the projector disconnected".into()));
+        let orphans = lock(&self.books).leave(screen, client);
+        let reason = format!("the {} disconnected", screen.name());
+        for id in orphans {
+            self.settle(id, Outcome::Failed(reason.clone()), ProjectorState::Black);
         }
     }
 
-    /// A projector's answer to the video command `id`: `done` at the film's end, `failed` on a
-    /// media error. An answer for a command no longer playing (another projector answered,
-    /// or it was replaced or stopped) is ignored.
-    pub fn answer(&self, client: u64, id: u64, outcome: Outcome) {
-        let reply = {
-            let mut films = lock(&self.films);
-            if !films.projectors.contains(&client) {
+    /// A screen's report on command `id`. A report for a command no longer waiting (another
+    /// screen answered, it was replaced, stopped or timed out) is ignored.
+    pub fn report(&self, role: ClientRole, client: u64, id: u64, report: ScreenReport) {
+        if Screen::of(role).is_none() {
+            return;
+        }
+        let (showing, started) = {
+            let mut books = lock(&self.books);
+            let Some(entry) = books.owed_by(id, client) else {
                 return;
+            };
+            let film_starts = report == ScreenReport::Started && entry.showing == Showing::Film;
+            let first = film_starts && entry.due.take().is_some();
+            if first {
+                entry.reply.started();
             }
-            films.playing.remove(&id)
+            (entry.showing, first)
         };
-        if let Some(reply) = reply {
-            reply.finish(outcome);
+        if started {
+            self.wake.notify_one();
+            return self.projector_now(id, ProjectorState::Playing);
+        }
+        let (outcome, after) = match report {
+            ScreenReport::Started => return,
+            ScreenReport::Failed(reason) => (Outcome::Failed(reason), ProjectorState::Black),
+            ScreenReport::Done { held } => match showing {
+                Showing::Film if held => (Outcome::Done, ProjectorState::Held),
+                Showing::Film => (Outcome::Done, ProjectorState::Black),
+                _ => (Outcome::Done, ProjectorState::Shown),
+            },
+        };
+        self.settle(id, outcome, after);
+    }
+
+    /// Takes `id` off the books and finishes it with `outcome`; the projector state becomes
+    /// `after` when the projection is still this command's.
+    fn settle(&self, id: u64, outcome: Outcome, after: ProjectorState) {
+        let Some(entry) = lock(&self.books).awaiting.remove(&id) else {
+            return;
+        };
+        self.wake.notify_one();
+        if entry.showing.screen() == Screen::Projector {
+            self.projector_now(id, after);
+        }
+        entry.reply.finish(outcome);
+    }
+
+    /// The projector state becomes `now` if the projection is still command `id`'s.
+    fn projector_now(&self, id: u64, now: ProjectorState) {
+        let mut current = lock(&self.current);
+        if current.projecting != Some(id) || current.display.projector_state == now {
+            return;
+        }
+        set_projector(&mut current, now);
+        self.hub.publish(display_changed(&current.display));
+    }
+
+    /// Fails the commands whose report is overdue at `now`.
+    fn expire(&self, now: Instant) {
+        let overdue = lock(&self.books).take(|entry| entry.due.is_some_and(|due| due <= now));
+        for (id, entry) in overdue {
+            let screen = entry.showing.screen();
+            let what = match entry.showing {
+                Showing::Film => "the film playing",
+                _ => "it shown",
+            };
+            let reason = format!(
+                "the {} did not report {what} within {:?}",
+                screen.name(),
+                self.timeout
+            );
+            if screen == Screen::Projector {
+                self.projector_now(id, ProjectorState::Black);
+            }
+            entry.reply.finish(Outcome::Failed(reason));
         }
     }
 
-    /// Takes the video commands still playing (all of them, or only `PROJECT`s: the same).
-    fn take_playing(&self) -> BTreeMap<u64, Reply> {
-        std::mem::take(&mut lock(&self.films).playing)
+    /// Cancels the commands `pick` chooses; a cancelled projection blacks the projector out.
+    fn cancel_where(&self, pick: impl Fn(&Awaiting) -> bool, reason: &str) {
+        let mut current = lock(&self.current);
+        let taken = lock(&self.books).take(pick);
+        let projecting = current.projecting;
+        if taken.iter().any(|(id, _)| Some(*id) == projecting) {
+            set_projector(&mut current, ProjectorState::Black);
+            let _ = (self.projector).send(Frame::from(cancel_frame(None, reason)));
+            self.hub.publish(display_changed(&current.display));
+        }
+        drop(current);
+        self.wake.notify_one();
+        for (_, entry) in taken {
+            entry.reply.finish(Outcome::Cancelled(reason.to_owned()));
+        }
     }
 
     /// The current display.
     pub fn snapshot(&self) -> Display {
-        self.lock().clone()
+        lock(&self.current).display.clone()
     }
 
     /// The current display and a receiver of later command frames for `role` (kiosk or
     /// projector; other roles get `None`).
     pub fn subscribe(&self, role: ClientRole) -> (Display, Option<broadcast::Receiver<Frame>>) {
-        let current = self.lock();
-        let rx = match role {
-            ClientRole::Kiosk => Some(self.kiosk.subscribe()),
-            ClientRole::Projector => Some(self.projector.subscribe()),
-            _ => None,
+        let current = lock(&self.current);
+        let rx = match Screen::of(role) {
+            Some(Screen::Kiosk) => Some(self.kiosk.subscribe()),
+            Some(Screen::Projector) => Some(self.projector.subscribe()),
+            None => None,
         };
-        (current.clone(), rx)
+        (current.display.clone(), rx)
     }
 
     /// A kiosk shows `page` on its own: the state follows (and the log says so) without
     /// sending anything to display clients.
     pub fn page_shown(&self, page: String, hub: &Hub) {
-        let mut current = self.lock();
-        if current.page.as_deref() == Some(page.as_str()) {
+        let mut current = lock(&self.current);
+        if current.display.page.as_deref() == Some(page.as_str()) {
             return;
         }
-        current.page = Some(page);
-        hub.publish(display_changed(&current));
-    }
-
-    fn lock(&self) -> std::sync::MutexGuard<'_, Display> {
-        lock(&self.current)
+        current.display.page = Some(page);
+        hub.publish(display_changed(&current.display));
     }
 }
 
-/// The built-in display adapter.
-pub struct DisplayAdapter {
-    state: Arc<DisplayState>,
-    hub: Hub,
-}
-
-impl DisplayAdapter {
-    /// A display adapter over `state`.
-    pub fn new(state: Arc<DisplayState>, hub: Hub) -> Self {
-        DisplayAdapter { state, hub }
+/// Sets the projector state; black also forgets what was projected.
+fn set_projector(current: &mut Current, now: ProjectorState) {
+    let display = &mut current.display;
+    display.projector_state = now;
+    if now == ProjectorState::Black {
+        display.projector = None;
+        display.projector_kind = None;
+        display.highlight = None;
+        display.highlight_areas = None;
+        current.projecting = None;
     }
 }
 
-impl Adapter for DisplayAdapter {
-    fn name(&self) -> &'static str {
-        "display"
-    }
-
-    fn submit(&self, command: Command, reply: Reply) {
-        let arg = command.arg.as_deref().map(str::to_owned);
-        let mut video = false;
-        let mut current = self.state.lock();
-        let channel = match (&command.verb, &*command.args) {
-            (Verb::DisplayPage, _) => {
-                current.page = arg;
-                &self.state.kiosk
-            }
-            // The projector shows a file or highlights, never both: each replaces the other.
-            (Verb::Project, Args::Project { kind, .. }) => {
-                video = *kind == MediaKind::Video;
-                current.projector = arg;
-                current.projector_kind = Some(*kind);
-                current.highlight = None;
-                current.highlight_areas = None;
-                &self.state.projector
-            }
-            (Verb::Highlight, Args::Highlight { areas }) => {
-                current.highlight = arg;
-                current.highlight_areas = Some(areas.clone());
-                current.projector = None;
-                current.projector_kind = None;
-                &self.state.projector
-            }
-            _ => {
-                drop(current);
-                let reason = format!("the display cannot carry out {}", command.verb);
-                return reply.finish(Outcome::Failed(reason));
+/// The clock: fails commands whose screen report is overdue.
+async fn run_clock(state: Weak<DisplayState>, wake: Arc<Notify>, shutdown: CancellationToken) {
+    loop {
+        let due = {
+            let Some(state) = state.upgrade() else { return };
+            lock(&state.books).next_due()
+        };
+        let overdue = async {
+            match due {
+                Some(at) => tokio::time::sleep_until(at).await,
+                None => std::future::pending().await,
             }
         };
-        reply.started();
-        // A new projection ends a film still playing; a film waits for a projector's answer,
-        // on the books before the frame goes out so that a fast answer finds it.
-        let mut replaced = BTreeMap::new();
-        let mut reply = Some(reply);
-        if command.verb != Verb::DisplayPage {
-            let mut films = lock(&self.state.films);
-            replaced = std::mem::take(&mut films.playing);
-            if video
-                && !films.projectors.is_empty()
-                && let Some(reply) = reply.take()
-            {
-                films.playing.insert(command.id, reply);
+        tokio::select! {
+            () = wake.notified() => continue,
+            () = shutdown.cancelled() => return,
+            () = overdue => {
+                let Some(state) = state.upgrade() else { return };
+                state.expire(Instant::now());
             }
-        }
-        // No connected client is fine: the state is kept for the next one.
-        let _ = channel.send(Frame::from(command_frame(&command)));
-        // Logged under the display lock, so the log's order of changes is the clients' order.
-        self.hub.publish(display_changed(&current));
-        drop(current);
-        let reason = format!("replaced by a later {}", command.verb);
-        for earlier in replaced.into_values() {
-            earlier.finish(Outcome::Cancelled(reason.clone()));
-        }
-        if let Some(reply) = reply {
-            reply.finish(Outcome::Done);
-        }
-    }
-
-    fn cancel(&self, scope: CancelScope<'_>, reason: &str) {
-        // Only films waiting for their end are ever outstanding here; all are PROJECTs.
-        if matches!(scope, CancelScope::Verb(verb) if *verb != Verb::Project) {
-            return;
-        }
-        for reply in self.state.take_playing().into_values() {
-            reply.finish(Outcome::Cancelled(reason.to_owned()));
-        }
-    }
-
-    fn status(&self) -> AdapterStatus {
-        let films = lock(&self.state.films);
-        AdapterStatus {
-            queued: films.playing.len(),
-            current: (films.playing.values().next()).map(|r| r.command().describe()),
         }
     }
 }
@@ -250,5 +357,6 @@ fn display_changed(display: &Display) -> EventKind {
         page: display.page.clone(),
         projector: display.projector.clone(),
         highlight: display.highlight.clone(),
+        projector_state: display.projector_state,
     }
 }

@@ -20,7 +20,7 @@ mod worker;
 pub mod ws;
 
 pub use command::{Command, Outcome, Reply};
-pub use display::{Display, DisplayAdapter, DisplayState};
+pub use display::{Display, DisplayAdapter, DisplayState, ProjectorState, Screen, ScreenReport};
 pub use drive_sim::{DriveSim, Pose};
 pub use router::{Devices, Router};
 pub use speech_espeak::{

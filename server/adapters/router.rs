@@ -40,13 +40,12 @@ impl Devices {
         hub: &Hub,
         life: &Lifecycle,
     ) -> (Devices, Router) {
-        let display = Arc::new(DisplayState::new(home));
+        let display = DisplayState::start(home, config.adapter_timeout, hub.clone(), life);
         let ws = Arc::new(WsAdapters::new(config.adapter_timeout, life.clone()));
         let log = Arc::new(log_adapter(config.speech.rate_wpm, life));
         let drive = (config.drive.adapter == AdapterKind::DriveSim)
             .then(|| Arc::new(DriveSim::new(&config.drive, hub.clone(), life)));
-        let display_adapter: Arc<dyn Adapter> =
-            Arc::new(DisplayAdapter::new(Arc::clone(&display), hub.clone()));
+        let display_adapter: Arc<dyn Adapter> = Arc::new(DisplayAdapter::new(Arc::clone(&display)));
         let espeak: Option<Arc<dyn Adapter>> = (speech == AdapterKind::Espeak).then(|| {
             let s = &config.speech;
             Arc::new(espeak_adapter(

@@ -220,6 +220,8 @@ pub enum EventKind {
         projector: Option<String>,
         /// The `HIGHLIGHT` areas lit on the projector, as written; `None` when cleared.
         highlight: Option<String>,
+        /// What the projector reported about `projector` or `highlight`.
+        projector_state: crate::adapters::ProjectorState,
     },
     /// A browser asked for a page that is not in the bundle (a broken link or `DISPLAY_PAGE`);
     /// it was shown the friendly "not available" page.

@@ -15,7 +15,7 @@ use tokio::sync::oneshot;
 use tokio_util::sync::CancellationToken;
 
 use crate::access::TokenBucket;
-use crate::adapters::Outcome;
+use crate::adapters::{Outcome, ScreenReport};
 use crate::events::{ClientRole, EventKind};
 use crate::http::auth::{Peer, same_origin};
 use crate::state::AppState;
@@ -227,11 +227,11 @@ impl Session {
                 reference,
             } => self.mark(mark, value, reference),
             ClientFrame::Signal { to, data } => self.signal(to, &data),
-            ClientFrame::Started { id } => self.answer(id, None),
-            ClientFrame::Done { id } => self.answer(id, Some(Outcome::Done)),
+            ClientFrame::Started { id } => self.answer(id, ScreenReport::Started),
+            ClientFrame::Done { id, held } => self.answer(id, ScreenReport::Done { held }),
             ClientFrame::Failed { id, reason } => {
                 let reason = reason.unwrap_or_else(|| "the adapter reported a failure".into());
-                self.answer(id, Some(Outcome::Failed(reason)));
+                self.answer(id, ScreenReport::Failed(reason));
             }
         }
     }
@@ -261,22 +261,28 @@ impl Session {
         }
     }
 
-    fn answer(&self, id: u64, outcome: Option<Outcome>) {
-        let roles = [ClientRole::Adapter, ClientRole::Projector];
-        if self.allowed(&roles, None) == Some(ClientRole::Projector) {
-            // A projector answers for the videos it plays; `started` adds nothing there.
-            if let Some(outcome) = outcome {
-                self.state.devices.display.answer(self.client, id, outcome);
-            }
+    fn answer(&self, id: u64, report: ScreenReport) {
+        let roles = [
+            ClientRole::Adapter,
+            ClientRole::Projector,
+            ClientRole::Kiosk,
+        ];
+        let Some(role) = self.allowed(&roles, None) else {
             return;
-        }
-        if self.role != Some(ClientRole::Adapter) {
-            return;
+        };
+        if role != ClientRole::Adapter {
+            // Kiosks and projectors report on what they were sent to show.
+            return self
+                .state
+                .devices
+                .display
+                .report(role, self.client, id, report);
         }
         let ws = &self.state.devices.ws;
-        let result = match outcome {
-            None => ws.started(self.client, id),
-            Some(outcome) => ws.answer(self.client, id, outcome),
+        let result = match report {
+            ScreenReport::Started => ws.started(self.client, id),
+            ScreenReport::Done { .. } => ws.answer(self.client, id, Outcome::Done),
+            ScreenReport::Failed(reason) => ws.answer(self.client, id, Outcome::Failed(reason)),
         };
         if let Err(e) = result {
             self.reply_error("unknown-command", &e.to_string(), None, None);
@@ -288,9 +294,7 @@ impl Session {
         if role == ClientRole::Adapter {
             self.state.devices.ws.disconnect(self.client);
         }
-        if role == ClientRole::Projector {
-            self.state.devices.display.projector_left(self.client);
-        }
+        self.state.devices.display.left(role, self.client);
         self.state.client_left(self.client);
         if role == ClientRole::Operator {
             self.hang_up_calls();

@@ -123,10 +123,13 @@ pub enum ClientFrame {
         /// Command id.
         id: u64,
     },
-    /// An adapter finished a command.
+    /// An adapter finished a command (a screen: showed it, or played the film to its end).
     Done {
         /// Command id.
         id: u64,
+        /// Projector only: the ended film's last frame stays on screen.
+        #[serde(default)]
+        held: bool,
     },
     /// An adapter could not carry out a command.
     Failed {

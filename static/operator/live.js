@@ -1,5 +1,5 @@
-// live.js: what the robot does now: the kiosk's page and the projector's content
-// (display.changed, welcome state), the text being spoken (a SAY between command.started and
+// live.js: what the robot does now: the kiosk's page and the projector's content with what
+// the projector reported about it (display.changed, welcome state), the text being spoken (a SAY between command.started and
 // its end) and the queue of commands sent to adapters and not yet ended (command.* events;
 // before those, the per-adapter snapshot of GET /api/state `queues`). The snapshot is fetched
 // after `welcome` while events already arrive: a part of it is used only as long as no event
@@ -7,6 +7,7 @@
 
 import { h, shorten } from "./dom.js";
 
+const PROJECTOR_STATES = { loading: "not shown yet", shown: "shown", playing: "playing", held: "ended, last frame held" };
 const ENDED = new Set(["command.done", "command.failed", "command.cancelled"]);
 
 /** @param {{kiosk: HTMLElement, projector: HTMLElement, speaking: HTMLElement, queue: HTMLElement}} els */
@@ -23,9 +24,14 @@ export function createLive(els) {
   function showDisplay(display) {
     if (!display) return;
     els.kiosk.textContent = display.page ?? "–";
-    els.projector.textContent = display.highlight
-      ? `highlight ${display.highlight}`
-      : display.projector ?? "black";
+    // What the projector reported (docs/PROTOCOL.md `projector_state`), not what was asked.
+    const state = display.projector_state ?? "black";
+    const shown = display.highlight ? `highlight ${display.highlight}` : display.projector;
+    els.projector.dataset.state = state;
+    els.projector.replaceChildren(
+      shown && state !== "black" ? shown : "black",
+      PROJECTOR_STATES[state] ? h("span", { class: "muted small" }, ` · ${PROJECTOR_STATES[state]}`) : "",
+    );
   }
 
   function showSpeaking() {
