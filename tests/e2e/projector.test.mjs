@@ -108,6 +108,153 @@ test('with after_video: hold the projector keeps the last frame when a film ends
   }
 });
 
+/** Makes a bundle of `acts` with a log speech adapter and the shipped clip and picture. */
+function mediaBundle(acts, { config = '', extra = {} } = {}) {
+  const bundle = makeBundle({
+    'docent.yaml': `speech: {adapter: log}\n${config}`,
+    'acts.yaml': acts,
+    'pages/index.html': '<!DOCTYPE html><title>home</title>',
+    ...extra,
+  });
+  fs.copyFileSync(path.join(REPO, 'dialogs/museum-tour/media/card-punch.webm'), path.join(bundle, 'media/card-punch.webm'));
+  fs.copyFileSync(path.join(REPO, 'dialogs/poster-presenter/media/poster.png'), path.join(bundle, 'media/poster.png'));
+  return bundle;
+}
+
+const is = (type, command) => (e) => e.type === type && e.command === command;
+
+test('PROJECT with no projector connected fails at once, and the WAIT after it reports it', { timeout: 60_000 }, async () => {
+  const bundle = mediaBundle('- Label: FILM\n  Cmds: [PROJECT card-punch.webm, WAIT, SAY After the film]\n');
+  try {
+    await withServer(bundle, async ({ server, operator }) => {
+      const [project, wait, say] = commandIds(await server.trigger('FILM'));
+      const failed = await operator.waitForEvent(is('command.failed', project));
+      assert.equal(failed.reason, 'no projector connected');
+      const waitFailed = await operator.waitForEvent(is('command.failed', wait));
+      assert.match(waitFailed.reason, /PROJECT/);
+      const events = operator.events();
+      assert.ok(!events.some(is('command.sent', say)), 'the SAY after the WAIT was not sent');
+      assert.ok(!events.some(is('command.started', project)), 'nothing started');
+      const state = await server.api('/api/state');
+      assert.equal(state.display.projector, null);
+    });
+  } finally {
+    removeTemp(bundle);
+  }
+});
+
+test('a file the browser cannot play fails the PROJECT with the browser\'s reason and leaves black', { timeout: 60_000 }, async () => {
+  const bundle = mediaBundle('- Label: FILM\n  Cmds: [PROJECT broken.webm, WAIT, SAY After the film]\n', {
+    extra: { 'media/broken.webm': 'this is not a film at all, only text' },
+  });
+  try {
+    await withServer(bundle, async ({ server, page, operator }) => {
+      await openProjector(page, server, operator);
+      const [project, wait, say] = commandIds(await server.trigger('FILM'));
+      const failed = await operator.waitForEvent(is('command.failed', project));
+      assert.match(failed.reason, /^the projector cannot play broken\.webm: \S/);
+      console.log(`# the browser's reason: ${failed.reason}`);
+      assert.doesNotMatch(failed.reason, /unknown/);
+      await operator.waitForEvent(is('command.failed', wait));
+      assert.ok(!operator.events().some(is('command.sent', say)));
+      assert.equal(await page.evaluate(() => document.getElementById('docent-stage').childElementCount), 0);
+      const state = await server.api('/api/state');
+      assert.deepEqual([state.display.projector, state.display.projector_state], [null, 'black']);
+    });
+  } finally {
+    removeTemp(bundle);
+  }
+});
+
+test('a picture is done only after the projector reports it painted', { timeout: 60_000 }, async () => {
+  const bundle = mediaBundle('- Label: PICTURE\n  Cmds: [PROJECT poster.png, WAIT, SAY After the picture]\n');
+  try {
+    await withServer(bundle, async ({ server, page, operator }) => {
+      const problems = watchProblems(page);
+      await openProjector(page, server, operator);
+      // The picture's bytes are held back until the test has looked at the events.
+      let requested;
+      const asked = new Promise((resolve) => (requested = resolve));
+      let release;
+      const released = new Promise((resolve) => (release = resolve));
+      await page.route('**/media/poster.png', async (route) => {
+        requested();
+        await released;
+        await route.continue();
+      });
+      const [project, wait, say] = commandIds(await server.trigger('PICTURE'));
+      await asked;
+      await operator.waitForEvent((e) => e.type === 'display.changed' && e.projector_state === 'loading');
+      assert.ok(!operator.events().some(is('command.done', project)), 'done before the picture arrived');
+      assert.ok(!operator.events().some(is('command.done', wait)), 'the WAIT ended before the picture arrived');
+      release();
+      const shown = await operator.waitForEvent((e) => e.type === 'display.changed' && e.projector_state === 'shown');
+      const done = await operator.waitForEvent(is('command.done', project));
+      assert.ok(shown.seq < done.seq);
+      await operator.waitForEvent(is('command.sent', say));
+      const image = await page.evaluate(() => {
+        const img = document.querySelector('#docent-stage img');
+        return img && { complete: img.complete, width: img.naturalWidth, loading: img.classList.contains('loading') };
+      });
+      assert.ok(image && image.complete && image.width > 0 && !image.loading, JSON.stringify(image));
+      assert.deepEqual(problems, [], 'problems in the projector page');
+    });
+  } finally {
+    removeTemp(bundle);
+  }
+});
+
+test('a projector that reconnects after a film ended shows black (or the held frame) and plays nothing', { timeout: 120_000 }, async () => {
+  for (const setting of ['black', 'hold']) {
+    const bundle = mediaBundle('- Label: FILM\n  Cmds: [PROJECT card-punch.webm]\n- Label: DARK\n  Cmds: [HIGHLIGHT]\n', {
+      config: `projector: {after_video: ${setting}}\n`,
+    });
+    try {
+      await withServer(bundle, async ({ server, page, operator }) => {
+        await openProjector(page, server, operator);
+        const [project] = commandIds(await server.trigger('FILM'));
+        await operator.waitForEvent(is('command.started', project));
+        await operator.waitForEvent(is('command.done', project));
+        const ended = await operator.waitForEvent((e) => e.type === 'display.changed' && ['black', 'held'].includes(e.projector_state));
+        assert.equal(ended.projector_state, setting === 'hold' ? 'held' : 'black');
+
+        const media = [];
+        page.on('request', (req) => {
+          if (req.url().includes('/media/')) media.push(req.url());
+        });
+        await page.reload();
+        await operator.waitForEvent((e) => e.type === 'client.connected' && e.role === 'projector');
+        const shown = await page.evaluate(() => {
+          const video = document.querySelector('#docent-stage video');
+          return video && { paused: video.paused, muted: video.muted, autoplay: video.autoplay };
+        });
+        if (setting === 'hold') {
+          await page.waitForFunction(() => {
+            const video = document.querySelector('#docent-stage video');
+            return video && video.readyState >= 2 && !video.classList.contains('loading');
+          });
+          const held = await page.evaluate(() => {
+            const video = document.querySelector('#docent-stage video');
+            return { paused: video.paused, muted: video.muted, atEnd: video.currentTime >= video.duration - 0.1 };
+          });
+          assert.deepEqual(held, { paused: true, muted: true, atEnd: true }, 'the held frame, silent and still');
+        } else {
+          assert.equal(shown, null, 'no video after a reconnect');
+          assert.deepEqual(media, [], 'no film loaded after a reconnect');
+        }
+        // A command after the reconnect is handled after the welcome: then nothing played.
+        const [dark] = commandIds(await server.trigger('DARK'));
+        await operator.waitForEvent(is('command.done', dark));
+        assert.ok(!operator.events().some((e) => e.type === 'command.started' && e.command !== project && e.verb === 'PROJECT'));
+        const playing = await page.evaluate(() => [...document.querySelectorAll('video')].some((v) => !v.paused));
+        assert.equal(playing, false, 'nothing plays');
+      });
+    } finally {
+      removeTemp(bundle);
+    }
+  }
+});
+
 /**
  * The size of a PNG and the RGB colour of each of `points` (`[x, y]`), decoded by the browser in
  * `page` (a canvas drawing the PNG as a data URL).
@@ -178,6 +325,9 @@ test('the poster presenter advances by its page timers through every area', { ti
   try {
     await withServer(bundle, async ({ server, page, operator }) => {
       const problems = watchProblems(page);
+      // HIGHLIGHT is done only when a projector painted it: the poster needs its projector.
+      const projector = await page.context().newPage();
+      await openProjector(projector, server, operator);
       await openShell(page, server, 'index.html');
       const expected = ['SECTION_1', 'SECTION_2', 'SECTION_3', 'SECTION_4', 'CLOSING'];
       for (const label of expected) {
