@@ -147,6 +147,7 @@ const socket = keepConnected({
       // A page change by the robot counts as activity: a tour is not an idle kiosk.
       activity();
       serverPage = frame.args.page;
+      reportPageShown(frame.id, frame.args.page);
       show(frame.args.page);
     } else if (frame.type === "changed") {
       bundleChanged(frame);
@@ -189,6 +190,32 @@ window.docentShell = {
     return () => listeners.get(type)?.delete(fn);
   },
 };
+
+/**
+ * Answers the DISPLAY_PAGE command `id` once `page` is on screen (docs/PROTOCOL.md): `done`
+ * when revealed, `failed` when the "not available" page took its place. A page revealed first
+ * overtook it, and a lost connection voids the id: the server settled those already.
+ */
+function reportPageShown(id, page) {
+  if (id == null) return;
+  const front = () => frames.find((frame) => frame.classList.contains("shown"));
+  const report = () => {
+    let missing = false;
+    try {
+      missing = Boolean(front()?.contentDocument?.querySelector('meta[name="docent-page"][content="missing"]'));
+    } catch {
+      missing = true; // a document of another origin: the browser's own error screen
+    }
+    socket.send(missing ? { type: "failed", id, reason: `the touchscreen could not show ${page}: it is not available` } : { type: "done", id });
+  };
+  if (wanted === page && front()?.src.endsWith(pagesPath + encodePath(page))) return report();
+  const stopPage = window.docentShell.on("page", (shown) => {
+    stop();
+    if (shown.page === page) report();
+  });
+  const stopOffline = window.docentShell.on("connection", ({ online }) => online || stop());
+  const stop = () => (stopPage(), stopOffline());
+}
 
 // Idle: back home after `idleMs` without touch; then the idle act, if one is configured.
 if (idleMs > 0) {

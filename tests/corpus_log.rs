@@ -34,9 +34,15 @@ async fn the_log_holds_every_event_with_its_fields_in_sequence() {
     let b = TempBundle::new(ACTS).with_file("docent.yaml", CONFIG);
     let server = TestServer::start(b.path()).await;
     let mut op = server.operator().await;
+    // The touchscreen: DISPLAY_PAGE is done when it reports the page shown.
+    let mut kiosk = server
+        .client(json!({"type": "hello", "role": "kiosk"}))
+        .await;
     let t = server
         .trigger("GREET", json!({"context": "TextGroup", "ref": "visitor-1"}))
         .await;
+    let page = kiosk.recv_type("command").await;
+    kiosk.send(json!({"type": "done", "id": page["id"]})).await;
     let mut pending: Vec<Value> = t["commands"]
         .as_array()
         .unwrap()

@@ -96,12 +96,15 @@ async fn projectors_get_highlight_commands_and_late_ones_the_current_areas() {
     assert_eq!(display["highlight"], Value::Null, "{display}");
     assert_eq!(display["projector"], Value::Null, "{display}");
 
+    drop(early);
     let corpus = server.stop().await;
-    let highlights: Vec<&Value> = corpus
+    let mut highlights: Vec<&Value> = corpus
         .iter()
         .filter(|e| e["type"] == "display.changed")
         .map(|e| &e["highlight"])
         .collect();
+    // The projector's reports (and its leaving) change its state, not the areas.
+    highlights.dedup();
     assert_eq!(
         highlights,
         [

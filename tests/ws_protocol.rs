@@ -99,7 +99,9 @@ async fn roles_limit_what_a_client_may_do() {
         .await;
     kiosk.send(json!({"type": "stop"})).await;
     assert_eq!(kiosk.recv_type("error").await["code"], "forbidden");
-    kiosk.send(json!({"type": "done", "id": 1})).await;
+    kiosk
+        .send(json!({"type": "context", "context": "TextChild"}))
+        .await;
     assert_eq!(kiosk.recv_type("error").await["code"], "forbidden");
     server.stop().await;
 }
