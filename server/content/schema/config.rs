@@ -71,7 +71,7 @@ fn top_level(key: &str) -> Value {
             ADAPTERS_KEYS,
             |_| {
                 duration(
-                    "How long a device may take for one command before Docent reports it failed, e.g. `30s`. Not zero.",
+                    "How long a device (a websocket adapter, the touchscreen or projector page) may take to report a command before Docent reports it failed, e.g. `30s`; a film only until it plays. Not zero.",
                 )
             },
             "Settings shared by all devices.",
