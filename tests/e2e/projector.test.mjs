@@ -12,6 +12,7 @@ import { after, before, test } from 'node:test';
 import { launchBrowser, newTouchContext, watchProblems } from './lib/browser.mjs';
 import { copyBundle, makeBundle, REPO, removeTemp, startDocent } from './lib/docent.mjs';
 import { openShell } from './lib/kiosk.mjs';
+import { signIn } from './lib/operator.mjs';
 import { connectOperator } from './lib/ws-client.mjs';
 
 let browser;
@@ -252,6 +253,44 @@ test('a projector that reconnects after a film ended shows black (or the held fr
     } finally {
       removeTemp(bundle);
     }
+  }
+});
+
+test('the console shows what the projector reported: not shown yet, playing, then black', { timeout: 90_000 }, async () => {
+  const bundle = mediaBundle('- Label: FILM\n  Cmds: [PROJECT card-punch.webm]\n');
+  try {
+    await withServer(bundle, async ({ server, page, operator }) => {
+      const consolePage = await page.context().newPage();
+      await signIn(consolePage, server);
+      const cell = consolePage.locator('#projector-content');
+      assert.equal(await cell.getAttribute('data-state'), 'black');
+      assert.equal(await cell.textContent(), 'black');
+      // No projector yet: the PROJECT fails and the console keeps showing black.
+      const [missed] = commandIds(await server.trigger('FILM'));
+      await operator.waitForEvent(is('command.failed', missed));
+      assert.equal(await cell.textContent(), 'black');
+
+      await openProjector(page, server, operator);
+      // The film's bytes are held back: the console must say it is not on screen yet.
+      let release;
+      const released = new Promise((resolve) => (release = resolve));
+      await page.route('**/media/card-punch.webm', async (route) => {
+        await released;
+        await route.continue();
+      });
+      const [project] = commandIds(await server.trigger('FILM'));
+      await consolePage.locator('#projector-content[data-state="loading"]').waitFor();
+      assert.equal(await cell.textContent(), 'card-punch.webm · not shown yet');
+      release();
+      await operator.waitForEvent(is('command.started', project));
+      await consolePage.locator('#projector-content[data-state="playing"]').waitFor();
+      assert.equal(await cell.textContent(), 'card-punch.webm · playing');
+      await operator.waitForEvent(is('command.done', project));
+      await consolePage.locator('#projector-content[data-state="black"]').waitFor();
+      assert.equal(await cell.textContent(), 'black');
+    });
+  } finally {
+    removeTemp(bundle);
   }
 });
 
