@@ -249,6 +249,11 @@ async fn a_projector_that_never_reports_fails_the_command_after_the_timeout() {
             "{failed}"
         );
         op.event_where(is("command.failed", wait)).await;
+        // What the projector would show late must not contradict the log: it is told to go
+        // black.
+        let cancel = proj.recv_type("cancel").await;
+        assert_eq!(cancel["reason"], failed["reason"], "{cancel}");
+        assert_eq!(projector_state(&server).await["projector_state"], "black");
     }
     // A film that reported its start is not timed out: its end may be far off.
     let (project, _, _) = act(&mut op, "FILM").await;
@@ -262,4 +267,24 @@ async fn a_projector_that_never_reports_fails_the_command_after_the_timeout() {
     assert_eq!(state["display"]["projector_state"], "playing", "{state}");
     proj.send(json!({"type": "done", "id": project})).await;
     op.event_where(is("command.done", project)).await;
+}
+
+#[tokio::test]
+async fn a_stop_cancels_a_film_and_tells_the_projector_to_go_black() {
+    let b = bundle();
+    let server = TestServer::start(b.path()).await;
+    let mut op = server.operator().await;
+    let mut proj = projector(&server).await;
+    let (project, _, _) = act(&mut op, "FILM").await;
+    proj.recv_type("command").await;
+    proj.send(json!({"type": "started", "id": project})).await;
+    op.event_where(is("command.started", project)).await;
+    op.send(json!({"type": "stop"})).await;
+    let cancelled = op.event_where(is("command.cancelled", project)).await;
+    assert_eq!(cancelled["reason"], "stop request", "{cancelled}");
+    let cancel = proj.recv_type("cancel").await;
+    assert_eq!(cancel["reason"], "stop request", "{cancel}");
+    let display = projector_state(&server).await;
+    assert_eq!(display["projector"], Value::Null, "{display}");
+    assert_eq!(display["projector_state"], "black", "{display}");
 }

@@ -10,8 +10,8 @@
 //!   highlight painted, a film ended. A film reports `started` when it plays. A `failed`
 //!   report (the browser's own reason) fails it; so does every recipient leaving, and a report
 //!   (for a film: its start) missing after `adapters: timeout`.
-//! - A later command for the same screen cancels one still waiting; a stop cancels all (and
-//!   blacks out the projector).
+//! - A later command for the same screen cancels one still waiting; a stop cancels all. A
+//!   stopped or overdue projection blacks out the projector (a `cancel` frame).
 //!
 //! The projector's state follows its reports: `loading` until shown, then `shown`, a film
 //! `playing` then black, or `held` when the projector keeps its last frame
@@ -262,7 +262,8 @@ impl DisplayState {
                 self.timeout
             );
             if screen == Screen::Projector {
-                self.projector_now(id, ProjectorState::Black);
+                // Whatever the projector shows late would contradict the log: it goes black.
+                self.black_out(&[id], &reason);
             }
             entry.reply.finish(Outcome::Failed(reason));
         }
@@ -270,19 +271,25 @@ impl DisplayState {
 
     /// Cancels the commands `pick` chooses; a cancelled projection blacks the projector out.
     fn cancel_where(&self, pick: impl Fn(&Awaiting) -> bool, reason: &str) {
-        let mut current = lock(&self.current);
         let taken = lock(&self.books).take(pick);
-        let projecting = current.projecting;
-        if taken.iter().any(|(id, _)| Some(*id) == projecting) {
-            set_projector(&mut current, ProjectorState::Black);
-            let _ = (self.projector).send(Frame::from(cancel_frame(None, reason)));
-            self.hub.publish(display_changed(&current.display));
-        }
-        drop(current);
+        let ids: Vec<u64> = taken.iter().map(|(id, _)| *id).collect();
+        self.black_out(&ids, reason);
         self.wake.notify_one();
         for (_, entry) in taken {
             entry.reply.finish(Outcome::Cancelled(reason.to_owned()));
         }
+    }
+
+    /// When the projection is one of `ids`, the projector goes black: the state says so and
+    /// the projectors get a `cancel` frame (a film stops).
+    fn black_out(&self, ids: &[u64], reason: &str) {
+        let mut current = lock(&self.current);
+        if !current.projecting.is_some_and(|id| ids.contains(&id)) {
+            return;
+        }
+        set_projector(&mut current, ProjectorState::Black);
+        let _ = (self.projector).send(Frame::from(cancel_frame(None, reason)));
+        self.hub.publish(display_changed(&current.display));
     }
 
     /// The current display.
