@@ -171,11 +171,20 @@ impl DisplayState {
         state
     }
 
-    /// A kiosk or projector client said hello: commands for its screen now wait for it.
-    pub fn joined(&self, role: ClientRole, client: u64) {
+    /// [`subscribe`](Self::subscribe) for a client that just said hello; a kiosk or projector
+    /// also joins its screen, under the same lock, so that every display command is either in
+    /// the state it gets or sent to it and awaited from it.
+    pub fn join(
+        &self,
+        role: ClientRole,
+        client: u64,
+    ) -> (Display, Option<broadcast::Receiver<Frame>>) {
+        let current = lock(&self.current);
+        let subscribed = self.subscribe_locked(&current, role);
         if let Some(screen) = Screen::of(role) {
             lock(&self.books).join(screen, client);
         }
+        subscribed
     }
 
     /// A kiosk or projector client left; commands only it could report on fail.
@@ -300,7 +309,14 @@ impl DisplayState {
     /// The current display and a receiver of later command frames for `role` (kiosk or
     /// projector; other roles get `None`).
     pub fn subscribe(&self, role: ClientRole) -> (Display, Option<broadcast::Receiver<Frame>>) {
-        let current = lock(&self.current);
+        self.subscribe_locked(&lock(&self.current), role)
+    }
+
+    fn subscribe_locked(
+        &self,
+        current: &Current,
+        role: ClientRole,
+    ) -> (Display, Option<broadcast::Receiver<Frame>>) {
         let rx = match Screen::of(role) {
             Some(Screen::Kiosk) => Some(self.kiosk.subscribe()),
             Some(Screen::Projector) => Some(self.projector.subscribe()),

@@ -79,8 +79,7 @@ impl Session {
         }
         self.role = Some(role);
         let state = &self.state;
-        let (display, display_rx) = state.devices.display.subscribe(role);
-        state.devices.display.joined(role, self.client);
+        let (display, display_rx) = state.devices.display.join(role, self.client);
         // Subscribed before the state is read: an event (a refused save, a context change)
         // published in between then arrives after the welcome instead of falling between them.
         let events = match (role, &display_rx) {
