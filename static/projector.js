@@ -75,7 +75,10 @@ function black() {
   stage.replaceChildren();
 }
 
-/** Why `src` could not be loaded, asking the server when the browser does not say. */
+/**
+ * Why `src` could not be loaded, asking the server (a browser's media errors do not tell a
+ * missing file from a broken one); null when the file itself is there.
+ */
 async function whyNotLoaded(src, file) {
   try {
     const res = await fetch(src, { method: "HEAD", cache: "no-store" });
@@ -84,7 +87,7 @@ async function whyNotLoaded(src, file) {
   } catch (error) {
     return `the projector cannot load ${file}: ${error}`;
   }
-  return `the projector cannot decode ${file} as a picture`;
+  return null;
 }
 
 /**
@@ -126,7 +129,7 @@ function showPicture(file, report) {
     .catch(async () => {
       console.error(`docent: cannot show ${src}`);
       image.remove();
-      const reason = await whyNotLoaded(src, file);
+      const reason = (await whyNotLoaded(src, file)) ?? `the projector cannot decode ${file} as a picture`;
       if (projected === file) black();
       report.failed(reason);
     });
@@ -146,10 +149,11 @@ function playFilm(file, report, { held = false } = {}) {
     if (projected === file && video.isConnected) black();
     report.failed(reason);
   };
-  video.addEventListener("error", () => {
+  video.addEventListener("error", async () => {
     const error = video.error;
     const detail = error?.message || `media error ${error?.code ?? "unknown"}`;
-    fail(`the projector cannot play ${file}: ${detail}`);
+    const missing = error?.code === MediaError.MEDIA_ERR_SRC_NOT_SUPPORTED ? await whyNotLoaded(src, file) : null;
+    fail(missing ?? `the projector cannot play ${file}: ${detail}`);
   });
   stage.append(video);
   if (held) {

@@ -167,6 +167,25 @@ test('a file the browser cannot play fails the PROJECT with the browser\'s reaso
   }
 });
 
+test('a picture or film missing on the server fails the PROJECT with "cannot find"', { timeout: 60_000 }, async () => {
+  const bundle = mediaBundle('- Label: PICTURE\n  Cmds: [PROJECT poster.png]\n- Label: FILM\n  Cmds: [PROJECT card-punch.webm]\n');
+  try {
+    await withServer(bundle, async ({ server, page, operator }) => {
+      await openProjector(page, server, operator);
+      // Gone since the bundle was loaded: the server answers 404.
+      await page.route('**/media/**', (route) => route.fulfill({ status: 404, contentType: 'application/json', body: '{}' }));
+      for (const [label, file] of [['PICTURE', 'poster.png'], ['FILM', 'card-punch.webm']]) {
+        const [project] = commandIds(await server.trigger(label));
+        const failed = await operator.waitForEvent(is('command.failed', project));
+        assert.equal(failed.reason, `the projector cannot find ${file} (404 Not Found)`);
+      }
+      assert.equal(await page.evaluate(() => document.getElementById('docent-stage').childElementCount), 0);
+    });
+  } finally {
+    removeTemp(bundle);
+  }
+});
+
 test('a picture is done only after the projector reports it painted', { timeout: 60_000 }, async () => {
   const bundle = mediaBundle('- Label: PICTURE\n  Cmds: [PROJECT poster.png, WAIT, SAY After the picture]\n');
   try {
