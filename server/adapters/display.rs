@@ -139,7 +139,8 @@ pub struct DisplayState {
     hub: Hub,
     /// How long a screen may take to report a command (`adapters: timeout`).
     timeout: Duration,
-    /// Wakes the clock when the earliest due report may have changed.
+    /// Wakes the clock when a report falls due while it has no deadline (a deadline that went
+    /// away only wakes it once for nothing, so settling needs no wake-up).
     wake: Arc<Notify>,
 }
 
@@ -218,7 +219,6 @@ impl DisplayState {
             (entry.showing, first)
         };
         if started {
-            self.wake.notify_one();
             return self.projector_now(id, ProjectorState::Playing);
         }
         let (outcome, after) = match report {
@@ -239,7 +239,6 @@ impl DisplayState {
         let Some(entry) = lock(&self.books).awaiting.remove(&id) else {
             return;
         };
-        self.wake.notify_one();
         if entry.showing.screen() == Screen::Projector {
             self.projector_now(id, after);
         }
@@ -283,7 +282,6 @@ impl DisplayState {
         let taken = lock(&self.books).take(pick);
         let ids: Vec<u64> = taken.iter().map(|(id, _)| *id).collect();
         self.black_out(&ids, reason);
-        self.wake.notify_one();
         for (_, entry) in taken {
             entry.reply.finish(Outcome::Cancelled(reason.to_owned()));
         }
@@ -355,7 +353,9 @@ async fn run_clock(state: Weak<DisplayState>, wake: Arc<Notify>, shutdown: Cance
     loop {
         let due = {
             let Some(state) = state.upgrade() else { return };
-            lock(&state.books).next_due()
+            let mut books = lock(&state.books);
+            books.clock_at = books.next_due();
+            books.clock_at
         };
         let overdue = async {
             match due {

@@ -70,16 +70,22 @@ impl DisplayState {
         let replaced = {
             let mut books = lock(&self.books);
             let replaced = books.take(|entry| entry.showing.screen() == screen);
+            let due = Instant::now() + self.timeout;
             let entry = Awaiting {
                 reply,
                 showing,
                 recipients,
-                due: Some(Instant::now() + self.timeout),
+                due: Some(due),
             };
             books.awaiting.insert(command.id, entry);
+            // A clock with a deadline wakes by then and finds this one, due later: one wake-up
+            // per timeout at most, not one per command.
+            if books.clock_at.is_none() {
+                books.clock_at = Some(due);
+                self.wake.notify_one();
+            }
             replaced
         };
-        self.wake.notify_one();
         let channel = match screen {
             Screen::Kiosk => &self.kiosk,
             Screen::Projector => &self.projector,

@@ -49,6 +49,8 @@ pub(super) struct Books {
     kiosks: HashSet<u64>,
     projectors: HashSet<u64>,
     pub(super) awaiting: BTreeMap<u64, Awaiting>,
+    /// The deadline the clock sleeps until; `None` while it waits for one.
+    pub(super) clock_at: Option<Instant>,
 }
 
 impl Books {
