@@ -1,6 +1,7 @@
 //! `DISPLAY_PAGE` is done only when a touchscreen reports the page shown: with none connected
 //! it fails at once (the state keeps the page, so a kiosk that connects shows the tour's page),
-//! a `failed` report fails it, a later page replaces it and a kiosk leaving fails what it owed.
+//! a `failed` report fails it, a later page replaces it, a kiosk leaving fails what it owed, and
+//! a report missing after `adapters: timeout` fails it (paused clock).
 
 mod common;
 
@@ -102,4 +103,32 @@ async fn a_failed_report_a_later_page_or_the_kiosk_leaving_ends_it() {
     drop(screen);
     let failed = op.event_where(is("command.failed", page)).await;
     assert_eq!(failed["reason"], "the touchscreen disconnected", "{failed}");
+}
+
+#[tokio::test(start_paused = true)]
+async fn a_touchscreen_that_never_reports_fails_the_page_after_the_timeout() {
+    let b = TempBundle::new(ACTS)
+        .with_file(
+            "docent.yaml",
+            "speech: {adapter: log}\nadapters: {timeout: 5s}\n",
+        )
+        .with_file("pages/map.html", "<!DOCTYPE html><title>map</title>");
+    let server = TestServer::start(b.path()).await;
+    let mut op = server.operator().await;
+    let mut screen = kiosk(&server).await;
+    let (page, wait, say) = map(&mut op).await;
+    screen.recv_type("command").await;
+    let sent = tokio::time::Instant::now();
+    let failed = op.event_where(is("command.failed", page)).await;
+    assert!(sent.elapsed() >= std::time::Duration::from_secs(5));
+    assert_eq!(
+        failed["reason"], "the touchscreen did not report it shown within 5s",
+        "{failed}"
+    );
+    let events = op.events_until(is("command.failed", wait)).await;
+    assert!(!events.iter().any(is("command.sent", say)), "{events:#?}");
+    // A late report changes nothing.
+    screen.send(json!({"type": "done", "id": page})).await;
+    let (_, state) = server.get("/api/state").await;
+    assert_eq!(state["queues"]["display"]["queued"], 0, "{state}");
 }
