@@ -13,7 +13,7 @@ use std::time::Duration;
 use axum::serve::ListenerExt;
 use tokio::net::TcpListener;
 
-use crate::access::{Access, AccessMode};
+use crate::access::{Access, AccessMode, TrustedProxies};
 use crate::adapters::{Devices, SpeechOutput, espeak_available, espeak_can_play, espeak_voices};
 use crate::content::config::{AdapterKind, SpeechConfig};
 use crate::content::{Bundle, BundleArea, resolve_in_bundle};
@@ -73,8 +73,9 @@ impl Server {
             version: env!("CARGO_PKG_VERSION"),
             seed: options.seed,
         });
+        let proxies = TrustedProxies::new(bundle.config.server.trusted_proxies.clone());
         let dispatcher = Dispatcher::new(Arc::new(bundle), router, hub, options.seed, life.clone());
-        let access = Access::new(options.access.clone());
+        let access = Access::new(options.access.clone(), proxies);
         let state = AppState::new(dispatcher, Arc::new(devices), life, access);
         Ok(Server {
             state,

@@ -14,7 +14,7 @@ use futures_util::StreamExt;
 use tokio::sync::oneshot;
 use tokio_util::sync::CancellationToken;
 
-use crate::access::TokenBucket;
+use crate::access::{ClientAddress, TokenBucket};
 use crate::adapters::Outcome;
 use crate::events::{ClientRole, EventKind};
 use crate::http::auth::{Peer, same_origin};
@@ -40,7 +40,7 @@ const WRITER_ENDED: &str = "writer ended";
 pub async fn ws_upgrade(
     ws: WebSocketUpgrade,
     State(state): State<AppState>,
-    Peer(peer): Peer,
+    Peer(client): Peer,
     headers: HeaderMap,
 ) -> Response {
     // Browsers let any page open a websocket anywhere: only this server's own pages may.
@@ -55,7 +55,7 @@ pub async fn ws_upgrade(
         .on_upgrade(move |socket| {
             // axum spawns this itself; tracking it lets shutdown wait for the client.left event.
             let tracker = state.life.tracker.clone();
-            tracker.track_future(serve(socket, state, peer))
+            tracker.track_future(serve(socket, state, client))
         })
 }
 
@@ -63,8 +63,11 @@ pub async fn ws_upgrade(
 pub(super) struct Session {
     /// The connection's id.
     pub(super) client: u64,
-    /// The client's address (`None` when unknown).
+    /// The client's address (`None` when unknown): the connection's peer, or the client a
+    /// trusted proxy names.
     pub(super) peer: Option<IpAddr>,
+    /// Whether the client is on this machine (see [`ClientAddress::local`]).
+    pub(super) local: bool,
     /// The role, once `hello` was accepted.
     pub(super) role: Option<ClientRole>,
     /// Frames to this client.
@@ -83,7 +86,7 @@ pub(super) struct Session {
     pub(super) signals: TokenBucket,
 }
 
-async fn serve(socket: WebSocket, state: AppState, peer: Option<IpAddr>) {
+async fn serve(socket: WebSocket, state: AppState, address: ClientAddress) {
     let client = state.next_client_id();
     let (sink, mut stream) = socket.split();
     let (outbox, queue) = Outbox::new(OUTBOX_CAPACITY);
@@ -98,7 +101,8 @@ async fn serve(socket: WebSocket, state: AppState, peer: Option<IpAddr>) {
     ));
     let mut session = Session {
         client,
-        peer,
+        peer: address.ip,
+        local: address.local,
         role: None,
         outbox,
         feed: Some(feed_tx),
