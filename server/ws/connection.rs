@@ -6,6 +6,7 @@
 use std::net::IpAddr;
 use std::time::{Duration, Instant};
 
+use axum::Extension;
 use axum::extract::State;
 use axum::extract::ws::{Message, WebSocket, WebSocketUpgrade};
 use axum::http::HeaderMap;
@@ -17,6 +18,7 @@ use tokio_util::sync::CancellationToken;
 use crate::access::{ClientAddress, TokenBucket};
 use crate::adapters::Outcome;
 use crate::events::{ClientRole, EventKind};
+use crate::http::ConnectionSlot;
 use crate::http::auth::{Peer, same_origin};
 use crate::state::AppState;
 use crate::ws::diagnose::diagnose;
@@ -41,6 +43,7 @@ pub async fn ws_upgrade(
     ws: WebSocketUpgrade,
     State(state): State<AppState>,
     Peer(client): Peer,
+    slot: Option<Extension<ConnectionSlot>>,
     headers: HeaderMap,
 ) -> Response {
     // Browsers let any page open a websocket anywhere: only this server's own pages may.
@@ -55,7 +58,12 @@ pub async fn ws_upgrade(
         .on_upgrade(move |socket| {
             // axum spawns this itself; tracking it lets shutdown wait for the client.left event.
             let tracker = state.life.tracker.clone();
-            tracker.track_future(serve(socket, state, client))
+            let serving = async move {
+                serve(socket, state, client).await;
+                // The websocket holds its connection's place among the open ones until it ends.
+                drop(slot);
+            };
+            tracker.track_future(serving)
         })
 }
 
