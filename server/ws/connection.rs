@@ -1,7 +1,8 @@
 //! One websocket connection: the upgrade, the reader loop and the routing of each client frame
 //! to its handler (`hello`, `triggers`, `initiative`, `signal` and answers here). Every bad
 //! frame gets an `error` frame and the connection stays usable; only a refused credential
-//! ends it.
+//! ends it, or a websocket protocol violation (closed with its RFC 6455 code, see
+//! `violation`).
 
 use std::net::IpAddr;
 use std::time::{Duration, Instant};
@@ -21,11 +22,13 @@ use crate::events::{ClientRole, EventKind};
 use crate::http::ConnectionSlot;
 use crate::http::auth::{Peer, same_origin};
 use crate::state::AppState;
+use crate::sync::lock;
 use crate::ws::diagnose::diagnose;
 use crate::ws::hello::Hello;
 use crate::ws::outbox::{Frame, OUTBOX_CAPACITY, Outbox};
 use crate::ws::protocol::{ClientFrame, MAX_FRAME_BYTES, error_frame};
-use crate::ws::writer::{Feed, PING_INTERVAL, run_writer};
+use crate::ws::violation::{Violation, violation};
+use crate::ws::writer::{CloseWith, Feed, PING_INTERVAL, run_writer};
 
 /// Frames beyond this size end the connection at the websocket layer; frames between
 /// [`MAX_FRAME_BYTES`] and this get an `error` frame and the connection stays.
@@ -100,12 +103,14 @@ async fn serve(socket: WebSocket, state: AppState, address: ClientAddress) {
     let (outbox, queue) = Outbox::new(OUTBOX_CAPACITY);
     let (feed_tx, feed_rx) = oneshot::channel();
     let stop = CancellationToken::new();
+    let close_with = CloseWith::default();
     let writer = state.life.tracker.spawn(run_writer(
         sink,
         queue,
         feed_rx,
         state.clone(),
         stop.clone(),
+        close_with.clone(),
     ));
     let mut session = Session {
         client,
@@ -131,7 +136,12 @@ async fn serve(socket: WebSocket, state: AppState, address: ClientAddress) {
         match next {
             Err(_) => break "idle timeout",
             Ok(None) | Ok(Some(Ok(Message::Close(_)))) => break "closed by client",
-            Ok(Some(Err(_))) => break "protocol error",
+            Ok(Some(Err(error))) => {
+                // The writer answers with the violation's close code as it closes.
+                let Violation { reason, close } = violation(error);
+                *lock(&close_with) = close;
+                break reason;
+            }
             Ok(Some(Ok(Message::Text(text)))) => {
                 session.on_text(text.as_str());
                 if let Some(reason) = session.closing {
