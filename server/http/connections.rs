@@ -65,12 +65,13 @@ impl Default for ConnectionLimits {
 
 /// A connection's place among the open ones, given up when the last holder drops it (the
 /// connection, and the websocket that took it over).
-#[derive(Clone)]
+#[derive(Clone, Debug)]
 pub struct ConnectionSlot {
     _guard: Arc<SlotGuard>,
 }
 
 /// Counts one connection against its address and the total while it lives.
+#[derive(Debug)]
 struct SlotGuard {
     counts: Arc<Mutex<HashMap<IpAddr, usize>>>,
     address: Option<IpAddr>,
@@ -296,10 +297,12 @@ mod tests {
         let _second = slots.take(a).unwrap();
         assert!(slots.take(a).unwrap_err().contains("one address"));
         drop(first);
-        let _third = slots.take(a).unwrap();
+        let third = slots.take(a).unwrap();
+        let b: IpAddr = "192.0.2.2".parse().unwrap();
+        let _fourth = slots.take(b).unwrap();
         // The total is full now; a trusted proxy is held to it too.
         assert!(slots.take(proxy).unwrap_err().contains("as it takes"));
-        drop(_third);
+        drop(third);
         let _proxied = [slots.take(proxy).unwrap()];
         assert_eq!(lock(&slots.counts).get(&proxy), None);
     }
