@@ -38,6 +38,9 @@ use crate::http::AppError;
 use crate::http::framing::{Ambiguous, Sniffed};
 use crate::sync::lock;
 
+/// How long a connection may still take to finish its request once the server shuts down.
+const SHUTDOWN_GRACE: Duration = Duration::from_secs(3);
+
 /// How long slow clients may take, and how many connections there may be.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub struct ConnectionLimits {
@@ -125,7 +128,7 @@ impl Slots {
 }
 
 /// Serves `router` on `listener` within `limits` until `shutdown` completes, then lets every
-/// connection finish its request in progress and returns.
+/// connection finish its request in progress (within a grace of 3 s) and returns.
 pub async fn serve_connections(
     listener: TcpListener,
     router: Router,
@@ -238,7 +241,12 @@ async fn serve_one(
         Some(result) => result,
         None => {
             connection.as_mut().graceful_shutdown();
-            connection.await
+            // A client in the middle of sending its headers counts as busy to hyper; it gets
+            // no more than the grace, not the whole header time limit.
+            match tokio::time::timeout(SHUTDOWN_GRACE, connection).await {
+                Ok(result) => result,
+                Err(_) => return,
+            }
         }
     };
     if let Err(e) = result {
