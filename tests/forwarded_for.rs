@@ -162,3 +162,85 @@ async fn refused_http_credentials_are_logged_without_the_credential() {
     assert!(refused.iter().all(|e| e.get("unlogged").is_none()));
     assert!(!text.contains("not-the-credential-42"));
 }
+
+/// The code of the `error` frame a websocket `hello` from `from` with `X-Forwarded-For:
+/// forwarded` and a wrong operator credential gets.
+async fn refused_hello_from(server: &TestServer, from: &str, forwarded: &str) -> String {
+    use futures_util::{SinkExt, StreamExt};
+    use tokio_tungstenite::tungstenite::Message;
+    use tokio_tungstenite::tungstenite::client::IntoClientRequest;
+
+    let socket = tokio::net::TcpSocket::new_v4().unwrap();
+    socket.bind(format!("{from}:0").parse().unwrap()).unwrap();
+    let tcp = socket.connect(server.addr).await.unwrap();
+    let mut request = format!("ws://{}/ws", server.addr)
+        .into_client_request()
+        .unwrap();
+    request
+        .headers_mut()
+        .insert("x-forwarded-for", forwarded.parse().unwrap());
+    let (mut ws, _) = tokio_tungstenite::client_async(request, tcp).await.unwrap();
+    let hello = r#"{"type": "hello", "role": "operator", "token": "wrong-guess-0000"}"#;
+    ws.send(Message::text(hello)).await.unwrap();
+    loop {
+        let next = tokio::time::timeout(common::DEADLINE, ws.next()).await;
+        match next.expect("an answer within the deadline") {
+            Some(Ok(Message::Text(text))) => {
+                let frame: Value = serde_json::from_str(&text).unwrap();
+                return frame["code"].as_str().unwrap().to_owned();
+            }
+            Some(Ok(_)) => continue,
+            other => panic!("closed without an error frame: {other:?}"),
+        }
+    }
+}
+
+#[tokio::test]
+async fn websocket_hellos_are_counted_against_the_real_peer_too() {
+    let server = TestServer::start(&bundle("tests/fixtures/fig4-verbatim")).await;
+    let mut codes = Vec::new();
+    for guess in 0..5 {
+        let forwarded = format!("203.0.113.{guess}");
+        codes.push(refused_hello_from(&server, "127.0.0.2", &forwarded).await);
+    }
+    assert_eq!(
+        codes,
+        [
+            "unauthorized",
+            "unauthorized",
+            "unauthorized",
+            "unauthorized",
+            "too-many-attempts"
+        ]
+    );
+    // The local operator, whose address the guesses could not reach, still gets in.
+    let operator = server.operator().await;
+    assert_eq!(operator.welcome["role"], "operator");
+    let corpus = server.stop().await;
+    let refused = events(&corpus, "client.refused");
+    assert_eq!(refused.len(), 5);
+    assert!(
+        refused.iter().all(|e| e["address"] == "127.0.0.2"),
+        "{refused:?}"
+    );
+}
+
+#[tokio::test]
+async fn an_open_server_refuses_a_client_that_a_header_places_elsewhere() {
+    let server = TestServer::start_with(&bundle("tests/fixtures/fig4-verbatim"), |o| {
+        o.access = docent::access::AccessMode::Open;
+    })
+    .await;
+    let local = client_from("127.0.0.1");
+    let forwarded = attempt(&server, &local, "any", Some("203.0.113.5")).await;
+    assert_eq!(
+        forwarded, 401,
+        "a tunnel or unlisted proxy gets nothing for free"
+    );
+    assert_eq!(
+        attempt(&server, &local, "any", Some("127.0.0.1")).await,
+        202
+    );
+    assert_eq!(attempt(&server, &local, "any", None).await, 202);
+    server.stop().await;
+}
