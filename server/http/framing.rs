@@ -150,8 +150,7 @@ impl<T: AsyncRead + Unpin> AsyncRead for Sniffed<T> {
         if let Poll::Ready(Ok(())) = polled
             && !matches!(self.watch, Watch::Off)
         {
-            let new = buf.filled()[before..].to_vec();
-            self.feed(&new);
+            self.feed(&buf.filled()[before..]);
         }
         polled
     }
