@@ -266,3 +266,38 @@ async fn a_request_with_content_length_and_transfer_encoding_is_refused() {
         "nothing ran"
     );
 }
+
+#[tokio::test]
+async fn three_hundred_half_open_connections_leave_the_operator_served_at_the_default_limits() {
+    let server = server_with(ConnectionLimits::default()).await;
+    let per_address = ConnectionLimits::default().per_address;
+    let mut held = Vec::new();
+    let mut refused = 0;
+    for _ in 0..300 {
+        let mut tcp = connect_from("127.0.0.2", server.addr).await;
+        if held.len() < per_address {
+            tcp.write_all(b"GET / HTTP/1.1\r\nHost: x\r\n")
+                .await
+                .unwrap();
+            held.push(tcp);
+        } else {
+            let (status, _) = status_and_body(&read_to_close(&mut tcp).await);
+            refused += usize::from(status == 503);
+        }
+    }
+    assert_eq!(refused, 300 - per_address);
+    let started = Instant::now();
+    let (status, _) = raw(
+        server.addr,
+        "GET /healthz HTTP/1.1\r\nHost: x\r\nConnection: close\r\n\r\n",
+    )
+    .await;
+    assert_eq!(status, 200);
+    eprintln!(
+        "operator's request under {} half-open connections: {:?}",
+        held.len(),
+        started.elapsed()
+    );
+    drop(held);
+    server.stop().await;
+}
