@@ -28,7 +28,7 @@ use crate::sync::lock;
 /// Kiosk addresses whose allowance is remembered at most (full ones are forgotten first).
 const MAX_KIOSK_ADDRESSES: usize = 10_000;
 
-pub use attempts::{Attempts, MAX_FAILURES, REFILL};
+pub use attempts::{Attempts, MAX_FAILURES, REFILL, counted_as};
 pub use proxies::{ClientAddress, TrustedProxies};
 pub use rate::{KIOSK_BURST, KIOSK_PER_SECOND, TokenBucket};
 pub use refusals::{REFUSALS_LOGGED_AT_ONCE, REFUSALS_LOGGED_PER_SECOND, RefusalLog};

@@ -33,7 +33,7 @@ use tokio_util::sync::CancellationToken;
 use tokio_util::task::TaskTracker;
 use tower::ServiceExt;
 
-use crate::access::{RefusalLog, TrustedProxies};
+use crate::access::{RefusalLog, TrustedProxies, counted_as};
 use crate::http::AppError;
 use crate::http::framing::{Ambiguous, Sniffed};
 use crate::sync::lock;
@@ -107,7 +107,7 @@ impl Slots {
     fn take(&self, peer: IpAddr) -> Result<ConnectionSlot, &'static str> {
         let total = (Arc::clone(&self.total).try_acquire_owned())
             .map_err(|_| "the server has as many connections open as it takes")?;
-        let address = (!self.proxies.contains(peer)).then_some(peer);
+        let address = (!self.proxies.contains(peer)).then(|| counted_as(peer));
         if let Some(address) = address {
             let mut counts = lock(&self.counts);
             let count = counts.entry(address).or_default();
@@ -313,6 +313,27 @@ mod tests {
         drop(third);
         let _proxied = [slots.take(proxy).unwrap()];
         assert_eq!(lock(&slots.counts).get(&proxy), None);
+    }
+
+    #[test]
+    fn an_ipv6_network_counts_as_one_address() {
+        let limits = ConnectionLimits {
+            per_address: 2,
+            ..ConnectionLimits::default()
+        };
+        let slots = Slots {
+            limits,
+            proxies: TrustedProxies::default(),
+            total: Arc::new(Semaphore::new(limits.total)),
+            counts: Arc::default(),
+        };
+        let held: Vec<_> = ["2001:db8:1:2::1", "2001:db8:1:2::2"]
+            .iter()
+            .map(|a| slots.take(a.parse().unwrap()).unwrap())
+            .collect();
+        assert!(slots.take("2001:db8:1:2:ffff::9".parse().unwrap()).is_err());
+        assert!(slots.take("2001:db8:1:3::1".parse().unwrap()).is_ok());
+        drop(held);
     }
 
     #[test]
