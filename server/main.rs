@@ -10,6 +10,7 @@ use clap::{Parser, Subcommand, ValueEnum};
 use docent::access::{AccessMode, AccessSetup, Origin, decide_access};
 use docent::content::config::AdapterKind;
 use docent::content::{Colour, Diagnostic, load_bundle, render_diagnostics, schema};
+use docent::http::ConnectionLimits;
 use docent::reload::ReloadOptions;
 use docent::serve::{ServeOptions, Server, run};
 use tokio::net::TcpListener;
@@ -238,6 +239,7 @@ fn serve(args: &ServeArgs) -> anyhow::Result<ExitCode> {
         corpus_dir: args.corpus.clone(),
         speech_wav: args.speech_wav.clone(),
         access: setup.mode.clone(),
+        limits: ConnectionLimits::default(),
     };
     let home = bundle.config.home.clone();
     let runtime = tokio::runtime::Runtime::new().context("starting the async runtime")?;

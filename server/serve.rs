@@ -1,26 +1,25 @@
 //! Starting and running a server: [`Server::start`] wires a checked bundle to its adapters,
 //! dispatcher and corpus writer; [`run`] serves HTTP and websockets on a listener the caller
-//! bound (tests bind `127.0.0.1:0`) until the shutdown future completes, then winds down:
-//! connections closed, tasks awaited, the corpus flushed last.
+//! bound (tests bind `127.0.0.1:0`), within the connection limits (`http::connections`),
+//! until the shutdown future completes, then winds down: connections closed, tasks awaited,
+//! the corpus flushed last.
 
 use std::future::Future;
 use std::io;
-use std::net::SocketAddr;
 use std::path::PathBuf;
 use std::sync::Arc;
 use std::time::Duration;
 
-use axum::serve::ListenerExt;
 use tokio::net::TcpListener;
 
-use crate::access::{Access, AccessMode};
+use crate::access::{Access, AccessMode, TrustedProxies};
 use crate::adapters::{Devices, SpeechOutput, espeak_available, espeak_can_play, espeak_voices};
 use crate::content::config::{AdapterKind, SpeechConfig};
 use crate::content::{Bundle, BundleArea, resolve_in_bundle};
 use crate::corpus::CorpusWriter;
 use crate::dispatch::Dispatcher;
 use crate::events::{EventKind, Hub, Source};
-use crate::http::app;
+use crate::http::{ConnectionLimits, app, serve_connections};
 use crate::lifecycle::Lifecycle;
 use crate::reload::ReloadOptions;
 use crate::state::AppState;
@@ -39,12 +38,15 @@ pub struct ServeOptions {
     pub speech_wav: Option<PathBuf>,
     /// Credentials for operators and dialog managers, or an open development server.
     pub access: AccessMode,
+    /// Time limits for slow clients and caps on connections.
+    pub limits: ConnectionLimits,
 }
 
 /// A server ready to run.
 pub struct Server {
     state: AppState,
     corpus: CorpusWriter,
+    limits: ConnectionLimits,
     /// Start-up warnings for the person starting it (e.g. espeak-ng missing).
     pub warnings: Vec<String>,
 }
@@ -73,12 +75,14 @@ impl Server {
             version: env!("CARGO_PKG_VERSION"),
             seed: options.seed,
         });
+        let proxies = TrustedProxies::new(bundle.config.server.trusted_proxies.clone());
         let dispatcher = Dispatcher::new(Arc::new(bundle), router, hub, options.seed, life.clone());
-        let access = Access::new(options.access.clone());
+        let access = Access::new(options.access.clone(), proxies);
         let state = AppState::new(dispatcher, Arc::new(devices), life, access);
         Ok(Server {
             state,
             corpus,
+            limits: options.limits,
             warnings,
         })
     }
@@ -161,14 +165,15 @@ pub async fn run(
     server: Server,
     shutdown: impl Future<Output = ()> + Send + 'static,
 ) -> io::Result<()> {
-    let Server { state, corpus, .. } = server;
+    let Server {
+        state,
+        corpus,
+        limits,
+        ..
+    } = server;
     let life = state.life.clone();
     let dispatcher = Arc::clone(&state.dispatcher);
     let hub = state.hub.clone();
-    let listener = listener.tap_io(|tcp| {
-        // Commands are small frames that must go out at once.
-        let _ = tcp.set_nodelay(true);
-    });
     let stop = life.shutdown.clone();
     let stopping = Arc::clone(&dispatcher);
     let signal = async move {
@@ -182,10 +187,8 @@ pub async fn run(
         stopping.stop(Source::Server, "the server is shutting down");
         stop.cancel();
     };
-    let service = app(state).into_make_service_with_connect_info::<SocketAddr>();
-    let served = axum::serve(listener, service)
-        .with_graceful_shutdown(signal)
-        .await;
+    let proxies = state.access.proxies().clone();
+    serve_connections(listener, app(state), limits, proxies, signal).await;
     // axum's graceful shutdown does not wait for websocket tasks (tokio-rs/axum#3003).
     life.shutdown.cancel();
     life.tracker.close();
@@ -198,7 +201,7 @@ pub async fn run(
     hub.close_corpus();
     let logged = corpus.finish().await?;
     tracing::info!(events = logged, "corpus log flushed");
-    served
+    Ok(())
 }
 
 #[cfg(test)]

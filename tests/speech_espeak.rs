@@ -135,6 +135,7 @@ fn an_unknown_voice_is_reported_at_start_up() {
         corpus_dir: corpus.path().to_owned(),
         speech_wav: None,
         access: common::test_access(),
+        limits: docent::http::ConnectionLimits::default(),
     };
     let runtime = tokio::runtime::Runtime::new().unwrap();
     let server =

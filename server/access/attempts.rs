@@ -27,8 +27,9 @@ pub struct Attempts {
     buckets: Mutex<HashMap<IpAddr, TokenBucket>>,
 }
 
-/// The key an address is counted under: IPv4 as is, IPv6 by its /64 network.
-fn key(peer: IpAddr) -> IpAddr {
+/// The key an address is counted under: IPv4 as is, IPv6 by its /64 network (one machine can
+/// hold a whole /64, so its addresses are one client).
+pub fn counted_as(peer: IpAddr) -> IpAddr {
     match peer {
         IpAddr::V6(v6) => match v6.to_ipv4_mapped() {
             Some(v4) => IpAddr::V4(v4),
@@ -46,14 +47,14 @@ impl Attempts {
     /// How long `peer` must still wait, if its failures are used up.
     pub fn locked(&self, peer: IpAddr, now: Instant) -> Option<Duration> {
         let mut buckets = lock(&self.buckets);
-        buckets.get_mut(&key(peer))?.peek(now).err()
+        buckets.get_mut(&counted_as(peer))?.peek(now).err()
     }
 
     /// Records a wrong or missing credential from `peer`; returns how long it must wait when
     /// this one used up its failures.
     pub fn failed(&self, peer: IpAddr, now: Instant) -> Option<Duration> {
         let mut buckets = lock(&self.buckets);
-        let key = key(peer);
+        let key = counted_as(peer);
         if buckets.len() >= MAX_ADDRESSES && !buckets.contains_key(&key) {
             buckets.retain(|_, b| !b.is_full(now));
             if buckets.len() >= MAX_ADDRESSES {

@@ -6,11 +6,15 @@
 //!
 //! - `secret`: [`Secret`], a credential that never prints and compares in constant time.
 //! - `attempts`: [`Attempts`], the wait after repeated wrong credentials from one address.
-//! - `rate`: [`TokenBucket`], the allowance behind both.
+//! - `proxies`: [`TrustedProxies`] and [`ClientAddress`]: who a request really comes from.
+//! - `refusals`: [`RefusalLog`], the shared allowance of logged credential refusals.
+//! - `rate`: [`TokenBucket`], the allowance behind the wait and the signalling relay.
 //! - `setup`: [`decide_access`], the mode and credentials chosen at start-up.
 
 mod attempts;
+mod proxies;
 mod rate;
+mod refusals;
 mod secret;
 mod setup;
 
@@ -24,8 +28,10 @@ use crate::sync::lock;
 /// Kiosk addresses whose allowance is remembered at most (full ones are forgotten first).
 const MAX_KIOSK_ADDRESSES: usize = 10_000;
 
-pub use attempts::{Attempts, MAX_FAILURES, REFILL};
+pub use attempts::{Attempts, MAX_FAILURES, REFILL, counted_as};
+pub use proxies::{ClientAddress, TrustedProxies};
 pub use rate::{KIOSK_BURST, KIOSK_PER_SECOND, TokenBucket};
+pub use refusals::{REFUSALS_LOGGED_AT_ONCE, REFUSALS_LOGGED_PER_SECOND, RefusalLog};
 pub use secret::Secret;
 pub use setup::{AccessSetup, DM_TOKEN_ENV, OPERATOR_TOKEN_ENV, Origin, SetupError, decide_access};
 
@@ -102,18 +108,33 @@ impl Refusal {
 #[derive(Debug)]
 pub struct Access {
     mode: AccessMode,
+    proxies: TrustedProxies,
     attempts: Attempts,
+    refusals: RefusalLog,
     kiosks: Mutex<HashMap<IpAddr, TokenBucket>>,
 }
 
 impl Access {
-    /// A policy in `mode`.
-    pub fn new(mode: AccessMode) -> Self {
+    /// A policy in `mode`, believing `X-Forwarded-For` only from `proxies`.
+    pub fn new(mode: AccessMode, proxies: TrustedProxies) -> Self {
         Access {
             mode,
+            proxies,
             attempts: Attempts::default(),
+            refusals: RefusalLog::default(),
             kiosks: Mutex::default(),
         }
+    }
+
+    /// The reverse proxies whose `X-Forwarded-For` is believed.
+    pub fn proxies(&self) -> &TrustedProxies {
+        &self.proxies
+    }
+
+    /// Whether to log a counted credential refusal now (see [`RefusalLog::admit`]): `Some`
+    /// with the number of refusals left out of the log since the last one logged.
+    pub fn admit_refusal_log(&self) -> Option<u64> {
+        self.refusals.admit()
     }
 
     /// Takes one trigger from the allowance of the kiosk address `peer` (all kiosks at one
@@ -139,17 +160,18 @@ impl Access {
         matches!(self.mode, AccessMode::Open)
     }
 
-    /// Checks a credential presented by `peer` (unknown when `None`).
+    /// Checks a credential presented by `client`; its failures count against `client.ip`.
     pub fn check(
         &self,
-        peer: Option<IpAddr>,
+        client: ClientAddress,
         needed: Needed,
         token: Option<&str>,
     ) -> Result<(), Refusal> {
+        let peer = client.ip;
         let AccessMode::Guarded(credentials) = &self.mode else {
             // Open is for this machine only, even when a proxy or tunnel forwards the port.
             return match peer {
-                Some(p) if !is_loopback(Some(p)) => Err(Refusal::Missing),
+                Some(_) if !client.local => Err(Refusal::Missing),
                 _ => Ok(()),
             };
         };
@@ -206,10 +228,11 @@ mod tests {
     use super::*;
 
     fn guarded() -> Access {
-        Access::new(AccessMode::Guarded(Credentials {
+        let credentials = Credentials {
             operator: Secret::new("operator-credential-1"),
             dm: Secret::new("dialog-manager-cred-2"),
-        }))
+        };
+        Access::new(AccessMode::Guarded(credentials), TrustedProxies::default())
     }
 
     const PEER: Option<IpAddr> = Some(IpAddr::V4(std::net::Ipv4Addr::new(192, 168, 1, 20)));
@@ -218,27 +241,43 @@ mod tests {
     fn each_role_needs_its_own_credential() {
         let access = guarded();
         assert_eq!(
-            access.check(PEER, Needed::Operator, Some("operator-credential-1")),
+            access.check(
+                ClientAddress::direct(PEER),
+                Needed::Operator,
+                Some("operator-credential-1")
+            ),
             Ok(())
         );
         assert_eq!(
-            access.check(PEER, Needed::Dm, Some("dialog-manager-cred-2")),
+            access.check(
+                ClientAddress::direct(PEER),
+                Needed::Dm,
+                Some("dialog-manager-cred-2")
+            ),
             Ok(())
         );
         assert_eq!(
-            access.check(PEER, Needed::Either, Some("dialog-manager-cred-2")),
+            access.check(
+                ClientAddress::direct(PEER),
+                Needed::Either,
+                Some("dialog-manager-cred-2")
+            ),
             Ok(())
         );
         assert_eq!(
-            access.check(PEER, Needed::Operator, Some("dialog-manager-cred-2")),
+            access.check(
+                ClientAddress::direct(PEER),
+                Needed::Operator,
+                Some("dialog-manager-cred-2")
+            ),
             Err(Refusal::Wrong)
         );
         assert_eq!(
-            access.check(PEER, Needed::Operator, None),
+            access.check(ClientAddress::direct(PEER), Needed::Operator, None),
             Err(Refusal::Missing)
         );
         assert_eq!(
-            access.check(PEER, Needed::Operator, Some("")),
+            access.check(ClientAddress::direct(PEER), Needed::Operator, Some("")),
             Err(Refusal::Missing)
         );
     }
@@ -248,34 +287,45 @@ mod tests {
         let access = guarded();
         for _ in 1..MAX_FAILURES {
             assert_eq!(
-                access.check(PEER, Needed::Operator, Some("guess")),
+                access.check(ClientAddress::direct(PEER), Needed::Operator, Some("guess")),
                 Err(Refusal::Wrong)
             );
         }
         assert!(matches!(
-            access.check(PEER, Needed::Operator, None),
+            access.check(ClientAddress::direct(PEER), Needed::Operator, None),
             Err(Refusal::TooManyAttempts(_))
         ));
         assert!(matches!(
-            access.check(PEER, Needed::Operator, Some("operator-credential-1")),
+            access.check(
+                ClientAddress::direct(PEER),
+                Needed::Operator,
+                Some("operator-credential-1")
+            ),
             Err(Refusal::Locked(_))
         ));
         let elsewhere = Some(IpAddr::V4(std::net::Ipv4Addr::new(192, 168, 1, 21)));
         assert_eq!(
-            access.check(elsewhere, Needed::Operator, Some("operator-credential-1")),
+            access.check(
+                ClientAddress::direct(elsewhere),
+                Needed::Operator,
+                Some("operator-credential-1")
+            ),
             Ok(())
         );
     }
 
     #[test]
     fn an_open_server_asks_for_nothing() {
-        let access = Access::new(AccessMode::Open);
+        let access = Access::new(AccessMode::Open, TrustedProxies::default());
         assert!(access.is_open());
         let local = Some(IpAddr::V4(Ipv4Addr::LOCALHOST));
-        assert_eq!(access.check(local, Needed::Operator, None), Ok(()));
+        assert_eq!(
+            access.check(ClientAddress::direct(local), Needed::Operator, None),
+            Ok(())
+        );
         // A request forwarded from elsewhere (a proxy, a tunnel) gets nothing for free.
         assert_eq!(
-            access.check(PEER, Needed::Operator, None),
+            access.check(ClientAddress::direct(PEER), Needed::Operator, None),
             Err(Refusal::Missing)
         );
     }
@@ -296,7 +346,11 @@ mod tests {
     fn refusal_messages_never_contain_the_token() {
         let access = guarded();
         let refusal = access
-            .check(PEER, Needed::Operator, Some("my-guess-token"))
+            .check(
+                ClientAddress::direct(PEER),
+                Needed::Operator,
+                Some("my-guess-token"),
+            )
             .unwrap_err();
         assert!(!refusal.message(Needed::Operator).contains("my-guess-token"));
         assert_eq!(refusal.code(), "unauthorized");

@@ -218,6 +218,15 @@ pub struct AccessSettings {
     pub dm_token: Option<Credential>,
 }
 
+/// How Docent's own server is reached (`server:` in `docent.yaml`).
+#[derive(Clone, Debug, Default, PartialEq, Eq)]
+pub struct ServerSettings {
+    /// Reverse proxies whose `X-Forwarded-For` header is believed (`server: trusted_proxies:`).
+    /// From any other peer the header is ignored, so a client cannot pick the address its
+    /// failed credentials are counted under. Empty by default: no proxy is believed.
+    pub trusted_proxies: Vec<std::net::IpAddr>,
+}
+
 /// Where the operator console gets its camera picture (`operator: camera:`).
 #[derive(Clone, Debug, Default, PartialEq, Eq)]
 pub enum Camera {
@@ -270,6 +279,8 @@ pub struct SiteConfig {
     pub access: AccessSettings,
     /// Operator console settings.
     pub operator: OperatorConfig,
+    /// How the server itself is reached (trusted proxies).
+    pub server: ServerSettings,
 }
 
 impl Default for SiteConfig {
@@ -304,6 +315,7 @@ impl Default for SiteConfig {
             verbs: BTreeMap::new(),
             access: AccessSettings::default(),
             operator: OperatorConfig::default(),
+            server: ServerSettings::default(),
         }
     }
 }

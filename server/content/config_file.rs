@@ -15,6 +15,7 @@ mod access;
 pub(crate) mod operator;
 mod reader;
 mod screens;
+pub(crate) mod server;
 
 use reader::Reader;
 
@@ -48,6 +49,7 @@ pub(crate) const TOP_KEYS: &[&str] = &[
     "verbs",
     "access",
     "operator",
+    "server",
 ];
 const HOME_USAGE: &str = "`home` names the page under pages/ the kiosk starts on, e.g. \
                           `home: index.html`.";
@@ -144,6 +146,7 @@ impl Reader {
                 }
                 "access" => self.access(value, &mut config.access),
                 "operator" => self.operator(value, out),
+                "server" => self.server(value, &mut config.server),
                 _ => self.verbs(value, config),
             }
         }

@@ -64,6 +64,10 @@ impl EventKind {
     }
 }
 
+fn is_zero(n: &u64) -> bool {
+    *n == 0
+}
+
 impl ClientRole {
     /// The source recorded for triggers from a client in this role.
     pub fn source(self) -> Source {
@@ -411,6 +415,26 @@ pub enum EventKind {
         code: &'static str,
         /// Its network address, when known.
         address: Option<String>,
+        /// Credential refusals (websocket and HTTP) left out of the log just before this one,
+        /// because refusals from many addresses came faster than they are logged.
+        #[serde(skip_serializing_if = "is_zero")]
+        unlogged: u64,
+    },
+    /// An HTTP request's credential was refused (`401`, or the `429` that made its address
+    /// wait).
+    #[serde(rename = "request.refused")]
+    RequestRefused {
+        /// The request's method.
+        method: String,
+        /// The request's path (without the query), at most 256 bytes.
+        path: String,
+        /// `unauthorized` or `too-many-attempts`.
+        code: &'static str,
+        /// The client's network address, when known.
+        address: Option<String>,
+        /// As for `client.refused`.
+        #[serde(skip_serializing_if = "is_zero")]
+        unlogged: u64,
     },
     /// A websocket client said hello.
     #[serde(rename = "client.connected")]

@@ -2,7 +2,6 @@
 //! through the dispatcher.
 
 use axum::Json;
-use axum::body::Bytes;
 use axum::extract::rejection::PathRejection;
 use axum::extract::{Path, State};
 use axum::http::StatusCode;
@@ -15,6 +14,7 @@ use crate::dispatch::TriggerRequest;
 use crate::events::Source;
 use crate::http::AppError;
 use crate::http::auth::Authorized;
+use crate::http::body::RequestBody;
 use crate::state::AppState;
 use crate::ws::protocol::PROTOCOL_VERSION;
 
@@ -112,27 +112,19 @@ struct TriggerBody {
     reference: Option<String>,
 }
 
-/// Reads an optional JSON body: empty means defaults.
-fn optional_json<T: for<'de> Deserialize<'de> + Default>(body: &Bytes) -> Result<T, AppError> {
-    if body.iter().all(u8::is_ascii_whitespace) {
-        return Ok(T::default());
-    }
-    serde_json::from_slice(body)
-        .map_err(|e| AppError::bad_request(format!("the request body is not right: {e}")))
-}
-
 /// `POST /api/acts/{label}/trigger` (credential needed): 202 with the trigger id and resolved
 /// commands.
 pub async fn trigger_act(
     State(state): State<AppState>,
     _: Authorized,
     label: Result<Path<String>, PathRejection>,
-    body: Bytes,
+    body: RequestBody,
 ) -> Result<impl IntoResponse, AppError> {
     let Path(label) = label.map_err(|e| {
         AppError::bad_request(format!("the act label in the address is not right: {e}"))
     })?;
-    let body: TriggerBody = optional_json(&body)?;
+    let example = r#"{"context": "TextGroup", "interrupt": true, "ref": "b1"}"#;
+    let body: TriggerBody = body.object(example)?.unwrap_or_default();
     let request = TriggerRequest {
         context: body.context,
         interrupt: body.interrupt,
@@ -165,10 +157,12 @@ struct ContextBody {
 pub async fn put_context(
     State(state): State<AppState>,
     _: Authorized,
-    body: Bytes,
+    body: RequestBody,
 ) -> Result<Json<Value>, AppError> {
-    let body: ContextBody = serde_json::from_slice(&body)
-        .map_err(|e| AppError::bad_request(format!("expected {{\"context\": \"...\"}}: {e}")))?;
+    let example = r#"{"context": "TextGroup"}"#;
+    let body: ContextBody = body
+        .object(example)?
+        .ok_or_else(|| AppError::bad_request(format!("expected a body, e.g. {example}")))?;
     state.dispatcher.set_context(&body.context, Source::Http)?;
     Ok(get_context(State(state)).await)
 }

@@ -1,8 +1,9 @@
 //! Extractors for who is asking: [`Peer`] (the client's address) and [`Authorized`] (a valid
 //! `Authorization: Bearer` credential, or an `--open` server), and [`same_origin`], which
 //! keeps other web sites' pages in a visitor's or developer's browser from using the API.
-//! Refusals are JSON errors with `WWW-Authenticate` or `Retry-After`; the credential itself
-//! is never logged or echoed.
+//! Refusals are JSON errors with `WWW-Authenticate` or `Retry-After`, logged (as
+//! `request.refused`, within a shared allowance); the credential itself is never logged or
+//! echoed.
 
 use std::convert::Infallible;
 use std::net::{IpAddr, SocketAddr};
@@ -11,40 +12,30 @@ use axum::extract::{ConnectInfo, FromRequestParts};
 use axum::http::request::Parts;
 use axum::http::{HeaderMap, HeaderValue, StatusCode, header};
 
-use crate::access::{Needed, Refusal, is_loopback, whole_seconds};
+use crate::access::{ClientAddress, Needed, Refusal, whole_seconds};
+use crate::events::EventKind;
 use crate::http::AppError;
 use crate::state::AppState;
 
-/// The client's address, when the server was started with connection info (tests calling
-/// the router directly have none). Behind a reverse proxy on this machine the connection
-/// comes from loopback: then the address the proxy names last in `X-Forwarded-For` is the
-/// client's, so a remote client never passes for a local one.
-pub struct Peer(pub Option<IpAddr>);
+/// Who is asking: the connection's peer address (unknown for tests calling the router
+/// directly), or the client a trusted reverse proxy names in `X-Forwarded-For` (see
+/// [`crate::access::TrustedProxies`]). From any other peer the header cannot change the
+/// address; it can only make a loopback client count as remote.
+pub struct Peer(pub ClientAddress);
 
-impl<S: Send + Sync> FromRequestParts<S> for Peer {
+impl FromRequestParts<AppState> for Peer {
     type Rejection = Infallible;
 
-    async fn from_request_parts(parts: &mut Parts, _: &S) -> Result<Self, Infallible> {
+    async fn from_request_parts(parts: &mut Parts, state: &AppState) -> Result<Self, Infallible> {
         let direct = parts
             .extensions
             .get::<ConnectInfo<SocketAddr>>()
             .map(|ConnectInfo(addr)| addr.ip());
-        Ok(Peer(client_address(direct, &parts.headers)))
+        let forwarded: Vec<Option<&str>> = (parts.headers.get_all("x-forwarded-for").iter())
+            .map(|v| v.to_str().ok())
+            .collect();
+        Ok(Peer(state.access.proxies().client(direct, &forwarded)))
     }
-}
-
-/// The client's address: the direct peer, or, when that is a proxy on loopback, the last
-/// `X-Forwarded-For` entry (an unreadable one counts as an unknown remote address).
-fn client_address(direct: Option<IpAddr>, headers: &HeaderMap) -> Option<IpAddr> {
-    // `is_loopback` also knows `::ffff:127.0.0.1`, how a proxy's connection to 127.0.0.1
-    // arrives on a server listening on `[::]`.
-    let proxied = is_loopback(direct);
-    let Some(forwarded) = headers.get("x-forwarded-for").filter(|_| proxied) else {
-        return direct;
-    };
-    let last = forwarded.to_str().ok().and_then(|v| v.rsplit(',').next());
-    let parsed = last.and_then(|v| v.trim().parse::<IpAddr>().ok());
-    Some(parsed.unwrap_or(IpAddr::V4(std::net::Ipv4Addr::UNSPECIFIED)))
 }
 
 /// Proof that the request carries the operator's or dialog manager's credential.
@@ -55,13 +46,55 @@ impl FromRequestParts<AppState> for Authorized {
 
     async fn from_request_parts(parts: &mut Parts, state: &AppState) -> Result<Self, AppError> {
         same_origin(&parts.headers)?;
-        let Ok(Peer(peer)) = Peer::from_request_parts(parts, state).await;
+        let Ok(Peer(client)) = Peer::from_request_parts(parts, state).await;
         let token = bearer(&parts.headers);
-        match state.access.check(peer, Needed::Either, token) {
+        match state.access.check(client, Needed::Either, token) {
             Ok(()) => Ok(Authorized),
-            Err(refusal) => Err(refusal_error(refusal, Needed::Either)),
+            Err(refusal) => {
+                log_refusal(state, parts, client.ip, refusal);
+                Err(refusal_error(refusal, Needed::Either))
+            }
         }
     }
+}
+
+/// The longest request path written into a `request.refused` event.
+const MAX_LOGGED_PATH: usize = 256;
+
+/// Writes a counted refusal to the server log and the corpus, within the shared allowance
+/// (an address already waiting is not logged again; see [`crate::access::RefusalLog`]).
+fn log_refusal(state: &AppState, parts: &Parts, peer: Option<IpAddr>, refusal: Refusal) {
+    if matches!(refusal, Refusal::Locked(_)) {
+        return;
+    }
+    let Some(unlogged) = state.access.admit_refusal_log() else {
+        return;
+    };
+    let mut path = parts.uri.path().to_owned();
+    if path.len() > MAX_LOGGED_PATH {
+        let cut = (0..=MAX_LOGGED_PATH)
+            .rev()
+            .find(|i| path.is_char_boundary(*i));
+        path.truncate(cut.unwrap_or(0));
+    }
+    let address = peer.map(|p| p.to_string());
+    let code = refusal.code();
+    let method = parts.method.as_str().to_owned();
+    tracing::warn!(
+        method,
+        path,
+        address,
+        code,
+        unlogged,
+        "HTTP credential refused"
+    );
+    state.hub.publish(EventKind::RequestRefused {
+        method,
+        path,
+        code,
+        address,
+        unlogged,
+    });
 }
 
 /// Refuses a request a browser sent from a page of another site (its `Origin` names another
@@ -135,27 +168,6 @@ mod tests {
             headers.insert(header::ORIGIN, HeaderValue::from_static(other));
             assert!(same_origin(&headers).is_err(), "{other}");
         }
-    }
-
-    #[test]
-    fn a_proxy_on_loopback_names_the_client_in_x_forwarded_for() {
-        let local: Option<IpAddr> = Some("127.0.0.1".parse().unwrap());
-        let remote: Option<IpAddr> = Some("192.168.1.5".parse().unwrap());
-        let mut headers = HeaderMap::new();
-        assert_eq!(client_address(local, &headers), local);
-        headers.insert(
-            "x-forwarded-for",
-            HeaderValue::from_static("10.0.0.1, 192.168.1.5"),
-        );
-        assert_eq!(client_address(local, &headers), remote);
-        // Only a proxy on this machine is believed.
-        let mapped = Some("::ffff:127.0.0.1".parse().unwrap());
-        assert_eq!(client_address(mapped, &headers), remote);
-        let stranger = Some("192.168.1.9".parse().unwrap());
-        assert_eq!(client_address(stranger, &headers), stranger);
-        headers.insert("x-forwarded-for", HeaderValue::from_static("garbage"));
-        let unknown = client_address(local, &headers).unwrap();
-        assert!(!unknown.is_loopback());
     }
 
     #[test]

@@ -47,6 +47,11 @@ impl AppError {
         Self::new(StatusCode::BAD_REQUEST, "bad-request", message)
     }
 
+    /// 400 with a more precise code than `bad-request`.
+    pub fn bad_request_with_code(code: &'static str, message: impl Into<String>) -> Self {
+        Self::new(StatusCode::BAD_REQUEST, code, message)
+    }
+
     /// 500, logged here once; the client sees a generic message.
     pub fn internal(error: impl std::fmt::Display) -> Self {
         tracing::error!(%error, "internal error");

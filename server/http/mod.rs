@@ -9,13 +9,19 @@
 //! - `operator`: the operator console (`/operator`) and its settings (`/api/operator`).
 //! - `report`: the content report (`/report`) and its data (`/api/report`).
 //! - `auth`: who is asking ([`auth::Peer`]) and whether they may ([`auth::Authorized`]).
+//! - `body`: request bodies, JSON objects only, read within a time limit.
+//! - `connections`: the accept loop: header and body time limits, connection caps.
+//! - `framing`: requests with both `Content-Length` and `Transfer-Encoding` found and refused.
 //! - `error`: [`AppError`], the one error type at the HTTP edge.
 
 mod act_timers;
 mod api;
 pub(crate) mod auth;
+mod body;
+mod connections;
 mod error;
 mod files;
+mod framing;
 mod missing_page;
 mod operator;
 mod report;
@@ -27,6 +33,7 @@ use axum::routing::{get, post};
 use tower_http::limit::RequestBodyLimitLayer;
 use tower_http::trace::TraceLayer;
 
+pub use connections::{ConnectionLimits, ConnectionSlot, serve_connections};
 pub use error::AppError;
 pub use missing_page::MissingPageReports;
 

@@ -7,6 +7,7 @@ use askama::Template;
 use axum::Json;
 use axum::extract::State;
 use axum::response::Response;
+use percent_encoding::{AsciiSet, NON_ALPHANUMERIC, utf8_percent_encode};
 use serde_json::{Value, json};
 
 use crate::content::config::{Camera, SiteConfig};
@@ -74,19 +75,20 @@ pub fn settings_json(config: &SiteConfig) -> Value {
     })
 }
 
+/// Bytes kept as they are in a URL path segment: RFC 3986's unreserved characters.
+const SEGMENT: &AsciiSet = &NON_ALPHANUMERIC
+    .remove(b'-')
+    .remove(b'.')
+    .remove(b'_')
+    .remove(b'~');
+
 /// A bundle-relative path (`pages/images/map.png`) as the URL path it is served at, each
 /// segment percent-encoded.
 pub(super) fn url_path(path: &str) -> String {
     let mut url = String::with_capacity(path.len() + 1);
     for segment in path.split('/') {
         url.push('/');
-        for byte in segment.bytes() {
-            if byte.is_ascii_alphanumeric() || b"-._~".contains(&byte) {
-                url.push(char::from(byte));
-            } else {
-                url.push_str(&format!("%{byte:02X}"));
-            }
-        }
+        url.extend(utf8_percent_encode(segment, SEGMENT));
     }
     url
 }

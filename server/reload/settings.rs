@@ -36,6 +36,9 @@ pub fn not_applied(started: &SiteConfig, new: &SiteConfig) -> Vec<String> {
     if started.access != new.access {
         out.push(restart("credentials (access:)"));
     }
+    if started.server != new.server {
+        out.push(restart("trusted proxies (server: trusted_proxies)"));
+    }
     if started.projector != new.projector {
         out.push(
             "reload the projector screen (or restart Docent) for the projector settings \

@@ -1,11 +1,13 @@
 //! One websocket connection: the upgrade, the reader loop and the routing of each client frame
 //! to its handler (`hello`, `triggers`, `initiative`, `signal` and answers here). Every bad
 //! frame gets an `error` frame and the connection stays usable; only a refused credential
-//! ends it.
+//! ends it, or a websocket protocol violation (closed with its RFC 6455 code, see
+//! `violation`).
 
 use std::net::IpAddr;
 use std::time::{Duration, Instant};
 
+use axum::Extension;
 use axum::extract::State;
 use axum::extract::ws::{Message, WebSocket, WebSocketUpgrade};
 use axum::http::HeaderMap;
@@ -14,16 +16,19 @@ use futures_util::StreamExt;
 use tokio::sync::oneshot;
 use tokio_util::sync::CancellationToken;
 
-use crate::access::TokenBucket;
+use crate::access::{ClientAddress, TokenBucket};
 use crate::adapters::{Outcome, ScreenReport};
 use crate::events::{ClientRole, EventKind};
+use crate::http::ConnectionSlot;
 use crate::http::auth::{Peer, same_origin};
 use crate::state::AppState;
+use crate::sync::lock;
 use crate::ws::diagnose::diagnose;
 use crate::ws::hello::Hello;
 use crate::ws::outbox::{Frame, OUTBOX_CAPACITY, Outbox};
 use crate::ws::protocol::{ClientFrame, MAX_FRAME_BYTES, error_frame};
-use crate::ws::writer::{Feed, PING_INTERVAL, run_writer};
+use crate::ws::violation::{Violation, violation};
+use crate::ws::writer::{CloseWith, Feed, PING_INTERVAL, run_writer};
 
 /// Frames beyond this size end the connection at the websocket layer; frames between
 /// [`MAX_FRAME_BYTES`] and this get an `error` frame and the connection stays.
@@ -40,7 +45,8 @@ const WRITER_ENDED: &str = "writer ended";
 pub async fn ws_upgrade(
     ws: WebSocketUpgrade,
     State(state): State<AppState>,
-    Peer(peer): Peer,
+    Peer(client): Peer,
+    slot: Option<Extension<ConnectionSlot>>,
     headers: HeaderMap,
 ) -> Response {
     // Browsers let any page open a websocket anywhere: only this server's own pages may.
@@ -55,7 +61,12 @@ pub async fn ws_upgrade(
         .on_upgrade(move |socket| {
             // axum spawns this itself; tracking it lets shutdown wait for the client.left event.
             let tracker = state.life.tracker.clone();
-            tracker.track_future(serve(socket, state, peer))
+            let serving = async move {
+                serve(socket, state, client).await;
+                // The websocket holds its connection's place among the open ones until it ends.
+                drop(slot);
+            };
+            tracker.track_future(serving)
         })
 }
 
@@ -63,8 +74,11 @@ pub async fn ws_upgrade(
 pub(super) struct Session {
     /// The connection's id.
     pub(super) client: u64,
-    /// The client's address (`None` when unknown).
+    /// The client's address (`None` when unknown): the connection's peer, or the client a
+    /// trusted proxy names.
     pub(super) peer: Option<IpAddr>,
+    /// Whether the client is on this machine (see [`ClientAddress::local`]).
+    pub(super) local: bool,
     /// The role, once `hello` was accepted.
     pub(super) role: Option<ClientRole>,
     /// Frames to this client.
@@ -83,22 +97,25 @@ pub(super) struct Session {
     pub(super) signals: TokenBucket,
 }
 
-async fn serve(socket: WebSocket, state: AppState, peer: Option<IpAddr>) {
+async fn serve(socket: WebSocket, state: AppState, address: ClientAddress) {
     let client = state.next_client_id();
     let (sink, mut stream) = socket.split();
     let (outbox, queue) = Outbox::new(OUTBOX_CAPACITY);
     let (feed_tx, feed_rx) = oneshot::channel();
     let stop = CancellationToken::new();
+    let close_with = CloseWith::default();
     let writer = state.life.tracker.spawn(run_writer(
         sink,
         queue,
         feed_rx,
         state.clone(),
         stop.clone(),
+        close_with.clone(),
     ));
     let mut session = Session {
         client,
-        peer,
+        peer: address.ip,
+        local: address.local,
         role: None,
         outbox,
         feed: Some(feed_tx),
@@ -119,7 +136,12 @@ async fn serve(socket: WebSocket, state: AppState, peer: Option<IpAddr>) {
         match next {
             Err(_) => break "idle timeout",
             Ok(None) | Ok(Some(Ok(Message::Close(_)))) => break "closed by client",
-            Ok(Some(Err(_))) => break "protocol error",
+            Ok(Some(Err(error))) => {
+                // The writer answers with the violation's close code as it closes.
+                let Violation { reason, close } = violation(error);
+                *lock(&close_with) = close;
+                break reason;
+            }
             Ok(Some(Ok(Message::Text(text)))) => {
                 session.on_text(text.as_str());
                 if let Some(reason) = session.closing {

@@ -4,7 +4,7 @@
 //! welcomed with the current state and gets its feed: display commands for kiosks and
 //! projectors, the event stream (after the recent history) for operators and dialog managers.
 
-use crate::access::{Needed, Refusal, is_loopback};
+use crate::access::{ClientAddress, Needed, Refusal};
 use crate::events::{ClientRole, EventKind};
 use crate::state::ClientInfo;
 use crate::ws::connection::Session;
@@ -50,21 +50,14 @@ impl Session {
                 None,
             );
         }
-        if let Some(needed) = needed(role, is_loopback(self.peer))
-            && let Err(refusal) = self.state.access.check(self.peer, needed, token.as_deref())
+        let address = ClientAddress {
+            ip: self.peer,
+            local: self.local,
+        };
+        if let Some(needed) = needed(role, self.local)
+            && let Err(refusal) = self.state.access.check(address, needed, token.as_deref())
         {
-            // Counted refusals are logged; an address already waiting is refused quietly, so
-            // a flood of hellos cannot flood the log.
-            if !matches!(refusal, Refusal::Locked(_)) {
-                let address = self.peer.map(|p| p.to_string());
-                let code = refusal.code();
-                tracing::warn!(?role, address, code, "websocket credential refused");
-                self.state.hub.publish(EventKind::ClientRefused {
-                    role,
-                    code,
-                    address,
-                });
-            }
+            self.log_refusal(role, refusal);
             self.reply_error(refusal.code(), &refusal.message(needed), None, None);
             self.closing = Some("credential refused");
             return;
@@ -122,6 +115,32 @@ impl Session {
             role,
             name,
             verbs,
+        });
+    }
+
+    /// Logs a counted refusal, within the shared allowance; an address already waiting is
+    /// refused quietly, so a flood of hellos cannot flood the log.
+    fn log_refusal(&self, role: ClientRole, refusal: Refusal) {
+        if matches!(refusal, Refusal::Locked(_)) {
+            return;
+        }
+        let Some(unlogged) = self.state.access.admit_refusal_log() else {
+            return;
+        };
+        let address = self.peer.map(|p| p.to_string());
+        let code = refusal.code();
+        tracing::warn!(
+            ?role,
+            address,
+            code,
+            unlogged,
+            "websocket credential refused"
+        );
+        self.state.hub.publish(EventKind::ClientRefused {
+            role,
+            code,
+            address,
+            unlogged,
         });
     }
 

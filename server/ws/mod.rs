@@ -6,6 +6,7 @@
 //! client is dropped instead of slowing others. The reader routes each frame to a handler:
 //! `hello` (credentials, welcome, feeds), `triggers` (trigger, stop, context, page; the kiosk
 //! rules), `initiative` (proposals and corpus marks) and `signal` (WebRTC signalling relay).
+//! `violation` maps a broken websocket frame to its RFC 6455 close code.
 
 mod connection;
 mod diagnose;
@@ -15,6 +16,7 @@ pub mod outbox;
 pub mod protocol;
 mod signal;
 mod triggers;
+mod violation;
 mod writer;
 
 pub use connection::ws_upgrade;

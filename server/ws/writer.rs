@@ -4,7 +4,7 @@
 use std::sync::Arc;
 use std::time::Duration;
 
-use axum::extract::ws::{Message, WebSocket};
+use axum::extract::ws::{CloseFrame, Message, WebSocket};
 use futures_util::SinkExt;
 use futures_util::stream::SplitSink;
 use tokio::sync::broadcast::error::{RecvError, TryRecvError};
@@ -36,6 +36,10 @@ pub enum Feed {
 /// Why the writer ended.
 pub type WriterEnd = &'static str;
 
+/// The close frame the writer ends with, when the reader found a protocol violation; a plain
+/// close otherwise.
+pub type CloseWith = Arc<std::sync::Mutex<Option<CloseFrame>>>;
+
 /// Writes until the queue closes, the client fails or falls behind, or `stop` is cancelled;
 /// cancels `stop` itself when it ends first.
 pub async fn run_writer(
@@ -44,6 +48,7 @@ pub async fn run_writer(
     feed: oneshot::Receiver<Feed>,
     state: AppState,
     stop: CancellationToken,
+    close_with: CloseWith,
 ) -> WriterEnd {
     let mut feed = Some(feed);
     let mut subscription: Option<Feed> = None;
@@ -100,7 +105,14 @@ pub async fn run_writer(
     };
     // Tell the reader loop, which may be waiting on a silent client.
     stop.cancel();
-    let _ = tokio::time::timeout(CLOSE_TIMEOUT, sink.close()).await;
+    let close = crate::sync::lock(&close_with).take();
+    let closing = async {
+        if let Some(frame) = close {
+            sink.send(Message::Close(Some(frame))).await?;
+        }
+        sink.close().await
+    };
+    let _ = tokio::time::timeout(CLOSE_TIMEOUT, closing).await;
     end
 }
 

@@ -118,6 +118,7 @@ impl TestServer {
             corpus_dir: corpus_dir.path().to_owned(),
             speech_wav: None,
             access: test_access(),
+            limits: docent::http::ConnectionLimits::default(),
         };
         adjust(&mut options);
         let server = Server::start(loaded, &options).expect("server starts");

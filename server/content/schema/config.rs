@@ -7,6 +7,7 @@ use super::{DRAFT, VARIANT_KEY_PATTERN, any_case, choice, duration, section, wor
 use crate::content::config::Credential;
 use crate::content::config_file::TOP_KEYS;
 use crate::content::config_file::operator::{KEYS as OPERATOR_KEYS, MAP_FORMATS, VISITOR_GROUPS};
+use crate::content::config_file::server::KEYS as SERVER_KEYS;
 use crate::content::model::Verb;
 
 /// The keys of the sections whose lists live inline in the loader's functions; the test
@@ -86,6 +87,7 @@ fn top_level(key: &str) -> Value {
              kept out of the bundle: set DOCENT_OPERATOR_TOKEN and DOCENT_DM_TOKEN instead.",
         ),
         "operator" => section(OPERATOR_KEYS, operator, "What the operator console shows."),
+        "server" => section(SERVER_KEYS, server, "How Docent itself is reached."),
         // A key added to the loader without a schema here fails the tests (no description).
         _ => json!({}),
     }
@@ -240,6 +242,23 @@ fn access(key: &str) -> Value {
     })
 }
 
+fn server(_key: &str) -> Value {
+    let address = json!({
+        "type": "string",
+        "description": "The IP address of a reverse proxy, e.g. `127.0.0.1` or `fd00::2`.",
+    });
+    json!({
+        "description": "The reverse proxies in front of Docent whose X-Forwarded-For header \
+                        is believed, e.g. `[127.0.0.1]`; every other client's header is \
+                        ignored.",
+        "anyOf": [
+            { "type": "null" },
+            address,
+            { "type": "array", "items": address, "uniqueItems": true },
+        ],
+    })
+}
+
 fn operator(key: &str) -> Value {
     match key {
         "map" => {
@@ -359,6 +378,7 @@ mod tests {
             (&["projector"], &["projector"]),
             (&["access"], &["access"]),
             (&["operator"], &["operator"]),
+            (&["server"], &["server"]),
             (
                 &["operator", "visitor_groups"],
                 &["operator", "visitor_groups"],
