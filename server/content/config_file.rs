@@ -13,6 +13,7 @@ use crate::content::model::{Located, Verb};
 
 mod access;
 pub(crate) mod operator;
+pub(crate) mod policy;
 mod reader;
 mod screens;
 
@@ -48,6 +49,8 @@ pub(crate) const TOP_KEYS: &[&str] = &[
     "verbs",
     "access",
     "operator",
+    "channels",
+    "priorities",
 ];
 const HOME_USAGE: &str = "`home` names the page under pages/ the kiosk starts on, e.g. \
                           `home: index.html`.";
@@ -109,6 +112,8 @@ fn positive(text: &str) -> Option<f64> {
 
 impl Reader {
     fn top_level(&mut self, root: &Node, out: &mut ConfigFile) {
+        // Read after the loop: a site command's channel needs `verbs:`, wherever it is written.
+        let mut channels = None;
         for (key, value) in self.entries(root, TOP_KEYS, "docent.yaml") {
             let config = &mut out.config;
             match key {
@@ -144,8 +149,13 @@ impl Reader {
                 }
                 "access" => self.access(value, &mut config.access),
                 "operator" => self.operator(value, out),
+                "channels" => channels = Some(value),
+                "priorities" => self.priorities(value, config),
                 _ => self.verbs(value, config),
             }
+        }
+        if let Some(channels) = channels {
+            self.channels(channels, &mut out.config);
         }
     }
 
