@@ -73,7 +73,8 @@ impl Sequence {
     }
 
     fn drop_unsent(&self, command: Command, reason: String) {
-        Reply::new(self.dispatcher.hub().clone(), command, None).finish(Outcome::Cancelled(reason));
+        self.dispatcher
+            .report(command, None, Outcome::Cancelled(reason));
     }
 
     async fn run(mut self, first_wait: Command, mut rest: std::vec::IntoIter<Command>) {

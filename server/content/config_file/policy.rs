@@ -81,9 +81,8 @@ impl Reader {
                 }
                 continue;
             }
-            let parse = |t: &str| {
-                (t.parse::<usize>().ok()).filter(|n| (1..=MAX_QUEUE_LIMIT).contains(n))
-            };
+            let parse =
+                |t: &str| (t.parse::<usize>().ok()).filter(|n| (1..=MAX_QUEUE_LIMIT).contains(n));
             if let Some(limit) = self.setting(value, QUEUE_LIMIT_USAGE, parse) {
                 policy.queue_limit = limit;
             }
@@ -94,7 +93,11 @@ impl Reader {
     /// Reads `priorities:`.
     pub(super) fn priorities(&mut self, node: &Node, config: &mut SiteConfig) {
         for (key, value) in self.entries(node, PRIORITY_KEYS, "priorities") {
-            let parse = |t: &str| t.parse::<u8>().ok().filter(|p| (1..=MAX_PRIORITY).contains(p));
+            let parse = |t: &str| {
+                t.parse::<u8>()
+                    .ok()
+                    .filter(|p| (1..=MAX_PRIORITY).contains(p))
+            };
             if let Some(priority) = self.setting(value, PRIORITY_USAGE, parse)
                 && let Some(slot) = config.priorities.by_name_mut(key)
             {

@@ -5,9 +5,9 @@ use serde_json::{Value, json};
 
 use super::{DRAFT, VARIANT_KEY_PATTERN, any_case, choice, duration, section, words};
 use crate::content::config::{Channel, Credential, MAX_PRIORITY, MAX_QUEUE_LIMIT};
-use crate::content::config_file::policy::{CHANNEL_KEYS, PRIORITY_KEYS};
 use crate::content::config_file::TOP_KEYS;
 use crate::content::config_file::operator::{KEYS as OPERATOR_KEYS, MAP_FORMATS, VISITOR_GROUPS};
+use crate::content::config_file::policy::{CHANNEL_KEYS, PRIORITY_KEYS};
 use crate::content::model::Verb;
 
 /// The keys of the sections whose lists live inline in the loader's functions; the test
