@@ -6,11 +6,13 @@
 //! client is dropped instead of slowing others. The reader routes each frame to a handler:
 //! `hello` (credentials, welcome, feeds), `triggers` (trigger, stop, context, page; the kiosk
 //! rules), `initiative` (proposals and corpus marks) and `signal` (WebRTC signalling relay).
+//! `notices` tells a client what became of its commands and kiosks who is speaking.
 
 mod connection;
 mod diagnose;
 mod hello;
 mod initiative;
+mod notices;
 pub mod outbox;
 pub mod protocol;
 mod signal;
@@ -18,3 +20,4 @@ mod triggers;
 mod writer;
 
 pub use connection::ws_upgrade;
+pub use notices::ClientNotices;
