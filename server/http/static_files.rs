@@ -17,6 +17,11 @@ const FILES: &[(&str, &str, &str)] = &[
     ("socket.js", JS, include_str!("../../static/socket.js")),
     ("speech.js", JS, include_str!("../../static/speech.js")),
     (
+        "speech-state.js",
+        JS,
+        include_str!("../../static/speech-state.js"),
+    ),
+    (
         "camera-kiosk.js",
         JS,
         include_str!("../../static/camera-kiosk.js"),
