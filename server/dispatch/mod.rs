@@ -11,6 +11,8 @@
 mod channels;
 mod choose;
 mod gate;
+#[cfg(test)]
+mod policy_tests;
 mod request;
 mod sequence;
 
