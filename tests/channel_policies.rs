@@ -37,7 +37,7 @@ type Pred<'a> = &'a dyn Fn(&Value) -> bool;
 /// Frames until every predicate has matched one of them (in any order), all kept.
 async fn until_all(client: &mut WsClient, preds: &[Pred<'_>]) -> Vec<Value> {
     let mut seen: Vec<Value> = Vec::new();
-    while !preds.iter().all(|p| seen.iter().any(|f| p(f))) {
+    while !preds.iter().all(|p| seen.iter().any(p)) {
         seen.push(client.recv().await);
     }
     seen

@@ -120,7 +120,11 @@ async fn a_highlight_or_the_projector_leaving_ends_a_film() {
     proj.recv_type("command").await;
     server.trigger("DARK", json!({})).await;
     let cancelled = op.event_where(is("command.cancelled", project)).await;
-    assert_eq!(cancelled["reason"], "replaced by a later HIGHLIGHT");
+    // The projector channel's policy (replace) cuts the film short.
+    assert_eq!(
+        cancelled["reason"],
+        "replaced by act DARK from the HTTP API"
+    );
     op.event_where(is("command.sent", say)).await;
 
     let (project, wait, say) = film(&server).await;
