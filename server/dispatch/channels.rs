@@ -190,6 +190,7 @@ impl Lane {
     }
 
     /// How many commands wait.
+    #[cfg(test)]
     pub fn waiting(&self) -> usize {
         self.waiting.len()
     }

@@ -29,7 +29,8 @@ pub struct Speaking {
 pub trait Notifier: Send + Sync {
     /// A command triggered by `client` ended without being carried out.
     fn outcome(&self, client: u64, command: &Command, outcome: &Outcome);
-    /// Speech started (`Some`) or stopped (`None`).
+    /// Speech started (`Some`) or stopped (`None`). Called under the dispatcher's lock: it
+    /// must only queue (never wait, never call back into the dispatcher).
     fn speaking(&self, now: Option<Speaking>);
 }
 
@@ -108,7 +109,7 @@ impl Dispatcher {
             return self.report(command, waiter, Outcome::Failed("no adapter".into()));
         };
         if channel == Channel::Speech {
-            self.tell_speaking(Some(&command));
+            self.tell_speaking();
         }
         let (tx, rx) = oneshot::channel();
         adapter.submit(
@@ -144,7 +145,7 @@ impl Dispatcher {
             .and_then(|lane| lane.finished(command.id));
         match next {
             Some(next) => self.launch(channel.clone(), next),
-            None if *channel == Channel::Speech => self.tell_speaking(None),
+            None if *channel == Channel::Speech => self.tell_speaking(),
             None => {}
         }
     }
@@ -187,27 +188,6 @@ impl Dispatcher {
             .is_some_and(|lane| lane.holds(|c| &*c.act.label == label))
     }
 
-    /// Who speaks now.
-    pub fn speaking(&self) -> Option<Speaking> {
-        let lanes = lock(&self.lanes);
-        let running = lanes.get(&Channel::Speech)?.running()?;
-        Some(Speaking {
-            source: running.act.source,
-            client: running.act.client,
-        })
-    }
-
-    /// Commands waiting on each channel that has any, by channel name.
-    pub fn waiting(&self) -> Vec<(String, usize)> {
-        let lanes = lock(&self.lanes);
-        let mut all: Vec<(String, usize)> = (lanes.iter())
-            .filter(|(_, lane)| lane.waiting() > 0)
-            .map(|(c, lane)| (c.to_string(), lane.waiting()))
-            .collect();
-        all.sort();
-        all
-    }
-
     /// Sets where clients are told about their commands (once, at start-up).
     pub fn set_notifier(&self, notifier: Arc<dyn Notifier>) {
         let _ = self.notifier.set(notifier);
@@ -222,12 +202,17 @@ impl Dispatcher {
         }
     }
 
-    fn tell_speaking(&self, command: Option<&Command>) {
-        if let Some(notifier) = self.notifier.get() {
-            notifier.speaking(command.map(|c| Speaking {
-                source: c.act.source,
-                client: c.act.client,
-            }));
-        }
+    /// Tells the kiosks who speaks now. Read and sent under the lanes' lock, so that two
+    /// changes racing on two threads reach the kiosks in the order they happened.
+    fn tell_speaking(&self) {
+        let Some(notifier) = self.notifier.get() else {
+            return;
+        };
+        let lanes = lock(&self.lanes);
+        let running = lanes.get(&Channel::Speech).and_then(|lane| lane.running());
+        notifier.speaking(running.map(|c| Speaking {
+            source: c.act.source,
+            client: c.act.client,
+        }));
     }
 }
