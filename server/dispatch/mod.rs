@@ -15,6 +15,7 @@ mod gate;
 mod policy_tests;
 mod request;
 mod sequence;
+mod visitors;
 
 use std::collections::BTreeMap;
 use std::sync::atomic::{AtomicU64, Ordering};
@@ -53,6 +54,8 @@ pub struct Dispatcher {
     lanes: Mutex<channels::Lanes>,
     /// Where clients learn about their commands.
     notifier: OnceLock<Arc<dyn Notifier>>,
+    /// Since when visitors' speech is cut off (a visitor's stop, a page left).
+    visitor_cuts: Mutex<visitors::VisitorCuts>,
 }
 
 impl Dispatcher {
@@ -77,6 +80,7 @@ impl Dispatcher {
             speech_epochs: Mutex::default(),
             lanes: Mutex::default(),
             notifier: OnceLock::new(),
+            visitor_cuts: Mutex::default(),
         })
     }
 
@@ -221,30 +225,6 @@ impl Dispatcher {
         self.cancel_where(Some(&Channel::Speech), lower, &reason);
     }
 
-    /// Cancels the speech visitors started at the touchscreen (running and waiting), never
-    /// anyone else's: the kiosk's "stop speaking" button.
-    pub fn stop_visitor_speech(self: &Arc<Self>, client: u64) {
-        self.hub.publish(EventKind::Stop {
-            source: Source::Kiosk,
-            reason: format!("a visitor stopped the speech (touchscreen {client})"),
-        });
-        let visitors = |c: &Command, _: u8| c.act.source == Source::Kiosk;
-        let reason = "a visitor stopped the speech at the touchscreen";
-        self.cancel_where(Some(&Channel::Speech), visitors, reason);
-    }
-
-    /// A touchscreen left its page: the speech it started there ends (when the bundle wants
-    /// it, the default).
-    pub fn page_left(self: &Arc<Self>, client: u64, page: &str) {
-        if !self.bundle.load().config.kiosk.leave_page_stops_speech {
-            return;
-        }
-        let theirs =
-            |c: &Command, _: u8| c.act.source == Source::Kiosk && c.act.client == Some(client);
-        let reason = format!("the visitor left the page for {page}");
-        self.cancel_where(Some(&Channel::Speech), theirs, &reason);
-    }
-
     /// The token the next sequences stop on.
     pub(crate) fn stop_token(&self) -> CancellationToken {
         lock(&self.epoch).clone()
@@ -360,7 +340,7 @@ impl Dispatcher {
         }
     }
 
-    fn next_id(&self) -> u64 {
+    pub(crate) fn next_id(&self) -> u64 {
         self.next_id.fetch_add(1, Ordering::Relaxed)
     }
 }

@@ -24,6 +24,7 @@ fn bundle(config: &str) -> (tempfile::TempDir, Bundle) {
     for label in ["A", "B", "C", "D", "E"] {
         acts.push_str(&format!("- Label: {label}\n  Text: [\"{LONG}\"]\n"));
     }
+    acts.push_str("- Label: LATER\n  Cmds: [WAIT 2s, SAY Later]\n");
     std::fs::write(dir.path().join("acts.yaml"), acts).expect("acts");
     std::fs::create_dir_all(dir.path().join("pages")).expect("pages");
     std::fs::write(
@@ -72,6 +73,14 @@ impl Rig {
         request.interrupt = interrupt;
         let triggered = self.dispatcher.trigger(request).expect("triggered");
         triggered.commands[0].id
+    }
+
+    /// The id of the last command a kiosk client's trigger of `label` resolved to.
+    fn trigger_from(&self, label: &str, client: u64) -> u64 {
+        let mut request = TriggerRequest::new(label, Source::Kiosk);
+        request.client = Some(client);
+        let triggered = self.dispatcher.trigger(request).expect("triggered");
+        triggered.commands.last().expect("a command").id
     }
 
     /// The next outcome or start of `command`, with the virtual time it came at.
@@ -189,4 +198,35 @@ async fn site_priorities_decide_who_interrupts() {
         (outcome, reason.as_str()),
         ("cancelled", "the touchscreen took over the speech")
     );
+}
+
+#[tokio::test(start_paused = true)]
+async fn speech_an_act_has_not_sent_yet_is_dropped_when_its_visitor_leaves_the_page() {
+    let mut rig = rig("speech: {adapter: log}\n");
+    let later = rig.trigger_from("LATER", 7);
+    let other_kiosk = rig.trigger_from("LATER", 8);
+    rig.dispatcher.page_left(7, "map.html");
+    let (outcome, reason, _) = rig.next_of(later).await;
+    assert_eq!(outcome, "cancelled");
+    assert_eq!(reason, "the visitor left the page for map.html");
+    assert_eq!(
+        rig.next_of(other_kiosk).await.0,
+        "started",
+        "another kiosk's act goes on"
+    );
+}
+
+#[tokio::test(start_paused = true)]
+async fn a_visitors_stop_drops_visitors_unsent_speech_and_leaves_the_operators() {
+    let mut rig = rig("speech: {adapter: log}\n");
+    let start = Instant::now();
+    let visitor = rig.trigger_from("LATER", 7);
+    let operator = rig.trigger("A", Source::Operator, false);
+    rig.dispatcher.stop_visitor_speech(7);
+    let (outcome, reason, _) = rig.next_of(visitor).await;
+    assert_eq!(outcome, "cancelled");
+    assert_eq!(reason, "a visitor stopped the speech at the touchscreen");
+    // Its start went by while the visitor's act waited; it ends done, in full.
+    let (outcome, _, at) = rig.next_of(operator).await;
+    assert_eq!((outcome, at - start), ("done", say_time()));
 }

@@ -63,6 +63,11 @@ impl Sequence {
             let reason = "interrupted by a later act before it was said".to_owned();
             return self.drop_unsent(command, reason);
         }
+        if command.verb == Verb::Say
+            && let Some(reason) = self.dispatcher.visitor_cut_off(&command.act)
+        {
+            return self.drop_unsent(command, reason);
+        }
         match &mut self.outstanding {
             Some(outstanding) => {
                 let (tx, rx) = oneshot::channel();
