@@ -25,6 +25,10 @@ fn bundle(config: &str) -> (tempfile::TempDir, Bundle) {
         acts.push_str(&format!("- Label: {label}\n  Text: [\"{LONG}\"]\n"));
     }
     acts.push_str("- Label: LATER\n  Cmds: [WAIT 2s, SAY Later]\n");
+    acts.push_str(
+        "- Label: GO1\n  Cmds: [SET_WAYPOINT 10 0, DRIVE_START, WAIT, SAY At stop one]\n",
+    );
+    acts.push_str("- Label: GO2\n  Cmds: [SET_WAYPOINT 0 10, DRIVE_START]\n");
     std::fs::write(dir.path().join("acts.yaml"), acts).expect("acts");
     std::fs::create_dir_all(dir.path().join("pages")).expect("pages");
     std::fs::write(
@@ -229,4 +233,21 @@ async fn a_visitors_stop_drops_visitors_unsent_speech_and_leaves_the_operators()
     // Its start went by while the visitor's act waited; it ends done, in full.
     let (outcome, _, at) = rig.next_of(operator).await;
     assert_eq!((outcome, at - start), ("done", say_time()));
+}
+
+#[tokio::test(start_paused = true)]
+async fn a_drive_replaced_by_another_act_ends_the_rest_of_its_act() {
+    let mut rig = rig("speech: {adapter: log}\n");
+    let stop_one = rig.trigger_from("GO1", 1);
+    rig.trigger("GO2", Source::Operator, false);
+    let (outcome, reason, _) = rig.next_of(stop_one).await;
+    assert_eq!(
+        outcome, "cancelled",
+        "nothing is said about the wrong exhibit"
+    );
+    assert!(reason.starts_with("not sent: an earlier"), "{reason}");
+    assert!(
+        reason.contains("the operator took over the drive"),
+        "{reason}"
+    );
 }

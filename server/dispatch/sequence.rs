@@ -1,9 +1,9 @@
 //! Sending an act's commands in order. Commands before the first `WAIT` go out at once, on the
 //! trigger's own path; the rest run in a task: `WAIT` alone waits until all of the act's
 //! earlier commands have ended, `WAIT 2s` pauses. A stop ends the sequence and reports its
-//! unsent commands as cancelled; so does a failed earlier command at a `WAIT`, or one other
-//! than speech that a channel's policy cancelled (the rest would act on a false premise, e.g.
-//! show an exhibit's page although the robot never drove there, its drive replaced).
+//! unsent commands as cancelled; so does a failed earlier command at a `WAIT`, or a drive that
+//! another act's replaced (the rest would act on a false premise, e.g. show an exhibit's page
+//! although the robot never drove there).
 //! A `DRIVE_STOP` after a `WAIT` preempts everything when it is reached; an interrupting
 //! trigger drops the speech this sequence has not sent yet.
 
@@ -182,9 +182,12 @@ impl Sequence {
     }
 }
 
-/// Waits for every earlier command; the first that failed, or that a channel's policy
-/// cancelled (a drive replaced by another act's: the rest would act on a false premise), as
-/// the `WAIT`'s own outcome.
+/// The drive verbs whose cancellation ends the rest of their act at a `WAIT`.
+const DRIVES: [&str; 2] = ["SET_WAYPOINT", "DRIVE_START"];
+
+/// Waits for every earlier command; the first that failed, or a drive that was cancelled
+/// (replaced by another act's: the rest would act on a false premise), as the `WAIT`'s own
+/// outcome.
 async fn first_failure(earlier: Vec<(String, oneshot::Receiver<Outcome>)>) -> Result<(), Outcome> {
     let (verbs, outcomes): (Vec<String>, Vec<_>) = earlier.into_iter().unzip();
     let outcomes = join_all(outcomes).await;
@@ -193,12 +196,14 @@ async fn first_failure(earlier: Vec<(String, oneshot::Receiver<Outcome>)>) -> Re
             // Speech cut short by an interrupting trigger still ended; a stop is seen
             // through the stop token.
             Ok(Outcome::Done) => {}
-            Ok(Outcome::Cancelled(_)) if verb == "SAY" => {}
-            Ok(Outcome::Cancelled(why)) => {
+            // A drive cancelled by another act's (its channel replaces) leaves the robot
+            // elsewhere than this act expects; anything else cut short still ended.
+            Ok(Outcome::Cancelled(why)) if DRIVES.contains(&verb.as_str()) => {
                 return Err(Outcome::Cancelled(format!(
                     "an earlier {verb} of this act was cancelled ({why})"
                 )));
             }
+            Ok(Outcome::Cancelled(_)) => {}
             Ok(Outcome::Failed(why)) => {
                 return Err(Outcome::Failed(format!(
                     "an earlier {verb} of this act did not succeed ({why})"
