@@ -4,9 +4,12 @@
 //!
 //! Resolution: the context (asked for, or the current one) picks a variant, falling back to
 //! `Text`; one alternative is chosen at random, never the same twice in a row; it becomes a
-//! `SAY` before the act's commands. Commands go to their adapters at once unless the act has a
-//! `WAIT` (then `sequence` paces them). An act with `DRIVE_STOP` preempts everything first; an
-//! interrupting trigger first clears speech.
+//! `SAY` before the act's commands. Commands go to their output channels at once unless the act
+//! has a `WAIT` (then `sequence` paces them); each channel (`channels`, `gate`) runs one command
+//! at a time and settles the others by its policy and the sources' priorities. An act with
+//! `DRIVE_STOP` preempts everything first; an interrupting trigger first clears speech of its
+//! priority or lower. A kiosk's tap on an act already speaking is refused; visitors may stop
+//! their own speech and leaving a page ends it (`visitors`).
 
 mod channels;
 mod choose;
