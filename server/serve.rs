@@ -79,6 +79,8 @@ impl Server {
         let dispatcher = Dispatcher::new(Arc::new(bundle), router, hub, options.seed, life.clone());
         let access = Access::new(options.access.clone(), proxies);
         let state = AppState::new(dispatcher, Arc::new(devices), life, access);
+        let notices = crate::ws::ClientNotices::new(state.links());
+        state.dispatcher.set_notifier(Arc::new(notices));
         Ok(Server {
             state,
             corpus,

@@ -53,6 +53,30 @@ pub struct AppState {
     clients: Arc<Clients>,
 }
 
+/// Sends frames to connected clients by id or role, without the rest of the state: what the
+/// dispatcher's notifier holds (`ws::notices`).
+#[derive(Clone)]
+pub struct ClientLinks(Arc<Clients>);
+
+impl ClientLinks {
+    /// Queues `frame` for client `id`; false when it is not connected (or too slow).
+    pub fn send_to(&self, id: u64, frame: &Frame) -> bool {
+        let outbox = lock(&self.0.connected).get(&id).map(|c| c.outbox.clone());
+        outbox.is_some_and(|outbox| outbox.send(frame.clone()))
+    }
+
+    /// Queues `frame` for every connected client in `role`.
+    pub fn send_to_role(&self, role: ClientRole, frame: &Frame) {
+        let outboxes: Vec<Outbox> = (lock(&self.0.connected).values())
+            .filter(|c| c.info.role == role)
+            .map(|c| c.outbox.clone())
+            .collect();
+        for outbox in outboxes {
+            outbox.send(frame.clone());
+        }
+    }
+}
+
 #[derive(Default)]
 struct Clients {
     next: AtomicU64,
@@ -88,6 +112,11 @@ impl AppState {
             reload: Arc::default(),
             clients: Arc::default(),
         }
+    }
+
+    /// A handle that reaches connected clients.
+    pub fn links(&self) -> ClientLinks {
+        ClientLinks(Arc::clone(&self.clients))
     }
 
     /// A fresh connection id.

@@ -9,7 +9,10 @@
 // it until the page has loaded, and opened on its own the page only warns.
 // The API: docent.trigger(label, {context, interrupt}) -> Promise of the `triggered` or
 // `error` frame; docent.on(type, fn) -> stop function; docent.ready(fn): fn runs once the
-// page's document is parsed (its elements exist), at once if it already is.
+// page's document is parsed (its elements exist), at once if it already is;
+// docent.stopSpeech() ends the speech visitors started (never the operator's). While the robot
+// speaks, the shell sets `data-docent-speaking` on this page's <html> (style it as you like);
+// a tapped element whose act is already speaking gets `docent-already-speaking` briefly.
 
 (() => {
 "use strict";
@@ -17,6 +20,7 @@ if (window.docent) return; // a page that also includes this script itself
 
 const PRESS_MS = 150;
 const REPEAT_GUARD_MS = 400;
+const ALREADY_SPEAKING_MS = 1_500;
 const PAGES_PREFIX = "/pages/";
 
 /** The kiosk shell's API, or undefined (not framed yet, or opened on its own). */
@@ -94,6 +98,16 @@ window.docent = Object.freeze({
       stop?.();
     };
   },
+  /** Ends the speech visitors started; resolves with whether the request went out. */
+  stopSpeech() {
+    return Promise.resolve(withShell(
+      (shell) => shell.stopSpeech(),
+      () => {
+        noShell("speech not stopped");
+        return false;
+      },
+    ));
+  },
   /** Runs `fn(docent)` once the page's elements exist (at once, later, if they already do). */
   ready(fn) {
     if (typeof fn !== "function") throw new TypeError("docent.ready needs a function");
@@ -142,7 +156,11 @@ document.addEventListener("click", (event) => {
   if (now - (lastFired.get(target) ?? -Infinity) < REPEAT_GUARD_MS) return;
   lastFired.set(target, now);
   if (!target.classList.contains("docent-pressed")) press(target)();
-  window.docent.trigger(target.dataset.act);
+  window.docent.trigger(target.dataset.act).then((answer) => {
+    if (answer?.code !== "already-speaking") return;
+    target.classList.add("docent-already-speaking");
+    setTimeout(() => target.classList.remove("docent-already-speaking"), ALREADY_SPEAKING_MS);
+  });
 }, { capture: true });
 
 // Timers: each data-act-after element fires its act once, after its delay. Leaving the page

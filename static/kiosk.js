@@ -7,10 +7,15 @@
 // When a saved bundle goes live (`changed`), it reloads its page if that page, or a file other
 // than a page (a stylesheet, script or picture it may use), changed; and reloads itself when
 // its own settings changed.
+// Speech (speech-state.js's job, wired here): while the robot speaks, the shell's body and the
+// shown page's <html> carry `data-docent-speaking` (who asked: kiosk, operator, dm, http), and
+// a "Stop" button ends speech visitors started, never anyone else's. A tap on an act already
+// speaking is answered with a short notice.
 
 import { answerCameraCalls } from "./camera-kiosk.js";
 import { encodePath, keepConnected } from "./socket.js";
 import { startBrowserSpeech } from "./speech.js";
+import { speechState } from "./speech-state.js";
 
 const TRIGGER_ANSWER_TIMEOUT_MS = 10_000;
 const IDLE_CHECK_MS = 1_000;
@@ -65,6 +70,7 @@ function show(page) {
     old.onload = null;
     old.src = "about:blank"; // unloads the old page: its timers and listeners end with it
     front = 1 - front;
+    speech.markPage(next);
     emit("page", { page });
   };
   next.removeAttribute("srcdoc"); // it would win over src
@@ -127,6 +133,12 @@ function reportShown(frame) {
   socket.send({ type: "page", page });
 }
 
+const speech = speechState({
+  button: document.getElementById("docent-stop-speech"),
+  notice: document.getElementById("docent-notice"),
+  stop: () => window.docentShell.stopSpeech(),
+});
+
 const socket = keepConnected({
   path: config.ws || "/ws",
   role: "kiosk",
@@ -151,7 +163,10 @@ const socket = keepConnected({
       show(frame.args.page);
     } else if (frame.type === "changed") {
       bundleChanged(frame);
-    } else if ((frame.type === "triggered" || frame.type === "error") && pending.has(frame.ref)) {
+    } else if (frame.type === "speaking" || frame.type === "outcome" || frame.type === "error") {
+      speech.onFrame(frame, frames[front]);
+    }
+    if ((frame.type === "triggered" || frame.type === "error") && pending.has(frame.ref)) {
       pending.get(frame.ref)(frame);
       pending.delete(frame.ref);
     }
@@ -183,6 +198,11 @@ window.docentShell = {
         resolve({ type: "error", code: "timeout", message: "Docent did not answer", ref });
       }, TRIGGER_ANSWER_TIMEOUT_MS);
     });
+  },
+  /** Asks Docent to end the speech visitors started (never the operator's); resolves with
+   * whether the request went out (the answer is a `stopped` frame, then `speaking`). */
+  stopSpeech() {
+    return Promise.resolve(socket.send({ type: "stop", ref: `kiosk-stop-${++refCount}` }));
   },
   on(type, fn) {
     if (!listeners.has(type)) listeners.set(type, new Set());
@@ -224,9 +244,21 @@ if (idleMs > 0) {
     idle = true;
     if (wanted === home) return; // already home: nothing to do, nothing to send
     show(home);
-    if (idleAct) window.docentShell.trigger(idleAct);
+    if (idleAct) triggerOnArrival(home, idleAct);
     idle = true; // the trigger above counted as activity
   }, IDLE_CHECK_MS);
+}
+
+/**
+ * Triggers `label` once `page` is shown (and reported): its speech belongs to the new page, so
+ * the report of arriving there (which ends the old page's speech) must not end it.
+ */
+function triggerOnArrival(page, label) {
+  const stop = window.docentShell.on("page", (shown) => {
+    if (shown.page !== page) return;
+    stop();
+    window.docentShell.trigger(label);
+  });
 }
 
 for (const type of ["pointerdown", "keydown", "wheel"]) {

@@ -252,8 +252,10 @@ async fn a_kiosk_flooding_triggers_is_held_to_its_rate() {
             answers.push(frame);
         }
     }
+    // The burst passes the allowance (the same act is then answered `already-speaking`: it is
+    // not said twice, tests/channel_policies.rs).
     for first in &answers[..5] {
-        assert_eq!(first["type"], "triggered", "the burst passes: {first}");
+        assert_ne!(first["code"], "rate-limited", "the burst passes: {first}");
     }
     let limited = answers
         .iter()
@@ -361,7 +363,8 @@ async fn kiosk_connections_from_one_address_share_one_allowance() {
             let answer = kiosk
                 .recv_where(|f| f["type"] == "triggered" || f["type"] == "error")
                 .await;
-            triggered += usize::from(answer["type"] == "triggered");
+            // Past the allowance: triggered, or refused as already speaking (the same act).
+            triggered += usize::from(answer["code"] != "rate-limited");
         }
     }
     // Separate allowances would have let all twelve through at once.

@@ -122,24 +122,32 @@ async fn project_and_highlight_replace_each_other() {
     let mut projector_client = projector(&server).await;
 
     server.trigger("POSTER", json!({})).await;
-    assert_eq!(
-        projector_client.recv_type("command").await["verb"],
-        "PROJECT"
-    );
+    let project = projector_client.recv_type("command").await;
+    assert_eq!(project["verb"], "PROJECT");
     let event = changed(&mut op).await;
     assert_eq!(
         (event["projector"].as_str(), &event["highlight"]),
         (Some("poster.png"), &Value::Null)
     );
+    // The projector reports the picture shown, as a real one does: the PROJECT is done, and
+    // the HIGHLIGHT that follows replaces a finished picture, not a running command.
+    projector_client
+        .send(json!({"type": "done", "id": project["id"]}))
+        .await;
+    op.event_where(|e| e["type"] == "command.done" && e["command"] == project["id"])
+        .await;
 
     server.trigger("SECTION_1", json!({})).await;
-    assert_eq!(
-        projector_client.recv_type("command").await["verb"],
-        "HIGHLIGHT"
-    );
+    let highlight = projector_client.recv_type("command").await;
+    assert_eq!(highlight["verb"], "HIGHLIGHT");
     let event = changed(&mut op).await;
     assert_eq!(event["projector"], Value::Null, "HIGHLIGHT hides the image");
     assert!(event["highlight"].is_string(), "{event}");
+    projector_client
+        .send(json!({"type": "done", "id": highlight["id"]}))
+        .await;
+    op.event_where(|e| e["type"] == "command.done" && e["command"] == highlight["id"])
+        .await;
 
     server.trigger("POSTER", json!({})).await;
     let event = changed(&mut op).await;

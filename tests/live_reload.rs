@@ -96,7 +96,12 @@ fn ws_loop(mut client: WsClient, stop: Arc<AtomicBool>) -> JoinHandle<Vec<Value>
             client
                 .send(json!({"type": "trigger", "label": "GREET", "interrupt": true, "ref": reference}))
                 .await;
-            answers.push(client.recv_where(|f| f["ref"] == reference).await);
+            // The answer to the trigger; `outcome` frames about its commands (another client's
+            // interrupting trigger may cut its speech short) are not answers.
+            let answer = client
+                .recv_where(|f| f["ref"] == reference && f["type"] != "outcome")
+                .await;
+            answers.push(answer);
         }
         answers
     })

@@ -94,7 +94,11 @@ async fn a_failed_report_a_later_page_or_the_kiosk_leaving_ends_it() {
     screen.recv_type("command").await;
     op.send(json!({"type": "trigger", "label": "HOME"})).await;
     let cancelled = op.event_where(is("command.cancelled", page)).await;
-    assert_eq!(cancelled["reason"], "replaced by a later DISPLAY_PAGE");
+    // The touchscreen channel's policy (replace) names what took over.
+    assert_eq!(
+        cancelled["reason"],
+        "replaced by act HOME from the operator"
+    );
 
     let (page, _, _) = map(&mut op).await;
     screen

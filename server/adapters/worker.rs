@@ -1,5 +1,9 @@
 //! A queue that runs one command at a time, in order, with cancellation by verb or wholesale.
 //! The speech, log and drive adapters are all "a worker plus what one command means".
+//!
+//! The queue is bounded ([`WORKER_CAPACITY`]): the dispatcher hands each channel's commands
+//! over one at a time, so a full queue means something is wrong, and the command fails with
+//! a reason instead of piling up.
 
 use std::collections::HashMap;
 use std::future::Future;
@@ -12,6 +16,9 @@ use crate::adapters::{Adapter, AdapterStatus, CancelScope, Command, Outcome, Rep
 use crate::content::Verb;
 use crate::lifecycle::Lifecycle;
 use crate::sync::lock;
+
+/// How many commands may wait in one worker's queue.
+pub const WORKER_CAPACITY: usize = 64;
 
 /// What one command means to a particular adapter.
 pub trait Task: Send + Sync + 'static {
@@ -45,7 +52,7 @@ struct Job {
 /// A serial queue in front of a [`Task`]; an [`Adapter`] by itself.
 pub struct Worker {
     name: &'static str,
-    tx: mpsc::UnboundedSender<Job>,
+    tx: mpsc::Sender<Job>,
     /// One cancellation per verb, replaced after use, so cancelling speech leaves other verbs.
     cancels: Mutex<HashMap<Verb, Arc<Cancel>>>,
     status: Arc<Mutex<AdapterStatus>>,
@@ -54,7 +61,7 @@ pub struct Worker {
 impl Worker {
     /// Starts the worker task for `task`; `name` is the adapter's name.
     pub fn start<T: Task>(name: &'static str, task: T, life: &Lifecycle) -> Self {
-        let (tx, rx) = mpsc::unbounded_channel();
+        let (tx, rx) = mpsc::channel(WORKER_CAPACITY);
         let status = Arc::new(Mutex::new(AdapterStatus::default()));
         life.spawn(run_queue(
             task,
@@ -76,14 +83,26 @@ impl Worker {
             Arc::clone(cancels.entry(command.verb.clone()).or_default())
         };
         lock(&self.status).queued += 1;
-        if let Err(mpsc::error::SendError(job)) = self.tx.send(Job {
+        let job = Job {
             command,
             reply,
             cancel,
-        }) {
-            lock(&self.status).queued -= 1;
-            job.reply
-                .finish(Outcome::Cancelled("the server is shutting down".into()));
+        };
+        match self.tx.try_send(job) {
+            Ok(()) => {}
+            Err(mpsc::error::TrySendError::Full(job)) => {
+                lock(&self.status).queued -= 1;
+                let reason = format!(
+                    "the {} adapter already has {WORKER_CAPACITY} commands waiting",
+                    self.name
+                );
+                job.reply.finish(Outcome::Failed(reason));
+            }
+            Err(mpsc::error::TrySendError::Closed(job)) => {
+                lock(&self.status).queued -= 1;
+                job.reply
+                    .finish(Outcome::Cancelled("the server is shutting down".into()));
+            }
         }
     }
 
@@ -124,7 +143,7 @@ impl Adapter for Worker {
 
 async fn run_queue<T: Task>(
     task: T,
-    mut rx: mpsc::UnboundedReceiver<Job>,
+    mut rx: mpsc::Receiver<Job>,
     status: Arc<Mutex<AdapterStatus>>,
     shutdown: CancellationToken,
 ) {

@@ -6,6 +6,10 @@ use std::collections::BTreeMap;
 use std::fmt;
 use std::time::Duration;
 
+pub use crate::content::config_policy::{
+    Channel, ChannelPolicies, ChannelPolicy, MAX_PRIORITY, MAX_QUEUE_LIMIT, Priorities, WhenBusy,
+};
+
 /// Which adapter serves a verb. The route table is built from these, never from `match` arms
 /// spread over the code.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
@@ -122,6 +126,8 @@ pub struct KioskConfig {
     pub idle: Duration,
     /// Act triggered when the idle time runs out, if any (checked to exist at load time).
     pub idle_act: Option<String>,
+    /// Whether leaving a page cancels the speech that page started (`leave_page_stops_speech`).
+    pub leave_page_stops_speech: bool,
 }
 
 /// What the projector shows once a video has ended (`projector: after_video:`).
@@ -281,6 +287,10 @@ pub struct SiteConfig {
     pub operator: OperatorConfig,
     /// How the server itself is reached (trusted proxies).
     pub server: ServerSettings,
+    /// What each output channel does with a command that arrives while another runs.
+    pub channels: ChannelPolicies,
+    /// Each trigger source's priority.
+    pub priorities: Priorities,
 }
 
 impl Default for SiteConfig {
@@ -306,6 +316,7 @@ impl Default for SiteConfig {
             kiosk: KioskConfig {
                 idle: Duration::from_secs(120),
                 idle_act: None,
+                leave_page_stops_speech: true,
             },
             projector: ProjectorConfig {
                 after_video: AfterVideo::Black,
@@ -316,6 +327,8 @@ impl Default for SiteConfig {
             access: AccessSettings::default(),
             operator: OperatorConfig::default(),
             server: ServerSettings::default(),
+            channels: ChannelPolicies::default(),
+            priorities: Priorities::default(),
         }
     }
 }

@@ -13,6 +13,7 @@ use crate::content::model::{Located, Verb};
 
 mod access;
 pub(crate) mod operator;
+pub(crate) mod policy;
 mod reader;
 mod screens;
 pub(crate) mod server;
@@ -50,6 +51,8 @@ pub(crate) const TOP_KEYS: &[&str] = &[
     "access",
     "operator",
     "server",
+    "channels",
+    "priorities",
 ];
 const HOME_USAGE: &str = "`home` names the page under pages/ the kiosk starts on, e.g. \
                           `home: index.html`.";
@@ -111,6 +114,8 @@ fn positive(text: &str) -> Option<f64> {
 
 impl Reader {
     fn top_level(&mut self, root: &Node, out: &mut ConfigFile) {
+        // Read after the loop: a site command's channel needs `verbs:`, wherever it is written.
+        let mut channels = None;
         for (key, value) in self.entries(root, TOP_KEYS, "docent.yaml") {
             let config = &mut out.config;
             match key {
@@ -147,8 +152,13 @@ impl Reader {
                 "access" => self.access(value, &mut config.access),
                 "operator" => self.operator(value, out),
                 "server" => self.server(value, &mut config.server),
+                "channels" => channels = Some(value),
+                "priorities" => self.priorities(value, config),
                 _ => self.verbs(value, config),
             }
+        }
+        if let Some(channels) = channels {
+            self.channels(channels, &mut out.config);
         }
     }
 

@@ -7,7 +7,8 @@
 //! Map:
 //! - `args`: a command's argument as a typed value, parsed once at load.
 //! - `model`: the loaded data (acts, variants, commands, positions).
-//! - `config`: validated site settings; `config_file`: parsing `docent.yaml`.
+//! - `config`: validated site settings; `config_file`: parsing `docent.yaml`; `config_policy`:
+//!   channel policies and source priorities.
 //! - `contexts`: the context names a bundle uses, and misspelt variant keys.
 //! - `acts_file`: parsing one acts file, keeping every position.
 //! - `commands`: parsing and checking `VERB argument` strings, and the files they name.
@@ -39,6 +40,7 @@ pub mod schema;
 mod acts_file;
 mod commands;
 mod config_file;
+mod config_policy;
 mod contexts;
 mod duration;
 mod encoding;

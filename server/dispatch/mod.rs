@@ -4,25 +4,34 @@
 //!
 //! Resolution: the context (asked for, or the current one) picks a variant, falling back to
 //! `Text`; one alternative is chosen at random, never the same twice in a row; it becomes a
-//! `SAY` before the act's commands. Commands go to their adapters at once unless the act has a
-//! `WAIT` (then `sequence` paces them). An act with `DRIVE_STOP` preempts everything first; an
-//! interrupting trigger first clears speech.
+//! `SAY` before the act's commands. Commands go to their output channels at once unless the act
+//! has a `WAIT` (then `sequence` paces them); each channel (`channels`, `gate`) runs one command
+//! at a time and settles the others by its policy and the sources' priorities. An act with
+//! `DRIVE_STOP` preempts everything first; an interrupting trigger first clears speech of its
+//! priority or lower. A kiosk's tap on an act already speaking is refused; visitors may stop
+//! their own speech and leaving a page ends it (`visitors`).
 
+mod channels;
 mod choose;
+mod gate;
+#[cfg(test)]
+mod policy_tests;
 mod request;
 mod sequence;
+mod visitors;
 
 use std::collections::BTreeMap;
 use std::sync::atomic::{AtomicU64, Ordering};
-use std::sync::{Arc, Mutex};
+use std::sync::{Arc, Mutex, OnceLock};
 
 use arc_swap::ArcSwap;
-use tokio::sync::oneshot;
 use tokio_util::sync::CancellationToken;
 
+pub use gate::{Notifier, Speaking};
 pub use request::{ResolvedCommand, TriggerError, TriggerRequest, Triggered};
 
-use crate::adapters::{AdapterStatus, CancelScope, Command, Outcome, Reply, Router};
+use crate::adapters::{AdapterStatus, CancelScope, Command, Router};
+use crate::content::config::Channel;
 use crate::content::{Args, Bundle, DEFAULT_VARIANT, Verb, closest};
 use crate::events::{ActRef, EventKind, Hub, Source};
 use crate::lifecycle::Lifecycle;
@@ -41,8 +50,15 @@ pub struct Dispatcher {
     next_id: AtomicU64,
     /// Cancelled and replaced by every stop: sequences started before a stop end with it.
     epoch: Mutex<CancellationToken>,
-    /// Cancelled and replaced by every interrupting trigger: sequences drop unsent speech.
-    speech_epoch: Mutex<CancellationToken>,
+    /// One token per source priority, cancelled and replaced by every interrupting trigger of
+    /// that priority or higher: sequences drop their unsent speech.
+    speech_epochs: Mutex<BTreeMap<u8, CancellationToken>>,
+    /// Each output channel's running and waiting commands.
+    lanes: Mutex<channels::Lanes>,
+    /// Where clients learn about their commands.
+    notifier: OnceLock<Arc<dyn Notifier>>,
+    /// Since when visitors' speech is cut off (a visitor's stop, a page left).
+    visitor_cuts: Mutex<visitors::VisitorCuts>,
 }
 
 impl Dispatcher {
@@ -64,7 +80,10 @@ impl Dispatcher {
             context: Mutex::new(DEFAULT_VARIANT.to_owned()),
             next_id: AtomicU64::new(1),
             epoch: Mutex::new(epoch),
-            speech_epoch: Mutex::new(CancellationToken::new()),
+            speech_epochs: Mutex::default(),
+            lanes: Mutex::default(),
+            notifier: OnceLock::new(),
+            visitor_cuts: Mutex::default(),
         })
     }
 
@@ -100,6 +119,11 @@ impl Dispatcher {
     /// Triggers an act: resolves it, starts its commands, and says what was resolved.
     pub fn trigger(self: &Arc<Self>, req: TriggerRequest) -> Result<Triggered, TriggerError> {
         let bundle = self.bundle.load();
+        // A visitor tapping an act already speaking gets an answer, not the text twice.
+        if req.source == Source::Kiosk && self.speaking_act(&req.label) {
+            let label = req.label.clone();
+            return Err(self.refuse(&req, TriggerError::AlreadySpeaking { label }));
+        }
         let Some(&index) = bundle.index.get(&req.label) else {
             let suggestion = suggest(&req.label, bundle.labels());
             return Err(self.refuse(
@@ -169,8 +193,9 @@ impl Dispatcher {
     }
 
     fn start(self: &Arc<Self>, commands: Vec<Command>, act: &ActRef, interrupt: bool) {
+        let priority = self.priority(act.source);
         if interrupt {
-            self.interrupt_speech(&act.label);
+            self.interrupt_speech(act, priority);
         }
         let first_wait = commands.iter().position(|c| c.verb == Verb::Wait);
         let before_wait = &commands[..first_wait.unwrap_or(commands.len())];
@@ -179,20 +204,28 @@ impl Dispatcher {
             self.stop(act.source, &format!("DRIVE_STOP in act {}", act.label));
         }
         let stop = self.stop_token();
-        let speech = lock(&self.speech_epoch).clone();
+        let speech = lock(&self.speech_epochs)
+            .entry(priority)
+            .or_default()
+            .clone();
         Sequence::new(Arc::clone(self), stop, speech, first_wait.is_some()).start(commands);
     }
 
-    /// Clears queued and current speech, and speech that acts waiting at a `WAIT` would say.
-    fn interrupt_speech(&self, by: &str) {
-        let old = std::mem::replace(&mut *lock(&self.speech_epoch), CancellationToken::new());
-        old.cancel();
-        if let Some(speech) = self.router.adapter_for(&Verb::Say) {
-            speech.cancel(
-                CancelScope::Verb(&Verb::Say),
-                &format!("interrupted by act {by}"),
-            );
-        }
+    /// Clears queued and current speech of `priority` or lower, and such speech that acts
+    /// waiting at a `WAIT` would say: higher-priority speech is never interrupted.
+    fn interrupt_speech(self: &Arc<Self>, act: &ActRef, priority: u8) {
+        let old: Vec<CancellationToken> = {
+            let mut epochs = lock(&self.speech_epochs);
+            let higher = epochs.split_off(&(priority + 1));
+            std::mem::replace(&mut *epochs, higher)
+                .into_values()
+                .collect()
+        };
+        old.iter().for_each(CancellationToken::cancel);
+        let reason = format!("interrupted by act {}", act.label);
+        let trigger = act.trigger;
+        let lower = |c: &Command, p: u8| p <= priority && c.act.trigger != trigger;
+        self.cancel_where(Some(&Channel::Speech), lower, &reason);
     }
 
     /// The token the next sequences stop on.
@@ -205,27 +238,6 @@ impl Dispatcher {
         &self.life
     }
 
-    /// Hands one command to its adapter; `waiter` learns its outcome.
-    pub(crate) fn send(&self, command: Command, waiter: Option<oneshot::Sender<Outcome>>) {
-        let adapter = self.router.adapter_for(&command.verb);
-        self.hub.publish(EventKind::CommandSent {
-            command: command.id,
-            act: Arc::clone(&command.act),
-            verb: command.verb.to_string(),
-            arg: command.arg.as_deref().map(str::to_owned),
-            args: Arc::clone(&command.args),
-            adapter: adapter.map_or("none", |a| a.name()),
-        });
-        let reply = Reply::new(self.hub.clone(), command.clone(), waiter);
-        match adapter {
-            Some(adapter) => adapter.submit(command, reply),
-            None => reply.finish(Outcome::Failed(format!(
-                "no adapter serves {}",
-                command.verb
-            ))),
-        }
-    }
-
     /// Stops everything: sequences end, every queue is cleared, speech is killed and the drive
     /// stops.
     pub fn stop(&self, source: Source, reason: &str) {
@@ -235,6 +247,15 @@ impl Dispatcher {
             reason: reason.to_owned(),
         });
         old.cancel();
+        // Waiting commands first, so that none starts when the running ones end.
+        let waiting: Vec<channels::Waiting> = (lock(&self.lanes).values_mut())
+            .flat_map(|lane| lane.cancel_where(|_, _| true, reason).dropped)
+            .map(|(waiting, _)| waiting)
+            .collect();
+        for waiting in waiting {
+            let outcome = crate::adapters::Outcome::Cancelled(reason.to_owned());
+            self.report(waiting.command, waiting.waiter, outcome);
+        }
         for adapter in self.router.adapters() {
             adapter.cancel(CancelScope::All, reason);
         }
@@ -322,7 +343,7 @@ impl Dispatcher {
         }
     }
 
-    fn next_id(&self) -> u64 {
+    pub(crate) fn next_id(&self) -> u64 {
         self.next_id.fetch_add(1, Ordering::Relaxed)
     }
 }

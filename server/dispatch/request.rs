@@ -88,6 +88,12 @@ pub enum TriggerError {
         /// The closest existing context.
         suggestion: Option<String>,
     },
+    /// A touchscreen asked for an act whose speech is already running or waiting.
+    #[error("the act {label:?} is already being said or about to be; it is not repeated")]
+    AlreadySpeaking {
+        /// The act asked for.
+        label: String,
+    },
 }
 
 fn hint(suggestion: &Option<String>) -> String {
@@ -98,11 +104,12 @@ fn hint(suggestion: &Option<String>) -> String {
 }
 
 impl TriggerError {
-    /// The stable error code (`unknown-act`, `unknown-context`).
+    /// The stable error code (`unknown-act`, `unknown-context`, `already-speaking`).
     pub fn code(&self) -> &'static str {
         match self {
             TriggerError::UnknownAct { .. } => "unknown-act",
             TriggerError::UnknownContext { .. } => "unknown-context",
+            TriggerError::AlreadySpeaking { .. } => "already-speaking",
         }
     }
 
@@ -111,6 +118,7 @@ impl TriggerError {
         match self {
             TriggerError::UnknownAct { suggestion, .. }
             | TriggerError::UnknownContext { suggestion, .. } => suggestion.as_deref(),
+            TriggerError::AlreadySpeaking { .. } => None,
         }
     }
 }

@@ -1,8 +1,9 @@
 //! Sending an act's commands in order. Commands before the first `WAIT` go out at once, on the
 //! trigger's own path; the rest run in a task: `WAIT` alone waits until all of the act's
 //! earlier commands have ended, `WAIT 2s` pauses. A stop ends the sequence and reports its
-//! unsent commands as cancelled; so does a failed earlier command at a `WAIT` (the rest would
-//! act on a false premise, e.g. show an exhibit's page although the robot never drove there).
+//! unsent commands as cancelled; so does a failed earlier command at a `WAIT`, or a drive that
+//! another act's replaced (the rest would act on a false premise, e.g. show an exhibit's page
+//! although the robot never drove there).
 //! A `DRIVE_STOP` after a `WAIT` preempts everything when it is reached; an interrupting
 //! trigger drops the speech this sequence has not sent yet.
 
@@ -62,6 +63,11 @@ impl Sequence {
             let reason = "interrupted by a later act before it was said".to_owned();
             return self.drop_unsent(command, reason);
         }
+        if command.verb == Verb::Say
+            && let Some(reason) = self.dispatcher.visitor_cut_off(&command.act)
+        {
+            return self.drop_unsent(command, reason);
+        }
         match &mut self.outstanding {
             Some(outstanding) => {
                 let (tx, rx) = oneshot::channel();
@@ -73,7 +79,8 @@ impl Sequence {
     }
 
     fn drop_unsent(&self, command: Command, reason: String) {
-        Reply::new(self.dispatcher.hub().clone(), command, None).finish(Outcome::Cancelled(reason));
+        self.dispatcher
+            .report(command, None, Outcome::Cancelled(reason));
     }
 
     async fn run(mut self, first_wait: Command, mut rest: std::vec::IntoIter<Command>) {
@@ -93,6 +100,11 @@ impl Sequence {
                     }
                 }
                 Verb::DriveStop => {
+                    // What this act started before is stopped on purpose: a later WAIT does
+                    // not wait for it, nor take its cancellation for a failure.
+                    if let Some(outstanding) = &mut self.outstanding {
+                        outstanding.clear();
+                    }
                     let act = &command.act;
                     self.dispatcher
                         .stop(act.source, &format!("DRIVE_STOP in act {}", act.label));
@@ -146,41 +158,62 @@ impl Sequence {
         // A stop cancels the earlier commands too: it must win over "they all ended".
         let result = tokio::select! {
             biased;
-            () = self.stop.cancelled() => Err(Outcome::Cancelled("stopped".into())),
-            result = waited => result.map_err(Outcome::Failed),
+            () = self.stop.cancelled() => Err(None),
+            result = waited => result.map_err(Some),
         };
         match result {
             Ok(()) => {
                 reply.finish(Outcome::Done);
                 Ok(())
             }
-            Err(Outcome::Failed(why)) => {
-                reply.finish(Outcome::Failed(why.clone()));
+            Err(Some(outcome)) => {
+                let why = match &outcome {
+                    Outcome::Failed(why) | Outcome::Cancelled(why) => why.clone(),
+                    Outcome::Done => String::new(),
+                };
+                reply.finish(outcome);
                 Err(format!("not sent: {why}"))
             }
-            Err(outcome) => {
-                reply.finish(outcome);
+            Err(None) => {
+                reply.finish(Outcome::Cancelled("stopped".into()));
                 Err("stopped before it was sent".to_owned())
             }
         }
     }
 }
 
-/// Waits for every earlier command; the first that failed, in words.
-async fn first_failure(earlier: Vec<(String, oneshot::Receiver<Outcome>)>) -> Result<(), String> {
+/// The drive verbs whose cancellation ends the rest of their act at a `WAIT`.
+const DRIVES: [&str; 2] = ["SET_WAYPOINT", "DRIVE_START"];
+
+/// Waits for every earlier command; the first that failed, or a drive that was cancelled
+/// (replaced by another act's: the rest would act on a false premise), as the `WAIT`'s own
+/// outcome.
+async fn first_failure(earlier: Vec<(String, oneshot::Receiver<Outcome>)>) -> Result<(), Outcome> {
     let (verbs, outcomes): (Vec<String>, Vec<_>) = earlier.into_iter().unzip();
     let outcomes = join_all(outcomes).await;
     for (verb, outcome) in verbs.iter().zip(outcomes) {
         match outcome {
             // Speech cut short by an interrupting trigger still ended; a stop is seen
             // through the stop token.
-            Ok(Outcome::Done | Outcome::Cancelled(_)) => {}
-            Ok(Outcome::Failed(why)) => {
-                return Err(format!(
-                    "an earlier {verb} of this act did not succeed ({why})"
-                ));
+            Ok(Outcome::Done) => {}
+            // A drive cancelled by another act's (its channel replaces) leaves the robot
+            // elsewhere than this act expects; anything else cut short still ended.
+            Ok(Outcome::Cancelled(why)) if DRIVES.contains(&verb.as_str()) => {
+                return Err(Outcome::Cancelled(format!(
+                    "an earlier {verb} of this act was cancelled ({why})"
+                )));
             }
-            Err(_) => return Err(format!("an earlier {verb} of this act was lost")),
+            Ok(Outcome::Cancelled(_)) => {}
+            Ok(Outcome::Failed(why)) => {
+                return Err(Outcome::Failed(format!(
+                    "an earlier {verb} of this act did not succeed ({why})"
+                )));
+            }
+            Err(_) => {
+                return Err(Outcome::Failed(format!(
+                    "an earlier {verb} of this act was lost"
+                )));
+            }
         }
     }
     Ok(())

@@ -68,6 +68,7 @@ impl From<TriggerError> for AppError {
         let status = match e {
             TriggerError::UnknownAct { .. } => StatusCode::NOT_FOUND,
             TriggerError::UnknownContext { .. } => StatusCode::BAD_REQUEST,
+            TriggerError::AlreadySpeaking { .. } => StatusCode::CONFLICT,
         };
         AppError {
             status,

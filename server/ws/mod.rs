@@ -7,11 +7,13 @@
 //! `hello` (credentials, welcome, feeds), `triggers` (trigger, stop, context, page; the kiosk
 //! rules), `initiative` (proposals and corpus marks) and `signal` (WebRTC signalling relay).
 //! `violation` maps a broken websocket frame to its RFC 6455 close code.
+//! `notices` tells a client what became of its commands and kiosks who is speaking.
 
 mod connection;
 mod diagnose;
 mod hello;
 mod initiative;
+mod notices;
 pub mod outbox;
 pub mod protocol;
 mod signal;
@@ -20,3 +22,4 @@ mod violation;
 mod writer;
 
 pub use connection::ws_upgrade;
+pub use notices::ClientNotices;

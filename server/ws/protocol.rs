@@ -6,7 +6,7 @@ use serde::{Deserialize, Serialize};
 use crate::adapters::{Command, Display, Pose};
 use crate::content::Args;
 use crate::dispatch::ResolvedCommand;
-use crate::events::{ClientRole, Event};
+use crate::events::{ClientRole, Event, Source};
 use crate::reload::ReloadView;
 
 /// The protocol version sent in `welcome`. 4: `command` frames carry the parsed `args`.
@@ -245,6 +245,22 @@ enum ServerFrame<'a> {
         pages: &'a [&'a str],
         shell: bool,
     },
+    Outcome {
+        command: u64,
+        trigger: u64,
+        #[serde(rename = "ref")]
+        reference: Option<&'a str>,
+        label: &'a str,
+        verb: &'a str,
+        outcome: NotCarriedOut,
+        reason: &'a str,
+    },
+    Speaking {
+        speaking: bool,
+        source: Option<Source>,
+        client: Option<u64>,
+        stoppable: bool,
+    },
     Error {
         code: &'a str,
         message: &'a str,
@@ -252,6 +268,16 @@ enum ServerFrame<'a> {
         reference: Option<&'a str>,
         suggestion: Option<&'a str>,
     },
+}
+
+/// How a command ended without being carried out, in an `outcome` frame.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize)]
+#[serde(rename_all = "lowercase")]
+pub enum NotCarriedOut {
+    /// Dropped, replaced, interrupted or stopped.
+    Cancelled,
+    /// The device could not carry it out.
+    Failed,
 }
 
 fn encode(frame: &ServerFrame<'_>) -> String {
@@ -370,6 +396,30 @@ pub fn error_frame(
         message,
         reference,
         suggestion,
+    })
+}
+
+/// `outcome`: a command the client triggered ended without being carried out, and why.
+pub fn outcome_frame(c: &Command, outcome: NotCarriedOut, reason: &str) -> String {
+    encode(&ServerFrame::Outcome {
+        command: c.id,
+        trigger: c.act.trigger,
+        reference: c.act.reference.as_deref(),
+        label: &c.act.label,
+        verb: c.verb.as_str(),
+        outcome,
+        reason,
+    })
+}
+
+/// `speaking`: speech started (who asked for it; `stoppable` when visitors started it and may
+/// stop it) or stopped.
+pub fn speaking_frame(now: Option<crate::dispatch::Speaking>) -> String {
+    encode(&ServerFrame::Speaking {
+        speaking: now.is_some(),
+        source: now.map(|n| n.source),
+        client: now.and_then(|n| n.client),
+        stoppable: now.is_some_and(|n| n.source == Source::Kiosk),
     })
 }
 

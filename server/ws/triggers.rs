@@ -1,5 +1,6 @@
 //! Triggering and controlling: `trigger` (kiosks, operators, dialog managers), `stop` and
-//! `context` (operators, dialog managers) and `page` (kiosks). A kiosk is a visitor's
+//! `context` (operators, dialog managers; a kiosk's `stop` ends only visitors' speech) and
+//! `page` (kiosks; leaving a page ends the speech that kiosk started). A kiosk is a visitor's
 //! touchscreen: it may trigger only the acts the bundle's pages offer (and the idle act), at
 //! the rate its address is allowed ([`Access::kiosk_allowance`](crate::access::Access)); every
 //! refusal is an `error` frame and a `trigger.refused` event, except that a run of
@@ -105,6 +106,11 @@ impl Session {
     }
 
     pub(super) fn stop(&self, reference: Option<String>) {
+        // A visitor may stop the speech visitors started, never anyone else's.
+        if self.role == Some(ClientRole::Kiosk) {
+            self.state.dispatcher.stop_visitor_speech(self.client);
+            return self.send(stopped_frame(reference.as_deref()));
+        }
         let Some(role) = self.allowed(&CONTROL_ROLES, reference.as_deref()) else {
             return;
         };
@@ -133,6 +139,8 @@ impl Session {
         if self.allowed(&[ClientRole::Kiosk], None).is_none() {
             return;
         }
+        // Before the allowance: leaving a page ends its speech even for a hasty visitor.
+        self.state.dispatcher.page_left(self.client, &page);
         if let Err((code, message)) = self.kiosk_allowance() {
             return self.reply_error(code, &message, None, None);
         }

@@ -10,6 +10,8 @@ use crate::content::model::Located;
 
 use super::Reader;
 
+/// The keys of `kiosk:`.
+pub(crate) const KIOSK_KEYS: &[&str] = &["idle", "idle_act", "leave_page_stops_speech"];
 const IDLE_USAGE: &str = "`idle` is how long the touchscreen waits without a touch before it \
                           returns to the home page: a length of time with its unit, e.g. \
                           `idle: 2m` or `idle: 90s`; `idle: 0s` turns it off.";
@@ -27,7 +29,14 @@ impl Reader {
         config: &mut SiteConfig,
     ) -> Option<Located<String>> {
         let mut idle_act = None;
-        for (key, value) in self.entries(node, &["idle", "idle_act"], "kiosk") {
+        for (key, value) in self.entries(node, KIOSK_KEYS, "kiosk") {
+            if key == "leave_page_stops_speech" {
+                let options = [("true", true), ("false", false)];
+                if let Some(stops) = self.choice(value, "`leave_page_stops_speech`", &options) {
+                    config.kiosk.leave_page_stops_speech = stops;
+                }
+                continue;
+            }
             if key == "idle" {
                 if let Some(idle) = self.setting(value, IDLE_USAGE, parse_duration) {
                     config.kiosk.idle = idle;

@@ -4,9 +4,10 @@
 use serde_json::{Value, json};
 
 use super::{DRAFT, VARIANT_KEY_PATTERN, any_case, choice, duration, section, words};
-use crate::content::config::Credential;
+use crate::content::config::{Channel, Credential, MAX_PRIORITY, MAX_QUEUE_LIMIT};
 use crate::content::config_file::TOP_KEYS;
 use crate::content::config_file::operator::{KEYS as OPERATOR_KEYS, MAP_FORMATS, VISITOR_GROUPS};
+use crate::content::config_file::policy::{CHANNEL_KEYS, PRIORITY_KEYS};
 use crate::content::config_file::server::KEYS as SERVER_KEYS;
 use crate::content::model::Verb;
 
@@ -17,7 +18,7 @@ const DISPLAY_KEYS: &[&str] = &["adapter"];
 const DRIVE_KEYS: &[&str] = &["adapter", "speed", "pose_rate", "bounds"];
 const BOUNDS_KEYS: &[&str] = &["min_x", "min_y", "max_x", "max_y"];
 const ADAPTERS_KEYS: &[&str] = &["timeout"];
-const KIOSK_KEYS: &[&str] = &["idle", "idle_act"];
+const KIOSK_KEYS: &[&str] = &["idle", "idle_act", "leave_page_stops_speech"];
 const PROJECTOR_KEYS: &[&str] = &["after_video", "highlight_edge"];
 const ACCESS_KEYS: &[&str] = &["operator_token", "dm_token"];
 const SITE_VERB_KEYS: &[&str] = &["adapter", "argument", "description"];
@@ -88,6 +89,23 @@ fn top_level(key: &str) -> Value {
         ),
         "operator" => section(OPERATOR_KEYS, operator, "What the operator console shows."),
         "server" => section(SERVER_KEYS, server, "How Docent itself is reached."),
+        "channels" => channels(),
+        "priorities" => section(
+            PRIORITY_KEYS,
+            |source| {
+                json!({
+                    "type": "integer",
+                    "minimum": 1,
+                    "maximum": MAX_PRIORITY,
+                    "description": format!(
+                        "The priority of `{source}` triggers, 1 (lowest) to {MAX_PRIORITY}: a \
+                         lower priority never interrupts a higher one."
+                    ),
+                })
+            },
+            "Which trigger source wins when several ask for the same channel (defaults: \
+             operator 3, http 3, dm 2, kiosk 1).",
+        ),
         // A key added to the loader without a schema here fails the tests (no description).
         _ => json!({}),
     }
@@ -169,8 +187,50 @@ fn kiosk(key: &str) -> Value {
             "description": "The label of the act to trigger when the touchscreen goes idle, \
                             e.g. `INVITE`.",
         }),
+        "leave_page_stops_speech" => json!({
+            "type": "boolean",
+            "description": "Whether leaving a page stops the speech that page started (true \
+                            unless set).",
+        }),
         _ => json!({}),
     }
+}
+
+fn channels() -> Value {
+    let policy = section(
+        CHANNEL_KEYS,
+        |key| match key {
+            "when_busy" => choice(
+                &["queue", "replace", "drop"],
+                "What a command arriving while another of the same priority runs does: \
+                 `queue` (waits its turn), `replace` (stops what runs) or `drop` (is not \
+                 carried out).",
+            ),
+            "queue_limit" => json!({
+                "type": "integer",
+                "minimum": 1,
+                "maximum": MAX_QUEUE_LIMIT,
+                "description": format!(
+                    "How many commands may wait on this channel, 1 to {MAX_QUEUE_LIMIT}."
+                ),
+            }),
+            _ => json!({}),
+        },
+        "One output channel's policy.",
+    );
+    json!({
+        "type": ["object", "null"],
+        "description": format!(
+            "What each output channel ({} or a command under `verbs`) does with a command \
+             that arrives while another runs.",
+            Channel::BUILT_IN.join(", ")
+        ),
+        "propertyNames": {
+            "pattern": format!("^({}|[A-Z][A-Z0-9_]*)$", Channel::BUILT_IN.join("|")),
+            "description": "A built-in channel or a site command's name.",
+        },
+        "additionalProperties": policy,
+    })
 }
 
 fn projector(key: &str) -> Value {
@@ -384,6 +444,8 @@ mod tests {
                 &["operator", "visitor_groups"],
             ),
             (&["verbs", "LIGHTS"], &["verbs", "*"]),
+            (&["channels", "speech"], &["channels", "*"]),
+            (&["priorities"], &["priorities"]),
         ] {
             assert_eq!(
                 schema_keys(&schema, path),

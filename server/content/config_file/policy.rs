@@ -1,0 +1,180 @@
+//! The `channels:` and `priorities:` sections of `docent.yaml`: what each output channel does
+//! with a command that arrives while another runs, and which trigger source wins. Read after
+//! `verbs:`, so a site verb's channel can be checked to exist wherever it is written.
+
+use crate::content::acts_file::yaml::{Kind, Node};
+use crate::content::config::{
+    Channel, ChannelPolicy, MAX_PRIORITY, MAX_QUEUE_LIMIT, SiteConfig, WhenBusy,
+};
+use crate::content::suggest::did_you_mean;
+
+use super::Reader;
+
+/// The keys of one channel's policy.
+pub(crate) const CHANNEL_KEYS: &[&str] = &["when_busy", "queue_limit"];
+/// The trigger sources `priorities:` names.
+pub(crate) const PRIORITY_KEYS: &[&str] = &["operator", "http", "dm", "kiosk"];
+
+const CHANNELS_USAGE: &str = "`channels` gives output channels a policy by name: `speech`, \
+                              `touchscreen`, `projector`, `drive` or a command declared under \
+                              `verbs`, e.g. `channels: { speech: { when_busy: replace } }`.";
+const QUEUE_LIMIT_USAGE: &str = "`queue_limit` is how many commands may wait on this channel: \
+                                 a whole number from 1 to 20, e.g. `queue_limit: 2`.";
+const PRIORITY_USAGE: &str = "A priority is a whole number from 1 (lowest) to 9, e.g. \
+                              `kiosk: 1`; a higher one is never interrupted by a lower one.";
+
+impl Reader {
+    /// Reads `channels:`; site verbs must already be in `config.verbs`.
+    pub(super) fn channels(&mut self, node: &Node, config: &mut SiteConfig) {
+        let entries = match &node.kind {
+            Kind::Map(entries) => entries,
+            Kind::Null => return,
+            _ => return self.bad(node, CHANNELS_USAGE),
+        };
+        let mut seen: Vec<&str> = Vec::new();
+        for (key, value) in entries {
+            let name = key.as_text().unwrap_or_default();
+            if seen.contains(&name) {
+                self.bad(key, "This channel is given a policy twice here; keep one.");
+                continue;
+            }
+            seen.push(name);
+            let known_site = config.verbs.contains_key(name);
+            let start = match config.channels.built_in_mut(name) {
+                Some(policy) => *policy,
+                None if known_site => config.channels.of(&Channel::Site(name.to_owned())),
+                None => {
+                    let names = Channel::BUILT_IN
+                        .iter()
+                        .copied()
+                        .chain(config.verbs.keys().map(String::as_str));
+                    let hint = did_you_mean(name, names);
+                    let message = format!(
+                        "There is no output channel `{name}`.{hint} {CHANNELS_USAGE} A site \
+                         command's channel is named like the command, which must be declared \
+                         under `verbs`."
+                    );
+                    self.bad(key, &message);
+                    continue;
+                }
+            };
+            let policy = self.channel_policy(value, start);
+            match config.channels.built_in_mut(name) {
+                Some(slot) => *slot = policy,
+                None => {
+                    config.channels.site.insert(name.to_owned(), policy);
+                }
+            }
+        }
+    }
+
+    fn channel_policy(&mut self, node: &Node, mut policy: ChannelPolicy) -> ChannelPolicy {
+        for (key, value) in self.entries(node, CHANNEL_KEYS, "the channel") {
+            if key == "when_busy" {
+                let options = [
+                    ("queue", WhenBusy::Queue),
+                    ("replace", WhenBusy::Replace),
+                    ("drop", WhenBusy::Drop),
+                ];
+                if let Some(when) = self.choice(value, "channel's `when_busy`", &options) {
+                    policy.when_busy = when;
+                }
+                continue;
+            }
+            let parse =
+                |t: &str| (t.parse::<usize>().ok()).filter(|n| (1..=MAX_QUEUE_LIMIT).contains(n));
+            if let Some(limit) = self.setting(value, QUEUE_LIMIT_USAGE, parse) {
+                policy.queue_limit = limit;
+            }
+        }
+        policy
+    }
+
+    /// Reads `priorities:`.
+    pub(super) fn priorities(&mut self, node: &Node, config: &mut SiteConfig) {
+        for (key, value) in self.entries(node, PRIORITY_KEYS, "priorities") {
+            let parse = |t: &str| {
+                t.parse::<u8>()
+                    .ok()
+                    .filter(|p| (1..=MAX_PRIORITY).contains(p))
+            };
+            if let Some(priority) = self.setting(value, PRIORITY_USAGE, parse)
+                && let Some(slot) = config.priorities.by_name_mut(key)
+            {
+                *slot = priority;
+            }
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use std::sync::Arc;
+
+    use crate::content::config::{Channel, ChannelPolicy, Priorities, WhenBusy};
+    use crate::content::config_file::{ConfigFile, parse_config};
+
+    fn parse(text: &str) -> ConfigFile {
+        parse_config(&Arc::from("docent.yaml"), text.as_bytes())
+    }
+
+    fn problems(text: &str) -> Vec<(&'static str, u32, u32, String)> {
+        let file = parse(text);
+        let d = file.diagnostics.iter();
+        d.map(|d| (d.code, d.line, d.column, d.message.clone()))
+            .collect()
+    }
+
+    #[test]
+    fn channel_policies_and_priorities_are_read() {
+        let file = parse(
+            "channels:\n  speech: { when_busy: replace }\n  LIGHTS: { when_busy: drop }\n  \
+             drive: { when_busy: queue, queue_limit: 3 }\npriorities: { kiosk: 2, dm: 5 }\n\
+             verbs:\n  LIGHTS: { adapter: log }\n",
+        );
+        assert!(file.diagnostics.is_empty(), "{:?}", file.diagnostics);
+        let channels = &file.config.channels;
+        assert_eq!(channels.speech.when_busy, WhenBusy::Replace);
+        assert_eq!(channels.drive, ChannelPolicy::queue(3));
+        let lights = channels.of(&Channel::Site("LIGHTS".into()));
+        assert_eq!(lights.when_busy, WhenBusy::Drop);
+        let expected = Priorities {
+            kiosk: 2,
+            dm: 5,
+            ..Priorities::default()
+        };
+        assert_eq!(file.config.priorities, expected);
+    }
+
+    #[test]
+    fn an_unknown_channel_is_located_with_a_suggestion() {
+        let found = problems("channels:\n  speach: { when_busy: drop }\n");
+        assert_eq!(found.len(), 1, "{found:?}");
+        let (code, line, col, message) = &found[0];
+        assert_eq!((*code, *line, *col), ("config-bad-value", 2, 3));
+        assert!(message.contains("`speech`"), "{message}");
+    }
+
+    #[test]
+    fn bad_policies_and_priorities_are_located_and_defaults_kept() {
+        let text = "channels:\n  speech: { when_busy: shout, queue_limit: 500 }\n\
+                    priorities: { kiosk: 0, robot: 3 }\n";
+        let found: Vec<(&str, u32, u32)> = problems(text)
+            .into_iter()
+            .map(|(code, line, col, _)| (code, line, col))
+            .collect();
+        assert_eq!(
+            found,
+            // `channels:` is read last, after `verbs:`.
+            [
+                ("config-unknown-key", 3, 25),
+                ("config-bad-value", 3, 22),
+                ("config-bad-value", 2, 24),
+                ("config-bad-value", 2, 44),
+            ]
+        );
+        let file = parse(text);
+        assert_eq!(file.config.channels.speech, ChannelPolicy::queue(2));
+        assert_eq!(file.config.priorities, Priorities::default());
+    }
+}

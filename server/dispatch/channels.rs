@@ -1,0 +1,348 @@
+//! Who speaks when: each output channel (speech, touchscreen, projector, drive, each site
+//! verb) carries out one command at a time. A command arriving while another runs is decided
+//! here, by the channel's policy (`queue`, `replace`, `drop`) and the sources' priorities:
+//!
+//! - an act's own commands always wait their turn behind each other (they were written in
+//!   order);
+//! - a higher priority takes the channel over: what runs is cancelled, lower-priority waiting
+//!   commands are cancelled, and the new command runs next;
+//! - an equal priority follows the channel's policy;
+//! - a lower priority never interrupts: it waits (queue policy) or is cancelled.
+//!
+//! Every queue is bounded by its `queue_limit`; whatever is pushed out, refused or cancelled is
+//! handed back with a reason, for the dispatcher to report as `command.cancelled`. This file
+//! decides only; the dispatcher acts (submits, cancels, reports) outside the lock.
+
+use std::collections::{HashMap, VecDeque};
+
+use tokio::sync::oneshot;
+
+use crate::adapters::{Command, Outcome};
+use crate::content::Verb;
+use crate::content::config::{Channel, ChannelPolicy, WhenBusy};
+use crate::events::Source;
+
+/// A command that has not reached its adapter yet.
+pub(crate) struct Waiting {
+    /// The command.
+    pub command: Command,
+    /// Who learns its outcome (a `WAIT` of its act).
+    pub waiter: Option<oneshot::Sender<Outcome>>,
+    /// Its source's priority.
+    pub priority: u8,
+}
+
+/// What to do after a command arrived or ended.
+#[derive(Default)]
+pub(crate) struct Decision {
+    /// Hand this one to its adapter now.
+    pub run: Option<Waiting>,
+    /// Cancel the running command (its verb) for this reason.
+    pub cancel_running: Option<(Verb, String)>,
+    /// These never run: report them cancelled, each with its reason.
+    pub dropped: Vec<(Waiting, String)>,
+}
+
+struct Running {
+    command: Command,
+    priority: u8,
+}
+
+/// One channel: what runs and what waits, highest priority first, then in arrival order.
+#[derive(Default)]
+pub(crate) struct Lane {
+    running: Option<Running>,
+    waiting: VecDeque<Waiting>,
+}
+
+impl Lane {
+    /// Decides what `new` does on `channel` under `policy`.
+    pub fn admit(&mut self, new: Waiting, channel: &Channel, policy: ChannelPolicy) -> Decision {
+        let mut decision = Decision::default();
+        let Some((running, theirs)) =
+            (self.running.as_ref()).map(|r| (r.command.clone(), r.priority))
+        else {
+            self.running = Some(Running {
+                command: new.command.clone(),
+                priority: new.priority,
+            });
+            decision.run = Some(new);
+            return decision;
+        };
+        let trigger = new.command.act.trigger;
+        let own_act = running.act.trigger == trigger
+            || self
+                .waiting
+                .iter()
+                .any(|w| w.command.act.trigger == trigger);
+        if own_act {
+            self.insert(new);
+            return decision;
+        }
+        let mine = new.priority;
+        let asker = who(new.command.act.source);
+        if mine > theirs {
+            let reason = format!("{asker} took over the {channel}");
+            decision.dropped = self.drain(|w| w.priority < mine, &reason);
+            decision.cancel_running = Some((running.verb.clone(), reason));
+            self.insert(new);
+            return decision;
+        }
+        let busy = format!(
+            "the {channel} was busy with {} ({}), so this was not carried out (its policy: {})",
+            running.describe(),
+            who(running.act.source),
+            policy.when_busy.as_str(),
+        );
+        match (policy.when_busy, mine == theirs) {
+            (WhenBusy::Replace, true) => {
+                let label = &new.command.act.label;
+                let reason = format!("replaced by act {label} from {asker}");
+                decision.dropped = self.drain(|w| w.priority <= mine, &reason);
+                decision.cancel_running = Some((running.verb.clone(), reason));
+                self.insert(new);
+            }
+            (WhenBusy::Queue, _) => self.enqueue(new, channel, policy.queue_limit, &mut decision),
+            _ => decision.dropped.push((new, busy)),
+        }
+        decision
+    }
+
+    /// Queues `new` within `limit`: a full queue pushes out its last command if that one has a
+    /// lower priority, and refuses `new` otherwise.
+    fn enqueue(&mut self, new: Waiting, channel: &Channel, limit: usize, out: &mut Decision) {
+        if self.waiting.len() >= limit {
+            let last_lower = self
+                .waiting
+                .back()
+                .is_some_and(|w| w.priority < new.priority);
+            if !last_lower {
+                let reason = format!(
+                    "the {channel} queue was full ({limit} waiting), so this was not carried out"
+                );
+                out.dropped.push((new, reason));
+                return;
+            }
+            if let Some(last) = self.waiting.pop_back() {
+                let reason = format!(
+                    "pushed out of the full {channel} queue by a command from {}",
+                    who(new.command.act.source)
+                );
+                out.dropped.push((last, reason));
+            }
+        }
+        self.insert(new);
+    }
+
+    /// Inserts behind everything of its priority or higher.
+    fn insert(&mut self, new: Waiting) {
+        let at = (self.waiting.iter())
+            .position(|w| w.priority < new.priority)
+            .unwrap_or(self.waiting.len());
+        self.waiting.insert(at, new);
+    }
+
+    fn drain(&mut self, pred: impl Fn(&Waiting) -> bool, reason: &str) -> Vec<(Waiting, String)> {
+        let (gone, kept): (VecDeque<_>, VecDeque<_>) = std::mem::take(&mut self.waiting)
+            .into_iter()
+            .partition(pred);
+        self.waiting = kept;
+        gone.into_iter().map(|w| (w, reason.to_owned())).collect()
+    }
+
+    /// Command `id` ended: the next waiting one runs.
+    pub fn finished(&mut self, id: u64) -> Option<Waiting> {
+        if self.running.as_ref().is_none_or(|r| r.command.id != id) {
+            return None;
+        }
+        self.running = None;
+        let next = self.waiting.pop_front()?;
+        self.running = Some(Running {
+            command: next.command.clone(),
+            priority: next.priority,
+        });
+        Some(next)
+    }
+
+    /// Cancels the commands `pred` selects, running or waiting.
+    pub fn cancel_where(&mut self, pred: impl Fn(&Command, u8) -> bool, reason: &str) -> Decision {
+        let mut decision = Decision {
+            dropped: self.drain(|w| pred(&w.command, w.priority), reason),
+            ..Decision::default()
+        };
+        if let Some(running) = &self.running
+            && pred(&running.command, running.priority)
+        {
+            decision.cancel_running = Some((running.command.verb.clone(), reason.to_owned()));
+        }
+        decision
+    }
+
+    /// Whether a command `pred` selects is running or waiting here.
+    pub fn holds(&self, pred: impl Fn(&Command) -> bool) -> bool {
+        self.running.as_ref().is_some_and(|r| pred(&r.command))
+            || self.waiting.iter().any(|w| pred(&w.command))
+    }
+
+    /// The running command.
+    pub fn running(&self) -> Option<&Command> {
+        self.running.as_ref().map(|r| &r.command)
+    }
+
+    /// How many commands wait.
+    #[cfg(test)]
+    pub fn waiting(&self) -> usize {
+        self.waiting.len()
+    }
+}
+
+/// Every channel's lane.
+pub(crate) type Lanes = HashMap<Channel, Lane>;
+
+/// A source in words, for reasons people read.
+pub(crate) fn who(source: Source) -> &'static str {
+    match source {
+        Source::Operator => "the operator",
+        Source::Dm => "the dialog manager",
+        Source::Kiosk => "the touchscreen",
+        Source::Http => "the HTTP API",
+        Source::Projector => "the projector",
+        Source::Adapter => "an adapter",
+        Source::Server => "Docent",
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use std::sync::Arc;
+
+    use super::*;
+    use crate::content::Args;
+    use crate::events::ActRef;
+
+    fn say(id: u64, trigger: u64, source: Source, priority: u8) -> Waiting {
+        let act = ActRef {
+            trigger,
+            source,
+            client: None,
+            reference: None,
+            label: format!("ACT{trigger}").into(),
+            at: "acts.yaml:1".into(),
+        };
+        let command = Command {
+            id,
+            act: Arc::new(act),
+            verb: Verb::Say,
+            arg: Some("Hello".into()),
+            args: Arc::new(Args::Say {
+                text: "Hello".into(),
+            }),
+        };
+        Waiting {
+            command,
+            waiter: None,
+            priority,
+        }
+    }
+
+    fn ids(d: &Decision) -> (Option<u64>, bool, Vec<u64>) {
+        (
+            d.run.as_ref().map(|w| w.command.id),
+            d.cancel_running.is_some(),
+            d.dropped.iter().map(|(w, _)| w.command.id).collect(),
+        )
+    }
+
+    #[test]
+    fn a_queue_is_bounded_and_refuses_what_does_not_fit() {
+        let mut lane = Lane::default();
+        let policy = ChannelPolicy::queue(2);
+        let ch = Channel::Speech;
+        assert_eq!(
+            ids(&lane.admit(say(1, 1, Source::Kiosk, 1), &ch, policy)).0,
+            Some(1)
+        );
+        for n in 2..=3 {
+            let d = lane.admit(say(n, n, Source::Kiosk, 1), &ch, policy);
+            assert_eq!(ids(&d), (None, false, vec![]));
+        }
+        let d = lane.admit(say(4, 4, Source::Kiosk, 1), &ch, policy);
+        assert_eq!(ids(&d), (None, false, vec![4]));
+        assert!(
+            d.dropped[0].1.contains("queue was full (2 waiting)"),
+            "{}",
+            d.dropped[0].1
+        );
+        assert_eq!(lane.waiting(), 2);
+        assert_eq!(lane.finished(1).map(|w| w.command.id), Some(2));
+        assert_eq!(lane.finished(2).map(|w| w.command.id), Some(3));
+        assert!(lane.finished(3).is_none());
+        assert!(lane.running().is_none());
+    }
+
+    #[test]
+    fn a_lower_priority_never_interrupts_a_higher_one() {
+        for policy in [ChannelPolicy::replace(), ChannelPolicy::queue(1)] {
+            let mut lane = Lane::default();
+            let ch = Channel::Speech;
+            lane.admit(say(1, 1, Source::Operator, 3), &ch, policy);
+            let d = lane.admit(say(2, 2, Source::Kiosk, 1), &ch, policy);
+            assert!(d.cancel_running.is_none(), "{policy:?}");
+            assert_eq!(lane.running().map(|c| c.id), Some(1));
+        }
+    }
+
+    #[test]
+    fn a_higher_priority_takes_over_and_clears_lower_waiting_work() {
+        let mut lane = Lane::default();
+        let (ch, policy) = (Channel::Speech, ChannelPolicy::queue(2));
+        lane.admit(say(1, 1, Source::Kiosk, 1), &ch, policy);
+        lane.admit(say(2, 2, Source::Kiosk, 1), &ch, policy);
+        let d = lane.admit(say(3, 3, Source::Operator, 3), &ch, policy);
+        assert_eq!(ids(&d), (None, true, vec![2]));
+        assert!(d.dropped[0].1.contains("the operator took over the speech"));
+        assert_eq!(lane.finished(1).map(|w| w.command.id), Some(3));
+    }
+
+    #[test]
+    fn replace_cancels_equal_priority_work_and_drop_refuses_the_newcomer() {
+        let ch = Channel::Projector;
+        let mut lane = Lane::default();
+        lane.admit(say(1, 1, Source::Dm, 2), &ch, ChannelPolicy::replace());
+        let d = lane.admit(say(2, 2, Source::Dm, 2), &ch, ChannelPolicy::replace());
+        assert_eq!(ids(&d), (None, true, vec![]));
+        assert_eq!(lane.finished(1).map(|w| w.command.id), Some(2));
+        let drop = ChannelPolicy {
+            when_busy: WhenBusy::Drop,
+            queue_limit: 2,
+        };
+        let d = lane.admit(say(3, 3, Source::Dm, 2), &ch, drop);
+        assert_eq!(ids(&d), (None, false, vec![3]));
+        assert!(
+            d.dropped[0].1.contains("busy with SAY Hello"),
+            "{}",
+            d.dropped[0].1
+        );
+    }
+
+    #[test]
+    fn an_acts_own_commands_wait_for_each_other_whatever_the_policy() {
+        let mut lane = Lane::default();
+        let ch = Channel::Drive;
+        lane.admit(say(1, 7, Source::Kiosk, 1), &ch, ChannelPolicy::replace());
+        let d = lane.admit(say(2, 7, Source::Kiosk, 1), &ch, ChannelPolicy::replace());
+        assert_eq!(ids(&d), (None, false, vec![]));
+        assert_eq!(lane.finished(1).map(|w| w.command.id), Some(2));
+    }
+
+    #[test]
+    fn a_full_queue_gives_way_to_a_higher_priority() {
+        let mut lane = Lane::default();
+        let (ch, policy) = (Channel::Speech, ChannelPolicy::queue(1));
+        lane.admit(say(1, 1, Source::Operator, 3), &ch, policy);
+        lane.admit(say(2, 2, Source::Kiosk, 1), &ch, policy);
+        let d = lane.admit(say(3, 3, Source::Dm, 2), &ch, policy);
+        assert_eq!(ids(&d), (None, false, vec![2]));
+        assert_eq!(lane.finished(1).map(|w| w.command.id), Some(3));
+    }
+}

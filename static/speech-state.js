@@ -1,0 +1,59 @@
+// speech-state.js: what the kiosk shell shows of the robot's speech. While it speaks, the
+// shell's <body> and the shown page's <html> carry `data-docent-speaking` with who asked for
+// it (`kiosk` for visitors, `operator`, `dm`, `http`), so a bundle page can style itself; the
+// "Stop speaking" button shows only while visitors' own speech runs (Docent refuses a kiosk's
+// stop for anyone else's). A tap on an act already speaking, or a visitor's speech that will
+// not be said (`outcome` frames), is answered with a short notice: never silently ignored.
+
+const NOTICE_MS = 3_000;
+
+/** The state of one shell: `button` and `notice` are its elements, `stop()` asks Docent. */
+export function speechState({ button, notice, stop }) {
+  let speaking = null; // the `speaking` frame in force, or null
+  let noticeTimer = null;
+
+  function mark(element) {
+    if (!element) return;
+    if (speaking) element.dataset.docentSpeaking = speaking.source ?? "robot";
+    else delete element.dataset.docentSpeaking;
+  }
+
+  function markPage(frame) {
+    try {
+      mark(frame?.contentDocument?.documentElement);
+    } catch {
+      // a page of another origin (the friendly offline copy) cannot be marked
+    }
+  }
+
+  function say(text) {
+    if (!notice) return;
+    notice.textContent = text;
+    notice.hidden = false;
+    clearTimeout(noticeTimer);
+    noticeTimer = setTimeout(() => {
+      notice.hidden = true;
+    }, NOTICE_MS);
+  }
+
+  button?.addEventListener("click", () => stop());
+
+  return {
+    markPage,
+    /** Takes a server frame; `shown` is the frame on show. */
+    onFrame(frame, shown) {
+      if (frame.type === "speaking") {
+        speaking = frame.speaking ? frame : null;
+        mark(document.body);
+        markPage(shown);
+        if (button) button.hidden = !(speaking && speaking.stoppable);
+      } else if (frame.type === "error" && frame.code === "already-speaking") {
+        say("Already speaking about this.");
+      } else if (frame.type === "outcome" && frame.verb === "SAY" && !/visitor/.test(frame.reason ?? "")) {
+        // Speech a visitor asked for that will not come (a full queue, the operator took over);
+        // what the visitor ended themselves (stop, leaving the page) needs no word.
+        say("The robot cannot say this now.");
+      }
+    },
+  };
+}
