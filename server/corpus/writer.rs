@@ -1,0 +1,181 @@
+//! The writer thread's loop: group commit. Each batch of events becomes one buffer of whole
+//! JSON lines handed to the operating system with one `write(2)` (more only if the kernel takes
+//! part of it); only when that returned does the hub learn the batch is logged. A failed write
+//! (a full disk) keeps the bytes not written, in order, and retries them, so the file never
+//! gets a line with a gap in it; meanwhile acknowledgements are refused, and events wait in
+//! memory up to [`MAX_UNWRITTEN`].
+
+use std::fs::File;
+use std::io::{self, Write};
+use std::sync::Arc;
+use std::time::{Duration, Instant};
+
+use crate::corpus::sync::Syncer;
+use crate::events::{CorpusFeed, Event, Logged, Take};
+
+/// After a batch, how long later events may gather before the next one is written, unless an
+/// acknowledgement waits for them: waking this thread for every single event cost more CPU
+/// under load than all the writing.
+const GATHER: Duration = Duration::from_millis(2);
+
+/// How often writing is tried again after it failed, when no new events come.
+const RETRY_INTERVAL: Duration = Duration::from_secs(1);
+
+/// While the log cannot be written, at most this many bytes of events wait for it; events
+/// beyond are lost (counted, and the run ends with an error).
+const MAX_UNWRITTEN: usize = 64 * 1024 * 1024;
+
+/// Runs until the hub closes the corpus; returns the number of events written.
+pub(super) fn run(mut file: File, feed: CorpusFeed, syncer: Syncer) -> io::Result<u64> {
+    feed.attach_current_thread();
+    let mut batch: Vec<Arc<Event>> = Vec::new();
+    let mut out = Unwritten::default();
+    let mut failures = Failures::default();
+    let mut gather = Duration::ZERO;
+    loop {
+        let retry = (!out.bytes.is_empty()).then_some(RETRY_INTERVAL);
+        if feed.take(&mut batch, gather, retry) == Take::Closed {
+            break;
+        }
+        gather = if batch.is_empty() { Duration::ZERO } else { GATHER };
+        for event in batch.drain(..) {
+            out.push(&event, &mut failures);
+        }
+        if out.bytes.is_empty() {
+            continue;
+        }
+        match out.write_to(&mut file) {
+            Ok(()) => {
+                failures.recovered();
+                syncer.written();
+                feed.report(out.logged(None));
+            }
+            Err(error) => {
+                let message = failures.note(&error);
+                feed.report(out.logged(Some(message)));
+            }
+        }
+    }
+    let written = out.write_to(&mut file).map(|()| out.lines);
+    feed.report(out.logged(failures.current.clone()));
+    let synced = syncer.finish(&file);
+    let written = written?;
+    synced?;
+    match failures.count + failures.lost {
+        0 => Ok(written),
+        _ => Err(io::Error::other(failures.summary())),
+    }
+}
+
+/// Lines handed to the writer and not yet written, and how far the file is.
+#[derive(Default)]
+struct Unwritten {
+    bytes: Vec<u8>,
+    /// The `seq` of the last line in `bytes` (or written, when `bytes` is empty).
+    last_seq: u64,
+    /// Every line up to this `seq` is written.
+    through: u64,
+    /// Lines written.
+    lines: u64,
+    /// Lines in `bytes`.
+    waiting: u64,
+}
+
+impl Unwritten {
+    fn push(&mut self, event: &Event, failures: &mut Failures) {
+        let json = event.json();
+        if self.bytes.len() + json.len() >= MAX_UNWRITTEN {
+            failures.lost += 1;
+            return;
+        }
+        self.bytes.reserve(json.len() + 1);
+        self.bytes.extend_from_slice(json.as_bytes());
+        self.bytes.push(b'\n');
+        self.last_seq = event.seq;
+        self.waiting += 1;
+    }
+
+    /// Writes every waiting byte, keeping what the kernel did not take when it fails.
+    fn write_to(&mut self, file: &mut File) -> io::Result<()> {
+        let mut done = 0;
+        let result = loop {
+            if done == self.bytes.len() {
+                break Ok(());
+            }
+            match file.write(&self.bytes[done..]) {
+                Ok(0) => break Err(io::Error::from(io::ErrorKind::WriteZero)),
+                Ok(n) => done += n,
+                Err(e) if e.kind() == io::ErrorKind::Interrupted => {}
+                Err(e) => break Err(e),
+            }
+        };
+        if result.is_ok() {
+            self.bytes.clear();
+            self.through = self.last_seq;
+            self.lines += std::mem::take(&mut self.waiting);
+        } else {
+            // The rest goes out with the next attempt, right after what the file ends with.
+            self.bytes.drain(..done);
+        }
+        result
+    }
+
+    fn logged(&self, failure: Option<Arc<str>>) -> Logged {
+        Logged {
+            through: self.through,
+            failure,
+            ended: false,
+        }
+    }
+}
+
+/// Write failures (a full disk, say): the writer keeps going, since space may come back, and
+/// says so loudly at once, then at most every 10 s.
+#[derive(Default)]
+struct Failures {
+    count: u64,
+    /// Events dropped because too much waited unwritten.
+    lost: u64,
+    reported: Option<Instant>,
+    /// The current failure, while writing fails.
+    current: Option<Arc<str>>,
+}
+
+impl Failures {
+    fn note(&mut self, error: &io::Error) -> Arc<str> {
+        self.count += 1;
+        if self
+            .reported
+            .is_none_or(|t| t.elapsed() >= Duration::from_secs(10))
+        {
+            tracing::error!(
+                %error,
+                failures = self.count,
+                lost = self.lost,
+                "cannot write the corpus log: events wait in memory and new triggers are refused"
+            );
+            self.reported = Some(Instant::now());
+        }
+        let message: Arc<str> = error.to_string().into();
+        self.current = Some(Arc::clone(&message));
+        message
+    }
+
+    fn recovered(&mut self) {
+        if self.current.take().is_some() {
+            tracing::warn!(
+                failures = self.count,
+                lost = self.lost,
+                "the corpus log can be written again"
+            );
+        }
+    }
+
+    fn summary(&self) -> String {
+        let mut text = format!("{} corpus writes failed", self.count);
+        if self.lost > 0 {
+            text += &format!(" and {} events were lost", self.lost);
+        }
+        text + "; see the server log"
+    }
+}
