@@ -53,7 +53,13 @@ fn spawn_docent(bundle: &Path, corpus: &Path) -> (Child, String) {
     let mut child = Command::new(env!("CARGO_BIN_EXE_docent"))
         .arg("serve")
         .arg(bundle)
-        .args(["--listen", "127.0.0.1:0", "--open", "--no-watch", "--corpus"])
+        .args([
+            "--listen",
+            "127.0.0.1:0",
+            "--open",
+            "--no-watch",
+            "--corpus",
+        ])
         .arg(corpus)
         .stdout(Stdio::piped())
         .stderr(Stdio::null())
@@ -64,7 +70,11 @@ fn spawn_docent(bundle: &Path, corpus: &Path) -> (Child, String) {
         .map_while(Result::ok)
         .find_map(|l| {
             let url = l.trim().strip_prefix("websocket:")?.trim();
-            Some(url.trim_start_matches("ws://").trim_end_matches("/ws").to_owned())
+            Some(
+                url.trim_start_matches("ws://")
+                    .trim_end_matches("/ws")
+                    .to_owned(),
+            )
         })
         .expect("docent prints its websocket address");
     std::thread::spawn(move || lines.for_each(drop));
@@ -78,7 +88,9 @@ async fn ws_sender(addr: String, name: String, tally: Arc<Tally>) {
         .await
         .expect("connects");
     let hello = json!({"type": "hello", "role": "operator", "events": false});
-    ws.send(Message::text(hello.to_string())).await.expect("hello");
+    ws.send(Message::text(hello.to_string()))
+        .await
+        .expect("hello");
     for n in 0.. {
         let reference = format!("{name}-{n}");
         let trigger = json!({"type": "trigger", "label": "OK", "ref": reference});
@@ -109,7 +121,12 @@ async fn http_sender(addr: String, tally: Arc<Tally>) {
     let url = format!("http://{addr}/api/acts/OK/trigger");
     for n in 0.. {
         let reference = format!("http-{n}");
-        let Ok(answer) = client.post(&url).json(&json!({"ref": reference})).send().await else {
+        let Ok(answer) = client
+            .post(&url)
+            .json(&json!({"ref": reference}))
+            .send()
+            .await
+        else {
             return;
         };
         assert_eq!(answer.status().as_u16(), 202, "{reference}");
@@ -145,7 +162,10 @@ fn read_log(path: &Path) -> (Vec<Value>, Vec<u8>) {
         .iter()
         .map(|l| {
             serde_json::from_slice(l).unwrap_or_else(|e| {
-                panic!("torn line in {path:?} ({e}): {}", String::from_utf8_lossy(l))
+                panic!(
+                    "torn line in {path:?} ({e}): {}",
+                    String::from_utf8_lossy(l)
+                )
             })
         })
         .collect();
@@ -171,7 +191,7 @@ async fn kill_9_at_full_load_loses_no_acknowledged_trigger() {
         let kill_after = 300 + 97 * cycle;
         tokio::time::timeout(DEADLINE, tally.reached(kill_after))
             .await
-        .expect("the senders get acknowledgements");
+            .expect("the senders get acknowledgements");
         child.kill().expect("SIGKILL");
         child.wait().expect("reaped");
         tokio::time::timeout(DEADLINE, async {
@@ -184,13 +204,21 @@ async fn kill_9_at_full_load_loses_no_acknowledged_trigger() {
 
         let after = checksums(corpus.path());
         for (path, sum) in &before {
-            assert_eq!(after.get(path), Some(sum), "an earlier log changed: {path:?}");
+            assert_eq!(
+                after.get(path),
+                Some(sum),
+                "an earlier log changed: {path:?}"
+            );
         }
         let new: Vec<&PathBuf> = after.keys().filter(|p| !before.contains_key(*p)).collect();
         assert_eq!(new.len(), 1, "one new log per run: {new:?}");
         let (events, partial) = read_log(new[0]);
         let seqs: Vec<u64> = events.iter().map(|e| e["seq"].as_u64().unwrap()).collect();
-        assert_eq!(seqs, (1..=events.len() as u64).collect::<Vec<_>>(), "run {cycle}");
+        assert_eq!(
+            seqs,
+            (1..=events.len() as u64).collect::<Vec<_>>(),
+            "run {cycle}"
+        );
         let logged: BTreeMap<&str, u64> = (events.iter())
             .filter(|e| e["type"] == "act.triggered")
             .map(|e| (e["ref"].as_str().unwrap(), e["trigger"].as_u64().unwrap()))

@@ -144,7 +144,11 @@ mod tests {
         writer.finish().await.unwrap();
         let late = hub.publish(context(1));
         let refused = hub.logged(late.seq).await.unwrap_err();
-        assert!(refused.to_string().contains("the corpus writer has stopped"));
+        assert!(
+            refused
+                .to_string()
+                .contains("the corpus writer has stopped")
+        );
         assert!(hub.log_failure().is_some());
     }
 }

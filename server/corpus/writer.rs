@@ -37,7 +37,11 @@ pub(super) fn run(mut file: File, feed: CorpusFeed, syncer: Syncer) -> io::Resul
         if feed.take(&mut batch, gather, retry) == Take::Closed {
             break;
         }
-        gather = if batch.is_empty() { Duration::ZERO } else { GATHER };
+        gather = if batch.is_empty() {
+            Duration::ZERO
+        } else {
+            GATHER
+        };
         for event in batch.drain(..) {
             out.push(&event, &mut failures);
         }
@@ -56,13 +60,15 @@ pub(super) fn run(mut file: File, feed: CorpusFeed, syncer: Syncer) -> io::Resul
             }
         }
     }
-    let written = out.write_to(&mut file).map(|()| out.lines);
+    if let Err(error) = out.write_to(&mut file) {
+        failures.note(&error);
+        // What is still unwritten now never will be.
+        failures.lost += out.waiting;
+    }
     feed.report(out.logged(failures.current.clone()));
     let synced = syncer.finish(&file);
-    let written = written?;
-    synced?;
     match failures.count + failures.lost {
-        0 => Ok(written),
+        0 => synced.map(|()| out.lines),
         _ => Err(io::Error::other(failures.summary())),
     }
 }
@@ -96,7 +102,7 @@ impl Unwritten {
     }
 
     /// Writes every waiting byte, keeping what the kernel did not take when it fails.
-    fn write_to(&mut self, file: &mut File) -> io::Result<()> {
+    fn write_to(&mut self, file: &mut impl Write) -> io::Result<()> {
         let mut done = 0;
         let result = loop {
             if done == self.bytes.len() {
@@ -177,5 +183,87 @@ impl Failures {
             text += &format!(" and {} events were lost", self.lost);
         }
         text + "; see the server log"
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::events::{EventKind, Hub, Source};
+
+    fn event(seq: u64) -> Event {
+        let kind = EventKind::ContextChanged {
+            source: Source::Http,
+            context: format!("T{seq}"),
+        };
+        Event::new(seq, std::time::SystemTime::now(), seq, kind)
+    }
+
+    /// Takes `room` bytes, then fails as a full disk does, until given more room.
+    struct Disk {
+        data: Vec<u8>,
+        room: usize,
+    }
+
+    impl Write for Disk {
+        fn write(&mut self, buf: &[u8]) -> io::Result<usize> {
+            let n = buf.len().min(self.room);
+            if n == 0 {
+                return Err(io::Error::from(io::ErrorKind::StorageFull));
+            }
+            self.data.extend_from_slice(&buf[..n]);
+            self.room -= n;
+            Ok(n)
+        }
+
+        fn flush(&mut self) -> io::Result<()> {
+            Ok(())
+        }
+    }
+
+    #[test]
+    fn a_write_cut_short_by_a_full_disk_is_completed_without_a_gap_when_space_returns() {
+        let mut out = Unwritten::default();
+        let mut failures = Failures::default();
+        let mut disk = Disk {
+            data: Vec::new(),
+            room: 30,
+        };
+        let (first, second) = (event(1), event(2));
+        out.push(&first, &mut failures);
+        out.push(&second, &mut failures);
+        assert!(out.write_to(&mut disk).is_err());
+        assert_eq!(out.logged(None).through, 0, "nothing confirmed");
+        disk.room = usize::MAX;
+        out.write_to(&mut disk).unwrap();
+        let expected = format!("{}\n{}\n", first.json(), second.json());
+        assert_eq!(String::from_utf8(disk.data).unwrap(), expected);
+        assert_eq!((out.logged(None).through, out.lines), (2, 2));
+    }
+
+    #[tokio::test]
+    async fn a_full_disk_refuses_acknowledgements_and_ends_the_run_with_an_error() {
+        let file = File::options().append(true).open("/dev/full").unwrap();
+        let (hub, feed) = Hub::new();
+        let syncer = Syncer::start(file.try_clone().unwrap(), Duration::from_secs(3600)).unwrap();
+        let writer = std::thread::spawn(move || run(file, feed, syncer));
+        let e = hub.publish(EventKind::ContextChanged {
+            source: Source::Http,
+            context: "Text".into(),
+        });
+        let refused = hub.logged(e.seq).await.unwrap_err();
+        assert!(
+            refused.to_string().contains("No space left on device"),
+            "{refused}"
+        );
+        let failure = hub.log_failure().expect("triggers are refused");
+        assert!(
+            failure
+                .refusal()
+                .starts_with("not triggered: the corpus log cannot be written")
+        );
+        hub.close_corpus();
+        let end = writer.join().unwrap().unwrap_err();
+        assert!(end.to_string().contains("corpus writes failed"), "{end}");
     }
 }

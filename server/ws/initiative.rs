@@ -192,7 +192,10 @@ impl Session {
                 session
             }
         };
-        self.send_logged(marked_frame(reference, mark, value.as_deref(), session), reference);
+        self.send_logged(
+            marked_frame(reference, mark, value.as_deref(), session),
+            reference,
+        );
     }
 
     /// The context the site maps a visitor group to, if any.

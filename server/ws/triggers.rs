@@ -72,7 +72,8 @@ impl Session {
     pub(super) fn send_logged(&self, frame: String, reference: Option<&str>) {
         let logged = self.state.hub.published_seq();
         let reference = reference.map(str::to_owned);
-        self.outbox.send_logged(Frame::from(frame), logged, reference);
+        self.outbox
+            .send_logged(Frame::from(frame), logged, reference);
     }
 
     /// False, after telling the client, while the corpus log cannot be written: a trigger
