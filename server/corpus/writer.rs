@@ -13,12 +13,15 @@ use std::time::{Duration, Instant};
 use crate::corpus::sync::Syncer;
 use crate::events::{CorpusFeed, Event, Logged, Take};
 
-/// After a batch, how long later events may gather before the next one is written, unless an
-/// acknowledgement waits for them: waking this thread for every single event cost more CPU
-/// under load than all the writing.
-const GATHER: Duration = Duration::from_millis(2);
+/// How often the writer takes the events no acknowledgement waits for (a command's outcome, a
+/// pose). Publishing does not wake it: a wake-up per event cost more CPU than all the writing,
+/// and on the hot path. An acknowledgement that waits wakes it at once.
+const TICK: Duration = Duration::from_millis(5);
 
-/// How often writing is tried again after it failed, when no new events come.
+/// After this many ticks without events, the writer sleeps until the next publish wakes it.
+const QUIET_TICKS: u32 = 200;
+
+/// How often writing is tried again after it failed.
 const RETRY_INTERVAL: Duration = Duration::from_secs(1);
 
 /// While the log cannot be written, at most this many bytes of events wait for it; events
@@ -31,21 +34,20 @@ pub(super) fn run(mut file: File, feed: CorpusFeed, syncer: Syncer) -> io::Resul
     let mut batch: Vec<Arc<Event>> = Vec::new();
     let mut out = Unwritten::default();
     let mut failures = Failures::default();
-    let mut gather = Duration::ZERO;
+    let mut quiet = 0;
     loop {
-        let retry = (!out.bytes.is_empty()).then_some(RETRY_INTERVAL);
-        if feed.take(&mut batch, gather, retry) == Take::Closed {
+        if quiet >= QUIET_TICKS && out.bytes.is_empty() {
+            feed.sleep_until_published();
+            quiet = 0;
+        }
+        if feed.take(&mut batch, TICK) == Take::Closed {
             break;
         }
-        gather = if batch.is_empty() {
-            Duration::ZERO
-        } else {
-            GATHER
-        };
+        quiet = if batch.is_empty() { quiet + 1 } else { 0 };
         for event in batch.drain(..) {
             out.push(&event, &mut failures);
         }
-        if out.bytes.is_empty() {
+        if out.bytes.is_empty() || !failures.may_retry() {
             continue;
         }
         match out.write_to(&mut file) {
@@ -145,11 +147,20 @@ struct Failures {
     reported: Option<Instant>,
     /// The current failure, while writing fails.
     current: Option<Arc<str>>,
+    /// When writing last failed.
+    failed_at: Option<Instant>,
 }
 
 impl Failures {
+    /// Whether to write now: always, unless the last attempt failed less than
+    /// [`RETRY_INTERVAL`] ago.
+    fn may_retry(&self) -> bool {
+        self.current.is_none() || self.failed_at.is_none_or(|t| t.elapsed() >= RETRY_INTERVAL)
+    }
+
     fn note(&mut self, error: &io::Error) -> Arc<str> {
         self.count += 1;
+        self.failed_at = Some(Instant::now());
         if self
             .reported
             .is_none_or(|t| t.elapsed() >= Duration::from_secs(10))

@@ -257,7 +257,7 @@ impl Inner {
 /// What [`CorpusFeed::take`] found.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum Take {
-    /// Events were taken (possibly none, after `gather` passed).
+    /// Events were taken (possibly none, after a quiet tick).
     Events,
     /// Nothing is pending and the hub asked the writer to stop.
     Closed,
@@ -269,38 +269,38 @@ impl CorpusFeed {
         let _ = self.inner.writer.set(std::thread::current());
     }
 
-    /// Moves every pending event into `batch` (which should be empty). With nothing pending,
-    /// sleeps until a publish, but at most `idle_limit` when given. Before taking, lets events
-    /// gather for up to `gather`, unless an acknowledgement asks for them sooner.
-    pub fn take(
-        &self,
-        batch: &mut Vec<Arc<Event>>,
-        gather: Duration,
-        idle_limit: Option<Duration>,
-    ) -> Take {
-        if !gather.is_zero() && !self.inner.wake_asked.load(Ordering::Acquire) {
-            std::thread::park_timeout(gather);
+    /// Sleeps for up to `tick`, or until an acknowledgement asks for a write, then moves every
+    /// pending event into `batch` (which should be empty). Publishing does not wake the writer
+    /// (that would cost a wake-up per event on the hot path), so events nobody waits for are
+    /// taken on the next tick.
+    pub fn take(&self, batch: &mut Vec<Arc<Event>>, tick: Duration) -> Take {
+        if !self.inner.wake_asked.load(Ordering::Acquire) {
+            std::thread::park_timeout(tick);
         }
+        self.inner.wake_asked.store(false, Ordering::Release);
+        let mut queue = lock(&self.inner.queue);
+        if queue.pending.is_empty() && queue.closed {
+            return Take::Closed;
+        }
+        std::mem::swap(&mut queue.pending, batch);
+        Take::Events
+    }
+
+    /// After a quiet spell: sleeps until the next publish (which then wakes the writer, once),
+    /// an acknowledgement or a close, so that an idle server's writer does not tick.
+    pub fn sleep_until_published(&self) {
         loop {
-            self.inner.wake_asked.store(false, Ordering::Release);
             let mut queue = lock(&self.inner.queue);
-            if !queue.pending.is_empty() {
-                std::mem::swap(&mut queue.pending, batch);
-                return Take::Events;
+            if !queue.pending.is_empty() || queue.closed {
+                queue.writer_idle = false;
+                return;
             }
-            if queue.closed {
-                return Take::Closed;
+            if self.inner.wake_asked.load(Ordering::Acquire) {
+                return;
             }
             queue.writer_idle = true;
             drop(queue);
-            match idle_limit {
-                Some(limit) => {
-                    std::thread::park_timeout(limit);
-                    lock(&self.inner.queue).writer_idle = false;
-                    return Take::Events;
-                }
-                None => std::thread::park(),
-            }
+            std::thread::park();
         }
     }
 
