@@ -7,19 +7,26 @@
 
 use std::fs::File;
 use std::io::{self, Write};
-use std::sync::Arc;
+use std::sync::{Arc, Mutex};
 use std::time::{Duration, Instant};
 
 use crate::corpus::sync::Syncer;
-use crate::events::{CorpusFeed, Event, Logged, Take};
+use crate::events::{Committer, CorpusFeed, Event, Logged};
+use crate::sync::lock;
 
-/// How often the writer takes the events no acknowledgement waits for (a command's outcome, a
-/// pose). Publishing does not wake it: a wake-up per event cost more CPU than all the writing,
-/// and on the hot path. An acknowledgement that waits wakes it at once.
+/// How often the writer takes the events no acknowledgement wrote (a command's outcome, a
+/// pose) while they come. Publishing does not wake it: a wake-up per event cost more CPU than
+/// all the writing, and on the hot path. An acknowledgement writes the log itself, or wakes
+/// the writer when the log is busy.
 const TICK: Duration = Duration::from_millis(5);
 
-/// After this many ticks without events, the writer sleeps until the next publish wakes it.
-const QUIET_TICKS: u32 = 200;
+/// Each tick that finds nothing doubles the next, up to `TICK << MAX_BACKOFF` (80 ms): under
+/// load acknowledgements do the writing.
+const MAX_BACKOFF: u32 = 4;
+
+/// After this many ticks without events (about a second), the writer sleeps until the next
+/// publish wakes it.
+const QUIET_TICKS: u32 = 16;
 
 /// How often writing is tried again after it failed.
 const RETRY_INTERVAL: Duration = Duration::from_secs(1);
@@ -29,49 +36,113 @@ const RETRY_INTERVAL: Duration = Duration::from_secs(1);
 const MAX_UNWRITTEN: usize = 64 * 1024 * 1024;
 
 /// Runs until the hub closes the corpus; returns the number of events written.
-pub(super) fn run(mut file: File, feed: CorpusFeed, syncer: Syncer) -> io::Result<u64> {
+pub(super) fn run(file: File, feed: CorpusFeed, syncer: Syncer) -> io::Result<u64> {
     feed.attach_current_thread();
-    let mut batch: Vec<Arc<Event>> = Vec::new();
-    let mut out = Unwritten::default();
-    let mut failures = Failures::default();
+    let shared = Arc::new(Shared {
+        log: Mutex::new(Log {
+            file,
+            batch: Vec::new(),
+            out: Unwritten::default(),
+            failures: Failures::default(),
+            syncer: Some(syncer),
+        }),
+        feed,
+    });
+    shared.feed.set_committer(Some(shared.clone()));
     let mut quiet = 0;
     loop {
-        if quiet >= QUIET_TICKS && out.bytes.is_empty() {
-            feed.sleep_until_published();
+        if quiet >= QUIET_TICKS && lock(&shared.log).out.bytes.is_empty() {
+            shared.feed.sleep_until_published();
             quiet = 0;
         }
-        if feed.take(&mut batch, TICK) == Take::Closed {
+        shared.feed.wait(TICK * (1 << quiet.min(MAX_BACKOFF)));
+        let took = lock(&shared.log).commit(&shared.feed);
+        quiet = if took == 0 { quiet + 1 } else { 0 };
+        if shared.feed.closed() {
             break;
         }
-        quiet = if batch.is_empty() { quiet + 1 } else { 0 };
-        for event in batch.drain(..) {
-            out.push(&event, &mut failures);
+    }
+    // Breaks the cycle hub → committer → feed → hub.
+    shared.feed.set_committer(None);
+    let mut log = lock(&shared.log);
+    log.commit(&shared.feed);
+    log.finish(&shared.feed)
+}
+
+/// The log, written by the writer thread or, to spare a wake-up, by an acknowledgement itself.
+struct Shared {
+    log: Mutex<Log>,
+    feed: CorpusFeed,
+}
+
+impl Committer for Shared {
+    fn try_commit(&self) -> bool {
+        let Ok(mut log) = self.log.try_lock() else {
+            return false;
+        };
+        // A failing disk is left to the writer thread's own pace.
+        if log.failures.current.is_some() {
+            return false;
         }
-        if out.bytes.is_empty() || !failures.may_retry() {
-            continue;
+        log.commit(&self.feed);
+        true
+    }
+}
+
+struct Log {
+    file: File,
+    batch: Vec<Arc<Event>>,
+    out: Unwritten,
+    failures: Failures,
+    syncer: Option<Syncer>,
+}
+
+impl Log {
+    /// Takes every pending event and writes it with what still waits; returns the number of
+    /// events taken.
+    fn commit(&mut self, feed: &CorpusFeed) -> usize {
+        feed.take_now(&mut self.batch);
+        let took = self.batch.len();
+        for event in self.batch.drain(..) {
+            self.out.push(&event, &mut self.failures);
         }
-        match out.write_to(&mut file) {
+        if self.out.bytes.is_empty() || !self.failures.may_retry() {
+            return took;
+        }
+        match self.out.write_to(&mut self.file) {
             Ok(()) => {
-                failures.recovered();
-                syncer.written();
-                feed.report(out.logged(None));
+                self.failures.recovered();
+                if let Some(syncer) = &self.syncer {
+                    syncer.written();
+                }
+                feed.report(self.out.logged(None));
             }
             Err(error) => {
-                let message = failures.note(&error);
-                feed.report(out.logged(Some(message)));
+                let message = self.failures.note(&error);
+                feed.report(self.out.logged(Some(message)));
             }
         }
+        took
     }
-    if let Err(error) = out.write_to(&mut file) {
-        failures.note(&error);
-        // What is still unwritten now never will be.
-        failures.lost += out.waiting;
-    }
-    feed.report(out.logged(failures.current.clone()));
-    let synced = syncer.finish(&file);
-    match failures.count + failures.lost {
-        0 => synced.map(|()| out.lines),
-        _ => Err(io::Error::other(failures.summary())),
+
+    /// The last write, the last sync, and the run's verdict.
+    fn finish(&mut self, feed: &CorpusFeed) -> io::Result<u64> {
+        if !self.out.bytes.is_empty() {
+            if let Err(error) = self.out.write_to(&mut self.file) {
+                self.failures.note(&error);
+                // What is still unwritten now never will be.
+                self.failures.lost += self.out.waiting;
+            }
+        }
+        feed.report(self.out.logged(self.failures.current.clone()));
+        let synced = match self.syncer.take() {
+            Some(syncer) => syncer.finish(&self.file),
+            None => Ok(()),
+        };
+        match self.failures.count + self.failures.lost {
+            0 => synced.map(|()| self.out.lines),
+            _ => Err(io::Error::other(self.failures.summary())),
+        }
     }
 }
 

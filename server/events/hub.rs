@@ -83,6 +83,8 @@ struct Inner {
     /// many waiting acknowledgements wake it once.
     wake_asked: AtomicBool,
     logged: watch::Sender<Logged>,
+    /// Writes the log on an acknowledgement's own thread while the writer runs.
+    committer: Mutex<Option<Arc<dyn Committer>>>,
 }
 
 #[derive(Default)]
@@ -115,6 +117,7 @@ impl Hub {
             writer: OnceLock::new(),
             wake_asked: AtomicBool::new(false),
             logged: watch::Sender::new(Logged::default()),
+            committer: Mutex::new(None),
         });
         let feed = CorpusFeed {
             inner: Arc::clone(&inner),
@@ -169,6 +172,9 @@ impl Hub {
     pub async fn logged(&self, seq: u64) -> Result<(), LogUnwritable> {
         let mut rx = self.inner.logged.subscribe();
         if rx.borrow().through >= seq {
+            return Ok(());
+        }
+        if self.inner.try_commit() && rx.borrow().through >= seq {
             return Ok(());
         }
         self.inner.ask_write();
@@ -246,6 +252,12 @@ impl Inner {
         }
     }
 
+    /// Writes the pending events on this thread if the log is free.
+    fn try_commit(&self) -> bool {
+        let committer = lock(&self.committer).clone();
+        committer.is_some_and(|c| c.try_commit())
+    }
+
     /// Wakes the writer for an acknowledgement, once however many wait.
     fn ask_write(&self) {
         if !self.wake_asked.swap(true, Ordering::AcqRel) {
@@ -254,13 +266,11 @@ impl Inner {
     }
 }
 
-/// What [`CorpusFeed::take`] found.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub enum Take {
-    /// Events were taken (possibly none, after a quiet tick).
-    Events,
-    /// Nothing is pending and the hub asked the writer to stop.
-    Closed,
+/// Writes the pending events at once, on the caller's thread, if no one else is writing:
+/// an acknowledgement that does so spares the writer thread a wake-up and itself the wait.
+pub trait Committer: Send + Sync {
+    /// False when the log is busy or failing (then the writer thread is asked instead).
+    fn try_commit(&self) -> bool;
 }
 
 impl CorpusFeed {
@@ -269,21 +279,29 @@ impl CorpusFeed {
         let _ = self.inner.writer.set(std::thread::current());
     }
 
-    /// Sleeps for up to `tick`, or until an acknowledgement asks for a write, then moves every
-    /// pending event into `batch` (which should be empty). Publishing does not wake the writer
-    /// (that would cost a wake-up per event on the hot path), so events nobody waits for are
-    /// taken on the next tick.
-    pub fn take(&self, batch: &mut Vec<Arc<Event>>, tick: Duration) -> Take {
+    /// Sleeps for up to `tick`, or until an acknowledgement asks for a write or the hub closes.
+    /// Publishing does not wake the writer (that would cost a wake-up per event on the hot
+    /// path), so events nobody waits for are taken on the next tick.
+    pub fn wait(&self, tick: Duration) {
         if !self.inner.wake_asked.load(Ordering::Acquire) {
             std::thread::park_timeout(tick);
         }
         self.inner.wake_asked.store(false, Ordering::Release);
-        let mut queue = lock(&self.inner.queue);
-        if queue.pending.is_empty() && queue.closed {
-            return Take::Closed;
-        }
-        std::mem::swap(&mut queue.pending, batch);
-        Take::Events
+    }
+
+    /// Moves every pending event into `batch` (which should be empty), without waiting.
+    pub fn take_now(&self, batch: &mut Vec<Arc<Event>>) {
+        std::mem::swap(&mut lock(&self.inner.queue).pending, batch);
+    }
+
+    /// Whether the hub asked the writer to stop.
+    pub fn closed(&self) -> bool {
+        lock(&self.inner.queue).closed
+    }
+
+    /// Lets acknowledgements write the log themselves through `committer` (`None`: no more).
+    pub fn set_committer(&self, committer: Option<Arc<dyn Committer>>) {
+        *lock(&self.inner.committer) = committer;
     }
 
     /// After a quiet spell: sleeps until the next publish (which then wakes the writer, once),

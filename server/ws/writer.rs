@@ -120,8 +120,10 @@ async fn release(queued: Queued, hub: &Hub, stop: &CancellationToken) -> Option<
     let Some(ack) = queued.ack else {
         return Some(queued.frame);
     };
-    if hub.is_logged(ack.logged) {
-        return Some(queued.frame);
+    if !hub.is_logged(ack.logged) {
+        // Let the frames this request woke (commands to kiosks and adapters) go out first:
+        // the acknowledgement may have to write the log itself.
+        tokio::task::yield_now().await;
     }
     let logged = tokio::select! {
         logged = hub.logged(ack.logged) => logged,
