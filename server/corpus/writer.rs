@@ -127,12 +127,12 @@ impl Log {
 
     /// The last write, the last sync, and the run's verdict.
     fn finish(&mut self, feed: &CorpusFeed) -> io::Result<u64> {
-        if !self.out.bytes.is_empty() {
-            if let Err(error) = self.out.write_to(&mut self.file) {
-                self.failures.note(&error);
-                // What is still unwritten now never will be.
-                self.failures.lost += self.out.waiting;
-            }
+        if !self.out.bytes.is_empty()
+            && let Err(error) = self.out.write_to(&mut self.file)
+        {
+            self.failures.note(&error);
+            // What is still unwritten now never will be.
+            self.failures.lost += self.out.waiting;
         }
         feed.report(self.out.logged(self.failures.current.clone()));
         let synced = match self.syncer.take() {
