@@ -91,6 +91,10 @@ struct ServeArgs {
     /// Folder for the corpus log.
     #[arg(long, default_value = "corpus")]
     corpus: PathBuf,
+    /// How often the corpus log is synced to disk, bounding what a power cut can lose (e.g.
+    /// `1s`, `200ms`; docs/CORPUS.md).
+    #[arg(long, value_name = "INTERVAL", default_value = "1s", value_parser = humantime::parse_duration)]
+    corpus_sync: std::time::Duration,
     /// Write speech as WAV files into this folder instead of playing it (no sound card).
     #[arg(long, value_name = "DIR")]
     speech_wav: Option<PathBuf>,
@@ -237,6 +241,7 @@ fn serve(args: &ServeArgs) -> anyhow::Result<ExitCode> {
     let options = ServeOptions {
         seed: args.seed,
         corpus_dir: args.corpus.clone(),
+        corpus_sync: args.corpus_sync,
         speech_wav: args.speech_wav.clone(),
         access: setup.mode.clone(),
         limits: ConnectionLimits::default(),

@@ -34,6 +34,8 @@ pub struct ServeOptions {
     pub seed: Option<u64>,
     /// Folder for the corpus log.
     pub corpus_dir: PathBuf,
+    /// How often the corpus log is synced to disk ([`crate::corpus::DEFAULT_SYNC_INTERVAL`]).
+    pub corpus_sync: Duration,
     /// Write espeak-ng speech as WAV files into this folder instead of playing it.
     pub speech_wav: Option<PathBuf>,
     /// Credentials for operators and dialog managers, or an open development server.
@@ -55,8 +57,8 @@ impl Server {
     /// Starts the corpus writer, adapters and dispatcher for `bundle`.
     pub fn start(bundle: Bundle, options: &ServeOptions) -> io::Result<Server> {
         let life = Lifecycle::new();
-        let (hub, corpus_rx) = Hub::new();
-        let corpus = CorpusWriter::start(&options.corpus_dir, corpus_rx)?;
+        let (hub, feed) = Hub::new();
+        let corpus = CorpusWriter::start(&options.corpus_dir, feed, options.corpus_sync)?;
         let mut warnings = Vec::new();
         let output = match &options.speech_wav {
             Some(dir) => {

@@ -133,6 +133,7 @@ fn an_unknown_voice_is_reported_at_start_up() {
     let options = docent::serve::ServeOptions {
         seed: None,
         corpus_dir: corpus.path().to_owned(),
+        corpus_sync: docent::corpus::DEFAULT_SYNC_INTERVAL,
         speech_wav: None,
         access: common::test_access(),
         limits: docent::http::ConnectionLimits::default(),

@@ -1,12 +1,16 @@
-//! The event hub: stamps events and fans them out. The corpus gets every event through an
-//! unbounded channel (the log must not lose anything); websocket subscribers get them through a
-//! bounded broadcast channel and handle lag themselves.
+//! The event hub: stamps events and fans them out. The corpus writer gets every event (the log
+//! must not lose anything) by taking, in one swap, all events published since its last batch;
+//! websocket subscribers get them through a bounded broadcast channel and handle lag
+//! themselves. The writer reports how far the log is written through a `watch`, so that an
+//! acknowledgement can wait until its event is in the file ([`Hub::logged`]).
 
 use std::collections::VecDeque;
-use std::sync::{Arc, Mutex};
-use std::time::{Instant, SystemTime};
+use std::sync::atomic::{AtomicBool, AtomicU64, Ordering};
+use std::sync::{Arc, Mutex, OnceLock};
+use std::thread::Thread;
+use std::time::{Duration, Instant, SystemTime};
 
-use tokio::sync::{broadcast, mpsc};
+use tokio::sync::{broadcast, watch};
 
 use crate::events::{Event, EventKind};
 use crate::sync::lock;
@@ -17,13 +21,43 @@ pub const HISTORY_LEN: usize = 200;
 /// How many events a slow websocket subscriber may fall behind before it lags.
 pub const EVENT_CHANNEL_CAPACITY: usize = 4096;
 
-/// What the hub sends the corpus writer.
-#[derive(Debug)]
-pub enum CorpusMsg {
-    /// Log this event.
-    Event(Arc<Event>),
-    /// Flush, sync and stop.
-    Close,
+/// How long an acknowledgement waits for the corpus writer before giving up.
+pub const LOG_WAIT_TIMEOUT: Duration = Duration::from_secs(10);
+
+/// How far the corpus log is written, as the corpus writer last reported it.
+#[derive(Clone, Debug, Default)]
+pub struct Logged {
+    /// Every event up to this `seq` has been handed to the operating system (`write(2)`
+    /// returned), so it survives a crash or `kill -9` of Docent.
+    pub through: u64,
+    /// Why the log cannot be written now (a full disk, an I/O error); `None` while it can.
+    pub failure: Option<Arc<str>>,
+    /// The writer has stopped: nothing published later will be written.
+    pub ended: bool,
+}
+
+/// Why an acknowledgement cannot be given: the event is not in the log.
+#[derive(Clone, Debug, PartialEq, Eq, thiserror::Error)]
+#[error("the corpus log cannot be written ({0}); see the server log")]
+pub struct LogUnwritable(pub Arc<str>);
+
+impl LogUnwritable {
+    /// The stable error code sent to clients.
+    pub const CODE: &'static str = "corpus-unwritable";
+
+    /// Said instead of an acknowledgement: what was asked for was done, but is not known to be
+    /// in the log.
+    pub fn after_the_fact(&self) -> String {
+        format!(
+            "carried out, but not confirmed in the log: {self}. New triggers are refused until \
+             the log can be written again."
+        )
+    }
+
+    /// Said when a trigger is refused before anything was done.
+    pub fn refusal(&self) -> String {
+        format!("not triggered: {self}. Triggers are accepted again once it can be written.")
+    }
 }
 
 /// The one place events are published. Cheap to clone.
@@ -34,44 +68,76 @@ pub struct Hub {
 
 struct Inner {
     started: Instant,
-    /// Holds the sequence counter; publishing under it keeps the corpus in sequence order.
-    seq: Mutex<u64>,
-    corpus: mpsc::UnboundedSender<CorpusMsg>,
+    /// The sequence counter and the events the writer has not taken; publishing under it keeps
+    /// the corpus in sequence order.
+    queue: Mutex<Queue>,
+    /// The `seq` of the latest event published (read without the lock by acknowledgements).
+    published: AtomicU64,
     broadcast: broadcast::Sender<Arc<Event>>,
     /// The latest history events (see [`EventKind::is_history`]), oldest first.
     history: Mutex<VecDeque<Arc<Event>>>,
+    /// The writer thread, woken by a publish while it sleeps with nothing to do, or by an
+    /// acknowledgement that waits.
+    writer: OnceLock<Thread>,
+    /// An acknowledgement asked the writer to write now (cleared by the writer when it wakes):
+    /// many waiting acknowledgements wake it once.
+    wake_asked: AtomicBool,
+    logged: watch::Sender<Logged>,
+    /// Writes the log on an acknowledgement's own thread while the writer runs.
+    committer: Mutex<Option<Arc<dyn Committer>>>,
+}
+
+#[derive(Default)]
+struct Queue {
+    seq: u64,
+    pending: Vec<Arc<Event>>,
+    /// The writer sleeps until the next publish.
+    writer_idle: bool,
+    /// Close asked for: the writer writes what is pending and stops.
+    closed: bool,
+    /// No writer will take events (its [`CorpusFeed`] was dropped): publish keeps none.
+    detached: bool,
+}
+
+/// The corpus writer's end of the hub: takes published events in batches.
+pub struct CorpusFeed {
+    inner: Arc<Inner>,
 }
 
 impl Hub {
-    /// A hub and the receiving end for the corpus writer.
-    pub fn new() -> (Hub, mpsc::UnboundedReceiver<CorpusMsg>) {
-        let (corpus, corpus_rx) = mpsc::unbounded_channel();
+    /// A hub and the corpus writer's end of it.
+    pub fn new() -> (Hub, CorpusFeed) {
         let (broadcast, _) = broadcast::channel(EVENT_CHANNEL_CAPACITY);
-        let inner = Inner {
+        let inner = Arc::new(Inner {
             started: Instant::now(),
-            seq: Mutex::new(0),
-            corpus,
+            queue: Mutex::new(Queue::default()),
+            published: AtomicU64::new(0),
             broadcast,
             history: Mutex::new(VecDeque::with_capacity(HISTORY_LEN)),
+            writer: OnceLock::new(),
+            wake_asked: AtomicBool::new(false),
+            logged: watch::Sender::new(Logged::default()),
+            committer: Mutex::new(None),
+        });
+        let feed = CorpusFeed {
+            inner: Arc::clone(&inner),
         };
-        (
-            Hub {
-                inner: Arc::new(inner),
-            },
-            corpus_rx,
-        )
+        (Hub { inner }, feed)
     }
 
     /// Stamps and publishes an event; returns it.
     pub fn publish(&self, kind: EventKind) -> Arc<Event> {
-        let mut seq = lock(&self.inner.seq);
+        let mut queue = lock(&self.inner.queue);
         // Stamped under the lock so that sequence and monotonic time agree.
         let mono_us = self.inner.started.elapsed().as_micros() as u64;
         let time = SystemTime::now();
-        *seq += 1;
-        let event = Arc::new(Event::new(*seq, time, mono_us, kind));
-        // A closed corpus channel means the writer has shut down; nothing is left to log to.
-        let _ = self.inner.corpus.send(CorpusMsg::Event(Arc::clone(&event)));
+        queue.seq += 1;
+        let event = Arc::new(Event::new(queue.seq, time, mono_us, kind));
+        if !queue.detached {
+            queue.pending.push(Arc::clone(&event));
+        }
+        self.inner.published.store(queue.seq, Ordering::Release);
+        let wake = std::mem::take(&mut queue.writer_idle);
         // No subscribers is fine.
         let _ = self.inner.broadcast.send(Arc::clone(&event));
         if event.kind.is_history() {
@@ -81,23 +147,81 @@ impl Hub {
             }
             history.push_back(Arc::clone(&event));
         }
-        drop(seq);
+        drop(queue);
+        if wake {
+            self.inner.wake_writer();
+        }
         event
+    }
+
+    /// The `seq` of the latest event published so far: an acknowledgement given after an
+    /// action waits for this ([`Hub::logged`]), which covers the action's own events.
+    pub fn published_seq(&self) -> u64 {
+        self.inner.published.load(Ordering::Acquire)
+    }
+
+    /// Whether every event up to `seq` is written to the operating system already.
+    pub fn is_logged(&self, seq: u64) -> bool {
+        self.inner.logged.borrow().through >= seq
+    }
+
+    /// Waits until every event up to `seq` is written to the operating system, so that an
+    /// acknowledgement sent afterwards never claims an event a crash could lose. Fails at once
+    /// when the log cannot be written or its writer has stopped, and after
+    /// [`LOG_WAIT_TIMEOUT`] without an answer (a stalled disk).
+    pub async fn logged(&self, seq: u64) -> Result<(), LogUnwritable> {
+        let mut rx = self.inner.logged.subscribe();
+        if rx.borrow().through >= seq {
+            return Ok(());
+        }
+        if self.inner.try_commit() && rx.borrow().through >= seq {
+            return Ok(());
+        }
+        self.inner.ask_write();
+        let waited = rx.wait_for(|l| l.through >= seq || l.failure.is_some() || l.ended);
+        match tokio::time::timeout(LOG_WAIT_TIMEOUT, waited).await {
+            Ok(Ok(logged)) => check_logged(&logged, seq),
+            Ok(Err(_)) => Err(LogUnwritable("the corpus writer has stopped".into())),
+            Err(_) => Err(LogUnwritable(
+                format!(
+                    "the corpus writer did not confirm within {} s",
+                    LOG_WAIT_TIMEOUT.as_secs()
+                )
+                .into(),
+            )),
+        }
+    }
+
+    /// Why the corpus log cannot be written now, if it cannot: new triggers are refused then
+    /// (see `docs/CORPUS.md`).
+    pub fn log_failure(&self) -> Option<LogUnwritable> {
+        let logged = self.inner.logged.borrow();
+        if let Some(failure) = &logged.failure {
+            return Some(LogUnwritable(Arc::clone(failure)));
+        }
+        logged
+            .ended
+            .then(|| LogUnwritable("the corpus writer has stopped".into()))
+    }
+
+    /// Follows the corpus writer's progress (for tests and status displays).
+    pub fn logged_progress(&self) -> watch::Receiver<Logged> {
+        self.inner.logged.subscribe()
     }
 
     /// A receiver of every event from now on, and the recent history up to now: taken
     /// together, so no history event falls between them.
     pub fn subscribe_with_history(&self) -> (broadcast::Receiver<Arc<Event>>, Vec<Arc<Event>>) {
-        let _seq = lock(&self.inner.seq);
+        let _queue = lock(&self.inner.queue);
         let rx = self.inner.broadcast.subscribe();
         let history = lock(&self.inner.history).iter().cloned().collect();
         (rx, history)
     }
 
-    /// Tells the corpus writer to flush and stop after every event published so far.
+    /// Tells the corpus writer to write everything published so far, sync and stop.
     pub fn close_corpus(&self) {
-        let _guard = lock(&self.inner.seq);
-        let _ = self.inner.corpus.send(CorpusMsg::Close);
+        lock(&self.inner.queue).closed = true;
+        self.inner.wake_writer();
     }
 
     /// A receiver of every event published from now on.
@@ -108,5 +232,105 @@ impl Hub {
     /// Microseconds since the hub was made.
     pub fn mono_us(&self) -> u64 {
         self.inner.started.elapsed().as_micros() as u64
+    }
+}
+
+fn check_logged(logged: &Logged, seq: u64) -> Result<(), LogUnwritable> {
+    if logged.through >= seq {
+        return Ok(());
+    }
+    Err(LogUnwritable(match &logged.failure {
+        Some(failure) => Arc::clone(failure),
+        None => "the corpus writer has stopped".into(),
+    }))
+}
+
+impl Inner {
+    fn wake_writer(&self) {
+        if let Some(writer) = self.writer.get() {
+            writer.unpark();
+        }
+    }
+
+    /// Writes the pending events on this thread if the log is free.
+    fn try_commit(&self) -> bool {
+        let committer = lock(&self.committer).clone();
+        committer.is_some_and(|c| c.try_commit())
+    }
+
+    /// Wakes the writer for an acknowledgement, once however many wait.
+    fn ask_write(&self) {
+        if !self.wake_asked.swap(true, Ordering::AcqRel) {
+            self.wake_writer();
+        }
+    }
+}
+
+/// Writes the pending events at once, on the caller's thread, if no one else is writing:
+/// an acknowledgement that does so spares the writer thread a wake-up and itself the wait.
+pub trait Committer: Send + Sync {
+    /// False when the log is busy or failing (then the writer thread is asked instead).
+    fn try_commit(&self) -> bool;
+}
+
+impl CorpusFeed {
+    /// Makes the calling thread the writer that publishes wake. Call once, from that thread.
+    pub fn attach_current_thread(&self) {
+        let _ = self.inner.writer.set(std::thread::current());
+    }
+
+    /// Sleeps for up to `tick`, or until an acknowledgement asks for a write or the hub closes.
+    /// Publishing does not wake the writer (that would cost a wake-up per event on the hot
+    /// path), so events nobody waits for are taken on the next tick.
+    pub fn wait(&self, tick: Duration) {
+        if !self.inner.wake_asked.load(Ordering::Acquire) {
+            std::thread::park_timeout(tick);
+        }
+        self.inner.wake_asked.store(false, Ordering::Release);
+    }
+
+    /// Moves every pending event into `batch` (which should be empty), without waiting.
+    pub fn take_now(&self, batch: &mut Vec<Arc<Event>>) {
+        std::mem::swap(&mut lock(&self.inner.queue).pending, batch);
+    }
+
+    /// Whether the hub asked the writer to stop.
+    pub fn closed(&self) -> bool {
+        lock(&self.inner.queue).closed
+    }
+
+    /// Lets acknowledgements write the log themselves through `committer` (`None`: no more).
+    pub fn set_committer(&self, committer: Option<Arc<dyn Committer>>) {
+        *lock(&self.inner.committer) = committer;
+    }
+
+    /// After a quiet spell: sleeps until the next publish (which then wakes the writer, once),
+    /// an acknowledgement or a close, so that an idle server's writer does not tick.
+    pub fn sleep_until_published(&self) {
+        loop {
+            let mut queue = lock(&self.inner.queue);
+            if !queue.pending.is_empty() || queue.closed {
+                queue.writer_idle = false;
+                return;
+            }
+            if self.inner.wake_asked.load(Ordering::Acquire) {
+                return;
+            }
+            queue.writer_idle = true;
+            drop(queue);
+            std::thread::park();
+        }
+    }
+
+    /// Reports how far the log is written.
+    pub fn report(&self, logged: Logged) {
+        self.inner.logged.send_replace(logged);
+    }
+}
+
+impl Drop for CorpusFeed {
+    fn drop(&mut self) {
+        lock(&self.inner.queue).detached = true;
+        self.inner.logged.send_modify(|l| l.ended = true);
     }
 }

@@ -9,7 +9,9 @@
 mod hub;
 mod kind;
 
-pub use hub::{CorpusMsg, EVENT_CHANNEL_CAPACITY, HISTORY_LEN, Hub};
+pub use hub::{
+    Committer, CorpusFeed, EVENT_CHANNEL_CAPACITY, HISTORY_LEN, Hub, LogUnwritable, Logged,
+};
 pub use kind::{ActRef, ClientRole, Event, EventKind, Source};
 
 /// Version of the event format, written into every corpus line as `v`. 2: `command.sent`

@@ -125,6 +125,9 @@ pub async fn trigger_act(
     })?;
     let example = r#"{"context": "TextGroup", "interrupt": true, "ref": "b1"}"#;
     let body: TriggerBody = body.object(example)?.unwrap_or_default();
+    if let Some(failure) = state.hub.log_failure() {
+        return Err(AppError::log_unwritable(failure.refusal()));
+    }
     let request = TriggerRequest {
         context: body.context,
         interrupt: body.interrupt,
@@ -132,13 +135,26 @@ pub async fn trigger_act(
         ..TriggerRequest::new(label, Source::Http)
     };
     let triggered = state.dispatcher.trigger(request)?;
+    logged(&state).await?;
     Ok((StatusCode::ACCEPTED, Json(triggered)))
 }
 
 /// `POST /api/stop` (credential needed): stops speech, drive and every queue.
-pub async fn stop_all(State(state): State<AppState>, _: Authorized) -> impl IntoResponse {
+pub async fn stop_all(
+    State(state): State<AppState>,
+    _: Authorized,
+) -> Result<impl IntoResponse, AppError> {
     state.dispatcher.stop(Source::Http, "stop request");
-    (StatusCode::ACCEPTED, Json(json!({ "stopped": true })))
+    logged(&state).await?;
+    Ok((StatusCode::ACCEPTED, Json(json!({ "stopped": true }))))
+}
+
+/// Waits until the corpus log holds every event published so far (those of the request just
+/// carried out among them), so that the answer never claims what a crash could lose.
+async fn logged(state: &AppState) -> Result<(), AppError> {
+    let hub = &state.hub;
+    (hub.logged(hub.published_seq()).await)
+        .map_err(|failure| AppError::log_unwritable(failure.after_the_fact()))
 }
 
 /// `GET /api/context`: the current context and the ones available.
@@ -164,6 +180,7 @@ pub async fn put_context(
         .object(example)?
         .ok_or_else(|| AppError::bad_request(format!("expected a body, e.g. {example}")))?;
     state.dispatcher.set_context(&body.context, Source::Http)?;
+    logged(&state).await?;
     Ok(get_context(State(state)).await)
 }
 

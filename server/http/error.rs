@@ -52,6 +52,15 @@ impl AppError {
         Self::new(StatusCode::BAD_REQUEST, code, message)
     }
 
+    /// 503 `corpus-unwritable`: the corpus log cannot be written, so nothing is acknowledged.
+    pub fn log_unwritable(message: String) -> Self {
+        Self::new(
+            StatusCode::SERVICE_UNAVAILABLE,
+            crate::events::LogUnwritable::CODE,
+            message,
+        )
+    }
+
     /// 500, logged here once; the client sees a generic message.
     pub fn internal(error: impl std::fmt::Display) -> Self {
         tracing::error!(%error, "internal error");

@@ -40,7 +40,7 @@ impl Session {
         };
         let made = (self.state.proposals).propose(self.client, label, context, reason, announce);
         match made {
-            Ok(p) => self.send(proposed_frame(reference, p.proposal)),
+            Ok(p) => self.send_logged(proposed_frame(reference, p.proposal), reference),
             Err(e) => self.reply_error(e.code(), &e.to_string(), reference, None),
         }
     }
@@ -58,7 +58,9 @@ impl Session {
     }
 
     pub(super) fn accept(&self, id: u64, reference: Option<String>) {
-        if self.allowed(&OPERATOR, reference.as_deref()).is_none() {
+        if self.allowed(&OPERATOR, reference.as_deref()).is_none()
+            || !self.log_writable(reference.as_deref())
+        {
             return;
         }
         let proposal = match self.state.proposals.settle(id) {
@@ -75,13 +77,14 @@ impl Session {
         };
         match self.state.dispatcher.trigger(request) {
             Ok(t) => {
-                self.send(triggered_frame(&t));
                 self.state.hub.publish(EventKind::ProposalAccepted {
                     proposal: id,
                     client: self.client,
                     label: proposal.label,
                     trigger: t.trigger,
                 });
+                // After the event, so that the acknowledgement waits for it in the log too.
+                self.send_logged(triggered_frame(&t), reference.as_deref());
             }
             Err(e) => {
                 // Still pending: another operator may dismiss it, or the bundle may change.
@@ -103,12 +106,12 @@ impl Session {
         }
         match self.state.proposals.settle(id) {
             Ok(p) => {
-                self.send(dismissed_frame(reference, id));
                 self.state.hub.publish(EventKind::ProposalDismissed {
                     proposal: id,
                     client: self.client,
                     label: p.label,
                 });
+                self.send_logged(dismissed_frame(reference, id), reference);
             }
             Err(e) => self.reply_error(e.code(), &e.to_string(), reference, None),
         }
@@ -189,7 +192,10 @@ impl Session {
                 session
             }
         };
-        self.send(marked_frame(reference, mark, value.as_deref(), session));
+        self.send_logged(
+            marked_frame(reference, mark, value.as_deref(), session),
+            reference,
+        );
     }
 
     /// The context the site maps a visitor group to, if any.

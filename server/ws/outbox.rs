@@ -1,5 +1,8 @@
 //! A connection's outgoing queue. Bounded: a client that stops reading is dropped (its
-//! connection is "kicked") instead of slowing down everyone who sends to it.
+//! connection is "kicked") instead of slowing down everyone who sends to it. An
+//! acknowledgement waits in the queue until the corpus log holds what it acknowledges
+//! ([`Outbox::send_logged`]), and the frames queued after it wait behind it, so a client sees
+//! its answers in order.
 
 use axum::extract::ws::Utf8Bytes;
 use tokio::sync::mpsc;
@@ -11,16 +14,35 @@ pub type Frame = Utf8Bytes;
 /// How many frames may wait for one client before it counts as too slow.
 pub const OUTBOX_CAPACITY: usize = 1024;
 
+/// A frame in the queue.
+#[derive(Debug)]
+pub struct Queued {
+    /// The frame.
+    pub frame: Frame,
+    /// Set for an acknowledgement: what it waits for. Boxed, since most frames have none.
+    pub ack: Option<Box<Ack>>,
+}
+
+/// What an acknowledgement waits for before it may go out.
+#[derive(Debug)]
+pub struct Ack {
+    /// The corpus log must be written through this `seq`.
+    pub logged: u64,
+    /// The `ref` of the request acknowledged, for the `error` frame sent instead when the log
+    /// cannot be written.
+    pub reference: Option<String>,
+}
+
 /// The sending side of a connection's queue. Cheap to clone.
 #[derive(Clone, Debug)]
 pub struct Outbox {
-    tx: mpsc::Sender<Frame>,
+    tx: mpsc::Sender<Queued>,
     kick: CancellationToken,
 }
 
 impl Outbox {
     /// A queue of `capacity` frames and its receiving end.
-    pub fn new(capacity: usize) -> (Outbox, mpsc::Receiver<Frame>) {
+    pub fn new(capacity: usize) -> (Outbox, mpsc::Receiver<Queued>) {
         let (tx, rx) = mpsc::channel(capacity);
         (
             Outbox {
@@ -34,7 +56,19 @@ impl Outbox {
     /// Queues a text frame without waiting. False when the client is gone or too slow (it is
     /// then kicked).
     pub fn send(&self, frame: Frame) -> bool {
-        match self.tx.try_send(frame) {
+        self.queue(Queued { frame, ack: None })
+    }
+
+    /// Queues an acknowledgement, to be sent once the corpus log is written through `logged`
+    /// (or an `error` frame with `reference` in its place if it cannot be). As [`Outbox::send`]
+    /// otherwise.
+    pub fn send_logged(&self, frame: Frame, logged: u64, reference: Option<String>) -> bool {
+        let ack = Some(Box::new(Ack { logged, reference }));
+        self.queue(Queued { frame, ack })
+    }
+
+    fn queue(&self, queued: Queued) -> bool {
+        match self.tx.try_send(queued) {
             Ok(()) => true,
             Err(mpsc::error::TrySendError::Full(_)) => {
                 self.kick.cancel();

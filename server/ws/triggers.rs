@@ -10,8 +10,9 @@ use std::time::Instant;
 
 use crate::content::{BundleArea, resolve_in_bundle};
 use crate::dispatch::TriggerRequest;
-use crate::events::{ClientRole, EventKind};
+use crate::events::{ClientRole, EventKind, LogUnwritable};
 use crate::ws::connection::Session;
+use crate::ws::outbox::Frame;
 use crate::ws::protocol::{context_frame, stopped_frame, triggered_frame};
 
 const TRIGGER_ROLES: [ClientRole; 3] = [ClientRole::Kiosk, ClientRole::Operator, ClientRole::Dm];
@@ -45,6 +46,9 @@ impl Session {
             }
             return self.log_refused(label, code, message);
         }
+        if !self.log_writable(reference.as_deref()) {
+            return;
+        }
         let request = TriggerRequest {
             label,
             context,
@@ -54,7 +58,7 @@ impl Session {
             client: Some(self.client),
         };
         match self.state.dispatcher.trigger(request) {
-            Ok(t) => self.send(triggered_frame(&t)),
+            Ok(t) => self.send_logged(triggered_frame(&t), reference.as_deref()),
             Err(e) => self.reply_error(
                 e.code(),
                 &e.to_string(),
@@ -62,6 +66,25 @@ impl Session {
                 e.suggestion(),
             ),
         }
+    }
+
+    /// Sends an acknowledgement once the corpus log holds every event published so far, which
+    /// includes those of the action it acknowledges (see `docs/CORPUS.md`, "Guarantees").
+    pub(super) fn send_logged(&self, frame: String, reference: Option<&str>) {
+        let logged = self.state.hub.published_seq();
+        let reference = reference.map(str::to_owned);
+        self.outbox
+            .send_logged(Frame::from(frame), logged, reference);
+    }
+
+    /// False, after telling the client, while the corpus log cannot be written: a trigger
+    /// could not be acknowledged truthfully then.
+    pub(super) fn log_writable(&self, reference: Option<&str>) -> bool {
+        let Some(failure) = self.state.hub.log_failure() else {
+            return true;
+        };
+        self.reply_error(LogUnwritable::CODE, &failure.refusal(), reference, None);
+        false
     }
 
     /// Whether a kiosk may trigger `label` now: within its allowance, an act its pages offer.
@@ -114,8 +137,9 @@ impl Session {
         let Some(role) = self.allowed(&CONTROL_ROLES, reference.as_deref()) else {
             return;
         };
+        // Never refused for the log: stopping the robot must always work.
         self.state.dispatcher.stop(role.source(), "stop request");
-        self.send(stopped_frame(reference.as_deref()));
+        self.send_logged(stopped_frame(reference.as_deref()), reference.as_deref());
     }
 
     pub(super) fn set_context(&self, context: String, reference: Option<String>) {
@@ -123,7 +147,10 @@ impl Session {
             return;
         };
         match self.state.dispatcher.set_context(&context, role.source()) {
-            Ok(()) => self.send(context_frame(reference.as_deref(), &context)),
+            Ok(()) => self.send_logged(
+                context_frame(reference.as_deref(), &context),
+                reference.as_deref(),
+            ),
             Err(e) => self.reply_error(
                 e.code(),
                 &e.to_string(),

@@ -11,10 +11,10 @@ use tokio::sync::broadcast::error::{RecvError, TryRecvError};
 use tokio::sync::{broadcast, mpsc, oneshot};
 use tokio_util::sync::CancellationToken;
 
-use crate::events::{ClientRole, Event};
+use crate::events::{ClientRole, Event, Hub, LogUnwritable};
 use crate::state::AppState;
-use crate::ws::outbox::Frame;
-use crate::ws::protocol::{event_frame, state_frame};
+use crate::ws::outbox::{Frame, Queued};
+use crate::ws::protocol::{error_frame, event_frame, state_frame};
 
 /// A client that cannot take a frame within this time is dropped.
 const WRITE_TIMEOUT: Duration = Duration::from_secs(10);
@@ -44,7 +44,7 @@ pub type CloseWith = Arc<std::sync::Mutex<Option<CloseFrame>>>;
 /// cancels `stop` itself when it ends first.
 pub async fn run_writer(
     mut sink: SplitSink<WebSocket, Message>,
-    mut queue: mpsc::Receiver<Frame>,
+    mut queue: mpsc::Receiver<Queued>,
     feed: oneshot::Receiver<Feed>,
     state: AppState,
     stop: CancellationToken,
@@ -58,7 +58,13 @@ pub async fn run_writer(
         // Biased: direct answers (and `welcome` before anything fed) go out first.
         let frame = tokio::select! {
             biased;
-            frame = queue.recv() => match frame { Some(f) => f, None => break "closed" },
+            queued = queue.recv() => match queued {
+                Some(queued) => match release(queued, &state.hub, &stop).await {
+                    Some(frame) => frame,
+                    None => break "closed",
+                },
+                None => break "closed",
+            },
             f = async {
                 match feed.as_mut() {
                     Some(f) => f.await,
@@ -87,7 +93,10 @@ pub async fn run_writer(
         let mut batch = 0;
         while batch < MAX_BATCH {
             let frame = match queue.try_recv() {
-                Ok(frame) => frame,
+                Ok(queued) => match release(queued, &state.hub, &stop).await {
+                    Some(frame) => frame,
+                    None => break 'writing "closed",
+                },
                 Err(_) => match try_next_fed(&mut subscription, &state) {
                     Some(Ok(frame)) => frame,
                     Some(Err(end)) => break 'writing end,
@@ -114,6 +123,33 @@ pub async fn run_writer(
     };
     let _ = tokio::time::timeout(CLOSE_TIMEOUT, closing).await;
     end
+}
+
+/// The frame to send for `queued`: an acknowledgement once the corpus log holds what it
+/// acknowledges, or an `error` frame saying it could not be logged. `None` when the connection
+/// stops meanwhile.
+async fn release(queued: Queued, hub: &Hub, stop: &CancellationToken) -> Option<Frame> {
+    let Some(ack) = queued.ack else {
+        return Some(queued.frame);
+    };
+    if !hub.is_logged(ack.logged) {
+        // Let the frames this request woke (commands to kiosks and adapters) go out first:
+        // the acknowledgement may have to write the log itself.
+        tokio::task::yield_now().await;
+    }
+    let logged = tokio::select! {
+        logged = hub.logged(ack.logged) => logged,
+        () = stop.cancelled() => return None,
+    };
+    Some(match logged {
+        Ok(()) => queued.frame,
+        Err(unwritable) => Frame::from(error_frame(
+            LogUnwritable::CODE,
+            &unwritable.after_the_fact(),
+            ack.reference.as_deref(),
+            None,
+        )),
+    })
 }
 
 /// What a subscription's receiver gave.

@@ -116,6 +116,7 @@ impl TestServer {
         let mut options = ServeOptions {
             seed: Some(1),
             corpus_dir: corpus_dir.path().to_owned(),
+            corpus_sync: docent::corpus::DEFAULT_SYNC_INTERVAL,
             speech_wav: None,
             access: test_access(),
             limits: docent::http::ConnectionLimits::default(),

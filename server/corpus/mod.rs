@@ -1,0 +1,154 @@
+//! The corpus writer: the only code that writes the event log. It runs on its own thread, off
+//! the dispatcher's hot path, and commits events in groups: it takes every event published
+//! since its last batch, writes their JSON lines with one `write(2)`, then reports through the
+//! hub how far the log is written, which releases the acknowledgements waiting on that batch
+//! ([`crate::events::Hub::logged`]). So an acknowledged event survives `kill -9`; a second
+//! thread syncs the file to disk at a bounded interval ([`sync`]), which bounds what a power
+//! cut can take. Format and guarantees: `docs/CORPUS.md`.
+
+mod sync;
+mod writer;
+
+use std::fs::OpenOptions;
+use std::io;
+use std::path::{Path, PathBuf};
+use std::time::{Duration, SystemTime};
+
+use tokio::sync::oneshot;
+
+use crate::events::CorpusFeed;
+
+/// How often the log is synced to disk by default (`docent serve --corpus-sync`).
+pub const DEFAULT_SYNC_INTERVAL: Duration = Duration::from_secs(1);
+
+/// Handle to the running writer thread.
+pub struct CorpusWriter {
+    path: PathBuf,
+    closed: Option<oneshot::Receiver<io::Result<u64>>>,
+}
+
+impl CorpusWriter {
+    /// Creates `dir` if needed, opens a new log file named after the start time and starts the
+    /// writer thread (and its sync thread, syncing every `sync_interval`), which end on
+    /// [`crate::events::Hub::close_corpus`].
+    pub fn start(dir: &Path, feed: CorpusFeed, sync_interval: Duration) -> io::Result<Self> {
+        std::fs::create_dir_all(dir)?;
+        let stamp = humantime::format_rfc3339_seconds(SystemTime::now())
+            .to_string()
+            .replace(':', "-");
+        let path = unique_path(dir, &stamp);
+        let file = OpenOptions::new()
+            .create_new(true)
+            .append(true)
+            .open(&path)?;
+        let syncer = sync::Syncer::start(file.try_clone()?, sync_interval)?;
+        let (done_tx, done_rx) = oneshot::channel();
+        std::thread::Builder::new()
+            .name("corpus-writer".into())
+            .spawn(move || {
+                let _ = done_tx.send(writer::run(file, feed, syncer));
+            })?;
+        Ok(CorpusWriter {
+            path,
+            closed: Some(done_rx),
+        })
+    }
+
+    /// The log file.
+    pub fn path(&self) -> &Path {
+        &self.path
+    }
+
+    /// Waits until the writer has written and synced everything (call
+    /// [`crate::events::Hub::close_corpus`] first). Returns the number of events written.
+    pub async fn finish(mut self) -> io::Result<u64> {
+        match self.closed.take() {
+            Some(rx) => rx
+                .await
+                .unwrap_or_else(|_| Err(io::Error::other("corpus writer panicked"))),
+            None => Ok(0),
+        }
+    }
+}
+
+fn unique_path(dir: &Path, stamp: &str) -> PathBuf {
+    let first = dir.join(format!("docent-{stamp}.jsonl"));
+    if !first.exists() {
+        return first;
+    }
+    (1..)
+        .map(|n| dir.join(format!("docent-{stamp}-{n}.jsonl")))
+        .find(|p| !p.exists())
+        .unwrap_or(first)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::events::{EventKind, Hub, Source};
+
+    fn context(n: usize) -> EventKind {
+        EventKind::ContextChanged {
+            source: Source::Http,
+            context: format!("T{n}"),
+        }
+    }
+
+    fn seqs(path: &Path) -> Vec<u64> {
+        let text = std::fs::read_to_string(path).unwrap();
+        text.lines()
+            .map(|l| {
+                serde_json::from_str::<serde_json::Value>(l).unwrap()["seq"]
+                    .as_u64()
+                    .unwrap()
+            })
+            .collect()
+    }
+
+    #[tokio::test]
+    async fn every_published_event_is_a_json_line_in_sequence_order() {
+        let dir = tempfile::tempdir().unwrap();
+        let (hub, feed) = Hub::new();
+        let writer = CorpusWriter::start(dir.path(), feed, DEFAULT_SYNC_INTERVAL).unwrap();
+        for n in 0..100 {
+            hub.publish(context(n));
+        }
+        let path = writer.path().to_owned();
+        hub.close_corpus();
+        assert_eq!(writer.finish().await.unwrap(), 100);
+        assert_eq!(seqs(&path), (1..=100).collect::<Vec<_>>());
+    }
+
+    #[tokio::test]
+    async fn an_event_is_in_the_file_when_logged_returns() {
+        let dir = tempfile::tempdir().unwrap();
+        let (hub, feed) = Hub::new();
+        // A long sync interval: what is read back was written, not synced.
+        let writer = CorpusWriter::start(dir.path(), feed, Duration::from_secs(3600)).unwrap();
+        for round in 1..=50u64 {
+            let event = hub.publish(context(round as usize));
+            hub.logged(event.seq).await.unwrap();
+            // Read back while the writer still runs.
+            assert_eq!(seqs(writer.path()), (1..=round).collect::<Vec<_>>());
+        }
+        hub.close_corpus();
+        writer.finish().await.unwrap();
+    }
+
+    #[tokio::test]
+    async fn after_the_writer_stopped_an_acknowledgement_is_refused() {
+        let dir = tempfile::tempdir().unwrap();
+        let (hub, feed) = Hub::new();
+        let writer = CorpusWriter::start(dir.path(), feed, DEFAULT_SYNC_INTERVAL).unwrap();
+        hub.close_corpus();
+        writer.finish().await.unwrap();
+        let late = hub.publish(context(1));
+        let refused = hub.logged(late.seq).await.unwrap_err();
+        assert!(
+            refused
+                .to_string()
+                .contains("the corpus writer has stopped")
+        );
+        assert!(hub.log_failure().is_some());
+    }
+}
