@@ -29,4 +29,5 @@ pub mod reload;
 pub mod serve;
 pub mod state;
 pub mod sync;
+pub mod wire;
 pub mod ws;

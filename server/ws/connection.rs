@@ -23,9 +23,9 @@ use crate::http::ConnectionSlot;
 use crate::http::auth::{Peer, same_origin};
 use crate::state::AppState;
 use crate::sync::lock;
+use crate::wire::outbox::{Frame, OUTBOX_CAPACITY, Outbox};
 use crate::ws::diagnose::diagnose;
 use crate::ws::hello::Hello;
-use crate::ws::outbox::{Frame, OUTBOX_CAPACITY, Outbox};
 use crate::ws::protocol::{ClientFrame, MAX_FRAME_BYTES, error_frame};
 use crate::ws::violation::{Violation, violation};
 use crate::ws::writer::{CloseWith, Feed, PING_INTERVAL, run_writer};
@@ -300,11 +300,13 @@ impl Session {
                 .display
                 .report(role, self.client, id, report);
         }
-        let ws = &self.state.devices.ws;
+        let external = &self.state.devices.external;
         let result = match report {
-            ScreenReport::Started => ws.started(self.client, id),
-            ScreenReport::Done { .. } => ws.answer(self.client, id, Outcome::Done),
-            ScreenReport::Failed(reason) => ws.answer(self.client, id, Outcome::Failed(reason)),
+            ScreenReport::Started => external.started(self.client, id),
+            ScreenReport::Done { .. } => external.answer(self.client, id, Outcome::Done),
+            ScreenReport::Failed(reason) => {
+                external.answer(self.client, id, Outcome::Failed(reason))
+            }
         };
         if let Err(e) = result {
             self.reply_error("unknown-command", &e.to_string(), None, None);
@@ -314,7 +316,7 @@ impl Session {
     fn leave(self, reason: &str) {
         let Some(role) = self.role else { return };
         if role == ClientRole::Adapter {
-            self.state.devices.ws.disconnect(self.client);
+            self.state.devices.external.disconnect(self.client);
         }
         self.state.devices.display.left(role, self.client);
         self.state.client_left(self.client);

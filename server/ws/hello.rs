@@ -7,8 +7,8 @@
 use crate::access::{ClientAddress, Needed, Refusal};
 use crate::events::{ClientRole, EventKind};
 use crate::state::ClientInfo;
+use crate::wire::outbox::Frame;
 use crate::ws::connection::Session;
-use crate::ws::outbox::Frame;
 use crate::ws::protocol::{event_frame, welcome_frame};
 use crate::ws::writer::Feed;
 
@@ -100,7 +100,7 @@ impl Session {
         if role == ClientRole::Adapter {
             state
                 .devices
-                .ws
+                .external
                 .connect(self.client, verbs.clone(), self.outbox.clone());
             self.warn_unrouted(&verbs);
         }

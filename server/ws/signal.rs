@@ -10,8 +10,8 @@ use std::time::Instant;
 use serde_json::json;
 
 use crate::events::ClientRole;
+use crate::wire::outbox::Frame;
 use crate::ws::connection::Session;
-use crate::ws::outbox::Frame;
 use crate::ws::protocol::signal_frame;
 
 /// The `data.kind` values a call uses (see `static/camera-kiosk.js`).

@@ -11,8 +11,8 @@ use std::time::Instant;
 use crate::content::{BundleArea, resolve_in_bundle};
 use crate::dispatch::TriggerRequest;
 use crate::events::{ClientRole, EventKind, LogUnwritable};
+use crate::wire::outbox::Frame;
 use crate::ws::connection::Session;
-use crate::ws::outbox::Frame;
 use crate::ws::protocol::{context_frame, stopped_frame, triggered_frame};
 
 const TRIGGER_ROLES: [ClientRole; 3] = [ClientRole::Kiosk, ClientRole::Operator, ClientRole::Dm];

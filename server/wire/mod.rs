@@ -1,0 +1,8 @@
+//! What goes on the wire to a client, shared by the websocket layer (`ws`) and the adapters
+//! that send to screens and external adapter processes, so neither imports the other.
+//!
+//! - `outbox`: a client's bounded outgoing queue and the [`outbox::Frame`] it carries.
+//! - `frames`: the server→client frames adapters send (`command`, `cancel`).
+
+pub mod frames;
+pub mod outbox;
