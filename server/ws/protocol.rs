@@ -8,6 +8,7 @@ use crate::adapters::{Command, Display, Pose};
 use crate::dispatch::ResolvedCommand;
 use crate::events::{ClientRole, Event, Source};
 use crate::reload::ReloadView;
+use crate::wire::ErrorCode;
 
 /// The protocol version sent in `welcome`. 4: `command` frames carry the parsed `args`.
 pub const PROTOCOL_VERSION: u32 = 4;
@@ -248,7 +249,7 @@ enum ServerFrame<'a> {
         stoppable: bool,
     },
     Error {
-        code: &'a str,
+        code: ErrorCode,
         message: &'a str,
         #[serde(rename = "ref")]
         reference: Option<&'a str>,
@@ -354,7 +355,7 @@ pub fn changed_frame(pages: &[&str], shell: bool) -> String {
 
 /// `error`: what went wrong with a client's frame; the connection stays open.
 pub fn error_frame(
-    code: &str,
+    code: ErrorCode,
     message: &str,
     reference: Option<&str>,
     suggestion: Option<&str>,
