@@ -48,3 +48,21 @@ pub fn command_frame(c: &Command) -> String {
 pub fn cancel_frame(verbs: Option<&[String]>, reason: &str) -> String {
     encode(&AdapterFrame::Cancel { verbs, reason })
 }
+
+#[cfg(test)]
+mod tests {
+    use super::cancel_frame;
+
+    #[test]
+    fn cancel_frames_keep_their_bytes() {
+        assert_eq!(
+            cancel_frame(None, "stopped"),
+            r#"{"type":"cancel","verbs":null,"reason":"stopped"}"#
+        );
+        let verbs = ["SAY".to_owned()];
+        assert_eq!(
+            cancel_frame(Some(&verbs), "interrupted"),
+            r#"{"type":"cancel","verbs":["SAY"],"reason":"interrupted"}"#
+        );
+    }
+}
