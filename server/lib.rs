@@ -10,6 +10,8 @@
 //! - [`events`]: the event types and the hub that stamps and fans them out.
 //! - [`corpus`]: the JSON Lines corpus writer.
 //! - [`http`]: the route table and HTTP handlers; [`ws`]: the websocket protocol.
+//! - [`wire`]: what goes to a client, shared by [`ws`] and [`adapters`]: the bounded outbox,
+//!   the frames adapters send and [`wire::ErrorCode`].
 //! - [`operator`]: pending proposals (mixed initiative) and visitor-session marks.
 //! - [`reload`]: live reload: watching the bundle folder, swapping in a good save, refusing a
 //!   broken one.
@@ -29,4 +31,5 @@ pub mod reload;
 pub mod serve;
 pub mod state;
 pub mod sync;
+pub mod wire;
 pub mod ws;

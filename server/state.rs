@@ -15,7 +15,7 @@ use crate::lifecycle::Lifecycle;
 use crate::operator::{Proposals, Visits};
 use crate::reload::ReloadStatus;
 use crate::sync::lock;
-use crate::ws::outbox::{Frame, Outbox};
+use crate::wire::outbox::{Frame, Outbox};
 use crate::ws::protocol::StateView;
 
 /// A connected websocket client, as `GET /api/state` lists it.

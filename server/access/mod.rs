@@ -24,6 +24,7 @@ use std::sync::Mutex;
 use std::time::{Duration, Instant};
 
 use crate::sync::lock;
+use crate::wire::ErrorCode;
 
 /// Kiosk addresses whose allowance is remembered at most (full ones are forgotten first).
 const MAX_KIOSK_ADDRESSES: usize = 10_000;
@@ -79,10 +80,10 @@ pub enum Refusal {
 
 impl Refusal {
     /// The error code on the wire.
-    pub fn code(self) -> &'static str {
+    pub fn code(self) -> ErrorCode {
         match self {
-            Refusal::Missing | Refusal::Wrong => "unauthorized",
-            Refusal::TooManyAttempts(_) | Refusal::Locked(_) => "too-many-attempts",
+            Refusal::Missing | Refusal::Wrong => ErrorCode::Unauthorized,
+            Refusal::TooManyAttempts(_) | Refusal::Locked(_) => ErrorCode::TooManyAttempts,
         }
     }
 
@@ -353,7 +354,7 @@ mod tests {
             )
             .unwrap_err();
         assert!(!refusal.message(Needed::Operator).contains("my-guess-token"));
-        assert_eq!(refusal.code(), "unauthorized");
+        assert_eq!(refusal.code(), ErrorCode::Unauthorized);
     }
 
     #[test]

@@ -35,8 +35,8 @@ use crate::content::{Area, MediaKind};
 use crate::events::{ClientRole, EventKind, Hub};
 use crate::lifecycle::Lifecycle;
 use crate::sync::lock;
-use crate::ws::outbox::Frame;
-use crate::ws::protocol::cancel_frame;
+use crate::wire::frames::cancel_frame;
+use crate::wire::outbox::Frame;
 
 pub use adapter::DisplayAdapter;
 use books::{Awaiting, Books, Showing};

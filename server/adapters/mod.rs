@@ -7,28 +7,28 @@
 //! - `command`: a dispatched command and its [`Reply`] (the only way outcomes are reported).
 //! - `worker`: a queue that runs one command at a time and can be cancelled.
 //! - `speech_log`, `speech_espeak`: speech adapters (each a `Worker` with its own task); `display`: kiosk and projector state;
-//!   `drive_sim`: the simulated drive base; `ws`: external adapter processes over the websocket.
+//!   `drive_sim`: the simulated drive base; `external`: external adapter processes over the websocket (adapter name `ws`).
 //! - `router`: verb → adapter, built from the site configuration.
 
 mod command;
 mod display;
 mod drive_sim;
+pub mod external;
 mod router;
 mod speech_espeak;
 mod speech_log;
 mod worker;
-pub mod ws;
 
 pub use command::{Command, Outcome, Reply};
 pub use display::{Display, DisplayAdapter, DisplayState, ProjectorState, Screen, ScreenReport};
 pub use drive_sim::{DriveSim, Pose};
+pub use external::ExternalAdapters;
 pub use router::{Devices, Router};
 pub use speech_espeak::{
     SpeechOutput, espeak_adapter, espeak_available, espeak_can_play, espeak_voices,
 };
 pub use speech_log::log_adapter;
 pub use worker::Worker;
-pub use ws::WsAdapters;
 
 use crate::content::Verb;
 

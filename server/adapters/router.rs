@@ -5,8 +5,8 @@ use std::collections::HashMap;
 use std::sync::Arc;
 
 use crate::adapters::{
-    Adapter, DisplayAdapter, DisplayState, DriveSim, SpeechOutput, WsAdapters, espeak_adapter,
-    log_adapter,
+    Adapter, DisplayAdapter, DisplayState, DriveSim, ExternalAdapters, SpeechOutput,
+    espeak_adapter, log_adapter,
 };
 use crate::content::Verb;
 use crate::content::config::{AdapterKind, SiteConfig};
@@ -21,7 +21,7 @@ pub struct Devices {
     /// The simulated base, when the drive is simulated.
     pub drive: Option<Arc<DriveSim>>,
     /// External adapter connections.
-    pub ws: Arc<WsAdapters>,
+    pub external: Arc<ExternalAdapters>,
     /// The speech adapter actually used (`espeak`, `log`, `ws` or `browser`).
     pub speech: AdapterKind,
     /// The name of the adapter that carries out `SAY` (`browser` speech runs as `ws`).
@@ -41,7 +41,7 @@ impl Devices {
         life: &Lifecycle,
     ) -> (Devices, Router) {
         let display = DisplayState::start(home, config.adapter_timeout, hub.clone(), life);
-        let ws = Arc::new(WsAdapters::new(config.adapter_timeout, life.clone()));
+        let external = Arc::new(ExternalAdapters::new(config.adapter_timeout, life.clone()));
         let log = Arc::new(log_adapter(config.speech.rate_wpm, life));
         let drive = (config.drive.adapter == AdapterKind::DriveSim)
             .then(|| Arc::new(DriveSim::new(&config.drive, hub.clone(), life)));
@@ -60,7 +60,7 @@ impl Devices {
                 AdapterKind::Espeak => espeak.clone().unwrap_or_else(|| log.clone()),
                 AdapterKind::Log => log.clone(),
                 // The kiosk shell serves browser speech as a websocket adapter.
-                AdapterKind::Ws | AdapterKind::Browser => ws.clone(),
+                AdapterKind::Ws | AdapterKind::Browser => external.clone(),
                 AdapterKind::Display => display_adapter.clone(),
                 AdapterKind::DriveSim => match &drive {
                     Some(d) => d.clone(),
@@ -84,7 +84,7 @@ impl Devices {
             Devices {
                 display,
                 drive,
-                ws,
+                external,
                 speech,
                 speech_adapter,
             },

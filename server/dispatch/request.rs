@@ -4,6 +4,7 @@
 use serde::Serialize;
 
 use crate::events::Source;
+use crate::wire::ErrorCode;
 
 /// A request to trigger an act.
 #[derive(Clone, Debug)]
@@ -105,11 +106,11 @@ fn hint(suggestion: &Option<String>) -> String {
 
 impl TriggerError {
     /// The stable error code (`unknown-act`, `unknown-context`, `already-speaking`).
-    pub fn code(&self) -> &'static str {
+    pub fn code(&self) -> ErrorCode {
         match self {
-            TriggerError::UnknownAct { .. } => "unknown-act",
-            TriggerError::UnknownContext { .. } => "unknown-context",
-            TriggerError::AlreadySpeaking { .. } => "already-speaking",
+            TriggerError::UnknownAct { .. } => ErrorCode::UnknownAct,
+            TriggerError::UnknownContext { .. } => ErrorCode::UnknownContext,
+            TriggerError::AlreadySpeaking { .. } => ErrorCode::AlreadySpeaking,
         }
     }
 

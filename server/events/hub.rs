@@ -14,6 +14,7 @@ use tokio::sync::{broadcast, watch};
 
 use crate::events::{Event, EventKind};
 use crate::sync::lock;
+use crate::wire::ErrorCode;
 
 /// How many history events (acts triggered, proposals, marks) a console joining later gets.
 pub const HISTORY_LEN: usize = 200;
@@ -43,7 +44,7 @@ pub struct LogUnwritable(pub Arc<str>);
 
 impl LogUnwritable {
     /// The stable error code sent to clients.
-    pub const CODE: &'static str = "corpus-unwritable";
+    pub const CODE: ErrorCode = ErrorCode::CorpusUnwritable;
 
     /// Said instead of an acknowledgement: what was asked for was done, but is not known to be
     /// in the log.

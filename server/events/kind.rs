@@ -7,6 +7,7 @@ use serde::Serialize;
 
 use crate::content::Args;
 use crate::events::EVENT_FORMAT_VERSION;
+use crate::wire::ErrorCode;
 
 /// Who asked for something: the trigger API's callers and the server itself.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize)]
@@ -146,7 +147,7 @@ pub enum EventKind {
         /// The label asked for.
         label: String,
         /// The error code.
-        code: &'static str,
+        code: ErrorCode,
         /// Why.
         message: String,
     },
@@ -412,7 +413,7 @@ pub enum EventKind {
         /// The role it asked for.
         role: ClientRole,
         /// `unauthorized` or `too-many-attempts`.
-        code: &'static str,
+        code: ErrorCode,
         /// Its network address, when known.
         address: Option<String>,
         /// Credential refusals (websocket and HTTP) left out of the log just before this one,
@@ -429,7 +430,7 @@ pub enum EventKind {
         /// The request's path (without the query), at most 256 bytes.
         path: String,
         /// `unauthorized` or `too-many-attempts`.
-        code: &'static str,
+        code: ErrorCode,
         /// The client's network address, when known.
         address: Option<String>,
         /// As for `client.refused`.

@@ -16,6 +16,7 @@ use crate::http::AppError;
 use crate::http::auth::Authorized;
 use crate::http::body::RequestBody;
 use crate::state::AppState;
+use crate::wire::ErrorCode;
 use crate::ws::protocol::PROTOCOL_VERSION;
 
 /// `GET /healthz`
@@ -218,7 +219,7 @@ pub async fn no_favicon() -> StatusCode {
 pub async fn method_not_allowed() -> AppError {
     AppError::new(
         StatusCode::METHOD_NOT_ALLOWED,
-        "method-not-allowed",
+        ErrorCode::MethodNotAllowed,
         "this route does not take that method; see docs/PROTOCOL.md",
     )
 }

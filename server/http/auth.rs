@@ -16,6 +16,7 @@ use crate::access::{ClientAddress, Needed, Refusal, whole_seconds};
 use crate::events::EventKind;
 use crate::http::AppError;
 use crate::state::AppState;
+use crate::wire::ErrorCode;
 
 /// Who is asking: the connection's peer address (unknown for tests calling the router
 /// directly), or the client a trusted reverse proxy names in `X-Forwarded-For` (see
@@ -84,7 +85,7 @@ fn log_refusal(state: &AppState, parts: &Parts, peer: Option<IpAddr>, refusal: R
         method,
         path,
         address,
-        code,
+        code = code.as_str(),
         unlogged,
         "HTTP credential refused"
     );
@@ -115,7 +116,7 @@ pub fn same_origin(headers: &HeaderMap) -> Result<(), AppError> {
         (Some(o), Some(h)) if o.eq_ignore_ascii_case(h) => Ok(()),
         _ => Err(AppError::new(
             StatusCode::FORBIDDEN,
-            "cross-origin",
+            ErrorCode::CrossOrigin,
             "requests from pages of another site are refused",
         )),
     }

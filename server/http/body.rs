@@ -11,6 +11,7 @@ use serde::de::DeserializeOwned;
 
 use crate::http::AppError;
 use crate::http::connections::ConnectionLimits;
+use crate::wire::ErrorCode;
 
 /// A request body read in whole, within the time limit (`408 body-timeout` otherwise) and
 /// the size limit (`413 body-too-large`).
@@ -27,7 +28,7 @@ impl<S: Send + Sync> FromRequest<S> for RequestBody {
             Ok(Err(rejection)) if rejection.status() == StatusCode::PAYLOAD_TOO_LARGE => {
                 Err(AppError::new(
                     StatusCode::PAYLOAD_TOO_LARGE,
-                    "body-too-large",
+                    ErrorCode::BodyTooLarge,
                     rejection.body_text(),
                 ))
             }
@@ -42,7 +43,7 @@ fn timed_out(limit: Duration) -> AppError {
         "the request body did not arrive within {} s of its headers",
         limit.as_secs_f64()
     );
-    AppError::new(StatusCode::REQUEST_TIMEOUT, "body-timeout", message)
+    AppError::new(StatusCode::REQUEST_TIMEOUT, ErrorCode::BodyTimeout, message)
 }
 
 impl RequestBody {
@@ -69,7 +70,7 @@ impl RequestBody {
                 };
                 Err(AppError::new(
                     StatusCode::BAD_REQUEST,
-                    "body-not-object",
+                    ErrorCode::BodyNotObject,
                     format!(
                         "the request body must be a JSON object with named fields, e.g. \
                          {example}, but it is {found}"
@@ -113,7 +114,7 @@ mod tests {
         ] {
             let error = body(text).object::<Context>(example).unwrap_err();
             let text = format!("{error:?}");
-            assert!(text.contains("body-not-object"), "{text}");
+            assert!(text.contains("BodyNotObject"), "{text}");
             assert!(text.contains(found), "{text}");
         }
     }

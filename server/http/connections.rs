@@ -37,6 +37,7 @@ use crate::access::{RefusalLog, TrustedProxies, counted_as};
 use crate::http::AppError;
 use crate::http::framing::{Ambiguous, Sniffed};
 use crate::sync::lock;
+use crate::wire::ErrorCode;
 
 /// How long a connection may still take to finish its request once the server shuts down.
 const SHUTDOWN_GRACE: Duration = Duration::from_secs(3);
@@ -257,7 +258,7 @@ async fn serve_one(
 /// `400 conflicting-length`: see `framing`.
 fn conflicting_length() -> AppError {
     AppError::bad_request_with_code(
-        "conflicting-length",
+        ErrorCode::ConflictingLength,
         "a request may not carry both Content-Length and Transfer-Encoding; send one",
     )
 }
@@ -265,7 +266,7 @@ fn conflicting_length() -> AppError {
 /// Answers a connection over a limit with `503` and closes it.
 async fn refuse(mut tcp: TcpStream, why: &str) {
     let body = serde_json::json!({
-        "code": "too-many-connections",
+        "code": ErrorCode::TooManyConnections,
         "error": format!("{why}; try again later"),
     })
     .to_string();

@@ -7,12 +7,13 @@ use axum::response::{IntoResponse, Response};
 use serde_json::json;
 
 use crate::dispatch::TriggerError;
+use crate::wire::ErrorCode;
 
 /// An error answer.
 #[derive(Debug)]
 pub struct AppError {
     status: StatusCode,
-    code: &'static str,
+    code: ErrorCode,
     message: String,
     suggestion: Option<String>,
     // Boxed: rare, and it would double the size of every `Result<_, AppError>`.
@@ -21,7 +22,7 @@ pub struct AppError {
 
 impl AppError {
     /// A client error with this status, code and message.
-    pub fn new(status: StatusCode, code: &'static str, message: impl Into<String>) -> Self {
+    pub fn new(status: StatusCode, code: ErrorCode, message: impl Into<String>) -> Self {
         AppError {
             status,
             code,
@@ -39,16 +40,16 @@ impl AppError {
 
     /// 404 `not-found`.
     pub fn not_found(message: impl Into<String>) -> Self {
-        Self::new(StatusCode::NOT_FOUND, "not-found", message)
+        Self::new(StatusCode::NOT_FOUND, ErrorCode::NotFound, message)
     }
 
     /// 400 `bad-request`.
     pub fn bad_request(message: impl Into<String>) -> Self {
-        Self::new(StatusCode::BAD_REQUEST, "bad-request", message)
+        Self::new(StatusCode::BAD_REQUEST, ErrorCode::BadRequest, message)
     }
 
     /// 400 with a more precise code than `bad-request`.
-    pub fn bad_request_with_code(code: &'static str, message: impl Into<String>) -> Self {
+    pub fn bad_request_with_code(code: ErrorCode, message: impl Into<String>) -> Self {
         Self::new(StatusCode::BAD_REQUEST, code, message)
     }
 
@@ -66,7 +67,7 @@ impl AppError {
         tracing::error!(%error, "internal error");
         Self::new(
             StatusCode::INTERNAL_SERVER_ERROR,
-            "internal",
+            ErrorCode::Internal,
             "internal error; see the server log",
         )
     }

@@ -8,6 +8,7 @@ use std::sync::Mutex;
 use serde::Serialize;
 
 use crate::sync::lock;
+use crate::wire::ErrorCode;
 
 /// Proposals that may wait at once; a dialog manager proposing faster than operators decide
 /// is told so instead of burying the console.
@@ -41,10 +42,10 @@ pub enum ProposalError {
 
 impl ProposalError {
     /// The error code on the wire.
-    pub fn code(&self) -> &'static str {
+    pub fn code(&self) -> ErrorCode {
         match self {
-            ProposalError::TooMany => "too-many-proposals",
-            ProposalError::NotPending(_) => "unknown-proposal",
+            ProposalError::TooMany => ErrorCode::TooManyProposals,
+            ProposalError::NotPending(_) => ErrorCode::UnknownProposal,
         }
     }
 }

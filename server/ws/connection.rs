@@ -23,9 +23,10 @@ use crate::http::ConnectionSlot;
 use crate::http::auth::{Peer, same_origin};
 use crate::state::AppState;
 use crate::sync::lock;
+use crate::wire::ErrorCode;
+use crate::wire::outbox::{Frame, OUTBOX_CAPACITY, Outbox};
 use crate::ws::diagnose::diagnose;
 use crate::ws::hello::Hello;
-use crate::ws::outbox::{Frame, OUTBOX_CAPACITY, Outbox};
 use crate::ws::protocol::{ClientFrame, MAX_FRAME_BYTES, error_frame};
 use crate::ws::violation::{Violation, violation};
 use crate::ws::writer::{CloseWith, Feed, PING_INTERVAL, run_writer};
@@ -150,7 +151,7 @@ async fn serve(socket: WebSocket, state: AppState, address: ClientAddress) {
             }
             Ok(Some(Ok(Message::Binary(_)))) => {
                 session.reply_error(
-                    "binary-frame",
+                    ErrorCode::BinaryFrame,
                     "send JSON text frames, not binary ones",
                     None,
                     None,
@@ -183,7 +184,7 @@ impl Session {
 
     pub(super) fn reply_error(
         &self,
-        code: &str,
+        code: ErrorCode,
         message: &str,
         reference: Option<&str>,
         suggestion: Option<&str>,
@@ -194,7 +195,7 @@ impl Session {
     fn on_text(&mut self, text: &str) {
         if text.len() > MAX_FRAME_BYTES {
             let message = format!("frames are limited to {MAX_FRAME_BYTES} bytes");
-            return self.reply_error("frame-too-large", &message, None, None);
+            return self.reply_error(ErrorCode::FrameTooLarge, &message, None, None);
         }
         match serde_json::from_str::<ClientFrame>(text) {
             Ok(frame) => self.on_frame(frame),
@@ -267,7 +268,7 @@ impl Session {
         match self.role {
             None => {
                 self.reply_error(
-                    "hello-first",
+                    ErrorCode::HelloFirst,
                     "say hello (with your role) before anything else",
                     reference,
                     None,
@@ -277,7 +278,7 @@ impl Session {
             Some(role) if roles.contains(&role) => Some(role),
             Some(role) => {
                 let message = format!("a client with role {role:?} may not do this").to_lowercase();
-                self.reply_error("forbidden", &message, reference, None);
+                self.reply_error(ErrorCode::Forbidden, &message, reference, None);
                 None
             }
         }
@@ -300,21 +301,23 @@ impl Session {
                 .display
                 .report(role, self.client, id, report);
         }
-        let ws = &self.state.devices.ws;
+        let external = &self.state.devices.external;
         let result = match report {
-            ScreenReport::Started => ws.started(self.client, id),
-            ScreenReport::Done { .. } => ws.answer(self.client, id, Outcome::Done),
-            ScreenReport::Failed(reason) => ws.answer(self.client, id, Outcome::Failed(reason)),
+            ScreenReport::Started => external.started(self.client, id),
+            ScreenReport::Done { .. } => external.answer(self.client, id, Outcome::Done),
+            ScreenReport::Failed(reason) => {
+                external.answer(self.client, id, Outcome::Failed(reason))
+            }
         };
         if let Err(e) = result {
-            self.reply_error("unknown-command", &e.to_string(), None, None);
+            self.reply_error(ErrorCode::UnknownCommand, &e.to_string(), None, None);
         }
     }
 
     fn leave(self, reason: &str) {
         let Some(role) = self.role else { return };
         if role == ClientRole::Adapter {
-            self.state.devices.ws.disconnect(self.client);
+            self.state.devices.external.disconnect(self.client);
         }
         self.state.devices.display.left(role, self.client);
         self.state.client_left(self.client);

@@ -7,8 +7,9 @@
 use crate::access::{ClientAddress, Needed, Refusal};
 use crate::events::{ClientRole, EventKind};
 use crate::state::ClientInfo;
+use crate::wire::ErrorCode;
+use crate::wire::outbox::Frame;
 use crate::ws::connection::Session;
-use crate::ws::outbox::Frame;
 use crate::ws::protocol::{event_frame, welcome_frame};
 use crate::ws::writer::Feed;
 
@@ -44,7 +45,7 @@ impl Session {
         } = hello;
         if self.role.is_some() {
             return self.reply_error(
-                "already-introduced",
+                ErrorCode::AlreadyIntroduced,
                 "hello was already received on this connection",
                 None,
                 None,
@@ -64,7 +65,7 @@ impl Session {
         }
         if role == ClientRole::Adapter && verbs.is_empty() {
             return self.reply_error(
-                "no-verbs",
+                ErrorCode::NoVerbs,
                 "an adapter must list the verbs it serves in \"verbs\"",
                 None,
                 None,
@@ -100,7 +101,7 @@ impl Session {
         if role == ClientRole::Adapter {
             state
                 .devices
-                .ws
+                .external
                 .connect(self.client, verbs.clone(), self.outbox.clone());
             self.warn_unrouted(&verbs);
         }
@@ -132,7 +133,7 @@ impl Session {
         tracing::warn!(
             ?role,
             address,
-            code,
+            code = code.as_str(),
             unlogged,
             "websocket credential refused"
         );
@@ -162,7 +163,7 @@ impl Session {
              to receive them here",
             problems.join("; ")
         );
-        self.reply_error("verb-not-routed", &message, None, None);
+        self.reply_error(ErrorCode::VerbNotRouted, &message, None, None);
     }
 }
 

@@ -6,6 +6,7 @@
 use crate::dispatch::TriggerRequest;
 use crate::events::{ClientRole, EventKind};
 use crate::operator::{Proposal, VISITOR_GROUPS};
+use crate::wire::ErrorCode;
 use crate::ws::connection::Session;
 use crate::ws::protocol::{
     MarkKind, dismissed_frame, marked_frame, proposed_frame, triggered_frame,
@@ -145,7 +146,7 @@ impl Session {
             MarkKind::SessionEnd => {
                 let Some(session) = visits.end() else {
                     let message = "no visitor session is running; start one first";
-                    return self.reply_error("no-session", message, reference, None);
+                    return self.reply_error(ErrorCode::NoSession, message, reference, None);
                 };
                 hub.publish(EventKind::SessionEnded {
                     session,
@@ -218,7 +219,7 @@ impl Session {
                 known.join(", "),
                 value.map_or_else(|| "nothing".to_owned(), |v| format!("{v:?}"))
             );
-            self.reply_error("bad-mark", &message, reference, None);
+            self.reply_error(ErrorCode::BadMark, &message, reference, None);
         }
         found
     }

@@ -2,7 +2,7 @@
 //! external adapters all speak the same JSON protocol (`protocol`, `docs/PROTOCOL.md`).
 //!
 //! Each connection has a reader loop (`connection`) and a writer task (`writer`); when one ends,
-//! the other stops. Outgoing frames pass through a bounded [`outbox::Outbox`], so a slow
+//! the other stops. Outgoing frames pass through a bounded [`crate::wire::outbox::Outbox`], so a slow
 //! client is dropped instead of slowing others. The reader routes each frame to a handler:
 //! `hello` (credentials, welcome, feeds), `triggers` (trigger, stop, context, page; the kiosk
 //! rules), `initiative` (proposals and corpus marks) and `signal` (WebRTC signalling relay).
@@ -14,7 +14,6 @@ mod diagnose;
 mod hello;
 mod initiative;
 mod notices;
-pub mod outbox;
 pub mod protocol;
 mod signal;
 mod triggers;

@@ -7,7 +7,7 @@ use crate::adapters::{Command, Outcome};
 use crate::dispatch::{Notifier, Speaking};
 use crate::events::ClientRole;
 use crate::state::ClientLinks;
-use crate::ws::outbox::Frame;
+use crate::wire::outbox::Frame;
 use crate::ws::protocol::{NotCarriedOut, outcome_frame, speaking_frame};
 
 /// The websocket side of the dispatcher's [`Notifier`].

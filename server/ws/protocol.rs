@@ -1,13 +1,14 @@
 //! The websocket protocol's frames (JSON text, tagged by `type`). A compatibility boundary:
-//! documented in `docs/PROTOCOL.md`; change it only with a version bump.
+//! documented in `docs/PROTOCOL.md`; change it only with a version bump. The frames adapters
+//! send (`command`, `cancel`) are built in `wire::frames`.
 
 use serde::{Deserialize, Serialize};
 
 use crate::adapters::{Command, Display, Pose};
-use crate::content::Args;
 use crate::dispatch::ResolvedCommand;
 use crate::events::{ClientRole, Event, Source};
 use crate::reload::ReloadView;
+use crate::wire::ErrorCode;
 
 /// The protocol version sent in `welcome`. 4: `command` frames carry the parsed `args`.
 pub const PROTOCOL_VERSION: u32 = 4;
@@ -196,20 +197,6 @@ enum ServerFrame<'a> {
         text: Option<&'a str>,
         commands: &'a [ResolvedCommand],
     },
-    Command {
-        id: u64,
-        trigger: u64,
-        #[serde(rename = "ref")]
-        reference: Option<&'a str>,
-        label: &'a str,
-        verb: &'a str,
-        arg: Option<&'a str>,
-        args: &'a Args,
-    },
-    Cancel {
-        verbs: Option<&'a [String]>,
-        reason: &'a str,
-    },
     Stopped {
         #[serde(rename = "ref")]
         reference: Option<&'a str>,
@@ -262,7 +249,7 @@ enum ServerFrame<'a> {
         stoppable: bool,
     },
     Error {
-        code: &'a str,
+        code: ErrorCode,
         message: &'a str,
         #[serde(rename = "ref")]
         reference: Option<&'a str>,
@@ -312,24 +299,6 @@ pub fn triggered_frame(t: &crate::dispatch::Triggered) -> String {
         text: t.text.as_deref(),
         commands: &t.commands,
     })
-}
-
-/// `command`: a command for an adapter or a display client.
-pub fn command_frame(c: &Command) -> String {
-    encode(&ServerFrame::Command {
-        id: c.id,
-        trigger: c.act.trigger,
-        reference: c.act.reference.as_deref(),
-        label: &c.act.label,
-        verb: c.verb.as_str(),
-        arg: c.arg.as_deref(),
-        args: &c.args,
-    })
-}
-
-/// `cancel`: drop queued commands and stop the current one (of `verbs`, or all).
-pub fn cancel_frame(verbs: Option<&[String]>, reason: &str) -> String {
-    encode(&ServerFrame::Cancel { verbs, reason })
 }
 
 /// `stopped`: the answer to `stop`.
@@ -386,7 +355,7 @@ pub fn changed_frame(pages: &[&str], shell: bool) -> String {
 
 /// `error`: what went wrong with a client's frame; the connection stays open.
 pub fn error_frame(
-    code: &str,
+    code: ErrorCode,
     message: &str,
     reference: Option<&str>,
     suggestion: Option<&str>,

@@ -10,8 +10,9 @@ use std::time::Instant;
 use serde_json::json;
 
 use crate::events::ClientRole;
+use crate::wire::ErrorCode;
+use crate::wire::outbox::Frame;
 use crate::ws::connection::Session;
-use crate::ws::outbox::Frame;
 use crate::ws::protocol::signal_frame;
 
 /// The `data.kind` values a call uses (see `static/camera-kiosk.js`).
@@ -24,14 +25,14 @@ impl Session {
         };
         if !(data["kind"].as_str()).is_some_and(|k| KINDS.contains(&k)) {
             let message = format!("signal data needs a \"kind\": one of {}", KINDS.join(", "));
-            return self.reply_error("bad-signal", &message, None, None);
+            return self.reply_error(ErrorCode::BadSignal, &message, None, None);
         }
         if let Err(wait) = self.signals.take(Instant::now()) {
             let message = format!(
                 "too many signalling frames; the next is possible in {} ms",
                 wait.as_millis().max(1)
             );
-            return self.reply_error("rate-limited", &message, None, None);
+            return self.reply_error(ErrorCode::RateLimited, &message, None, None);
         }
         let permitted = match role {
             ClientRole::Kiosk => self.state.was_signalled_by(self.client, to),
@@ -42,13 +43,13 @@ impl Session {
                 ClientRole::Kiosk => "a kiosk may signal only an operator that signalled it",
                 _ => "an operator may signal only kiosks",
             };
-            return self.reply_error("forbidden", message, None, None);
+            return self.reply_error(ErrorCode::Forbidden, message, None, None);
         }
         // The kiosk remembers the operator that called it (so it may answer); not the reverse.
         let caller = (role == ClientRole::Operator).then_some(self.client);
         let Some(outbox) = self.state.signal_route(to, caller) else {
             let message = format!("client {to} is not connected");
-            return self.reply_error("unknown-client", &message, None, None);
+            return self.reply_error(ErrorCode::UnknownClient, &message, None, None);
         };
         outbox.send_if_room(Frame::from(signal_frame(self.client, role, data)));
     }

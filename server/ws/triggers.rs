@@ -11,13 +11,13 @@ use std::time::Instant;
 use crate::content::{BundleArea, resolve_in_bundle};
 use crate::dispatch::TriggerRequest;
 use crate::events::{ClientRole, EventKind, LogUnwritable};
+use crate::wire::ErrorCode;
+use crate::wire::outbox::Frame;
 use crate::ws::connection::Session;
-use crate::ws::outbox::Frame;
 use crate::ws::protocol::{context_frame, stopped_frame, triggered_frame};
 
 const TRIGGER_ROLES: [ClientRole; 3] = [ClientRole::Kiosk, ClientRole::Operator, ClientRole::Dm];
 const CONTROL_ROLES: [ClientRole; 2] = [ClientRole::Operator, ClientRole::Dm];
-const RATE_LIMITED: &str = "rate-limited";
 
 impl Session {
     pub(super) fn trigger(
@@ -32,13 +32,17 @@ impl Session {
             if self.role.is_none() || std::mem::replace(&mut self.limited_logged, true) {
                 return;
             }
-            return self.log_refused(label, "forbidden", "this role may not trigger acts".into());
+            return self.log_refused(
+                label,
+                ErrorCode::Forbidden,
+                "this role may not trigger acts".into(),
+            );
         };
         if role == ClientRole::Kiosk
             && let Err((code, message)) = self.kiosk_may_trigger(&label)
         {
             self.reply_error(code, &message, reference.as_deref(), None);
-            if code == RATE_LIMITED {
+            if code == ErrorCode::RateLimited {
                 if self.limited_logged {
                     return;
                 }
@@ -88,7 +92,7 @@ impl Session {
     }
 
     /// Whether a kiosk may trigger `label` now: within its allowance, an act its pages offer.
-    fn kiosk_may_trigger(&mut self, label: &str) -> Result<(), (&'static str, String)> {
+    fn kiosk_may_trigger(&mut self, label: &str) -> Result<(), (ErrorCode, String)> {
         self.kiosk_allowance()?;
         let bundle = self.state.dispatcher.bundle();
         let offered = bundle.page_acts.iter().any(|a| a == label)
@@ -98,26 +102,26 @@ impl Session {
                 "no page of this bundle offers the act {label:?}, so a touchscreen may not \
                  trigger it (add data-act=\"{label}\" to a page to offer it)"
             );
-            return Err(("not-offered", message));
+            return Err((ErrorCode::NotOffered, message));
         }
         Ok(())
     }
 
     /// Takes one from this kiosk address's allowance (triggers and `page` reports alike).
-    fn kiosk_allowance(&mut self) -> Result<(), (&'static str, String)> {
+    fn kiosk_allowance(&mut self) -> Result<(), (ErrorCode, String)> {
         if let Err(wait) = self.state.access.kiosk_allowance(self.peer, Instant::now()) {
             let message = format!(
                 "too many requests from this touchscreen; the next is possible in {} ms",
                 wait.as_millis().max(1)
             );
-            return Err((RATE_LIMITED, message));
+            return Err((ErrorCode::RateLimited, message));
         }
         self.limited_logged = false;
         Ok(())
     }
 
     /// Records a trigger this client may not make.
-    fn log_refused(&self, label: String, code: &'static str, message: String) {
+    fn log_refused(&self, label: String, code: ErrorCode, message: String) {
         let Some(role) = self.role else { return };
         self.state.hub.publish(EventKind::TriggerRefused {
             source: role.source(),
@@ -174,7 +178,7 @@ impl Session {
         let root = &self.state.dispatcher.bundle().root;
         if resolve_in_bundle(root, BundleArea::Pages, &page).is_err() {
             let message = format!("{page:?} is not a page of this bundle");
-            return self.reply_error("unknown-page", &message, None, None);
+            return self.reply_error(ErrorCode::UnknownPage, &message, None, None);
         }
         self.state.devices.display.page_shown(page, &self.state.hub);
     }

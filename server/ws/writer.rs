@@ -13,7 +13,7 @@ use tokio_util::sync::CancellationToken;
 
 use crate::events::{ClientRole, Event, Hub, LogUnwritable};
 use crate::state::AppState;
-use crate::ws::outbox::{Frame, Queued};
+use crate::wire::outbox::{Frame, Queued};
 use crate::ws::protocol::{error_frame, event_frame, state_frame};
 
 /// A client that cannot take a frame within this time is dropped.

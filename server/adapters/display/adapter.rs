@@ -13,8 +13,8 @@ use crate::adapters::display::{
 use crate::adapters::{Adapter, AdapterStatus, CancelScope, Command, Outcome, Reply};
 use crate::content::{Args, MediaKind, Verb};
 use crate::sync::lock;
-use crate::ws::outbox::Frame;
-use crate::ws::protocol::command_frame;
+use crate::wire::frames::command_frame;
+use crate::wire::outbox::Frame;
 
 /// The built-in display adapter.
 pub struct DisplayAdapter {

@@ -1,5 +1,6 @@
-//! The `ws` adapter: commands for external adapter processes (a robot's own speech or drive
-//! module, in any language) connected over the websocket with role `adapter`.
+//! [`ExternalAdapters`], the adapter named `ws` in `docent.yaml`: commands for external adapter
+//! processes (a robot's own speech or drive module, in any language) connected over the
+//! websocket with role `adapter`.
 //!
 //! Each command goes, as soon as it is dispatched, to every connected adapter that declared its
 //! verb; each adapter receives its commands in dispatch order and carries them out in that
@@ -22,8 +23,8 @@ use tokio_util::sync::CancellationToken;
 use crate::adapters::{Adapter, AdapterStatus, CancelScope, Command, Outcome, Reply};
 use crate::lifecycle::Lifecycle;
 use crate::sync::lock;
-use crate::ws::outbox::{Frame, Outbox};
-use crate::ws::protocol::{cancel_frame, command_frame};
+use crate::wire::frames::{cancel_frame, command_frame};
+use crate::wire::outbox::{Frame, Outbox};
 
 /// How many settled command ids are remembered for late answers.
 const RECENTLY_SETTLED: usize = 1024;
@@ -110,7 +111,7 @@ impl Registry {
 }
 
 /// The registry of adapter connections and the commands they owe an answer for.
-pub struct WsAdapters {
+pub struct ExternalAdapters {
     inner: Arc<Inner>,
 }
 
@@ -128,7 +129,7 @@ pub enum AnswerError {
     UnknownCommand(u64),
 }
 
-impl WsAdapters {
+impl ExternalAdapters {
     /// An empty registry; commands nobody takes on fail after `timeout`.
     pub fn new(timeout: Duration, life: Lifecycle) -> Self {
         let inner = Inner {
@@ -136,7 +137,7 @@ impl WsAdapters {
             timeout,
             life,
         };
-        WsAdapters {
+        ExternalAdapters {
             inner: Arc::new(inner),
         }
     }
@@ -279,7 +280,7 @@ async fn run_clock(
     }
 }
 
-impl Adapter for WsAdapters {
+impl Adapter for ExternalAdapters {
     fn name(&self) -> &'static str {
         "ws"
     }

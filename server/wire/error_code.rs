@@ -1,0 +1,269 @@
+//! [`ErrorCode`]: every stable code a client is told, in a websocket `error` frame or an HTTP
+//! error body. A compatibility boundary: the codes are listed in `docs/PROTOCOL.md`'s two
+//! error tables, and a test holds the enum and the tables to the same set.
+
+use serde::Serialize;
+
+/// A stable error code; serialised as its kebab-case name (`frame-too-large`).
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, Serialize)]
+#[serde(rename_all = "kebab-case")]
+pub enum ErrorCode {
+    /// `bad-request`: A request body or address that is not right.
+    BadRequest,
+    /// `body-not-object`: A request body that is JSON but not an object.
+    BodyNotObject,
+    /// `conflicting-length`: A request with both `Content-Length` and `Transfer-Encoding`.
+    ConflictingLength,
+    /// `body-timeout`: A request body that did not arrive in time.
+    BodyTimeout,
+    /// `body-too-large`: A chunked request body over the limit.
+    BodyTooLarge,
+    /// `too-many-connections`: A connection over a connection limit.
+    TooManyConnections,
+    /// `unknown-context`: No such context.
+    UnknownContext,
+    /// `unauthorized`: A missing or wrong credential.
+    Unauthorized,
+    /// `cross-origin`: A request from a browser page of another site.
+    CrossOrigin,
+    /// `unknown-act`: No act has this label.
+    UnknownAct,
+    /// `not-found`: No such route or file.
+    NotFound,
+    /// `method-not-allowed`: Wrong method on a known route.
+    MethodNotAllowed,
+    /// `too-many-attempts`: An address that has to wait after wrong credentials.
+    TooManyAttempts,
+    /// `internal`: A fault in Docent (details in the server log).
+    Internal,
+    /// `corpus-unwritable`: The corpus log cannot be written.
+    CorpusUnwritable,
+    /// `malformed-json`: A frame that is not JSON.
+    MalformedJson,
+    /// `missing-type`: A frame without `type`.
+    MissingType,
+    /// `unknown-type`: A frame of an unknown `type`.
+    UnknownType,
+    /// `bad-frame`: A known frame type with wrong fields.
+    BadFrame,
+    /// `frame-too-large`: A text frame over the size limit.
+    FrameTooLarge,
+    /// `binary-frame`: A binary frame.
+    BinaryFrame,
+    /// `hello-first`: Anything but `hello` before `hello`.
+    HelloFirst,
+    /// `already-introduced`: A second `hello`.
+    AlreadyIntroduced,
+    /// `no-verbs`: An adapter `hello` without verbs.
+    NoVerbs,
+    /// `forbidden`: A frame the role may not send, or a refused `signal`.
+    Forbidden,
+    /// `not-offered`: A kiosk triggered an act no page offers.
+    NotOffered,
+    /// `rate-limited`: A kiosk beyond its allowance, or too many signals.
+    RateLimited,
+    /// `unknown-page`: A kiosk's `page` names no page of the bundle.
+    UnknownPage,
+    /// `already-speaking`: A kiosk triggered an act whose speech is already running or waiting.
+    AlreadySpeaking,
+    /// `unknown-command`: An answer for a command not owed by this connection.
+    UnknownCommand,
+    /// `unknown-proposal`: A proposal that is not pending.
+    UnknownProposal,
+    /// `too-many-proposals`: Too many proposals wait for an operator.
+    TooManyProposals,
+    /// `no-session`: `session_end` while no visitor session runs.
+    NoSession,
+    /// `bad-mark`: A `mark` with a value that is not allowed.
+    BadMark,
+    /// `bad-signal`: A `signal` with no known `kind`.
+    BadSignal,
+    /// `unknown-client`: A `signal` to a client that is not connected.
+    UnknownClient,
+    /// `verb-not-routed`: Some of an adapter's verbs are routed to another adapter.
+    VerbNotRouted,
+}
+
+impl ErrorCode {
+    /// Every code, for tests and documentation checks.
+    pub const ALL: [ErrorCode; 37] = [
+        ErrorCode::BadRequest,
+        ErrorCode::BodyNotObject,
+        ErrorCode::ConflictingLength,
+        ErrorCode::BodyTimeout,
+        ErrorCode::BodyTooLarge,
+        ErrorCode::TooManyConnections,
+        ErrorCode::UnknownContext,
+        ErrorCode::Unauthorized,
+        ErrorCode::CrossOrigin,
+        ErrorCode::UnknownAct,
+        ErrorCode::NotFound,
+        ErrorCode::MethodNotAllowed,
+        ErrorCode::TooManyAttempts,
+        ErrorCode::Internal,
+        ErrorCode::CorpusUnwritable,
+        ErrorCode::MalformedJson,
+        ErrorCode::MissingType,
+        ErrorCode::UnknownType,
+        ErrorCode::BadFrame,
+        ErrorCode::FrameTooLarge,
+        ErrorCode::BinaryFrame,
+        ErrorCode::HelloFirst,
+        ErrorCode::AlreadyIntroduced,
+        ErrorCode::NoVerbs,
+        ErrorCode::Forbidden,
+        ErrorCode::NotOffered,
+        ErrorCode::RateLimited,
+        ErrorCode::UnknownPage,
+        ErrorCode::AlreadySpeaking,
+        ErrorCode::UnknownCommand,
+        ErrorCode::UnknownProposal,
+        ErrorCode::TooManyProposals,
+        ErrorCode::NoSession,
+        ErrorCode::BadMark,
+        ErrorCode::BadSignal,
+        ErrorCode::UnknownClient,
+        ErrorCode::VerbNotRouted,
+    ];
+
+    /// The code as sent (the same string serde writes), for events and logs.
+    pub const fn as_str(self) -> &'static str {
+        match self {
+            ErrorCode::BadRequest => "bad-request",
+            ErrorCode::BodyNotObject => "body-not-object",
+            ErrorCode::ConflictingLength => "conflicting-length",
+            ErrorCode::BodyTimeout => "body-timeout",
+            ErrorCode::BodyTooLarge => "body-too-large",
+            ErrorCode::TooManyConnections => "too-many-connections",
+            ErrorCode::UnknownContext => "unknown-context",
+            ErrorCode::Unauthorized => "unauthorized",
+            ErrorCode::CrossOrigin => "cross-origin",
+            ErrorCode::UnknownAct => "unknown-act",
+            ErrorCode::NotFound => "not-found",
+            ErrorCode::MethodNotAllowed => "method-not-allowed",
+            ErrorCode::TooManyAttempts => "too-many-attempts",
+            ErrorCode::Internal => "internal",
+            ErrorCode::CorpusUnwritable => "corpus-unwritable",
+            ErrorCode::MalformedJson => "malformed-json",
+            ErrorCode::MissingType => "missing-type",
+            ErrorCode::UnknownType => "unknown-type",
+            ErrorCode::BadFrame => "bad-frame",
+            ErrorCode::FrameTooLarge => "frame-too-large",
+            ErrorCode::BinaryFrame => "binary-frame",
+            ErrorCode::HelloFirst => "hello-first",
+            ErrorCode::AlreadyIntroduced => "already-introduced",
+            ErrorCode::NoVerbs => "no-verbs",
+            ErrorCode::Forbidden => "forbidden",
+            ErrorCode::NotOffered => "not-offered",
+            ErrorCode::RateLimited => "rate-limited",
+            ErrorCode::UnknownPage => "unknown-page",
+            ErrorCode::AlreadySpeaking => "already-speaking",
+            ErrorCode::UnknownCommand => "unknown-command",
+            ErrorCode::UnknownProposal => "unknown-proposal",
+            ErrorCode::TooManyProposals => "too-many-proposals",
+            ErrorCode::NoSession => "no-session",
+            ErrorCode::BadMark => "bad-mark",
+            ErrorCode::BadSignal => "bad-signal",
+            ErrorCode::UnknownClient => "unknown-client",
+            ErrorCode::VerbNotRouted => "verb-not-routed",
+        }
+    }
+}
+
+impl std::fmt::Display for ErrorCode {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.write_str(self.as_str())
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use std::collections::BTreeSet;
+
+    use super::ErrorCode;
+
+    #[test]
+    fn every_code_serialises_to_its_kebab_case_string() {
+        for code in ErrorCode::ALL {
+            let json = serde_json::to_value(code).expect("a code serialises");
+            assert_eq!(json, serde_json::Value::from(code.as_str()), "{code:?}");
+        }
+        assert_eq!(ErrorCode::BadRequest.as_str(), "bad-request");
+        assert_eq!(ErrorCode::BodyNotObject.as_str(), "body-not-object");
+        assert_eq!(ErrorCode::ConflictingLength.as_str(), "conflicting-length");
+        assert_eq!(ErrorCode::BodyTimeout.as_str(), "body-timeout");
+        assert_eq!(ErrorCode::BodyTooLarge.as_str(), "body-too-large");
+        assert_eq!(
+            ErrorCode::TooManyConnections.as_str(),
+            "too-many-connections"
+        );
+        assert_eq!(ErrorCode::UnknownContext.as_str(), "unknown-context");
+        assert_eq!(ErrorCode::Unauthorized.as_str(), "unauthorized");
+        assert_eq!(ErrorCode::CrossOrigin.as_str(), "cross-origin");
+        assert_eq!(ErrorCode::UnknownAct.as_str(), "unknown-act");
+        assert_eq!(ErrorCode::NotFound.as_str(), "not-found");
+        assert_eq!(ErrorCode::MethodNotAllowed.as_str(), "method-not-allowed");
+        assert_eq!(ErrorCode::TooManyAttempts.as_str(), "too-many-attempts");
+        assert_eq!(ErrorCode::Internal.as_str(), "internal");
+        assert_eq!(ErrorCode::CorpusUnwritable.as_str(), "corpus-unwritable");
+        assert_eq!(ErrorCode::MalformedJson.as_str(), "malformed-json");
+        assert_eq!(ErrorCode::MissingType.as_str(), "missing-type");
+        assert_eq!(ErrorCode::UnknownType.as_str(), "unknown-type");
+        assert_eq!(ErrorCode::BadFrame.as_str(), "bad-frame");
+        assert_eq!(ErrorCode::FrameTooLarge.as_str(), "frame-too-large");
+        assert_eq!(ErrorCode::BinaryFrame.as_str(), "binary-frame");
+        assert_eq!(ErrorCode::HelloFirst.as_str(), "hello-first");
+        assert_eq!(ErrorCode::AlreadyIntroduced.as_str(), "already-introduced");
+        assert_eq!(ErrorCode::NoVerbs.as_str(), "no-verbs");
+        assert_eq!(ErrorCode::Forbidden.as_str(), "forbidden");
+        assert_eq!(ErrorCode::NotOffered.as_str(), "not-offered");
+        assert_eq!(ErrorCode::RateLimited.as_str(), "rate-limited");
+        assert_eq!(ErrorCode::UnknownPage.as_str(), "unknown-page");
+        assert_eq!(ErrorCode::AlreadySpeaking.as_str(), "already-speaking");
+        assert_eq!(ErrorCode::UnknownCommand.as_str(), "unknown-command");
+        assert_eq!(ErrorCode::UnknownProposal.as_str(), "unknown-proposal");
+        assert_eq!(ErrorCode::TooManyProposals.as_str(), "too-many-proposals");
+        assert_eq!(ErrorCode::NoSession.as_str(), "no-session");
+        assert_eq!(ErrorCode::BadMark.as_str(), "bad-mark");
+        assert_eq!(ErrorCode::BadSignal.as_str(), "bad-signal");
+        assert_eq!(ErrorCode::UnknownClient.as_str(), "unknown-client");
+        assert_eq!(ErrorCode::VerbNotRouted.as_str(), "verb-not-routed");
+    }
+
+    /// The codes in the first column of `docs/PROTOCOL.md`'s HTTP error table (`| status |
+    /// `code` | when |`, code in the second column) and websocket error table (`| `code` |
+    /// cause |`).
+    fn documented_codes() -> BTreeSet<String> {
+        let path = concat!(env!("CARGO_MANIFEST_DIR"), "/docs/PROTOCOL.md");
+        let doc = std::fs::read_to_string(path).expect("docs/PROTOCOL.md is readable");
+        let mut codes = BTreeSet::new();
+        let mut column = None;
+        for line in doc.lines() {
+            if line.starts_with("| status | `code` | when |") {
+                column = Some(2);
+            } else if line.starts_with("| `code` | cause |") {
+                column = Some(1);
+            } else if !line.starts_with('|') {
+                column = None;
+            } else if let Some(c) = column {
+                let cell = line.split('|').nth(c).unwrap_or_default().trim();
+                if let Some(code) = cell.strip_prefix('`').and_then(|s| s.strip_suffix('`')) {
+                    codes.insert(code.to_owned());
+                }
+            }
+        }
+        codes
+    }
+
+    #[test]
+    fn the_codes_are_exactly_those_docs_protocol_lists() {
+        let documented = documented_codes();
+        let ours: BTreeSet<String> = ErrorCode::ALL
+            .iter()
+            .map(|c| c.as_str().to_owned())
+            .collect();
+        assert_eq!(ours.len(), ErrorCode::ALL.len(), "no code twice");
+        assert!(documented.len() > 30, "both tables parsed: {documented:?}");
+        assert_eq!(ours, documented);
+    }
+}

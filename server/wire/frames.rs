@@ -1,0 +1,68 @@
+//! The server→client frames adapters send: `command` (to a screen or an external adapter
+//! process) and `cancel`. Part of the websocket protocol, a compatibility boundary documented
+//! in `docs/PROTOCOL.md`; the other frames are built in `ws::protocol`.
+
+use serde::Serialize;
+
+use crate::adapters::Command;
+use crate::content::Args;
+
+#[derive(Serialize)]
+#[serde(tag = "type", rename_all = "lowercase")]
+enum AdapterFrame<'a> {
+    Command {
+        id: u64,
+        trigger: u64,
+        #[serde(rename = "ref")]
+        reference: Option<&'a str>,
+        label: &'a str,
+        verb: &'a str,
+        arg: Option<&'a str>,
+        args: &'a Args,
+    },
+    Cancel {
+        verbs: Option<&'a [String]>,
+        reason: &'a str,
+    },
+}
+
+fn encode(frame: &AdapterFrame<'_>) -> String {
+    // Plain data with string keys: serialization cannot fail.
+    serde_json::to_string(frame).unwrap_or_default()
+}
+
+/// `command`: a command for an adapter or a display client.
+pub fn command_frame(c: &Command) -> String {
+    encode(&AdapterFrame::Command {
+        id: c.id,
+        trigger: c.act.trigger,
+        reference: c.act.reference.as_deref(),
+        label: &c.act.label,
+        verb: c.verb.as_str(),
+        arg: c.arg.as_deref(),
+        args: &c.args,
+    })
+}
+
+/// `cancel`: drop queued commands and stop the current one (of `verbs`, or all).
+pub fn cancel_frame(verbs: Option<&[String]>, reason: &str) -> String {
+    encode(&AdapterFrame::Cancel { verbs, reason })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::cancel_frame;
+
+    #[test]
+    fn cancel_frames_keep_their_bytes() {
+        assert_eq!(
+            cancel_frame(None, "stopped"),
+            r#"{"type":"cancel","verbs":null,"reason":"stopped"}"#
+        );
+        let verbs = ["SAY".to_owned()];
+        assert_eq!(
+            cancel_frame(Some(&verbs), "interrupted"),
+            r#"{"type":"cancel","verbs":["SAY"],"reason":"interrupted"}"#
+        );
+    }
+}
