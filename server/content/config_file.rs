@@ -343,23 +343,35 @@ impl Reader {
     }
 }
 
+/// What the section readers' tests share: `docent.yaml` text in, settings and problems out.
 #[cfg(test)]
-mod tests {
-    use std::time::Duration;
+pub(crate) mod test_support {
+    use std::sync::Arc;
 
-    use super::*;
+    use super::{ConfigFile, parse_config};
 
-    fn parse(text: &str) -> ConfigFile {
+    /// The settings read from `text`, as if it were `docent.yaml`.
+    pub(crate) fn parse(text: &str) -> ConfigFile {
         parse_config(&Arc::from("docent.yaml"), text.as_bytes())
     }
 
-    fn problems(text: &str) -> Vec<(&'static str, u32, u32, String)> {
+    /// The problems found in `text`: code, line, column and message.
+    pub(crate) fn problems(text: &str) -> Vec<(&'static str, u32, u32, String)> {
         let file = parse(text);
         file.diagnostics
             .into_iter()
             .map(|d| (d.code, d.line, d.column, d.message))
             .collect()
     }
+}
+
+#[cfg(test)]
+mod tests {
+    use std::time::Duration;
+
+    use super::*;
+
+    use super::test_support::{parse, problems};
 
     #[test]
     fn the_documented_example_maps_onto_site_config() {

@@ -188,15 +188,10 @@ pub(crate) fn default_context(group: &str) -> &'static str {
 
 #[cfg(test)]
 mod tests {
-    use std::sync::Arc;
+    use crate::content::config_file::test_support::parse;
 
     use super::*;
     use crate::content::config::OperatorConfig;
-    use crate::content::config_file::parse_config;
-
-    fn parse(text: &str) -> ConfigFile {
-        parse_config(&Arc::from("docent.yaml"), text.as_bytes())
-    }
 
     fn located(file: &ConfigFile) -> Vec<(&'static str, u32, u32)> {
         file.diagnostics

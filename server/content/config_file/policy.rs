@@ -109,21 +109,9 @@ impl Reader {
 
 #[cfg(test)]
 mod tests {
-    use std::sync::Arc;
+    use crate::content::config_file::test_support::{parse, problems};
 
     use crate::content::config::{Channel, ChannelPolicy, Priorities, WhenBusy};
-    use crate::content::config_file::{ConfigFile, parse_config};
-
-    fn parse(text: &str) -> ConfigFile {
-        parse_config(&Arc::from("docent.yaml"), text.as_bytes())
-    }
-
-    fn problems(text: &str) -> Vec<(&'static str, u32, u32, String)> {
-        let file = parse(text);
-        let d = file.diagnostics.iter();
-        d.map(|d| (d.code, d.line, d.column, d.message.clone()))
-            .collect()
-    }
 
     #[test]
     fn channel_policies_and_priorities_are_read() {

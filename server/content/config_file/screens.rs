@@ -75,15 +75,11 @@ impl Reader {
 
 #[cfg(test)]
 mod tests {
-    use std::sync::Arc;
+    use crate::content::config_file::test_support::parse;
+
     use std::time::Duration;
 
     use crate::content::config::AfterVideo;
-    use crate::content::config_file::{ConfigFile, parse_config};
-
-    fn parse(text: &str) -> ConfigFile {
-        parse_config(&Arc::from("docent.yaml"), text.as_bytes())
-    }
 
     #[test]
     fn kiosk_and_projector_settings_are_read() {

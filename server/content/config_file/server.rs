@@ -49,13 +49,7 @@ impl Reader {
 
 #[cfg(test)]
 mod tests {
-    use std::sync::Arc;
-
-    use crate::content::config_file::{ConfigFile, parse_config};
-
-    fn parse(text: &str) -> ConfigFile {
-        parse_config(&Arc::from("docent.yaml"), text.as_bytes())
-    }
+    use crate::content::config_file::test_support::parse;
 
     #[test]
     fn trusted_proxies_are_read_as_addresses() {
