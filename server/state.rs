@@ -15,6 +15,7 @@ use crate::lifecycle::Lifecycle;
 use crate::operator::{Proposals, Visits};
 use crate::reload::ReloadStatus;
 use crate::sync::lock;
+use crate::wire::linger::Linger;
 use crate::wire::outbox::{Frame, Outbox};
 use crate::ws::protocol::StateView;
 
@@ -65,6 +66,13 @@ impl ClientLinks {
         outbox.is_some_and(|outbox| outbox.send(frame.clone()))
     }
 
+    /// Queues `frame` for client `id` to go out with its next frames, or within 2 ms
+    /// (`wire::linger`); false when it is not connected (or too slow).
+    pub fn send_lingering_to(&self, id: u64, frame: &Frame) -> bool {
+        let outbox = lock(&self.0.connected).get(&id).map(|c| c.outbox.clone());
+        outbox.is_some_and(|outbox| self.0.linger.send(&outbox, frame.clone()))
+    }
+
     /// Queues `frame` for every connected client in `role`.
     pub fn send_to_role(&self, role: ClientRole, frame: &Frame) {
         let outboxes: Vec<Outbox> = (lock(&self.0.connected).values())
@@ -77,10 +85,11 @@ impl ClientLinks {
     }
 }
 
-#[derive(Default)]
 struct Clients {
     next: AtomicU64,
     connected: Mutex<BTreeMap<u64, Connected>>,
+    /// Sends the notices that found no company (`wire::linger`).
+    linger: Arc<Linger>,
 }
 
 struct Connected {
@@ -104,13 +113,17 @@ impl AppState {
             dispatcher,
             hub,
             devices,
-            life,
             access: Arc::new(access),
             proposals: Arc::default(),
             visits: Arc::default(),
             missing_pages: Arc::default(),
             reload: Arc::default(),
-            clients: Arc::default(),
+            clients: Arc::new(Clients {
+                next: AtomicU64::default(),
+                connected: Mutex::default(),
+                linger: Linger::start(&life),
+            }),
+            life,
         }
     }
 

@@ -10,8 +10,14 @@
 //! - a lower priority never interrupts: it waits (queue policy) or is cancelled.
 //!
 //! Every queue is bounded by its `queue_limit`; whatever is pushed out, refused or cancelled is
-//! handed back with a reason, for the dispatcher to report as `command.cancelled`. This file
-//! decides only; the dispatcher acts (submits, cancels, reports) outside the lock.
+//! handed back with a reason, for the dispatcher to report as `command.cancelled`.
+//!
+//! Cancelling what runs frees the channel at once: the next in line starts without waiting for
+//! the cancelled command's end. Adapters carry out what they are handed in order (a
+//! cancellation before the command that follows it), and the dispatcher hands decisions over
+//! in the order they were made, so the device stops the old before it starts the new. A
+//! replaced page or speech thus takes one hop, not a round trip to the device. This file
+//! decides only; the dispatcher acts (submits, cancels, reports) outside the lanes' lock.
 
 use std::collections::{HashMap, VecDeque};
 
@@ -84,8 +90,8 @@ impl Lane {
         if mine > theirs {
             let reason = format!("{asker} took over the {channel}");
             decision.dropped = self.drain(|w| w.priority < mine, &reason);
-            decision.cancel_running = Some((running.verb.clone(), reason));
             self.insert(new);
+            self.cancel_running(reason, &mut decision);
             return decision;
         }
         let busy = format!(
@@ -99,8 +105,8 @@ impl Lane {
                 let label = &new.command.act.label;
                 let reason = format!("replaced by act {label} from {asker}");
                 decision.dropped = self.drain(|w| w.priority <= mine, &reason);
-                decision.cancel_running = Some((running.verb.clone(), reason));
                 self.insert(new);
+                self.cancel_running(reason, &mut decision);
             }
             (WhenBusy::Queue, _) => self.enqueue(new, channel, policy.queue_limit, &mut decision),
             _ => decision.dropped.push((new, busy)),
@@ -150,12 +156,16 @@ impl Lane {
         gone.into_iter().map(|w| (w, reason.to_owned())).collect()
     }
 
-    /// Command `id` ended: the next waiting one runs.
-    pub fn finished(&mut self, id: u64) -> Option<Waiting> {
-        if self.running.as_ref().is_none_or(|r| r.command.id != id) {
-            return None;
+    /// Cancels the running command for `reason` and starts the next in line at once.
+    fn cancel_running(&mut self, reason: String, decision: &mut Decision) {
+        if let Some(running) = self.running.take() {
+            decision.cancel_running = Some((running.command.verb, reason));
         }
-        self.running = None;
+        decision.run = self.start_next();
+    }
+
+    /// The first waiting command becomes the running one.
+    fn start_next(&mut self) -> Option<Waiting> {
         let next = self.waiting.pop_front()?;
         self.running = Some(Running {
             command: next.command.clone(),
@@ -164,7 +174,17 @@ impl Lane {
         Some(next)
     }
 
-    /// Cancels the commands `pred` selects, running or waiting.
+    /// Command `id` ended: the next waiting one runs. A command cancelled earlier no longer
+    /// runs here; its end changes nothing.
+    pub fn finished(&mut self, id: u64) -> Option<Waiting> {
+        if self.running.as_ref().is_none_or(|r| r.command.id != id) {
+            return None;
+        }
+        self.running = None;
+        self.start_next()
+    }
+
+    /// Cancels the commands `pred` selects, running or waiting; the next one left starts.
     pub fn cancel_where(&mut self, pred: impl Fn(&Command, u8) -> bool, reason: &str) -> Decision {
         let mut decision = Decision {
             dropped: self.drain(|w| pred(&w.command, w.priority), reason),
@@ -173,7 +193,7 @@ impl Lane {
         if let Some(running) = &self.running
             && pred(&running.command, running.priority)
         {
-            decision.cancel_running = Some((running.command.verb.clone(), reason.to_owned()));
+            self.cancel_running(reason.to_owned(), &mut decision);
         }
         decision
     }
@@ -299,9 +319,11 @@ mod tests {
         lane.admit(say(1, 1, Source::Kiosk, 1), &ch, policy);
         lane.admit(say(2, 2, Source::Kiosk, 1), &ch, policy);
         let d = lane.admit(say(3, 3, Source::Operator, 3), &ch, policy);
-        assert_eq!(ids(&d), (None, true, vec![2]));
+        assert_eq!(ids(&d), (Some(3), true, vec![2]));
         assert!(d.dropped[0].1.contains("the operator took over the speech"));
-        assert_eq!(lane.finished(1).map(|w| w.command.id), Some(3));
+        // The cancelled command's end changes nothing: the operator's already runs.
+        assert!(lane.finished(1).is_none());
+        assert_eq!(lane.running().map(|c| c.id), Some(3));
     }
 
     #[test]
@@ -310,8 +332,9 @@ mod tests {
         let mut lane = Lane::default();
         lane.admit(say(1, 1, Source::Dm, 2), &ch, ChannelPolicy::replace());
         let d = lane.admit(say(2, 2, Source::Dm, 2), &ch, ChannelPolicy::replace());
-        assert_eq!(ids(&d), (None, true, vec![]));
-        assert_eq!(lane.finished(1).map(|w| w.command.id), Some(2));
+        assert_eq!(ids(&d), (Some(2), true, vec![]));
+        assert!(lane.finished(1).is_none());
+        assert_eq!(lane.running().map(|c| c.id), Some(2));
         let drop = ChannelPolicy {
             when_busy: WhenBusy::Drop,
             queue_limit: 2,
@@ -333,6 +356,22 @@ mod tests {
         let d = lane.admit(say(2, 7, Source::Kiosk, 1), &ch, ChannelPolicy::replace());
         assert_eq!(ids(&d), (None, false, vec![]));
         assert_eq!(lane.finished(1).map(|w| w.command.id), Some(2));
+    }
+
+    #[test]
+    fn cancelling_what_runs_starts_the_next_left_at_once() {
+        let mut lane = Lane::default();
+        let (ch, policy) = (Channel::Speech, ChannelPolicy::queue(2));
+        lane.admit(say(1, 7, Source::Kiosk, 1), &ch, policy);
+        lane.admit(say(2, 7, Source::Kiosk, 1), &ch, policy);
+        lane.admit(say(3, 8, Source::Kiosk, 1), &ch, policy);
+        let d = lane.cancel_where(|c, _| c.act.trigger == 7, "stopped");
+        assert_eq!(ids(&d), (Some(3), true, vec![2]));
+        assert!(lane.finished(1).is_none());
+        assert_eq!(lane.running().map(|c| c.id), Some(3));
+        let d = lane.cancel_where(|_, _| true, "stopped");
+        assert_eq!(ids(&d), (None, true, vec![]));
+        assert!(lane.running().is_none());
     }
 
     #[test]

@@ -2,7 +2,8 @@
 //! adapter when its channel is free, learns when it ended, starts the next one, cancels what a
 //! policy, a priority, an interruption, a visitor or a page change removes, and tells the
 //! client that triggered a command when it will not be carried out. Nothing here holds the
-//! lanes' lock while it submits, cancels or reports.
+//! lanes' lock while it submits, cancels or reports; the order lock is held from a decision
+//! to its last hand-over (adapters never call back into the dispatcher, so it cannot nest).
 
 use std::sync::Arc;
 
@@ -63,6 +64,7 @@ impl Dispatcher {
             waiter,
             priority,
         };
+        let _order = lock(&self.order);
         let decision = {
             let mut lanes = lock(&self.lanes);
             let lane = lanes.entry(channel.clone()).or_default();
@@ -140,6 +142,7 @@ impl Dispatcher {
         if let Some(waiter) = waiter {
             let _ = waiter.send(outcome);
         }
+        let _order = lock(&self.order);
         let next = lock(&self.lanes)
             .get_mut(channel)
             .and_then(|lane| lane.finished(command.id));
@@ -168,6 +171,7 @@ impl Dispatcher {
         pred: impl Fn(&Command, u8) -> bool,
         reason: &str,
     ) {
+        let _order = lock(&self.order);
         let decisions: Vec<(Channel, Decision)> = {
             let mut lanes = lock(&self.lanes);
             lanes
@@ -210,9 +214,22 @@ impl Dispatcher {
         };
         let lanes = lock(&self.lanes);
         let running = lanes.get(&Channel::Speech).and_then(|lane| lane.running());
-        notifier.speaking(running.map(|c| Speaking {
+        let now = running.map(|c| Speaking {
             source: c.act.source,
             client: c.act.client,
-        }));
+        });
+        // A cancelled command ends after its successor started: kiosks hear only changes.
+        let mut told = lock(&self.speaking_told);
+        if *told != now {
+            *told = now;
+            notifier.speaking(now);
+        }
+    }
+
+    /// Hands `tell` who speaks now, as the kiosks were last told, under the lock the changes
+    /// are sent under: a kiosk that joined the notices first never gets it after a newer one.
+    pub fn tell_speaking_now(&self, tell: impl FnOnce(Option<Speaking>)) {
+        let _lanes = lock(&self.lanes);
+        tell(*lock(&self.speaking_told));
     }
 }

@@ -55,6 +55,12 @@ pub struct Dispatcher {
     speech_epochs: Mutex<BTreeMap<u8, CancellationToken>>,
     /// Each output channel's running and waiting commands.
     lanes: Mutex<channels::Lanes>,
+    /// Held from a channel decision until it is carried out, so that adapters are handed
+    /// cancellations and commands in the order the decisions were made (a cancellation of the
+    /// running command before its successor; never a late cancellation that would hit it).
+    order: Mutex<()>,
+    /// Who speaks, as the kiosks were last told (changed under the lanes' lock).
+    speaking_told: Mutex<Option<Speaking>>,
     /// Where clients learn about their commands.
     notifier: OnceLock<Arc<dyn Notifier>>,
     /// Since when visitors' speech is cut off (a visitor's stop, a page left).
@@ -82,6 +88,8 @@ impl Dispatcher {
             epoch: Mutex::new(epoch),
             speech_epochs: Mutex::default(),
             lanes: Mutex::default(),
+            order: Mutex::default(),
+            speaking_told: Mutex::default(),
             notifier: OnceLock::new(),
             visitor_cuts: Mutex::default(),
         })
@@ -247,6 +255,7 @@ impl Dispatcher {
             reason: reason.to_owned(),
         });
         old.cancel();
+        let _order = lock(&self.order);
         // Waiting commands first, so that none starts when the running ones end.
         let waiting: Vec<channels::Waiting> = (lock(&self.lanes).values_mut())
             .flat_map(|lane| lane.cancel_where(|_, _| true, reason).dropped)

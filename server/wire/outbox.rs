@@ -2,11 +2,15 @@
 //! connection is "kicked") instead of slowing down everyone who sends to it. An
 //! acknowledgement waits in the queue until the corpus log holds what it acknowledges
 //! ([`Outbox::send_logged`]), and the frames queued after it wait behind it, so a client sees
-//! its answers in order.
+//! its answers in order. Notices that may wait a moment linger beside the queue (`linger.rs`).
+
+use std::sync::Arc;
 
 use axum::extract::ws::Utf8Bytes;
 use tokio::sync::mpsc;
 use tokio_util::sync::CancellationToken;
+
+use crate::wire::linger::Lingering;
 
 /// A text frame, cheap to clone for many recipients.
 pub type Frame = Utf8Bytes;
@@ -38,6 +42,7 @@ pub struct Ack {
 pub struct Outbox {
     tx: mpsc::Sender<Queued>,
     kick: CancellationToken,
+    lingering: Arc<Lingering>,
 }
 
 impl Outbox {
@@ -48,6 +53,7 @@ impl Outbox {
             Outbox {
                 tx,
                 kick: CancellationToken::new(),
+                lingering: Arc::default(),
             },
             rx,
         )
@@ -86,6 +92,25 @@ impl Outbox {
             return false;
         }
         self.send(frame)
+    }
+
+    /// The frames lingering for this client, which its writer takes with every batch.
+    pub fn lingering(&self) -> &Arc<Lingering> {
+        &self.lingering
+    }
+
+    /// Queues the frames that lingered long enough.
+    pub(crate) fn flush_lingering(&self) {
+        for frame in self.lingering.take() {
+            if !self.send(frame) {
+                return;
+            }
+        }
+    }
+
+    /// Whether the client is gone (its writer ended).
+    pub fn is_closed(&self) -> bool {
+        self.tx.is_closed()
     }
 
     /// Cancelled when the client was too slow.

@@ -108,6 +108,7 @@ async fn serve(socket: WebSocket, state: AppState, address: ClientAddress) {
     let writer = state.life.tracker.spawn(run_writer(
         sink,
         queue,
+        std::sync::Arc::clone(outbox.lingering()),
         feed_rx,
         state.clone(),
         stop.clone(),

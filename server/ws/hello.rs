@@ -10,7 +10,7 @@ use crate::state::ClientInfo;
 use crate::wire::ErrorCode;
 use crate::wire::outbox::Frame;
 use crate::ws::connection::Session;
-use crate::ws::protocol::{event_frame, welcome_frame};
+use crate::ws::protocol::{event_frame, speaking_frame, welcome_frame};
 use crate::ws::writer::Feed;
 
 /// What a `hello` frame says.
@@ -111,6 +111,14 @@ impl Session {
             verbs: verbs.clone(),
         };
         state.client_joined(self.client, info, self.outbox.clone());
+        if role == ClientRole::Kiosk {
+            // Joined first, so every later change reaches this kiosk on its own.
+            state.dispatcher.tell_speaking_now(|now| {
+                if now.is_some() {
+                    self.outbox.send(Frame::from(speaking_frame(now)));
+                }
+            });
+        }
         state.hub.publish(EventKind::ClientConnected {
             client: self.client,
             role,

@@ -30,8 +30,9 @@ impl Notifier for ClientNotices {
             Outcome::Done => return,
         };
         let frame = Frame::from(outcome_frame(command, kind, reason));
-        // A client that has left learns nothing; the corpus has the outcome either way.
-        self.links.send_to(client, &frame);
+        // A client that has left learns nothing; the corpus has the outcome either way. Not
+        // an answer: it rides along with the client's next frames (within 2 ms).
+        self.links.send_lingering_to(client, &frame);
     }
 
     fn speaking(&self, now: Option<Speaking>) {

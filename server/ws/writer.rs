@@ -13,6 +13,7 @@ use tokio_util::sync::CancellationToken;
 
 use crate::events::{ClientRole, Event, Hub, LogUnwritable};
 use crate::state::AppState;
+use crate::wire::linger::Lingering;
 use crate::wire::outbox::{Frame, Queued};
 use crate::ws::protocol::{error_frame, event_frame, state_frame};
 
@@ -45,6 +46,7 @@ pub type CloseWith = Arc<std::sync::Mutex<Option<CloseFrame>>>;
 pub async fn run_writer(
     mut sink: SplitSink<WebSocket, Message>,
     mut queue: mpsc::Receiver<Queued>,
+    lingering: Arc<Lingering>,
     feed: oneshot::Receiver<Feed>,
     state: AppState,
     stop: CancellationToken,
@@ -107,6 +109,12 @@ pub async fn run_writer(
                 break 'writing "write failed or timed out";
             }
             batch += 1;
+        }
+        // Notices waiting for company ride along.
+        for frame in lingering.take() {
+            if write(&stop, sink.feed(Message::Text(frame))).await.is_err() {
+                break 'writing "write failed or timed out";
+            }
         }
         if write(&stop, sink.flush()).await.is_err() {
             break "write failed or timed out";
