@@ -49,7 +49,7 @@ export function speechState({ button, notice, stop }) {
         if (button) button.hidden = !(speaking && speaking.stoppable);
       } else if (frame.type === "error" && frame.code === "already-speaking") {
         say("Already speaking about this.");
-      } else if (frame.type === "outcome" && frame.verb === "SAY" && !/visitor/.test(frame.reason ?? "")) {
+      } else if (frame.type === "outcome" && frame.verb === "SAY" && !frame.ended_by_visitor) {
         // Speech a visitor asked for that will not come (a full queue, the operator took over);
         // what the visitor ended themselves (stop, leaving the page) needs no word.
         say("The robot cannot say this now.");

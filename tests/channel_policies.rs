@@ -152,10 +152,9 @@ async fn leaving_the_page_ends_the_speech_it_started_but_not_the_operators() {
     assert_eq!(outcome["type"], "command.cancelled", "{outcome}");
     assert_eq!(outcome["reason"], "the visitor left the page for map.html");
     let told = until_all(&mut visitor, &[&frame("outcome", "r")]).await;
-    assert_eq!(
-        find(&told, &frame("outcome", "r"))["reason"],
-        outcome["reason"]
-    );
+    let told = find(&told, &frame("outcome", "r"));
+    assert_eq!(told["reason"], outcome["reason"]);
+    assert_eq!(told["ended_by_visitor"], true, "{told}");
     // Speech the visitor left waiting behind the operator's ends too; the operator's goes on.
     trigger(&mut op, "LONG", "op", false).await;
     until_all(&mut op, &[&event("command.started", "op")]).await;
@@ -305,6 +304,18 @@ async fn a_flood_of_operators_leaves_bounded_queues_and_every_excess_say_answere
         queued <= 1,
         "the speech adapter holds one command at a time: {state}"
     );
+    let speech = &state["channels"]["speech"];
+    assert_eq!(
+        speech["running"]["what"],
+        format!("SAY {LONG_TEXT}"),
+        "{speech}"
+    );
+    assert_eq!(speech["running"]["source"], "operator", "{speech}");
+    assert_eq!(
+        speech["waiting"].as_array().map(Vec::len),
+        Some(2),
+        "{speech}"
+    );
     assert_eq!(
         told.len(),
         refused,
@@ -312,6 +323,7 @@ async fn a_flood_of_operators_leaves_bounded_queues_and_every_excess_say_answere
     );
     for frame in &told {
         assert_eq!(frame["outcome"], "cancelled", "{frame}");
+        assert_eq!(frame["ended_by_visitor"], false, "{frame}");
         let reason = frame["reason"].as_str().unwrap_or_default();
         assert!(
             reason.contains("speech queue was full (2 waiting)"),

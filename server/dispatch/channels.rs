@@ -214,6 +214,49 @@ impl Lane {
     pub fn waiting(&self) -> usize {
         self.waiting.len()
     }
+
+    /// What runs and what waits, for `GET /api/state`.
+    pub fn status(&self) -> LaneStatus {
+        LaneStatus {
+            running: (self.running.as_ref()).map(|r| LaneEntry::of(&r.command)),
+            waiting: (self.waiting.iter())
+                .map(|w| LaneEntry::of(&w.command))
+                .collect(),
+        }
+    }
+}
+
+/// A channel's commands as `GET /api/state` shows them.
+#[derive(Clone, Debug, serde::Serialize)]
+pub struct LaneStatus {
+    /// The command carried out now (`null` when the channel is free).
+    pub running: Option<LaneEntry>,
+    /// The commands waiting their turn, next first.
+    pub waiting: Vec<LaneEntry>,
+}
+
+/// One command on a channel.
+#[derive(Clone, Debug, serde::Serialize)]
+pub struct LaneEntry {
+    /// The command's id.
+    pub command: u64,
+    /// `VERB argument`.
+    pub what: String,
+    /// The act it belongs to.
+    pub act: String,
+    /// Who triggered it.
+    pub source: Source,
+}
+
+impl LaneEntry {
+    fn of(command: &Command) -> Self {
+        LaneEntry {
+            command: command.id,
+            what: command.describe(),
+            act: command.act.label.to_string(),
+            source: command.act.source,
+        }
+    }
 }
 
 /// Every channel's lane.

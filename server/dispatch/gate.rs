@@ -12,7 +12,7 @@ use tokio::sync::oneshot;
 use crate::adapters::{CancelScope, Command, Outcome, Reply};
 use crate::content::config::Channel;
 use crate::dispatch::Dispatcher;
-use crate::dispatch::channels::{Decision, Waiting};
+use crate::dispatch::channels::{Decision, LaneStatus, Waiting};
 use crate::events::{EventKind, Source};
 use crate::sync::lock;
 
@@ -28,8 +28,9 @@ pub struct Speaking {
 /// Where the dispatcher tells clients about their commands; the websocket layer implements
 /// it (the dispatcher knows no wire format).
 pub trait Notifier: Send + Sync {
-    /// A command triggered by `client` ended without being carried out.
-    fn outcome(&self, client: u64, command: &Command, outcome: &Outcome);
+    /// A command triggered by `client` ended without being carried out; `ended_by_visitor`
+    /// when a visitor ended it (stopped speech, left the page), so it needs no word to them.
+    fn outcome(&self, client: u64, command: &Command, outcome: &Outcome, ended_by_visitor: bool);
     /// Speech started (`Some`) or stopped (`None`). Called under the dispatcher's lock: it
     /// must only queue (never wait, never call back into the dispatcher).
     fn speaking(&self, now: Option<Speaking>);
@@ -202,7 +203,9 @@ impl Dispatcher {
             return;
         }
         if let (Some(client), Some(notifier)) = (command.act.client, self.notifier.get()) {
-            notifier.outcome(client, command, outcome);
+            // Everything of a visitor's act older than their stop or page change ended by it.
+            let ended_by_visitor = self.visitor_cut_off(&command.act).is_some();
+            notifier.outcome(client, command, outcome, ended_by_visitor);
         }
     }
 
@@ -224,6 +227,13 @@ impl Dispatcher {
             *told = now;
             notifier.speaking(now);
         }
+    }
+
+    /// Every channel that has carried a command: what runs and what waits, by channel name.
+    pub fn channel_status(&self) -> std::collections::BTreeMap<String, LaneStatus> {
+        (lock(&self.lanes).iter())
+            .map(|(channel, lane)| (channel.to_string(), lane.status()))
+            .collect()
     }
 
     /// Hands `tell` who speaks now, as the kiosks were last told, under the lock the changes

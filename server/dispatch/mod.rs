@@ -27,6 +27,7 @@ use std::sync::{Arc, Mutex, OnceLock};
 use arc_swap::ArcSwap;
 use tokio_util::sync::CancellationToken;
 
+pub use channels::{LaneEntry, LaneStatus};
 pub use gate::{Notifier, Speaking};
 pub use request::{ResolvedCommand, TriggerError, TriggerRequest, Triggered};
 

@@ -186,8 +186,8 @@ pub async fn put_context(
 }
 
 /// `GET /api/state` (credential needed: it names clients and holds the dialog manager's
-/// reasons): display, pose, speech, queues, context, connected clients, pending proposals and
-/// the visitor session.
+/// reasons): display, pose, speech, adapter queues, channels, context, connected clients,
+/// pending proposals and the visitor session.
 pub async fn get_state(State(state): State<AppState>, _: Authorized) -> Json<Value> {
     let adapters = state.dispatcher.adapter_status();
     let speaking = (adapters.get(state.devices.speech_adapter)).and_then(|s| {
@@ -202,6 +202,7 @@ pub async fn get_state(State(state): State<AppState>, _: Authorized) -> Json<Val
         "waypoint": state.devices.drive.as_ref().and_then(|d| d.waypoint()),
         "speaking": speaking,
         "queues": adapters,
+        "channels": state.dispatcher.channel_status(),
         "context": state.dispatcher.context(),
         "clients": state.clients(),
         "proposals": state.proposals.pending(),

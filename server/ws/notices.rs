@@ -23,13 +23,13 @@ impl ClientNotices {
 }
 
 impl Notifier for ClientNotices {
-    fn outcome(&self, client: u64, command: &Command, outcome: &Outcome) {
+    fn outcome(&self, client: u64, command: &Command, outcome: &Outcome, ended_by_visitor: bool) {
         let (kind, reason) = match outcome {
             Outcome::Cancelled(reason) => (NotCarriedOut::Cancelled, reason),
             Outcome::Failed(reason) => (NotCarriedOut::Failed, reason),
             Outcome::Done => return,
         };
-        let frame = Frame::from(outcome_frame(command, kind, reason));
+        let frame = Frame::from(outcome_frame(command, kind, reason, ended_by_visitor));
         // A client that has left learns nothing; the corpus has the outcome either way. Not
         // an answer: it rides along with the client's next frames (within 2 ms).
         self.links.send_lingering_to(client, &frame);

@@ -241,6 +241,7 @@ enum ServerFrame<'a> {
         verb: &'a str,
         outcome: NotCarriedOut,
         reason: &'a str,
+        ended_by_visitor: bool,
     },
     Speaking {
         speaking: bool,
@@ -369,7 +370,12 @@ pub fn error_frame(
 }
 
 /// `outcome`: a command the client triggered ended without being carried out, and why.
-pub fn outcome_frame(c: &Command, outcome: NotCarriedOut, reason: &str) -> String {
+pub fn outcome_frame(
+    c: &Command,
+    outcome: NotCarriedOut,
+    reason: &str,
+    ended_by_visitor: bool,
+) -> String {
     encode(&ServerFrame::Outcome {
         command: c.id,
         trigger: c.act.trigger,
@@ -378,6 +384,7 @@ pub fn outcome_frame(c: &Command, outcome: NotCarriedOut, reason: &str) -> Strin
         verb: c.verb.as_str(),
         outcome,
         reason,
+        ended_by_visitor,
     })
 }
 
