@@ -3,13 +3,17 @@
 //! refusal is logged without the credential, and the connection ends. An accepted client is
 //! welcomed with the current state and gets its feed: display commands for kiosks and
 //! projectors, the event stream (after the recent history) for operators and dialog managers.
+//!
+//! Three steps, so that the session can record what each decides in between, in the order the
+//! client sees it: [`admit`] (the credential), [`welcome`] (the `welcome` frame and the feed
+//! the session hands to the writer) and [`join`] (the server learns of the client).
 
-use crate::access::{ClientAddress, Needed, Refusal};
+use crate::access::{Needed, Refusal};
 use crate::events::{ClientRole, EventKind};
 use crate::state::ClientInfo;
 use crate::wire::ErrorCode;
 use crate::wire::outbox::Frame;
-use crate::ws::connection::Session;
+use crate::ws::client::Client;
 use crate::ws::protocol::{event_frame, speaking_frame, welcome_frame};
 use crate::ws::writer::Feed;
 
@@ -20,6 +24,23 @@ pub(super) struct Hello {
     pub(super) name: Option<String>,
     pub(super) token: Option<String>,
     pub(super) events: bool,
+}
+
+/// A client whose `hello` was accepted: the session records its role.
+pub(super) struct Admitted {
+    pub(super) role: ClientRole,
+    verbs: Vec<String>,
+    name: Option<String>,
+    /// Whether an operator or dialog manager asked for the event stream.
+    events: bool,
+}
+
+/// Why a `hello` was refused; the client was told already.
+pub(super) enum Refused {
+    /// The credential was missing or wrong: the connection ends after the `error` frame.
+    Credential,
+    /// An adapter listed no verbs: it may say `hello` again.
+    NoVerbs,
 }
 
 /// The credential a role needs from a client at `peer`, if any.
@@ -34,145 +55,150 @@ fn needed(role: ClientRole, local: bool) -> Option<Needed> {
     }
 }
 
-impl Session {
-    pub(super) fn hello(&mut self, hello: Hello) {
-        let Hello {
-            role,
-            verbs,
-            name,
-            token,
-            events,
-        } = hello;
-        if self.role.is_some() {
-            return self.reply_error(
-                ErrorCode::AlreadyIntroduced,
-                "hello was already received on this connection",
-                None,
-                None,
-            );
+/// Checks the credential the role needs and what the role must say; a refusal is answered
+/// (and a refused credential logged) here.
+pub(super) fn admit(client: &Client, hello: Hello) -> Result<Admitted, Refused> {
+    let Hello {
+        role,
+        verbs,
+        name,
+        token,
+        events,
+    } = hello;
+    if let Some(needed) = needed(role, client.address.local)
+        && let Err(refusal) = (client.state.access).check(client.address, needed, token.as_deref())
+    {
+        log_refusal(client, role, refusal);
+        client.reply_error(refusal.code(), &refusal.message(needed), None, None);
+        return Err(Refused::Credential);
+    }
+    if role == ClientRole::Adapter && verbs.is_empty() {
+        client.reply_error(
+            ErrorCode::NoVerbs,
+            "an adapter must list the verbs it serves in \"verbs\"",
+            None,
+            None,
+        );
+        return Err(Refused::NoVerbs);
+    }
+    Ok(Admitted {
+        role,
+        verbs,
+        name,
+        events,
+    })
+}
+
+/// Sends the `welcome` frame (and an operator's recent history); returns the feed the writer
+/// is to follow from now on, if the role has one.
+pub(super) fn welcome(client: &Client, admitted: &Admitted) -> Option<Feed> {
+    let role = admitted.role;
+    let state = &client.state;
+    let (display, display_rx) = state.devices.display.join(role, client.id);
+    // Subscribed before the state is read: an event (a refused save, a context change)
+    // published in between then arrives after the welcome instead of falling between them.
+    let events = match (role, &display_rx) {
+        (ClientRole::Operator | ClientRole::Dm, None) if admitted.events => {
+            Some(state.hub.subscribe_with_history())
         }
-        let address = ClientAddress {
-            ip: self.peer,
-            local: self.local,
-        };
-        if let Some(needed) = needed(role, self.local)
-            && let Err(refusal) = self.state.access.check(address, needed, token.as_deref())
-        {
-            self.log_refusal(role, refusal);
-            self.reply_error(refusal.code(), &refusal.message(needed), None, None);
-            self.closing = Some("credential refused");
-            return;
-        }
-        if role == ClientRole::Adapter && verbs.is_empty() {
-            return self.reply_error(
-                ErrorCode::NoVerbs,
-                "an adapter must list the verbs it serves in \"verbs\"",
-                None,
-                None,
-            );
-        }
-        self.role = Some(role);
-        let state = &self.state;
-        let (display, display_rx) = state.devices.display.join(role, self.client);
-        // Subscribed before the state is read: an event (a refused save, a context change)
-        // published in between then arrives after the welcome instead of falling between them.
-        let events = match (role, &display_rx) {
-            (ClientRole::Operator | ClientRole::Dm, None) if events => {
-                Some(state.hub.subscribe_with_history())
+        _ => None,
+    };
+    let mut view = state.state_view();
+    view.display = display;
+    client.send(welcome_frame(client.id, role, &view));
+    match (display_rx, events) {
+        (Some(rx), _) => Some(Feed::Display(role, rx)),
+        (None, Some((rx, history))) => {
+            for event in history {
+                client.outbox.send(Frame::from(event_frame(&event)));
             }
-            _ => None,
-        };
-        let mut view = state.state_view();
-        view.display = display;
-        self.send(welcome_frame(self.client, role, &view));
-        let feed = match (display_rx, events) {
-            (Some(rx), _) => Some(Feed::Display(role, rx)),
-            (None, Some((rx, history))) => {
-                for event in history {
-                    self.outbox.send(Frame::from(event_frame(&event)));
-                }
-                Some(Feed::Events(rx))
+            Some(Feed::Events(rx))
+        }
+        (None, None) => None,
+    }
+}
+
+/// Makes the welcomed client known: adapters get their verbs, everyone is listed among the
+/// clients, a kiosk learns who speaks, and `client.connected` is published.
+pub(super) fn join(client: &Client, admitted: Admitted) {
+    let Admitted {
+        role, verbs, name, ..
+    } = admitted;
+    let state = &client.state;
+    if role == ClientRole::Adapter {
+        state
+            .devices
+            .external
+            .connect(client.id, verbs.clone(), client.outbox.clone());
+        warn_unrouted(client, &verbs);
+    }
+    let info = ClientInfo {
+        role,
+        name: name.clone(),
+        verbs: verbs.clone(),
+    };
+    state.client_joined(client.id, info, client.outbox.clone());
+    if role == ClientRole::Kiosk {
+        // Joined first, so every later change reaches this kiosk on its own.
+        state.dispatcher.tell_speaking_now(|now| {
+            if now.is_some() {
+                client.outbox.send(Frame::from(speaking_frame(now)));
             }
-            (None, None) => None,
-        };
-        if let (Some(feed), Some(tx)) = (feed, self.feed.take()) {
-            let _ = tx.send(feed);
-        }
-        if role == ClientRole::Adapter {
-            state
-                .devices
-                .external
-                .connect(self.client, verbs.clone(), self.outbox.clone());
-            self.warn_unrouted(&verbs);
-        }
-        let info = ClientInfo {
-            role,
-            name: name.clone(),
-            verbs: verbs.clone(),
-        };
-        state.client_joined(self.client, info, self.outbox.clone());
-        if role == ClientRole::Kiosk {
-            // Joined first, so every later change reaches this kiosk on its own.
-            state.dispatcher.tell_speaking_now(|now| {
-                if now.is_some() {
-                    self.outbox.send(Frame::from(speaking_frame(now)));
-                }
-            });
-        }
-        state.hub.publish(EventKind::ClientConnected {
-            client: self.client,
-            role,
-            name,
-            verbs,
         });
     }
+    state.hub.publish(EventKind::ClientConnected {
+        client: client.id,
+        role,
+        name,
+        verbs,
+    });
+}
 
-    /// Logs a counted refusal, within the shared allowance; an address already waiting is
-    /// refused quietly, so a flood of hellos cannot flood the log.
-    fn log_refusal(&self, role: ClientRole, refusal: Refusal) {
-        if matches!(refusal, Refusal::Locked(_)) {
-            return;
-        }
-        let Some(unlogged) = self.state.access.admit_refusal_log() else {
-            return;
-        };
-        let address = self.peer.map(|p| p.to_string());
-        let code = refusal.code();
-        tracing::warn!(
-            ?role,
-            address,
-            code = code.as_str(),
-            unlogged,
-            "websocket credential refused"
-        );
-        self.state.hub.publish(EventKind::ClientRefused {
-            role,
-            code,
-            address,
-            unlogged,
-        });
+/// Logs a counted refusal, within the shared allowance; an address already waiting is
+/// refused quietly, so a flood of hellos cannot flood the log.
+fn log_refusal(client: &Client, role: ClientRole, refusal: Refusal) {
+    if matches!(refusal, Refusal::Locked(_)) {
+        return;
     }
+    let Some(unlogged) = client.state.access.admit_refusal_log() else {
+        return;
+    };
+    let address = client.address.ip.map(|p| p.to_string());
+    let code = refusal.code();
+    tracing::warn!(
+        ?role,
+        address,
+        code = code.as_str(),
+        unlogged,
+        "websocket credential refused"
+    );
+    client.state.hub.publish(EventKind::ClientRefused {
+        role,
+        code,
+        address,
+        unlogged,
+    });
+}
 
-    /// Tells an adapter, in one frame, which of its verbs this bundle sends elsewhere: it
-    /// will not get them.
-    fn warn_unrouted(&self, verbs: &[String]) {
-        let problems: Vec<String> = (verbs.iter())
-            .filter_map(|verb| match self.state.dispatcher.adapter_for(verb) {
-                Some("ws") => None,
-                Some(other) => Some(format!("{verb} goes to the {other} adapter")),
-                None => Some(format!("{verb} is not a verb of this bundle")),
-            })
-            .collect();
-        if problems.is_empty() {
-            return;
-        }
-        let message = format!(
-            "{}; route built-in verbs to ws and declare site verbs under verbs: in docent.yaml \
-             to receive them here",
-            problems.join("; ")
-        );
-        self.reply_error(ErrorCode::VerbNotRouted, &message, None, None);
+/// Tells an adapter, in one frame, which of its verbs this bundle sends elsewhere: it
+/// will not get them.
+fn warn_unrouted(client: &Client, verbs: &[String]) {
+    let problems: Vec<String> = (verbs.iter())
+        .filter_map(|verb| match client.state.dispatcher.adapter_for(verb) {
+            Some("ws") => None,
+            Some(other) => Some(format!("{verb} goes to the {other} adapter")),
+            None => Some(format!("{verb} is not a verb of this bundle")),
+        })
+        .collect();
+    if problems.is_empty() {
+        return;
     }
+    let message = format!(
+        "{}; route built-in verbs to ws and declare site verbs under verbs: in docent.yaml \
+         to receive them here",
+        problems.join("; ")
+    );
+    client.reply_error(ErrorCode::VerbNotRouted, &message, None, None);
 }
 
 #[cfg(test)]

@@ -3,18 +3,25 @@
 //!
 //! Each connection has a reader loop (`connection`) and a writer task (`writer`); when one ends,
 //! the other stops. Outgoing frames pass through a bounded [`crate::wire::outbox::Outbox`], so a slow
-//! client is dropped instead of slowing others. The reader routes each frame to a handler:
-//! `hello` (credentials, welcome, feeds), `triggers` (trigger, stop, context, page; the kiosk
-//! rules), `initiative` (proposals and corpus marks) and `signal` (WebRTC signalling relay).
+//! client is dropped instead of slowing others. The reader hands each frame to the
+//! connection's `session`, the one place that keeps (and changes) what the connection
+//! remembers; it routes the frame to a handler, lending it the `client` (id, address, server,
+//! outbox): `hello` (credentials, welcome, feeds), `triggers` (trigger, stop, context, page;
+//! the kiosk rules), `initiative` (proposals and corpus marks), `signal` (WebRTC signalling
+//! relay) and `reports` (devices' reports on their commands). Handlers return what the session
+//! must remember.
 //! `violation` maps a broken websocket frame to its RFC 6455 close code.
 //! `notices` tells a client what became of its commands and kiosks who is speaking.
 
+mod client;
 mod connection;
 mod diagnose;
 mod hello;
 mod initiative;
 mod notices;
 pub mod protocol;
+mod reports;
+mod session;
 mod signal;
 mod triggers;
 mod violation;

@@ -4,182 +4,211 @@
 //! touchscreen: it may trigger only the acts the bundle's pages offer (and the idle act), at
 //! the rate its address is allowed ([`Access::kiosk_allowance`](crate::access::Access)); every
 //! refusal is an `error` frame and a `trigger.refused` event, except that a run of
-//! rate-limited ones is logged once.
+//! rate-limited ones is logged once. Whether the current run was logged is the session's to
+//! remember: these handlers are told it and return what became of the run ([`RefusedRun`]).
 
 use std::time::Instant;
 
 use crate::content::{BundleArea, resolve_in_bundle};
 use crate::dispatch::TriggerRequest;
-use crate::events::{ClientRole, EventKind, LogUnwritable};
+use crate::events::{ClientRole, EventKind};
 use crate::wire::ErrorCode;
-use crate::wire::outbox::Frame;
-use crate::ws::connection::Session;
+use crate::ws::client::Client;
 use crate::ws::protocol::{context_frame, stopped_frame, triggered_frame};
 
 const TRIGGER_ROLES: [ClientRole; 3] = [ClientRole::Kiosk, ClientRole::Operator, ClientRole::Dm];
 const CONTROL_ROLES: [ClientRole; 2] = [ClientRole::Operator, ClientRole::Dm];
 
-impl Session {
-    pub(super) fn trigger(
-        &mut self,
-        label: String,
-        context: Option<String>,
-        interrupt: bool,
-        reference: Option<String>,
-    ) {
-        let Some(role) = self.allowed(&TRIGGER_ROLES, reference.as_deref()) else {
-            // Once per connection: a role does not change, repeating it says nothing new.
-            if self.role.is_none() || std::mem::replace(&mut self.limited_logged, true) {
-                return;
+/// What a `trigger` frame says.
+pub(super) struct Trigger {
+    pub(super) label: String,
+    pub(super) context: Option<String>,
+    pub(super) interrupt: bool,
+    pub(super) reference: Option<String>,
+}
+
+/// What a frame did to the client's run of refused triggers, which is logged once (one
+/// `trigger.refused` per run, so a flood cannot flood the corpus). The session records it.
+#[derive(Debug, PartialEq, Eq)]
+pub(super) enum RefusedRun {
+    /// Nothing to record: no refusal was logged and the run, if any, goes on.
+    Unchanged,
+    /// A refusal was logged: later ones of the same run are not.
+    Logged,
+    /// The kiosk was within its allowance: the run (if any) is over.
+    Over,
+}
+
+/// Triggers an act for the client, if its role and (for a kiosk) its allowance and the pages
+/// allow; `run_logged` says whether the client's current run of refusals was logged already.
+pub(super) fn trigger(
+    client: &Client,
+    role: Option<ClientRole>,
+    trigger: Trigger,
+    run_logged: bool,
+) -> RefusedRun {
+    let Trigger {
+        label,
+        context,
+        interrupt,
+        reference,
+    } = trigger;
+    let Some(allowed) = client.allowed(role, &TRIGGER_ROLES, reference.as_deref()) else {
+        // Once per connection: a role does not change, repeating it says nothing new.
+        let Some(role) = role else {
+            return RefusedRun::Unchanged;
+        };
+        if run_logged {
+            return RefusedRun::Unchanged;
+        }
+        let message = "this role may not trigger acts".into();
+        log_refused(client, role, label, ErrorCode::Forbidden, message);
+        return RefusedRun::Logged;
+    };
+    let mut run = RefusedRun::Unchanged;
+    if allowed == ClientRole::Kiosk {
+        if let Err(message) = kiosk_allowance(client) {
+            let code = ErrorCode::RateLimited;
+            client.reply_error(code, &message, reference.as_deref(), None);
+            if run_logged {
+                return RefusedRun::Unchanged;
             }
-            return self.log_refused(
-                label,
-                ErrorCode::Forbidden,
-                "this role may not trigger acts".into(),
-            );
-        };
-        if role == ClientRole::Kiosk
-            && let Err((code, message)) = self.kiosk_may_trigger(&label)
-        {
-            self.reply_error(code, &message, reference.as_deref(), None);
-            if code == ErrorCode::RateLimited {
-                if self.limited_logged {
-                    return;
-                }
-                self.limited_logged = true;
-            }
-            return self.log_refused(label, code, message);
+            log_refused(client, allowed, label, code, message);
+            return RefusedRun::Logged;
         }
-        if !self.log_writable(reference.as_deref()) {
-            return;
-        }
-        let request = TriggerRequest {
-            label,
-            context,
-            interrupt,
-            reference: reference.clone(),
-            source: role.source(),
-            client: Some(self.client),
-        };
-        match self.state.dispatcher.trigger(request) {
-            Ok(t) => self.send_logged(triggered_frame(&t), reference.as_deref()),
-            Err(e) => self.reply_error(
-                e.code(),
-                &e.to_string(),
-                reference.as_deref(),
-                e.suggestion(),
-            ),
+        run = RefusedRun::Over;
+        if let Err(message) = offered(client, &label) {
+            let code = ErrorCode::NotOffered;
+            client.reply_error(code, &message, reference.as_deref(), None);
+            log_refused(client, allowed, label, code, message);
+            return run;
         }
     }
+    if !client.log_writable(reference.as_deref()) {
+        return run;
+    }
+    let request = TriggerRequest {
+        label,
+        context,
+        interrupt,
+        reference: reference.clone(),
+        source: allowed.source(),
+        client: Some(client.id),
+    };
+    match client.state.dispatcher.trigger(request) {
+        Ok(t) => client.send_logged(triggered_frame(&t), reference.as_deref()),
+        Err(e) => client.reply_error(
+            e.code(),
+            &e.to_string(),
+            reference.as_deref(),
+            e.suggestion(),
+        ),
+    }
+    run
+}
 
-    /// Sends an acknowledgement once the corpus log holds every event published so far, which
-    /// includes those of the action it acknowledges (see `docs/CORPUS.md`, "Guarantees").
-    pub(super) fn send_logged(&self, frame: String, reference: Option<&str>) {
-        let logged = self.state.hub.published_seq();
-        let reference = reference.map(str::to_owned);
-        self.outbox
-            .send_logged(Frame::from(frame), logged, reference);
+/// Whether a kiosk may trigger `label`: an act its pages offer, or the idle act.
+fn offered(client: &Client, label: &str) -> Result<(), String> {
+    let bundle = client.state.dispatcher.bundle();
+    let offered = bundle.page_acts.iter().any(|a| a == label)
+        || bundle.config.kiosk.idle_act.as_deref() == Some(label);
+    if !offered {
+        return Err(format!(
+            "no page of this bundle offers the act {label:?}, so a touchscreen may not \
+             trigger it (add data-act=\"{label}\" to a page to offer it)"
+        ));
     }
+    Ok(())
+}
 
-    /// False, after telling the client, while the corpus log cannot be written: a trigger
-    /// could not be acknowledged truthfully then.
-    pub(super) fn log_writable(&self, reference: Option<&str>) -> bool {
-        let Some(failure) = self.state.hub.log_failure() else {
-            return true;
-        };
-        self.reply_error(LogUnwritable::CODE, &failure.refusal(), reference, None);
-        false
-    }
+/// Takes one from this kiosk address's allowance (triggers and `page` reports alike); the
+/// error is the `rate-limited` message.
+fn kiosk_allowance(client: &Client) -> Result<(), String> {
+    let allowance = client
+        .state
+        .access
+        .kiosk_allowance(client.address.ip, Instant::now());
+    allowance.map_err(|wait| {
+        format!(
+            "too many requests from this touchscreen; the next is possible in {} ms",
+            wait.as_millis().max(1)
+        )
+    })
+}
 
-    /// Whether a kiosk may trigger `label` now: within its allowance, an act its pages offer.
-    fn kiosk_may_trigger(&mut self, label: &str) -> Result<(), (ErrorCode, String)> {
-        self.kiosk_allowance()?;
-        let bundle = self.state.dispatcher.bundle();
-        let offered = bundle.page_acts.iter().any(|a| a == label)
-            || bundle.config.kiosk.idle_act.as_deref() == Some(label);
-        if !offered {
-            let message = format!(
-                "no page of this bundle offers the act {label:?}, so a touchscreen may not \
-                 trigger it (add data-act=\"{label}\" to a page to offer it)"
-            );
-            return Err((ErrorCode::NotOffered, message));
-        }
-        Ok(())
-    }
+/// Records a trigger this client may not make.
+fn log_refused(client: &Client, role: ClientRole, label: String, code: ErrorCode, message: String) {
+    client.state.hub.publish(EventKind::TriggerRefused {
+        source: role.source(),
+        client: Some(client.id),
+        label,
+        code,
+        message,
+    });
+}
 
-    /// Takes one from this kiosk address's allowance (triggers and `page` reports alike).
-    fn kiosk_allowance(&mut self) -> Result<(), (ErrorCode, String)> {
-        if let Err(wait) = self.state.access.kiosk_allowance(self.peer, Instant::now()) {
-            let message = format!(
-                "too many requests from this touchscreen; the next is possible in {} ms",
-                wait.as_millis().max(1)
-            );
-            return Err((ErrorCode::RateLimited, message));
-        }
-        self.limited_logged = false;
-        Ok(())
+/// Stops the robot for an operator or a dialog manager; a kiosk stops only visitors' speech.
+pub(super) fn stop(client: &Client, role: Option<ClientRole>, reference: Option<String>) {
+    // A visitor may stop the speech visitors started, never anyone else's.
+    if role == Some(ClientRole::Kiosk) {
+        client.state.dispatcher.stop_visitor_speech(client.id);
+        return client.send(stopped_frame(reference.as_deref()));
     }
+    let Some(role) = client.allowed(role, &CONTROL_ROLES, reference.as_deref()) else {
+        return;
+    };
+    // Never refused for the log: stopping the robot must always work.
+    client.state.dispatcher.stop(role.source(), "stop request");
+    client.send_logged(stopped_frame(reference.as_deref()), reference.as_deref());
+}
 
-    /// Records a trigger this client may not make.
-    fn log_refused(&self, label: String, code: ErrorCode, message: String) {
-        let Some(role) = self.role else { return };
-        self.state.hub.publish(EventKind::TriggerRefused {
-            source: role.source(),
-            client: Some(self.client),
-            label,
-            code,
-            message,
-        });
+/// Sets the context acts are chosen in.
+pub(super) fn set_context(
+    client: &Client,
+    role: Option<ClientRole>,
+    context: String,
+    reference: Option<String>,
+) {
+    let Some(role) = client.allowed(role, &CONTROL_ROLES, reference.as_deref()) else {
+        return;
+    };
+    match client.state.dispatcher.set_context(&context, role.source()) {
+        Ok(()) => client.send_logged(
+            context_frame(reference.as_deref(), &context),
+            reference.as_deref(),
+        ),
+        Err(e) => client.reply_error(
+            e.code(),
+            &e.to_string(),
+            reference.as_deref(),
+            e.suggestion(),
+        ),
     }
+}
 
-    pub(super) fn stop(&self, reference: Option<String>) {
-        // A visitor may stop the speech visitors started, never anyone else's.
-        if self.role == Some(ClientRole::Kiosk) {
-            self.state.dispatcher.stop_visitor_speech(self.client);
-            return self.send(stopped_frame(reference.as_deref()));
-        }
-        let Some(role) = self.allowed(&CONTROL_ROLES, reference.as_deref()) else {
-            return;
-        };
-        // Never refused for the log: stopping the robot must always work.
-        self.state.dispatcher.stop(role.source(), "stop request");
-        self.send_logged(stopped_frame(reference.as_deref()), reference.as_deref());
+/// A kiosk reports a page it shows on its own, so the server's display state (what a
+/// reconnecting kiosk is sent back to, what the log says) stays true. It takes from the same
+/// allowance as triggers, so one within it ends a run of refused triggers.
+pub(super) fn page_shown(client: &Client, role: Option<ClientRole>, page: String) -> RefusedRun {
+    if client.allowed(role, &[ClientRole::Kiosk], None).is_none() {
+        return RefusedRun::Unchanged;
     }
-
-    pub(super) fn set_context(&self, context: String, reference: Option<String>) {
-        let Some(role) = self.allowed(&CONTROL_ROLES, reference.as_deref()) else {
-            return;
-        };
-        match self.state.dispatcher.set_context(&context, role.source()) {
-            Ok(()) => self.send_logged(
-                context_frame(reference.as_deref(), &context),
-                reference.as_deref(),
-            ),
-            Err(e) => self.reply_error(
-                e.code(),
-                &e.to_string(),
-                reference.as_deref(),
-                e.suggestion(),
-            ),
-        }
+    // Before the allowance: leaving a page ends its speech even for a hasty visitor.
+    client.state.dispatcher.page_left(client.id, &page);
+    if let Err(message) = kiosk_allowance(client) {
+        client.reply_error(ErrorCode::RateLimited, &message, None, None);
+        return RefusedRun::Unchanged;
     }
-
-    /// A kiosk reports a page it shows on its own, so the server's display state (what a
-    /// reconnecting kiosk is sent back to, what the log says) stays true.
-    pub(super) fn page_shown(&mut self, page: String) {
-        if self.allowed(&[ClientRole::Kiosk], None).is_none() {
-            return;
-        }
-        // Before the allowance: leaving a page ends its speech even for a hasty visitor.
-        self.state.dispatcher.page_left(self.client, &page);
-        if let Err((code, message)) = self.kiosk_allowance() {
-            return self.reply_error(code, &message, None, None);
-        }
-        let root = &self.state.dispatcher.bundle().root;
-        if resolve_in_bundle(root, BundleArea::Pages, &page).is_err() {
-            let message = format!("{page:?} is not a page of this bundle");
-            return self.reply_error(ErrorCode::UnknownPage, &message, None, None);
-        }
-        self.state.devices.display.page_shown(page, &self.state.hub);
+    let root = &client.state.dispatcher.bundle().root;
+    if resolve_in_bundle(root, BundleArea::Pages, &page).is_err() {
+        let message = format!("{page:?} is not a page of this bundle");
+        client.reply_error(ErrorCode::UnknownPage, &message, None, None);
+        return RefusedRun::Over;
     }
+    client
+        .state
+        .devices
+        .display
+        .page_shown(page, &client.state.hub);
+    RefusedRun::Over
 }
