@@ -3,13 +3,18 @@
 
 use serde_json::{Value, json};
 
-use super::{DRAFT, VARIANT_KEY_PATTERN, any_case, choice, duration, section, words};
-use crate::content::config::{Channel, Credential, MAX_PRIORITY, MAX_QUEUE_LIMIT};
+use super::{DRAFT, choice, duration, section, words};
+use crate::content::config::{Channel, MAX_PRIORITY, MAX_QUEUE_LIMIT};
 use crate::content::config_file::TOP_KEYS;
-use crate::content::config_file::operator::{KEYS as OPERATOR_KEYS, MAP_FORMATS, VISITOR_GROUPS};
+use crate::content::config_file::operator::KEYS as OPERATOR_KEYS;
 use crate::content::config_file::policy::{CHANNEL_KEYS, PRIORITY_KEYS};
 use crate::content::config_file::server::KEYS as SERVER_KEYS;
-use crate::content::model::Verb;
+
+mod site;
+#[cfg(test)]
+mod tests;
+
+use site::{access, operator, server, verbs};
 
 /// The keys of the sections whose lists live inline in the loader's functions; the test
 /// `section_keys_are_the_loaders` asks the loader for each list and compares.
@@ -248,222 +253,5 @@ fn projector(key: &str) -> Value {
                             projected width: 0 (sharp) to 0.5, e.g. `0.02`.",
         }),
         _ => json!({}),
-    }
-}
-
-fn verbs() -> Value {
-    let built_in: Vec<&str> = Verb::BUILT_IN.iter().map(Verb::as_str).collect();
-    let verb = section(
-        SITE_VERB_KEYS,
-        |key| match key {
-            "adapter" => choice(
-                &["ws", "log"],
-                "Who carries the command out: `ws` (a program connected over the websocket, \
-                 the default) or `log` (nobody: it is only written to the log).",
-            ),
-            "argument" => choice(
-                &["required", "optional", "none"],
-                "Whether the command needs something after it: `required`, `optional` (the \
-                 default) or `none`.",
-            ),
-            "description" => words("What the command does, in a few words for people."),
-            _ => json!({}),
-        },
-        "One command of this site.",
-    );
-    json!({
-        "type": ["object", "null"],
-        "description": "This site's own commands, by name, e.g. \
-                        `verbs: { LIGHTS: { adapter: ws, argument: required } }`.",
-        "propertyNames": {
-            "pattern": "^[A-Z][A-Z0-9_]*$",
-            "not": { "enum": built_in },
-            "description": "A command name: capital letters, digits and `_`, starting with a \
-                            letter, and not one of the built-in commands.",
-        },
-        "additionalProperties": verb,
-    })
-}
-
-fn access(key: &str) -> Value {
-    let who = if key == "operator_token" {
-        "operator console"
-    } else {
-        "dialog manager"
-    };
-    json!({
-        "type": "string",
-        "pattern": format!("^[!-~]{{{},}}$", Credential::MIN_CHARS),
-        "description": format!(
-            "The credential the {who} shows to connect: at least {} characters, no spaces, \
-             e.g. the output of `openssl rand -hex 16`.",
-            Credential::MIN_CHARS
-        ),
-    })
-}
-
-fn server(_key: &str) -> Value {
-    let address = json!({
-        "type": "string",
-        "description": "The IP address of a reverse proxy, e.g. `127.0.0.1` or `fd00::2`.",
-    });
-    json!({
-        "description": "The reverse proxies in front of Docent whose X-Forwarded-For header \
-                        is believed, e.g. `[127.0.0.1]`; every other client's header is \
-                        ignored.",
-        "anyOf": [
-            { "type": "null" },
-            address,
-            { "type": "array", "items": address, "uniqueItems": true },
-        ],
-    })
-}
-
-fn operator(key: &str) -> Value {
-    match key {
-        "map" => {
-            let formats: Vec<String> = MAP_FORMATS.iter().map(|f| any_case(f)).collect();
-            json!({
-                "type": "string",
-                "pattern": format!(r"^\s*(pages|media)/.+\.({})\s*$", formats.join("|")),
-                "description": format!(
-                    "A picture of the area the robot drives in, spanning `drive: bounds`, \
-                     written from the bundle folder, e.g. `pages/images/map.png` ({}).",
-                    MAP_FORMATS.join(", ")
-                ),
-            })
-        }
-        "camera" => json!({
-            "description": "The camera the operator sees: `webrtc` (the touchscreen's own \
-                            camera, the default), `none`, or the address of an MJPEG stream \
-                            starting with http:// or https://.",
-            "anyOf": [
-                { "enum": ["webrtc", "none"] },
-                {
-                    "type": "string",
-                    "pattern": r#"^\s*[hH][tT][tT][pP][sS]?://[^/?#@\s"'<>`\\{}|^][^\s"'<>`\\{}|^]*\s*$"#,
-                },
-            ],
-        }),
-        "situations" => {
-            let name = words("A short name the operator marks, e.g. `question`.");
-            json!({
-                "description": "1 to 9 short names the operator marks during a session with \
-                                Alt+Shift+1 to 9, e.g. `[question, laughter, leaving]`.",
-                "anyOf": [
-                    { "type": "null" },
-                    name,
-                    { "type": "array", "minItems": 1, "maxItems": 9, "uniqueItems": true, "items": name },
-                ],
-            })
-        }
-        "visitor_groups" => section(
-            VISITOR_GROUPS,
-            |group| {
-                json!({
-                    "type": "string",
-                    "pattern": VARIANT_KEY_PATTERN,
-                    "description": format!(
-                        "The context the console switches to for the `{group}` visitor group: \
-                         `Text` or a text variant key, e.g. `TextChild`."
-                    ),
-                })
-            },
-            "Which context each visitor group button of the console switches to.",
-        ),
-        _ => json!({}),
-    }
-}
-
-#[cfg(test)]
-mod tests {
-    use std::sync::Arc;
-
-    use super::*;
-    use crate::content::config_file::parse_config;
-
-    /// The loader's key list at `path`, read from its unknown-key message (which lists every
-    /// key it knows there): the loader's own inline lists, without copying them.
-    fn loader_keys(path: &[&str]) -> Vec<String> {
-        let mut yaml = String::new();
-        for (depth, key) in path.iter().enumerate() {
-            yaml.push_str(&format!("{}{key}:\n", "  ".repeat(depth)));
-        }
-        yaml.push_str(&format!("{}zz_probe: 1\n", "  ".repeat(path.len())));
-        let file = parse_config(&Arc::from("docent.yaml"), yaml.as_bytes());
-        let message = file
-            .diagnostics
-            .iter()
-            .find(|d| d.code == "config-unknown-key")
-            .map(|d| d.message.clone())
-            .unwrap_or_else(|| panic!("no unknown-key problem for {path:?}: {yaml}"));
-        let list = message
-            .split_once("Known settings here: ")
-            .map(|(_, rest)| rest.trim_end_matches('.'))
-            .unwrap_or_else(|| panic!("no key list in {message}"));
-        let mut keys: Vec<String> = list.split(", ").map(str::to_owned).collect();
-        keys.sort();
-        keys
-    }
-
-    fn schema_keys(schema: &Value, path: &[&str]) -> Vec<String> {
-        let mut node = schema;
-        for key in path {
-            node = if *key == "*" {
-                &node["additionalProperties"]
-            } else {
-                &node["properties"][*key]
-            };
-        }
-        let properties = node["properties"].as_object().expect("a section");
-        for (key, value) in properties {
-            assert!(value["description"].is_string(), "{path:?}.{key}");
-        }
-        let mut keys: Vec<String> = properties.keys().cloned().collect();
-        keys.sort();
-        keys
-    }
-
-    #[test]
-    fn section_keys_are_the_loaders() {
-        let schema = config_schema();
-        for (probe, path) in [
-            (&[][..], &[][..]),
-            (&["speech"], &["speech"]),
-            (&["display"], &["display"]),
-            (&["drive"], &["drive"]),
-            (&["drive", "bounds"], &["drive", "bounds"]),
-            (&["adapters"], &["adapters"]),
-            (&["kiosk"], &["kiosk"]),
-            (&["projector"], &["projector"]),
-            (&["access"], &["access"]),
-            (&["operator"], &["operator"]),
-            (&["server"], &["server"]),
-            (
-                &["operator", "visitor_groups"],
-                &["operator", "visitor_groups"],
-            ),
-            (&["verbs", "LIGHTS"], &["verbs", "*"]),
-            (&["channels", "speech"], &["channels", "*"]),
-            (&["priorities"], &["priorities"]),
-        ] {
-            assert_eq!(
-                schema_keys(&schema, path),
-                loader_keys(probe),
-                "section {probe:?}"
-            );
-        }
-    }
-
-    #[test]
-    fn every_section_rejects_other_keys() {
-        let schema = config_schema();
-        assert_eq!(schema["additionalProperties"], false);
-        for key in TOP_KEYS {
-            let section = &schema["properties"][*key];
-            if section.get("properties").is_some() {
-                assert_eq!(section["additionalProperties"], false, "{key}");
-            }
-        }
     }
 }
