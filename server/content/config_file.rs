@@ -18,8 +18,6 @@ pub(crate) mod policy;
 mod reader;
 mod screens;
 pub(crate) mod server;
-#[cfg(test)]
-mod tests;
 mod verbs;
 
 use reader::Reader;
@@ -173,3 +171,6 @@ pub(crate) mod test_support {
             .collect()
     }
 }
+
+#[cfg(test)]
+mod tests;

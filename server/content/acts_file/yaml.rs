@@ -19,13 +19,9 @@ use crate::content::encoding::not_utf8;
 use crate::content::model::Pos;
 
 mod fast;
-#[cfg(test)]
-mod fast_tests;
 mod layout;
 mod raw;
 mod recovery;
-#[cfg(test)]
-mod tests;
 mod wording;
 
 use layout::{
@@ -192,3 +188,9 @@ fn options() -> Options {
         with_snippet: false,
     }
 }
+
+#[cfg(test)]
+mod fast_tests;
+
+#[cfg(test)]
+mod tests;

@@ -11,8 +11,6 @@ use std::sync::Arc;
 
 mod arguments;
 mod files;
-#[cfg(test)]
-mod tests;
 
 pub(crate) use files::path_error_code;
 
@@ -176,3 +174,6 @@ fn offset_pos(cmd: &WrittenCommand, byte: usize) -> Pos {
         cmd.pos.column.saturating_add(at).saturating_add(chars),
     )
 }
+
+#[cfg(test)]
+mod tests;

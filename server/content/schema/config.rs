@@ -11,8 +11,6 @@ use crate::content::config_file::policy::{CHANNEL_KEYS, PRIORITY_KEYS};
 use crate::content::config_file::server::KEYS as SERVER_KEYS;
 
 mod site;
-#[cfg(test)]
-mod tests;
 
 use site::{access, operator, server, verbs};
 
@@ -255,3 +253,6 @@ fn projector(key: &str) -> Value {
         _ => json!({}),
     }
 }
+
+#[cfg(test)]
+mod tests;
