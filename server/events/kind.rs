@@ -1,105 +1,14 @@
-//! The event types. Field names here are the corpus format; change them only with a version bump.
+//! The event types: [`EventKind`], one variant per thing that happens. Field names here are
+//! the corpus format; change them only with a version bump. Who asked (`origin.rs`) and the
+//! hub's stamps (`stamped.rs`) live beside it, so that this file is the format alone.
 
-use std::sync::{Arc, OnceLock};
-use std::time::SystemTime;
+use std::sync::Arc;
 
 use serde::Serialize;
 
+use super::origin::{ActRef, ClientRole, Source};
 use crate::content::Args;
-use crate::events::EVENT_FORMAT_VERSION;
 use crate::wire::ErrorCode;
-
-/// Who asked for something: the trigger API's callers and the server itself.
-#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize)]
-#[serde(rename_all = "lowercase")]
-pub enum Source {
-    /// The HTTP API.
-    Http,
-    /// A touchscreen page.
-    Kiosk,
-    /// A projector page.
-    Projector,
-    /// A remote operator.
-    Operator,
-    /// An autonomous dialog manager.
-    Dm,
-    /// An external adapter process.
-    Adapter,
-    /// Docent itself (start-up, shutdown, a drive arriving).
-    Server,
-}
-
-/// The role a websocket client declares in `hello`.
-#[derive(Clone, Copy, Debug, PartialEq, Eq, serde::Deserialize, Serialize)]
-#[serde(rename_all = "lowercase")]
-pub enum ClientRole {
-    /// The touchscreen shell.
-    Kiosk,
-    /// The projector page.
-    Projector,
-    /// A remote operator's console.
-    Operator,
-    /// An autonomous dialog manager.
-    Dm,
-    /// An external adapter process serving verbs.
-    Adapter,
-}
-
-impl EventKind {
-    /// Whether an operator or dialog manager joining later should see this event again (the
-    /// console's history, pending proposals and marks).
-    pub fn is_history(&self) -> bool {
-        matches!(
-            self,
-            EventKind::ActTriggered { .. }
-                | EventKind::ContextChanged { .. }
-                | EventKind::ProposalMade { .. }
-                | EventKind::ProposalAccepted { .. }
-                | EventKind::ProposalDismissed { .. }
-                | EventKind::ProposalWithdrawn { .. }
-                | EventKind::SessionStarted { .. }
-                | EventKind::SessionEnded { .. }
-                | EventKind::VisitorGroup { .. }
-                | EventKind::SituationMarked { .. }
-        )
-    }
-}
-
-fn is_zero(n: &u64) -> bool {
-    *n == 0
-}
-
-impl ClientRole {
-    /// The source recorded for triggers from a client in this role.
-    pub fn source(self) -> Source {
-        match self {
-            ClientRole::Kiosk => Source::Kiosk,
-            ClientRole::Projector => Source::Projector,
-            ClientRole::Operator => Source::Operator,
-            ClientRole::Dm => Source::Dm,
-            ClientRole::Adapter => Source::Adapter,
-        }
-    }
-}
-
-/// What every command event says about the trigger it came from, shared by all its commands.
-#[derive(Debug, Serialize)]
-pub struct ActRef {
-    /// The trigger's id.
-    pub trigger: u64,
-    /// Who triggered.
-    pub source: Source,
-    /// The websocket client that triggered, if any.
-    #[serde(skip_serializing_if = "Option::is_none")]
-    pub client: Option<u64>,
-    /// The caller's own reference, echoed back.
-    #[serde(rename = "ref", skip_serializing_if = "Option::is_none")]
-    pub reference: Option<String>,
-    /// The act's label.
-    pub label: Arc<str>,
-    /// Where the act is written, `file:line`.
-    pub at: String,
-}
 
 /// One thing that happened. Serialized with `type` as the tag.
 #[derive(Debug, Serialize)]
@@ -462,49 +371,26 @@ pub enum EventKind {
     },
 }
 
-/// An event stamped by the hub.
-#[derive(Debug, Serialize)]
-pub struct Event {
-    /// Format version.
-    pub v: u32,
-    /// Sequence number, from 1, without gaps within one server run.
-    pub seq: u64,
-    /// Wall-clock time, written as RFC 3339 UTC with milliseconds.
-    #[serde(serialize_with = "rfc3339_millis")]
-    pub time: SystemTime,
-    /// Microseconds since the server started (monotonic).
-    pub mono_us: u64,
-    /// What happened.
-    #[serde(flatten)]
-    pub kind: EventKind,
-    /// The JSON line, made once for all readers.
-    #[serde(skip)]
-    json: OnceLock<String>,
-}
-
-impl Event {
-    /// An event with its stamps.
-    pub fn new(seq: u64, time: SystemTime, mono_us: u64, kind: EventKind) -> Self {
-        Event {
-            v: EVENT_FORMAT_VERSION,
-            seq,
-            time,
-            mono_us,
-            kind,
-            json: OnceLock::new(),
-        }
-    }
-
-    /// The event as one JSON object (no newline), serialized once.
-    pub fn json(&self) -> &str {
-        self.json.get_or_init(|| {
-            // Serializing plain data with string keys cannot fail.
-            serde_json::to_string(self).unwrap_or_else(|e| format!("{{\"error\":\"{e}\"}}"))
-        })
+impl EventKind {
+    /// Whether an operator or dialog manager joining later should see this event again (the
+    /// console's history, pending proposals and marks).
+    pub fn is_history(&self) -> bool {
+        matches!(
+            self,
+            EventKind::ActTriggered { .. }
+                | EventKind::ContextChanged { .. }
+                | EventKind::ProposalMade { .. }
+                | EventKind::ProposalAccepted { .. }
+                | EventKind::ProposalDismissed { .. }
+                | EventKind::ProposalWithdrawn { .. }
+                | EventKind::SessionStarted { .. }
+                | EventKind::SessionEnded { .. }
+                | EventKind::VisitorGroup { .. }
+                | EventKind::SituationMarked { .. }
+        )
     }
 }
 
-/// Formats the time when the event is serialized (on the corpus thread), not when published.
-fn rfc3339_millis<S: serde::Serializer>(time: &SystemTime, s: S) -> Result<S::Ok, S::Error> {
-    s.collect_str(&humantime::format_rfc3339_millis(*time))
+fn is_zero(n: &u64) -> bool {
+    *n == 0
 }

@@ -8,11 +8,15 @@
 
 mod hub;
 mod kind;
+mod origin;
+mod stamped;
 
 pub use hub::{
     Committer, CorpusFeed, EVENT_CHANNEL_CAPACITY, HISTORY_LEN, Hub, LogUnwritable, Logged,
 };
-pub use kind::{ActRef, ClientRole, Event, EventKind, Source};
+pub use kind::EventKind;
+pub use origin::{ActRef, ClientRole, Source};
+pub use stamped::Event;
 
 /// Version of the event format, written into every corpus line as `v`. 2: `command.sent`
 /// carries the parsed `args`.

@@ -2,6 +2,7 @@
 
 #![allow(dead_code)] // Each test binary uses a different part of the helpers.
 
+use std::collections::BTreeMap;
 use std::fs;
 use std::path::Path;
 
@@ -104,4 +105,12 @@ pub fn loaded(report: LoadReport) -> Bundle {
         errors.join("\n")
     );
     report.bundle.expect("a bundle when there are no errors")
+}
+
+/// Visitor groups and their contexts, as the console's settings hold them.
+pub fn groups(pairs: &[(&str, &str)]) -> BTreeMap<String, String> {
+    pairs
+        .iter()
+        .map(|(g, c)| ((*g).to_owned(), (*c).to_owned()))
+        .collect()
 }

@@ -19,16 +19,16 @@ use crate::content::encoding::not_utf8;
 use crate::content::model::Pos;
 
 mod fast;
-#[cfg(test)]
-mod fast_tests;
 mod layout;
 mod raw;
+mod recovery;
 mod wording;
 
 use layout::{
-    Item, odd_space_diagnostics, odd_space_positions, position_of_byte, tab_diagnostics,
-    tab_positions, top_level_items, unclosed_bracket_before,
+    odd_space_diagnostics, odd_space_positions, position_of_byte, tab_diagnostics, tab_positions,
+    top_level_items,
 };
+use recovery::{parse_items, report_error};
 
 /// The largest YAML file read, in bytes. A real acts file of 100,000 acts is about 25 MB.
 pub(crate) const MAX_FILE_BYTES: usize = 32 * 1024 * 1024;
@@ -176,95 +176,6 @@ pub(crate) fn parse(
     out
 }
 
-/// Parses each top-level item on its own, so an error (even an unclosed bracket) stays
-/// inside its item and every other act is read.
-fn parse_items(
-    file: &Arc<str>,
-    source: &str,
-    items: &[Item],
-    syntax_code: &'static str,
-    explained: &[(u32, u32)],
-    out: &mut YamlFile,
-) {
-    let mut nodes = Vec::with_capacity(items.len());
-    for item in items {
-        let text = &source[item.bytes.clone()];
-        let line_offset = item.lines.0 - 1;
-        let origin = raw::Origin {
-            line: line_offset,
-            byte: item.bytes.start,
-        };
-        match serde_saphyr::from_str_with_options::<Spanned<raw::Raw>>(text, options()) {
-            Ok(tree) => match raw::into_node(tree, file, text, origin) {
-                Node {
-                    kind: Kind::Seq(parsed),
-                    ..
-                } => nodes.extend(parsed),
-                other => nodes.push(other),
-            },
-            Err(err) => {
-                report_error(
-                    file,
-                    source,
-                    &err,
-                    line_offset,
-                    syntax_code,
-                    explained,
-                    &mut out.diagnostics,
-                );
-                out.skipped_lines.push(item.lines);
-            }
-        }
-    }
-    let pos = Pos::new(file.clone(), items.first().map_or(1, |i| i.lines.0), 1);
-    out.root = Some(Node {
-        pos,
-        span: None,
-        kind: Kind::Seq(nodes),
-    });
-}
-
-/// Adds the diagnostic for a parse error, unless a layout problem (a tab, a no-break space) on
-/// that line (or the next, where the parser tends to notice it) already explains it.
-fn report_error(
-    file: &Arc<str>,
-    source: &str,
-    err: &serde_saphyr::Error,
-    line_offset: u32,
-    syntax_code: &'static str,
-    explained: &[(u32, u32)],
-    out: &mut Vec<Diagnostic>,
-) {
-    let pos = match err.location() {
-        Some(location) => {
-            let mut pos = raw::pos(file, &location);
-            pos.line = pos.line.saturating_add(line_offset);
-            pos
-        }
-        None => Pos::start_of(file.clone()),
-    };
-    let explained_by_tab = explained
-        .iter()
-        .any(|&(line, _)| line.abs_diff(pos.line) <= 1);
-    if !explained_by_tab {
-        // A bracket left open is noticed only lines later: report it where it was opened.
-        if wording::about_brackets(err)
-            && let Some((line, column)) = unclosed_bracket_before(source, pos.line, pos.column)
-        {
-            let open = Pos::new(file.clone(), line, column);
-            out.push(Diagnostic::error(
-                syntax_code,
-                &open,
-                wording::UNCLOSED_BRACKET,
-            ));
-            return;
-        }
-        let line = source.lines().nth(pos.line.saturating_sub(1) as usize);
-        let message = wording::describe(err, line.unwrap_or_default());
-        out.push(Diagnostic::error(syntax_code, &pos, message));
-    }
-}
-
 fn options() -> Options {
     serde_saphyr::options! {
         // Sized for 100,000 rich acts per file (about 30 nodes each); measured in the tests.
@@ -279,166 +190,7 @@ fn options() -> Options {
 }
 
 #[cfg(test)]
-mod tests {
-    use super::*;
+mod fast_tests;
 
-    fn file() -> Arc<str> {
-        Arc::from("acts.yaml")
-    }
-
-    fn parse_acts(text: &str) -> YamlFile {
-        parse(
-            &file(),
-            text.as_bytes(),
-            "yaml-syntax",
-            Recovery::SkipBrokenItems,
-        )
-    }
-
-    fn codes(parsed: &YamlFile) -> Vec<(&'static str, u32, u32)> {
-        parsed
-            .diagnostics
-            .iter()
-            .map(|d| (d.code, d.line, d.column))
-            .collect()
-    }
-
-    #[test]
-    fn budget_admits_100_000_acts_in_one_file() {
-        // Five nodes an act: twice serde-saphyr's default node budget.
-        let text: String = (0..100_000)
-            .map(|i| format!("- Label: A{i}\n  Text: hi\n"))
-            .collect();
-        let parsed = parse_acts(&text);
-        assert!(parsed.diagnostics.is_empty(), "{:?}", parsed.diagnostics);
-        let Some(Node {
-            kind: Kind::Seq(items),
-            ..
-        }) = parsed.root
-        else {
-            panic!("expected a list")
-        };
-        assert_eq!(items.len(), 100_000);
-        assert_eq!(items[99_999].pos.line, 199_999);
-        let default_budget = serde_saphyr::from_str::<Spanned<raw::Raw>>(&text);
-        assert!(
-            default_budget.is_err(),
-            "the default budget is too small for real bundles"
-        );
-    }
-
-    #[test]
-    fn refuses_files_over_the_size_limit() {
-        let parsed = parse_acts(&" ".repeat(MAX_FILE_BYTES + 1));
-        assert_eq!(codes(&parsed), [("file-too-large", 1, 1)]);
-        assert!(parsed.root.is_none());
-    }
-
-    #[test]
-    fn locates_bytes_that_are_not_utf8() {
-        let parsed = parse(
-            &file(),
-            b"- Label: A\n  Text: caf\xe9\n",
-            "yaml-syntax",
-            Recovery::SkipBrokenItems,
-        );
-        assert_eq!(codes(&parsed), [("file-encoding", 2, 12)]);
-    }
-
-    #[test]
-    fn guessed_scalars_keep_the_text_as_written() {
-        let parsed = parse_acts("- [yes, 3.5, 0x1F, 010, .inf, ~, 'quoted', \"d: q\", plain]\n");
-        let Some(Node {
-            kind: Kind::Seq(items),
-            ..
-        }) = parsed.root
-        else {
-            panic!("expected a list")
-        };
-        let Kind::Seq(values) = &items[0].kind else {
-            panic!("expected a nested list")
-        };
-        let shown: Vec<String> = values
-            .iter()
-            .map(|n| match &n.kind {
-                Kind::Guessed(t) => format!("guessed {t}"),
-                Kind::Str { value, verbatim_at } => format!("text {value} at {verbatim_at:?}"),
-                Kind::Null => "null".to_owned(),
-                _ => "other".to_owned(),
-            })
-            .collect();
-        assert_eq!(
-            shown,
-            [
-                "guessed yes",
-                "guessed 3.5",
-                "guessed 0x1F",
-                "guessed 010",
-                "guessed .inf",
-                "null",
-                "text quoted at Some(1)",
-                "text d: q at Some(1)",
-                "text plain at Some(0)",
-            ]
-        );
-    }
-
-    #[test]
-    fn a_tab_in_indentation_is_reported_at_the_tab_and_the_rest_still_parses() {
-        let parsed = parse_acts("- Label: A\n  Text:\n  \t- x\n- Label: B\n");
-        assert_eq!(codes(&parsed), [("yaml-tab", 3, 3)]);
-        assert_eq!(parsed.skipped_lines, [(1, 4)]);
-        let Some(Node {
-            kind: Kind::Seq(items),
-            ..
-        }) = parsed.root
-        else {
-            panic!("expected a list")
-        };
-        assert_eq!(items.len(), 1);
-    }
-
-    #[test]
-    fn a_tab_yaml_accepts_is_only_a_warning() {
-        let parsed = parse_acts("- Label: A\n  Text: |\n    line\n    \tindented text\n");
-        assert_eq!(parsed.diagnostics.len(), 1);
-        assert_eq!(
-            parsed.diagnostics[0].severity,
-            crate::content::Severity::Warning
-        );
-    }
-
-    #[test]
-    fn every_broken_item_is_reported_and_skipped() {
-        let text = "- Label: A\n  Text: \"open\n- Label: B\n  Text: fine\n\
-                    - Label: C\n  Text: [a, b\n- Label: D\n";
-        let parsed = parse_acts(text);
-        assert_eq!(
-            codes(&parsed),
-            [("yaml-syntax", 2, 9), ("yaml-syntax", 6, 9)]
-        );
-        assert_eq!(parsed.skipped_lines, [(1, 3), (5, 7)]);
-        let Some(Node {
-            kind: Kind::Seq(items),
-            ..
-        }) = parsed.root
-        else {
-            panic!("expected a list")
-        };
-        assert_eq!(items.len(), 2);
-        assert_eq!(items[1].pos.line, 7);
-    }
-
-    #[test]
-    fn settings_are_not_partially_read() {
-        let parsed = parse(
-            &file(),
-            b"home: [x\nspeech: {}\n",
-            "config-syntax",
-            Recovery::None,
-        );
-        assert!(parsed.root.is_none());
-        assert_eq!(parsed.diagnostics.len(), 1);
-        assert_eq!(parsed.diagnostics[0].code, "config-syntax");
-    }
-}
+#[cfg(test)]
+mod tests;

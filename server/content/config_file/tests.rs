@@ -1,0 +1,155 @@
+//! Tests of reading `docent.yaml` as a whole: the documented example, defaults, unknown keys,
+//! bad values, site verbs and syntax errors. The sections' own tests sit beside them.
+
+use std::time::Duration;
+
+use crate::content::config::{AdapterKind, ArgRule, Bounds, SiteConfig};
+
+use super::test_support::{parse, problems};
+
+#[test]
+fn the_documented_example_maps_onto_site_config() {
+    let text = "home: start.html\ncontexts: [TextGroup, TextFormally, TextChild]\n\
+        speech:\n  adapter: espeak\n  voice: en-us\n  rate: 160\ndisplay:\n  adapter: ws\n\
+        drive:\n  adapter: sim\n  speed: 0.5\n  pose_rate: 5\n  \
+        bounds: { min_x: 0, min_y: 0, max_x: 20, max_y: 12 }\nadapters:\n  timeout: 45s\n\
+        verbs:\n  LIGHTS:\n    adapter: ws\n    argument: required\n    \
+        description: Switch the showcase lights\n  BELL:\n";
+    let file = parse(text);
+    assert!(file.diagnostics.is_empty(), "{:?}", file.diagnostics);
+    let config = file.config;
+    assert_eq!(config.home, "start.html");
+    assert_eq!(file.home.map(|h| (h.pos.line, h.pos.column)), Some((1, 7)));
+    assert_eq!(config.contexts, ["TextGroup", "TextFormally", "TextChild"]);
+    assert_eq!(config.speech.adapter, Some(AdapterKind::Espeak));
+    assert_eq!(
+        (config.speech.voice.as_str(), config.speech.rate_wpm),
+        ("en-us", 160)
+    );
+    assert_eq!(config.display.adapter, AdapterKind::Ws);
+    assert_eq!(
+        (
+            config.drive.adapter,
+            config.drive.speed,
+            config.drive.pose_hz
+        ),
+        (AdapterKind::DriveSim, 0.5, 5.0)
+    );
+    assert_eq!(
+        config.drive.bounds,
+        Some(Bounds {
+            min_x: 0.0,
+            min_y: 0.0,
+            max_x: 20.0,
+            max_y: 12.0
+        })
+    );
+    assert_eq!(config.adapter_timeout, Duration::from_secs(45));
+    let lights = &config.verbs["LIGHTS"];
+    assert_eq!(
+        (lights.adapter, lights.argument),
+        (AdapterKind::Ws, ArgRule::Required)
+    );
+    assert_eq!(
+        lights.description.as_deref(),
+        Some("Switch the showcase lights")
+    );
+    assert_eq!(
+        (config.verbs["BELL"].adapter, config.verbs["BELL"].argument),
+        (AdapterKind::Ws, ArgRule::Optional)
+    );
+}
+
+#[test]
+fn an_empty_file_gives_the_defaults() {
+    let file = parse("# nothing set yet\n");
+    assert!(file.diagnostics.is_empty());
+    assert_eq!(file.config, SiteConfig::default());
+    assert!(file.home.is_none());
+}
+
+#[test]
+fn unknown_keys_are_located_with_a_suggestion() {
+    let found = problems("hoem: x.html\nspeech:\n  volume: 3\n  rat: 100\n");
+    let located: Vec<_> = found.iter().map(|(c, l, col, _)| (*c, *l, *col)).collect();
+    assert_eq!(
+        located,
+        [
+            ("config-unknown-key", 1, 1),
+            ("config-unknown-key", 3, 3),
+            ("config-unknown-key", 4, 3)
+        ]
+    );
+    assert!(found[0].3.contains("Did you mean `home`?"));
+    assert!(!found[1].3.contains("Did you mean"));
+    assert!(found[2].3.contains("Did you mean `rate`?"));
+}
+
+#[test]
+fn bad_values_are_located_and_defaults_kept() {
+    let text = [
+        "speech:",
+        "  adapter: espeek",
+        "  voice: \"-x\"",
+        "  rate: 1000",
+        "drive:",
+        "  speed: -1",
+        "  pose_rate: 100",
+        "  bounds: { min_x: 5, min_y: 0, max_x: 1, max_y: 2 }",
+        "adapters:",
+        "  timeout: 30",
+        "contexts: [TextGroup, Group, TextGroup]",
+    ];
+    let file = parse(&text.join("\n"));
+    let located: Vec<_> = file
+        .diagnostics
+        .iter()
+        .map(|d| (d.code, d.line, d.column))
+        .collect();
+    assert_eq!(
+        located,
+        [
+            ("config-bad-value", 2, 12),
+            ("config-bad-value", 3, 10),
+            ("config-bad-value", 4, 9),
+            ("config-bad-value", 6, 10),
+            ("config-bad-value", 7, 14),
+            ("config-bad-value", 8, 11),
+            ("config-bad-value", 10, 12),
+            ("config-bad-value", 11, 23),
+            ("config-bad-value", 11, 30),
+        ]
+    );
+    assert!(
+        file.diagnostics[0]
+            .message
+            .contains("Did you mean `espeak`?")
+    );
+    assert_eq!(file.config.speech, SiteConfig::default().speech);
+    assert_eq!(file.config.drive, SiteConfig::default().drive);
+    assert_eq!(file.config.contexts, ["TextGroup"]);
+}
+
+#[test]
+fn site_verbs_must_be_capitalised_and_new() {
+    let found = problems("verbs:\n  SAY: {}\n  lights: {}\n  FOG:\n    argument: sometimes\n");
+    let located: Vec<_> = found.iter().map(|(c, l, col, _)| (*c, *l, *col)).collect();
+    assert_eq!(
+        located,
+        [
+            ("config-bad-value", 2, 3),
+            ("config-bad-value", 3, 3),
+            ("config-bad-value", 5, 15)
+        ]
+    );
+}
+
+#[test]
+fn syntax_errors_and_duplicates_are_reported() {
+    assert_eq!(problems("home: [x\n")[0].0, "config-syntax");
+    let found = problems("home: a.html\nhome: b.html\n");
+    assert_eq!(
+        (found[0].0, found[0].1, found[0].2),
+        ("duplicate-key", 2, 1)
+    );
+}

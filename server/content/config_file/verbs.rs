@@ -1,0 +1,85 @@
+//! The `verbs:` section of `docent.yaml`: the site's own commands, each a new capitalised
+//! name with its adapter, argument rule and description. Separate because a site verb is
+//! checked against the built-in verbs and the other declarations, not just read.
+
+use crate::content::acts_file::yaml::{Kind, Node};
+use crate::content::config::{AdapterKind, ArgRule, SiteConfig, SiteVerb};
+use crate::content::diagnostic::Diagnostic;
+use crate::content::model::Verb;
+
+use super::Reader;
+
+const VERBS_USAGE: &str = "`verbs` lists the site's own commands by name, e.g. \
+                           `verbs: { LIGHTS: { adapter: ws } }`.";
+
+/// Capital letters, digits and `_`, starting with a letter: the shape of every verb.
+fn is_verb_name(name: &str) -> bool {
+    name.starts_with(|c: char| c.is_ascii_uppercase())
+        && name
+            .chars()
+            .all(|c| c.is_ascii_uppercase() || c.is_ascii_digit() || c == '_')
+}
+
+impl Reader {
+    pub(super) fn verbs(&mut self, node: &Node, config: &mut SiteConfig) {
+        let entries = match &node.kind {
+            Kind::Map(entries) => entries,
+            Kind::Null => return,
+            _ => return self.bad(node, VERBS_USAGE),
+        };
+        for (key, value) in entries {
+            let name = key.as_text().unwrap_or_default();
+            let problem = if !is_verb_name(name) {
+                "A command name is written in capital letters, digits and `_`, starting with a \
+                 letter, e.g. `LIGHTS_ON`."
+            } else if Verb::built_in(name).is_some() {
+                "This is already a built-in command; choose another name for the site's command."
+            } else if config.verbs.contains_key(name) {
+                let message = format!("The command `{name}` is declared twice. Keep one.");
+                self.diagnostics
+                    .push(Diagnostic::error("duplicate-key", &key.pos, message));
+                continue;
+            } else {
+                let verb = self.site_verb(value);
+                config.verbs.insert(name.to_owned(), verb);
+                continue;
+            };
+            self.bad(key, problem);
+        }
+    }
+
+    pub(super) fn site_verb(&mut self, node: &Node) -> SiteVerb {
+        let mut verb = SiteVerb {
+            adapter: AdapterKind::Ws,
+            argument: ArgRule::Optional,
+            description: None,
+        };
+        for (key, value) in
+            self.entries(node, &["adapter", "argument", "description"], "the command")
+        {
+            match key {
+                "adapter" => {
+                    let kinds = [("ws", AdapterKind::Ws), ("log", AdapterKind::Log)];
+                    verb.adapter = self
+                        .choice(value, "command adapter", &kinds)
+                        .unwrap_or(verb.adapter);
+                }
+                "argument" => {
+                    let rules = [
+                        ("required", ArgRule::Required),
+                        ("optional", ArgRule::Optional),
+                        ("none", ArgRule::None),
+                    ];
+                    verb.argument = self
+                        .choice(value, "argument rule", &rules)
+                        .unwrap_or(verb.argument);
+                }
+                _ => {
+                    let usage = "`description` is a short text for people.";
+                    verb.description = self.setting(value, usage, |t| Some(t.to_owned()));
+                }
+            }
+        }
+        verb
+    }
+}

@@ -1,0 +1,75 @@
+//! Who asked for what happened: the [`Source`] of a trigger, the [`ClientRole`] a websocket
+//! client declares, and the [`ActRef`] every command event carries. Separate from the event
+//! variants because the dispatcher and the websocket layer use them on their own.
+
+use std::sync::Arc;
+
+use serde::Serialize;
+
+/// Who asked for something: the trigger API's callers and the server itself.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize)]
+#[serde(rename_all = "lowercase")]
+pub enum Source {
+    /// The HTTP API.
+    Http,
+    /// A touchscreen page.
+    Kiosk,
+    /// A projector page.
+    Projector,
+    /// A remote operator.
+    Operator,
+    /// An autonomous dialog manager.
+    Dm,
+    /// An external adapter process.
+    Adapter,
+    /// Docent itself (start-up, shutdown, a drive arriving).
+    Server,
+}
+
+/// The role a websocket client declares in `hello`.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, serde::Deserialize, Serialize)]
+#[serde(rename_all = "lowercase")]
+pub enum ClientRole {
+    /// The touchscreen shell.
+    Kiosk,
+    /// The projector page.
+    Projector,
+    /// A remote operator's console.
+    Operator,
+    /// An autonomous dialog manager.
+    Dm,
+    /// An external adapter process serving verbs.
+    Adapter,
+}
+
+impl ClientRole {
+    /// The source recorded for triggers from a client in this role.
+    pub fn source(self) -> Source {
+        match self {
+            ClientRole::Kiosk => Source::Kiosk,
+            ClientRole::Projector => Source::Projector,
+            ClientRole::Operator => Source::Operator,
+            ClientRole::Dm => Source::Dm,
+            ClientRole::Adapter => Source::Adapter,
+        }
+    }
+}
+
+/// What every command event says about the trigger it came from, shared by all its commands.
+#[derive(Debug, Serialize)]
+pub struct ActRef {
+    /// The trigger's id.
+    pub trigger: u64,
+    /// Who triggered.
+    pub source: Source,
+    /// The websocket client that triggered, if any.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub client: Option<u64>,
+    /// The caller's own reference, echoed back.
+    #[serde(rename = "ref", skip_serializing_if = "Option::is_none")]
+    pub reference: Option<String>,
+    /// The act's label.
+    pub label: Arc<str>,
+    /// Where the act is written, `file:line`.
+    pub at: String,
+}
