@@ -198,24 +198,6 @@ impl DisplayState {
         for id in orphans {
             self.settle(id, Outcome::Failed(reason.clone()), ProjectorState::Black);
         }
-        if screen == Screen::Projector {
-            self.black_when_no_projector();
-        }
-    }
-
-    /// After the last projector left, nothing is on the wall any more, whatever was shown, and
-    /// the state (and the console) must not say otherwise. Checked under the display lock,
-    /// which a joining projector takes too: none can join in between and show a stale picture.
-    fn black_when_no_projector(&self) {
-        let mut current = lock(&self.current);
-        if !lock(&self.books).connected(Screen::Projector).is_empty() {
-            return;
-        }
-        let before = current.display.clone();
-        set_projector(&mut current, ProjectorState::Black);
-        if current.display != before {
-            self.hub.publish(display_changed(&current.display));
-        }
     }
 
     /// A screen's report on command `id`. A report for a command no longer waiting (another
