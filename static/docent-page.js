@@ -10,7 +10,8 @@
 // The API: docent.trigger(label, {context, interrupt}) -> Promise of the `triggered` or
 // `error` frame; docent.on(type, fn) -> stop function; docent.ready(fn): fn runs once the
 // page's document is parsed (its elements exist), at once if it already is;
-// docent.stopSpeech() ends the speech visitors started (never the operator's). While the robot
+// docent.stopSpeech() ends the speech visitors started (never the operator's), and so does a
+// tap on an element with `data-docent-stop` (a page's own stop control). While the robot
 // speaks, the shell sets `data-docent-speaking` on this page's <html> (style it as you like);
 // a tapped element whose act is already speaking gets `docent-already-speaking` briefly.
 
@@ -146,6 +147,14 @@ for (const type of ["pointerup", "pointercancel"]) {
     release = null;
   });
 }
+
+// A page's own "stop speaking" control: `data-docent-stop` (the shell then hides its own
+// button while this page is shown; style it with html[data-docent-speaking="kiosk"]).
+document.addEventListener("click", (event) => {
+  if (!event.target.closest?.("[data-docent-stop]")) return;
+  event.preventDefault();
+  window.docent.stopSpeech();
+}, { capture: true });
 
 document.addEventListener("click", (event) => {
   const target = event.target.closest?.("[data-act]");

@@ -145,6 +145,7 @@ const socket = keepConnected({
   name: "kiosk",
   onOnline: (online) => {
     if (!online) {
+      speech.forget(frames[front]);
       for (const [ref, resolve] of pending) {
         resolve({ type: "error", code: "disconnected", message: "the connection to Docent was lost", ref });
       }

@@ -18,12 +18,21 @@ export function speechState({ button, notice, stop }) {
     else delete element.dataset.docentSpeaking;
   }
 
+  let pageStops = false; // the shown page offers its own stop control (data-docent-stop)
+
   function markPage(frame) {
     try {
       mark(frame?.contentDocument?.documentElement);
+      pageStops = Boolean(frame?.contentDocument?.querySelector("[data-docent-stop]"));
     } catch {
       // a page of another origin (the friendly offline copy) cannot be marked
+      pageStops = false;
     }
+    showButton();
+  }
+
+  function showButton() {
+    if (button) button.hidden = !(speaking && speaking.stoppable) || pageStops;
   }
 
   function say(text) {
@@ -40,13 +49,18 @@ export function speechState({ button, notice, stop }) {
 
   return {
     markPage,
+    /** The connection is gone: nothing is known to speak until Docent says so again. */
+    forget(shown) {
+      speaking = null;
+      mark(document.body);
+      markPage(shown);
+    },
     /** Takes a server frame; `shown` is the frame on show. */
     onFrame(frame, shown) {
       if (frame.type === "speaking") {
         speaking = frame.speaking ? frame : null;
         mark(document.body);
         markPage(shown);
-        if (button) button.hidden = !(speaking && speaking.stoppable);
       } else if (frame.type === "error" && frame.code === "already-speaking") {
         say("Already speaking about this.");
       } else if (frame.type === "outcome" && frame.verb === "SAY" && !frame.ended_by_visitor) {

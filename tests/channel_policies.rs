@@ -18,14 +18,15 @@ const LONG_TEXT: &str = "This sentence goes on and on, far longer than any test 
 fn bundle() -> TempBundle {
     let acts = format!(
         "- Label: LONG\n  Text: [\"{LONG_TEXT}\"]\n- Label: READ\n  Text: [\"{LONG_TEXT} Read.\"]\n\
-         - Label: HELLO\n  Text: [Hello]\n"
+         - Label: HELLO\n  Text: [Hello]\n- Label: MAP\n  Cmds: [DISPLAY_PAGE map.html]\n"
     );
     TempBundle::new(&acts)
         .with_file("docent.yaml", "speech: {adapter: log, rate: 120}\n")
         .with_file(
             "pages/index.html",
             "<!doctype html><title>home</title><button data-act=\"READ\">Read</button>\
-             <button data-act=\"HELLO\">Hi</button><a href=\"map.html\">Map</a>",
+             <button data-act=\"HELLO\">Hi</button><a href=\"map.html\">Map</a>\
+             <button data-act=\"MAP\">Map</button>",
         )
         .with_file("pages/map.html", "<!doctype html><title>map</title>")
 }
@@ -178,6 +179,27 @@ async fn leaving_the_page_ends_the_speech_it_started_but_not_the_operators() {
     assert_eq!(
         find(&seen, &say_ended("op"))["event"]["reason"],
         "stop request"
+    );
+    server.stop().await;
+}
+
+#[tokio::test]
+async fn a_visitors_act_that_shows_another_page_ends_their_earlier_speech() {
+    let b = bundle();
+    let server = TestServer::start(b.path()).await;
+    let mut op = server.operator().await;
+    let mut visitor = kiosk(&server).await;
+    trigger(&mut visitor, "READ", "r", false).await;
+    until_all(&mut op, &[&event("command.started", "r")]).await;
+    trigger(&mut visitor, "MAP", "m", false).await;
+    let seen = until_all(&mut op, &[&say_ended("r")]).await;
+    let outcome = &find(&seen, &say_ended("r"))["event"];
+    assert_eq!(outcome["type"], "command.cancelled", "{outcome}");
+    assert_eq!(outcome["reason"], "the visitor moved on (act MAP)");
+    let told = until_all(&mut visitor, &[&frame("outcome", "r")]).await;
+    assert_eq!(
+        find(&told, &frame("outcome", "r"))["ended_by_visitor"],
+        true
     );
     server.stop().await;
 }

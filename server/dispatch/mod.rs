@@ -206,6 +206,9 @@ impl Dispatcher {
         if interrupt {
             self.interrupt_speech(act, priority);
         }
+        if act.source == Source::Kiosk && commands.iter().any(|c| visitors::moves_on(&c.verb)) {
+            self.visitor_moved_on(act);
+        }
         let first_wait = commands.iter().position(|c| c.verb == Verb::Wait);
         let before_wait = &commands[..first_wait.unwrap_or(commands.len())];
         // Preempt before sending anything, so the act's own speech survives its DRIVE_STOP.

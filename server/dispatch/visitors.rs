@@ -1,5 +1,6 @@
 //! What visitors may do to speech: stop the speech visitors started (the kiosk's "Stop
-//! speaking"), and leave a page, which ends the speech that touchscreen started there. Both
+//! speaking"), and leave a page (by a link, or by an act that shows a page or drives), which
+//! ends the speech that touchscreen started before. Each
 //! cancel running and waiting speech at once, and cut off the speech such acts have not sent
 //! yet (an act waiting at a `WAIT`): a trigger older than the cut never speaks.
 
@@ -7,6 +8,7 @@ use std::collections::BTreeMap;
 use std::sync::Arc;
 
 use crate::adapters::Command;
+use crate::content::Verb;
 use crate::content::config::Channel;
 use crate::dispatch::Dispatcher;
 use crate::events::{ActRef, EventKind, Source};
@@ -23,6 +25,19 @@ pub(super) struct VisitorCuts {
     all: u64,
     /// A page left: this kiosk connection's triggers before it, by client id.
     by_client: BTreeMap<u64, (u64, String)>,
+}
+
+impl VisitorCuts {
+    /// Drops touchscreen `client`'s triggers before `since`; a later cut already made stays.
+    fn cut(&mut self, client: u64, since: u64, reason: &str) {
+        let newer = self.by_client.get(&client).is_some_and(|(s, _)| *s > since);
+        if !newer {
+            self.by_client.insert(client, (since, reason.to_owned()));
+        }
+        while self.by_client.len() > REMEMBERED_KIOSKS {
+            self.by_client.pop_first();
+        }
+    }
 }
 
 impl Dispatcher {
@@ -45,17 +60,29 @@ impl Dispatcher {
             return;
         }
         let reason = format!("the visitor left the page for {page}");
-        {
-            let mut cuts = lock(&self.visitor_cuts);
-            cuts.by_client
-                .insert(client, (self.next_id(), reason.clone()));
-            while cuts.by_client.len() > REMEMBERED_KIOSKS {
-                cuts.by_client.pop_first();
-            }
-        }
+        lock(&self.visitor_cuts).cut(client, self.next_id(), &reason);
         let theirs =
             |c: &Command, _: u8| c.act.source == Source::Kiosk && c.act.client == Some(client);
         self.cancel_where(Some(&Channel::Speech), theirs, &reason);
+    }
+
+    /// A visitor's act takes the touchscreen to another page or sets the robot off
+    /// ([`moves_on`]): as with leaving the page by a link, the speech that touchscreen started
+    /// before ends (when the bundle wants it), never the act's own.
+    pub(super) fn visitor_moved_on(self: &Arc<Self>, act: &ActRef) {
+        let Some(client) = act.client else {
+            return;
+        };
+        if !self.bundle.load().config.kiosk.leave_page_stops_speech {
+            return;
+        }
+        let reason = format!("the visitor moved on (act {})", act.label);
+        lock(&self.visitor_cuts).cut(client, act.trigger, &reason);
+        let trigger = act.trigger;
+        let earlier = |c: &Command, _: u8| {
+            c.act.source == Source::Kiosk && c.act.client == Some(client) && c.act.trigger < trigger
+        };
+        self.cancel_where(Some(&Channel::Speech), earlier, &reason);
     }
 
     /// Why speech of `act` may no longer be said (a visitor stopped speech or left the page
@@ -71,6 +98,11 @@ impl Dispatcher {
         let (since, reason) = cuts.by_client.get(&act.client?)?;
         (act.trigger < *since).then(|| reason.clone())
     }
+}
+
+/// Whether a visitor's act with this command moves the visit on: it shows a page or drives.
+pub(super) fn moves_on(verb: &Verb) -> bool {
+    matches!(verb, Verb::DisplayPage | Verb::DriveStart)
 }
 
 const STOPPED: &str = "a visitor stopped the speech at the touchscreen";

@@ -105,6 +105,10 @@ pub struct CorpusFeed {
     inner: Arc<Inner>,
 }
 
+/// How many published events may wait to be written before readers wait ([`Hub::room_to_log`]):
+/// a few MB at most, and far more than a second of any real site's events.
+pub const UNLOGGED_ROOM: u64 = 4096;
+
 impl Hub {
     /// A hub and the corpus writer's end of it.
     pub fn new() -> (Hub, CorpusFeed) {
@@ -153,6 +157,17 @@ impl Hub {
             self.inner.wake_writer();
         }
         event
+    }
+
+    /// Waits while the log is more than [`UNLOGGED_ROOM`] events behind what was published:
+    /// connection readers call it before taking a client's next frame, so that a flood waits
+    /// in the sockets (TCP back-pressure on the clients) instead of piling events up in memory.
+    /// Returns at once when the log cannot be written (requests are refused then anyway).
+    pub async fn room_to_log(&self) {
+        let behind = self.published_seq().saturating_sub(UNLOGGED_ROOM);
+        if !self.is_logged(behind) {
+            let _ = self.logged(behind).await;
+        }
     }
 
     /// The `seq` of the latest event published so far: an acknowledgement given after an
@@ -333,5 +348,50 @@ impl Drop for CorpusFeed {
     fn drop(&mut self) {
         lock(&self.inner.queue).detached = true;
         self.inner.logged.send_modify(|l| l.ended = true);
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use std::pin::pin;
+    use std::task::Poll;
+
+    use super::*;
+    use crate::events::{EventKind, Source};
+
+    fn publish(hub: &Hub, n: u64) {
+        for _ in 0..n {
+            hub.publish(EventKind::ContextChanged {
+                source: Source::Http,
+                context: "Text".into(),
+            });
+        }
+    }
+
+    /// Whether `future` is ready at its first poll.
+    async fn ready_at_once(future: impl std::future::Future<Output = ()>) -> bool {
+        let mut future = pin!(future);
+        std::future::poll_fn(|cx| Poll::Ready(future.as_mut().poll(cx).is_ready())).await
+    }
+
+    #[tokio::test]
+    async fn readers_wait_while_the_log_is_too_far_behind_and_go_on_once_it_catches_up() {
+        let (hub, feed) = Hub::new();
+        publish(&hub, UNLOGGED_ROOM);
+        assert!(ready_at_once(hub.room_to_log()).await, "within the room");
+        publish(&hub, 10);
+        let mut waiting = pin!(hub.room_to_log());
+        let first = std::future::poll_fn(|cx| Poll::Ready(waiting.as_mut().poll(cx))).await;
+        assert!(
+            first.is_pending(),
+            "10 events beyond the room: readers wait"
+        );
+        feed.report(Logged {
+            through: 10,
+            failure: None,
+            ended: false,
+        });
+        let then = std::future::poll_fn(|cx| Poll::Ready(waiting.as_mut().poll(cx))).await;
+        assert!(then.is_ready(), "the log caught up: readers go on");
     }
 }

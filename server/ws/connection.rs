@@ -93,7 +93,11 @@ async fn serve(socket: WebSocket, state: AppState, address: ClientAddress) {
     let kicked = session.kicked();
     let reason = loop {
         let next = tokio::select! {
-            next = tokio::time::timeout(IDLE_TIMEOUT, stream.next()) => next,
+            next = async {
+                // A log falling behind slows every client down, at the socket.
+                state.hub.room_to_log().await;
+                tokio::time::timeout(IDLE_TIMEOUT, stream.next()).await
+            } => next,
             () = kicked.cancelled() => break "too slow: its outgoing queue was full",
             () = shutdown.cancelled() => break "server shutting down",
             () = stop.cancelled() => break WRITER_ENDED,

@@ -139,11 +139,10 @@ pub(super) fn join(client: &Client, admitted: Admitted) {
     };
     state.client_joined(client.id, info, client.outbox.clone());
     if role == ClientRole::Kiosk {
-        // Joined first, so every later change reaches this kiosk on its own.
+        // Joined first, so every later change reaches this kiosk on its own. Sent when
+        // nothing speaks too: a shell that reconnects after a restart must drop what it knew.
         state.dispatcher.tell_speaking_now(|now| {
-            if now.is_some() {
-                client.outbox.send(Frame::from(speaking_frame(now)));
-            }
+            client.outbox.send(Frame::from(speaking_frame(now)));
         });
     }
     state.hub.publish(EventKind::ClientConnected {
