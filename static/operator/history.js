@@ -1,7 +1,8 @@
 // history.js: what happened, newest first: every act triggered by anyone (time, source, act,
 // variant and the exact text chosen), stops, refused triggers, proposals accepted, dismissed or
-// withdrawn (their dialog manager left), context changes and corpus marks. Several consoles
-// see each other's acts here live.
+// withdrawn (their dialog manager left), context changes and corpus marks. An act whose
+// command was cancelled or failed says so on its line, with the reason: a text that was never
+// said must not read as said. Several consoles see each other's acts here live.
 
 import { clock, h } from "./dom.js";
 
@@ -56,18 +57,28 @@ export function createHistory(list) {
     }
   }
 
+  /** Notes on an act's line that one of its commands was not carried out. */
+  function notCarriedOut(e) {
+    const act = list.querySelector(`li[data-type="act.triggered"][data-trigger="${Number(e.trigger)}"]`);
+    if (!act) return; // scrolled out of the kept history
+    const what = e.verb === "SAY" ? "not said" : `${e.verb} ${e.type === "command.failed" ? "failed" : "cancelled"}`;
+    act.classList.add("not-carried-out");
+    act.querySelector(".history-body").append(h("span", { class: "history-outcome" }, ` — ${what}: ${e.reason ?? ""}`));
+  }
+
   return {
     welcome(id) {
       me = id;
       list.replaceChildren();
     },
     event(e) {
+      if (e.type === "command.cancelled" || e.type === "command.failed") return notCarriedOut(e);
       const made = line(e);
       if (!made) return;
       const [kind, body] = made;
       const item = h(
         "li",
-        { class: `history-item ${kind}`, dataset: { seq: String(e.seq), type: e.type } },
+        { class: `history-item ${kind}`, dataset: { seq: String(e.seq), type: e.type, trigger: String(e.trigger ?? "") } },
         h("time", { datetime: e.time }, clock(e.time)),
         h("span", { class: "history-source" }, who(e)),
         h("span", { class: "history-body" }, body),

@@ -98,6 +98,10 @@ test('Esc stops a long SAY and a running drive; Alt+<Key> fires an act', { timeo
       // The console shows it: silence, nothing running.
       await page.locator('#speaking', { hasText: 'silent' }).waitFor();
       await page.locator('#queue', { hasText: 'nothing running' }).waitFor();
+      // The history does not let the cut-off story read as told.
+      const told = page.locator(`#history li[data-trigger="${say.trigger}"]`);
+      await told.locator('.history-outcome', { hasText: 'not said: stop request' }).waitFor();
+      assert.ok(await told.evaluate((li) => li.classList.contains('not-carried-out')));
       assert.deepEqual(problems, [], 'problems in the console');
     });
     const afterStop = events.slice(events.findIndex((e) => e.type === 'stop'));
