@@ -8,12 +8,11 @@
 mod common;
 
 use std::collections::BTreeMap;
-use std::io::{BufRead, BufReader};
 use std::path::{Path, PathBuf};
-use std::process::{Child, Command, Stdio};
 use std::sync::atomic::{AtomicUsize, Ordering};
 use std::sync::{Arc, Mutex};
 
+use common::process::spawn_docent;
 use common::{DEADLINE, TempBundle};
 use futures_util::{SinkExt, StreamExt};
 use serde_json::{Value, json};
@@ -46,39 +45,6 @@ impl Tally {
             self.progress.notified().await;
         }
     }
-}
-
-/// The `docent` binary serving `bundle`, logging into `corpus`; with its address.
-fn spawn_docent(bundle: &Path, corpus: &Path) -> (Child, String) {
-    let mut child = Command::new(env!("CARGO_BIN_EXE_docent"))
-        .arg("serve")
-        .arg(bundle)
-        .args([
-            "--listen",
-            "127.0.0.1:0",
-            "--open",
-            "--no-watch",
-            "--corpus",
-        ])
-        .arg(corpus)
-        .stdout(Stdio::piped())
-        .stderr(Stdio::null())
-        .spawn()
-        .expect("docent starts");
-    let mut lines = BufReader::new(child.stdout.take().expect("stdout")).lines();
-    let addr = (&mut lines)
-        .map_while(Result::ok)
-        .find_map(|l| {
-            let url = l.trim().strip_prefix("websocket:")?.trim();
-            Some(
-                url.trim_start_matches("ws://")
-                    .trim_end_matches("/ws")
-                    .to_owned(),
-            )
-        })
-        .expect("docent prints its websocket address");
-    std::thread::spawn(move || lines.for_each(drop));
-    (child, addr)
 }
 
 /// One operator triggering `OK` as fast as the acknowledgements come, until the connection

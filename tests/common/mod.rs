@@ -5,6 +5,7 @@
 #![allow(dead_code)] // Each test binary uses a different part of the helpers.
 
 pub mod check;
+pub mod process;
 
 use std::path::{Path, PathBuf};
 use std::time::Duration;
