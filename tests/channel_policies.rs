@@ -37,6 +37,15 @@ async fn kiosk(server: &TestServer) -> WsClient {
         .await
 }
 
+/// A server on the test bundle, with an operator and a kiosk connected (keep the bundle).
+async fn start() -> (TempBundle, TestServer, WsClient, WsClient) {
+    let b = bundle();
+    let server = TestServer::start(b.path()).await;
+    let op = server.operator().await;
+    let visitor = kiosk(&server).await;
+    (b, server, op, visitor)
+}
+
 type Pred<'a> = &'a dyn Fn(&Value) -> bool;
 
 /// Frames until every predicate has matched one of them (in any order), all kept.
@@ -85,10 +94,7 @@ async fn trigger(client: &mut WsClient, label: &str, reference: &str, interrupt:
 
 #[tokio::test]
 async fn a_kiosk_interrupt_cannot_cancel_an_operators_say() {
-    let b = bundle();
-    let server = TestServer::start(b.path()).await;
-    let mut op = server.operator().await;
-    let mut visitor = kiosk(&server).await;
+    let (_b, server, mut op, mut visitor) = start().await;
     trigger(&mut op, "LONG", "op", false).await;
     until_all(&mut op, &[&event("command.started", "op")]).await;
     trigger(&mut visitor, "HELLO", "v", true).await;
@@ -139,10 +145,7 @@ async fn a_second_tap_on_an_act_already_speaking_is_answered_not_queued() {
 
 #[tokio::test]
 async fn leaving_the_page_ends_the_speech_it_started_but_not_the_operators() {
-    let b = bundle();
-    let server = TestServer::start(b.path()).await;
-    let mut op = server.operator().await;
-    let mut visitor = kiosk(&server).await;
+    let (_b, server, mut op, mut visitor) = start().await;
     trigger(&mut visitor, "READ", "r", false).await;
     until_all(&mut op, &[&event("command.started", "r")]).await;
     visitor
@@ -185,10 +188,7 @@ async fn leaving_the_page_ends_the_speech_it_started_but_not_the_operators() {
 
 #[tokio::test]
 async fn a_visitors_act_that_shows_another_page_ends_their_earlier_speech() {
-    let b = bundle();
-    let server = TestServer::start(b.path()).await;
-    let mut op = server.operator().await;
-    let mut visitor = kiosk(&server).await;
+    let (_b, server, mut op, mut visitor) = start().await;
     trigger(&mut visitor, "READ", "r", false).await;
     until_all(&mut op, &[&event("command.started", "r")]).await;
     trigger(&mut visitor, "MAP", "m", false).await;
@@ -206,10 +206,7 @@ async fn a_visitors_act_that_shows_another_page_ends_their_earlier_speech() {
 
 #[tokio::test]
 async fn a_visitors_stop_ends_visitors_speech_only_and_kiosks_see_who_speaks() {
-    let b = bundle();
-    let server = TestServer::start(b.path()).await;
-    let mut op = server.operator().await;
-    let mut visitor = kiosk(&server).await;
+    let (_b, server, mut op, mut visitor) = start().await;
     trigger(&mut visitor, "READ", "r", false).await;
     let speaking = |f: &Value| f["type"] == "speaking" && f["speaking"] == true;
     let seen = until_all(&mut visitor, &[&frame("triggered", "r"), &speaking]).await;
