@@ -1,0 +1,242 @@
+//! The frames Docent sends a websocket client (`welcome`, answers, notices, events), each
+//! built by one function; the client frames they answer are in the parent module.
+
+use serde::Serialize;
+
+use super::{MarkKind, StateView};
+use crate::adapters::Command;
+use crate::dispatch::ResolvedCommand;
+use crate::events::{ClientRole, Event, Source};
+use crate::wire::ErrorCode;
+
+use super::PROTOCOL_VERSION;
+
+#[derive(Serialize)]
+#[serde(tag = "type", rename_all = "lowercase")]
+enum ServerFrame<'a> {
+    Welcome {
+        protocol: u32,
+        client: u64,
+        role: ClientRole,
+        state: &'a StateView,
+    },
+    State {
+        state: &'a StateView,
+    },
+    Triggered {
+        #[serde(rename = "ref")]
+        reference: Option<&'a str>,
+        trigger: u64,
+        label: &'a str,
+        context: &'a str,
+        variant: Option<&'a str>,
+        alternative: Option<usize>,
+        text: Option<&'a str>,
+        commands: &'a [ResolvedCommand],
+    },
+    Stopped {
+        #[serde(rename = "ref")]
+        reference: Option<&'a str>,
+    },
+    Context {
+        #[serde(rename = "ref")]
+        reference: Option<&'a str>,
+        context: &'a str,
+    },
+    Proposed {
+        #[serde(rename = "ref")]
+        reference: Option<&'a str>,
+        proposal: u64,
+    },
+    Dismissed {
+        #[serde(rename = "ref")]
+        reference: Option<&'a str>,
+        proposal: u64,
+    },
+    Marked {
+        #[serde(rename = "ref")]
+        reference: Option<&'a str>,
+        mark: MarkKind,
+        value: Option<&'a str>,
+        session: Option<u64>,
+    },
+    Signal {
+        from: u64,
+        role: ClientRole,
+        data: &'a serde_json::Value,
+    },
+    Changed {
+        pages: &'a [&'a str],
+        shell: bool,
+    },
+    Outcome {
+        command: u64,
+        trigger: u64,
+        #[serde(rename = "ref")]
+        reference: Option<&'a str>,
+        label: &'a str,
+        verb: &'a str,
+        outcome: NotCarriedOut,
+        reason: &'a str,
+        ended_by_visitor: bool,
+    },
+    Speaking {
+        speaking: bool,
+        source: Option<Source>,
+        client: Option<u64>,
+        stoppable: bool,
+    },
+    Error {
+        code: ErrorCode,
+        message: &'a str,
+        #[serde(rename = "ref")]
+        reference: Option<&'a str>,
+        suggestion: Option<&'a str>,
+    },
+}
+
+/// How a command ended without being carried out, in an `outcome` frame.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize)]
+#[serde(rename_all = "lowercase")]
+pub enum NotCarriedOut {
+    /// Dropped, replaced, interrupted or stopped.
+    Cancelled,
+    /// The device could not carry it out.
+    Failed,
+}
+
+fn encode(frame: &ServerFrame<'_>) -> String {
+    // Plain data with string keys: serialization cannot fail.
+    serde_json::to_string(frame).unwrap_or_default()
+}
+
+/// `welcome`: protocol version, the client's id and role, and the current state.
+pub fn welcome_frame(client: u64, role: ClientRole, state: &StateView) -> String {
+    encode(&ServerFrame::Welcome {
+        protocol: PROTOCOL_VERSION,
+        client,
+        role,
+        state,
+    })
+}
+
+/// `state`: a fresh snapshot for a client that fell behind.
+pub fn state_frame(state: &StateView) -> String {
+    encode(&ServerFrame::State { state })
+}
+
+/// `triggered`: the answer to a trigger.
+pub fn triggered_frame(t: &crate::dispatch::Triggered) -> String {
+    encode(&ServerFrame::Triggered {
+        reference: t.reference.as_deref(),
+        trigger: t.trigger,
+        label: &t.label,
+        context: &t.context,
+        variant: t.variant.as_deref(),
+        alternative: t.alternative,
+        text: t.text.as_deref(),
+        commands: &t.commands,
+    })
+}
+
+/// `stopped`: the answer to `stop`.
+pub fn stopped_frame(reference: Option<&str>) -> String {
+    encode(&ServerFrame::Stopped { reference })
+}
+
+/// `context`: the answer to a context change.
+pub fn context_frame(reference: Option<&str>, context: &str) -> String {
+    encode(&ServerFrame::Context { reference, context })
+}
+
+/// `proposed`: the answer to `propose`.
+pub fn proposed_frame(reference: Option<&str>, proposal: u64) -> String {
+    encode(&ServerFrame::Proposed {
+        reference,
+        proposal,
+    })
+}
+
+/// `dismissed`: the answer to `dismiss`.
+pub fn dismissed_frame(reference: Option<&str>, proposal: u64) -> String {
+    encode(&ServerFrame::Dismissed {
+        reference,
+        proposal,
+    })
+}
+
+/// `marked`: the answer to `mark`, with the session the mark belongs to.
+pub fn marked_frame(
+    reference: Option<&str>,
+    mark: MarkKind,
+    value: Option<&str>,
+    session: Option<u64>,
+) -> String {
+    encode(&ServerFrame::Marked {
+        reference,
+        mark,
+        value,
+        session,
+    })
+}
+
+/// `signal`: signalling data relayed from client `from`.
+pub fn signal_frame(from: u64, role: ClientRole, data: &serde_json::Value) -> String {
+    encode(&ServerFrame::Signal { from, role, data })
+}
+
+/// `changed`: a saved bundle went live; `pages` are the files under `pages/` changed since the
+/// last one, `shell` says the kiosk shell's own settings changed (it reloads itself).
+pub fn changed_frame(pages: &[&str], shell: bool) -> String {
+    encode(&ServerFrame::Changed { pages, shell })
+}
+
+/// `error`: what went wrong with a client's frame; the connection stays open.
+pub fn error_frame(
+    code: ErrorCode,
+    message: &str,
+    reference: Option<&str>,
+    suggestion: Option<&str>,
+) -> String {
+    encode(&ServerFrame::Error {
+        code,
+        message,
+        reference,
+        suggestion,
+    })
+}
+
+/// `outcome`: a command the client triggered ended without being carried out, and why.
+pub fn outcome_frame(
+    c: &Command,
+    outcome: NotCarriedOut,
+    reason: &str,
+    ended_by_visitor: bool,
+) -> String {
+    encode(&ServerFrame::Outcome {
+        command: c.id,
+        trigger: c.act.trigger,
+        reference: c.act.reference.as_deref(),
+        label: &c.act.label,
+        verb: c.verb.as_str(),
+        outcome,
+        reason,
+        ended_by_visitor,
+    })
+}
+
+/// `speaking`: speech started (who asked for it; `stoppable` when visitors started it and may
+/// stop it) or stopped.
+pub fn speaking_frame(now: Option<crate::dispatch::Speaking>) -> String {
+    encode(&ServerFrame::Speaking {
+        speaking: now.is_some(),
+        source: now.map(|n| n.source),
+        client: now.and_then(|n| n.client),
+        stoppable: now.is_some_and(|n| n.source == Source::Kiosk),
+    })
+}
+
+/// `event`: one event, for operator and dialog-manager clients.
+pub fn event_frame(event: &Event) -> String {
+    format!("{{\"type\":\"event\",\"event\":{}}}", event.json())
+}
