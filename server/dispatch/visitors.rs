@@ -60,10 +60,7 @@ impl Dispatcher {
             return;
         }
         let reason = format!("the visitor left the page for {page}");
-        lock(&self.visitor_cuts).cut(client, self.next_id(), &reason);
-        let theirs =
-            |c: &Command, _: u8| c.act.source == Source::Kiosk && c.act.client == Some(client);
-        self.cancel_where(Some(&Channel::Speech), theirs, &reason);
+        self.end_earlier_speech(client, self.next_id(), &reason);
     }
 
     /// A visitor's act takes the touchscreen to another page or sets the robot off
@@ -77,12 +74,17 @@ impl Dispatcher {
             return;
         }
         let reason = format!("the visitor moved on (act {})", act.label);
-        lock(&self.visitor_cuts).cut(client, act.trigger, &reason);
-        let trigger = act.trigger;
+        self.end_earlier_speech(client, act.trigger, &reason);
+    }
+
+    /// Ends the speech touchscreen `client` triggered before trigger id `since`: running,
+    /// waiting, and not yet sent (the cut).
+    fn end_earlier_speech(self: &Arc<Self>, client: u64, since: u64, reason: &str) {
+        lock(&self.visitor_cuts).cut(client, since, reason);
         let earlier = |c: &Command, _: u8| {
-            c.act.source == Source::Kiosk && c.act.client == Some(client) && c.act.trigger < trigger
+            c.act.source == Source::Kiosk && c.act.client == Some(client) && c.act.trigger < since
         };
-        self.cancel_where(Some(&Channel::Speech), earlier, &reason);
+        self.cancel_where(Some(&Channel::Speech), earlier, reason);
     }
 
     /// Why speech of `act` may no longer be said (a visitor stopped speech or left the page
