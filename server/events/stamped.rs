@@ -1,31 +1,27 @@
 //! [`Event`]: an [`EventKind`] stamped by the hub with the format version, its sequence
 //! number and times, and serialized once into the JSON line every reader shares.
 
+use std::fmt::Write;
 use std::sync::OnceLock;
 use std::time::SystemTime;
-
-use serde::Serialize;
 
 use super::EventKind;
 use crate::events::EVENT_FORMAT_VERSION;
 
 /// An event stamped by the hub.
-#[derive(Debug, Serialize)]
+#[derive(Debug)]
 pub struct Event {
     /// Format version.
     pub v: u32,
     /// Sequence number, from 1, without gaps within one server run.
     pub seq: u64,
     /// Wall-clock time, written as RFC 3339 UTC with milliseconds.
-    #[serde(serialize_with = "rfc3339_millis")]
     pub time: SystemTime,
     /// Microseconds since the server started (monotonic).
     pub mono_us: u64,
     /// What happened.
-    #[serde(flatten)]
     pub kind: EventKind,
     /// The JSON line, made once for all readers.
-    #[serde(skip)]
     json: OnceLock<String>,
 }
 
@@ -42,16 +38,52 @@ impl Event {
         }
     }
 
-    /// The event as one JSON object (no newline), serialized once.
+    /// The event as one JSON object (no newline), serialized once: the stamps, then the
+    /// kind's own fields. (Written out rather than through `#[serde(flatten)]`, which goes
+    /// through a generic map and took a third of the corpus writer's time.)
     pub fn json(&self) -> &str {
         self.json.get_or_init(|| {
-            // Serializing plain data with string keys cannot fail.
-            serde_json::to_string(self).unwrap_or_else(|e| format!("{{\"error\":\"{e}\"}}"))
+            // The kind is an internally tagged enum: an object that starts with its "type".
+            // Plain data with string keys always serializes; the fallback keeps the line JSON.
+            let kind = serde_json::to_string(&self.kind)
+                .unwrap_or_else(|_| r#"{"type":"unserializable"}"#.to_owned());
+            let mut line = String::with_capacity(kind.len() + 80);
+            // Writing to a String cannot fail.
+            let _ = write!(
+                line,
+                "{{\"v\":{},\"seq\":{},\"time\":\"{}\",\"mono_us\":{},",
+                self.v,
+                self.seq,
+                humantime::format_rfc3339_millis(self.time),
+                self.mono_us
+            );
+            line.push_str(kind.strip_prefix('{').unwrap_or(&kind));
+            line
         })
     }
 }
 
-/// Formats the time when the event is serialized (on the corpus thread), not when published.
-fn rfc3339_millis<S: serde::Serializer>(time: &SystemTime, s: S) -> Result<S::Ok, S::Error> {
-    s.collect_str(&humantime::format_rfc3339_millis(*time))
+#[cfg(test)]
+mod tests {
+    use std::time::{Duration, UNIX_EPOCH};
+
+    use super::*;
+    use crate::events::Source;
+
+    #[test]
+    fn the_line_is_the_stamps_then_the_kind_with_its_type_first() {
+        let time = UNIX_EPOCH + Duration::from_millis(1_795_000_000_123);
+        let kind = EventKind::ContextChanged {
+            source: Source::Http,
+            context: "Text \"quoted\"".into(),
+        };
+        let event = Event::new(7, time, 42, kind);
+        let line = event.json();
+        assert_eq!(
+            line,
+            r#"{"v":2,"seq":7,"time":"2026-11-18T11:06:40.123Z","mono_us":42,"type":"context.changed","source":"http","context":"Text \"quoted\""}"#
+        );
+        let parsed: serde_json::Value = serde_json::from_str(line).expect("valid JSON");
+        assert_eq!(parsed["context"], "Text \"quoted\"");
+    }
 }

@@ -4,6 +4,7 @@
 //! refused credential ends it, or a websocket protocol violation (closed with its RFC 6455
 //! code, see `violation`), silence, a full outbox or shutdown.
 
+use std::pin::pin;
 use std::time::Duration;
 
 use axum::Extension;
@@ -91,34 +92,46 @@ async fn serve(socket: WebSocket, state: AppState, address: ClientAddress) {
     let mut session = Session::new(client, feed_tx);
     let shutdown = state.life.shutdown.clone();
     let kicked = session.kicked();
+    // Made once for the connection, not per frame: each would register with its token (and
+    // the timer) anew at every frame.
+    let mut kicked = pin!(kicked.cancelled());
+    let mut shutdown = pin!(shutdown.cancelled());
+    let mut stopped = pin!(stop.cancelled());
+    let mut idle = pin!(tokio::time::sleep(IDLE_TIMEOUT));
     let reason = loop {
         let next = tokio::select! {
+            // The client's frames first; the budget of tokio's cooperative scheduling still
+            // lets the others be seen during a flood.
+            biased;
             next = async {
                 // A log falling behind slows every client down, at the socket.
                 state.hub.room_to_log().await;
-                tokio::time::timeout(IDLE_TIMEOUT, stream.next()).await
+                stream.next().await
             } => next,
-            () = kicked.cancelled() => break "too slow: its outgoing queue was full",
-            () = shutdown.cancelled() => break "server shutting down",
-            () = stop.cancelled() => break WRITER_ENDED,
+            () = &mut idle => break "idle timeout",
+            () = &mut kicked => break "too slow: its outgoing queue was full",
+            () = &mut shutdown => break "server shutting down",
+            () = &mut stopped => break WRITER_ENDED,
         };
+        // Extending a deadline does not touch the timer wheel until the old one passes.
+        idle.as_mut()
+            .reset(tokio::time::Instant::now() + IDLE_TIMEOUT);
         match next {
-            Err(_) => break "idle timeout",
-            Ok(None) | Ok(Some(Ok(Message::Close(_)))) => break "closed by client",
-            Ok(Some(Err(error))) => {
+            None | Some(Ok(Message::Close(_))) => break "closed by client",
+            Some(Err(error)) => {
                 // The writer answers with the violation's close code as it closes.
                 let Violation { reason, close } = violation(error);
                 *lock(&close_with) = close;
                 break reason;
             }
-            Ok(Some(Ok(Message::Text(text)))) => {
+            Some(Ok(Message::Text(text))) => {
                 session.on_text(text.as_str());
                 if let Some(reason) = session.closing() {
                     break reason;
                 }
             }
-            Ok(Some(Ok(Message::Binary(_)))) => session.on_binary(),
-            Ok(Some(Ok(_))) => {} // pings and pongs
+            Some(Ok(Message::Binary(_))) => session.on_binary(),
+            Some(Ok(_)) => {} // pings and pongs
         }
     };
     if session.closing().is_some() {

@@ -250,6 +250,9 @@ where
     F: std::future::Future<Output = Result<(), axum::Error>>,
 {
     tokio::select! {
+        // The write first: when it is done at once (the usual case), the stop token is not
+        // polled, so it is not registered with and unregistered from at every frame.
+        biased;
         result = tokio::time::timeout(WRITE_TIMEOUT, write) => match result {
             Ok(Ok(())) => Ok(()),
             _ => Err(()),
