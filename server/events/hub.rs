@@ -12,9 +12,9 @@ use std::time::{Duration, Instant, SystemTime};
 
 use tokio::sync::{broadcast, watch};
 
-use crate::events::{Event, EventKind};
+use crate::events::logged::check_logged;
+use crate::events::{Event, EventKind, LogUnwritable, Logged};
 use crate::sync::lock;
-use crate::wire::ErrorCode;
 
 /// An acknowledgement that finds the log written by another one less than this time ago waits
 /// this long before it writes: under load one write then serves the acknowledgements of a whole
@@ -30,42 +30,6 @@ pub const EVENT_CHANNEL_CAPACITY: usize = 4096;
 
 /// How long an acknowledgement waits for the corpus writer before giving up.
 pub const LOG_WAIT_TIMEOUT: Duration = Duration::from_secs(10);
-
-/// How far the corpus log is written, as the corpus writer last reported it.
-#[derive(Clone, Debug, Default)]
-pub struct Logged {
-    /// Every event up to this `seq` has been handed to the operating system (`write(2)`
-    /// returned), so it survives a crash or `kill -9` of Docent.
-    pub through: u64,
-    /// Why the log cannot be written now (a full disk, an I/O error); `None` while it can.
-    pub failure: Option<Arc<str>>,
-    /// The writer has stopped: nothing published later will be written.
-    pub ended: bool,
-}
-
-/// Why an acknowledgement cannot be given: the event is not in the log.
-#[derive(Clone, Debug, PartialEq, Eq, thiserror::Error)]
-#[error("the corpus log cannot be written ({0}); see the server log")]
-pub struct LogUnwritable(pub Arc<str>);
-
-impl LogUnwritable {
-    /// The stable error code sent to clients.
-    pub const CODE: ErrorCode = ErrorCode::CorpusUnwritable;
-
-    /// Said instead of an acknowledgement: what was asked for was done, but is not known to be
-    /// in the log.
-    pub fn after_the_fact(&self) -> String {
-        format!(
-            "carried out, but not confirmed in the log: {self}. New triggers are refused until \
-             the log can be written again."
-        )
-    }
-
-    /// Said when a trigger is refused before anything was done.
-    pub fn refusal(&self) -> String {
-        format!("not triggered: {self}. Triggers are accepted again once it can be written.")
-    }
-}
 
 /// The one place events are published. Cheap to clone.
 #[derive(Clone)]
@@ -266,16 +230,6 @@ impl Hub {
     pub fn mono_us(&self) -> u64 {
         self.inner.started.elapsed().as_micros() as u64
     }
-}
-
-fn check_logged(logged: &Logged, seq: u64) -> Result<(), LogUnwritable> {
-    if logged.through >= seq {
-        return Ok(());
-    }
-    Err(LogUnwritable(match &logged.failure {
-        Some(failure) => Arc::clone(failure),
-        None => "the corpus writer has stopped".into(),
-    }))
 }
 
 impl Inner {

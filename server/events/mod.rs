@@ -8,13 +8,13 @@
 
 mod hub;
 mod kind;
+mod logged;
 mod origin;
 mod stamped;
 
-pub use hub::{
-    Committer, CorpusFeed, EVENT_CHANNEL_CAPACITY, HISTORY_LEN, Hub, LogUnwritable, Logged,
-};
+pub use hub::{Committer, CorpusFeed, EVENT_CHANNEL_CAPACITY, HISTORY_LEN, Hub};
 pub use kind::EventKind;
+pub use logged::{LogUnwritable, Logged};
 pub use origin::{ActRef, ClientRole, Source};
 pub use stamped::Event;
 

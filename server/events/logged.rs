@@ -1,0 +1,53 @@
+//! How far the corpus log is written ([`Logged`], which the corpus writer reports) and why an
+//! acknowledgement cannot be given when the log cannot be written ([`LogUnwritable`]).
+
+use std::sync::Arc;
+
+use crate::wire::ErrorCode;
+
+/// How far the corpus log is written, as the corpus writer last reported it.
+#[derive(Clone, Debug, Default)]
+pub struct Logged {
+    /// Every event up to this `seq` has been handed to the operating system (`write(2)`
+    /// returned), so it survives a crash or `kill -9` of Docent.
+    pub through: u64,
+    /// Why the log cannot be written now (a full disk, an I/O error); `None` while it can.
+    pub failure: Option<Arc<str>>,
+    /// The writer has stopped: nothing published later will be written.
+    pub ended: bool,
+}
+
+/// Why an acknowledgement cannot be given: the event is not in the log.
+#[derive(Clone, Debug, PartialEq, Eq, thiserror::Error)]
+#[error("the corpus log cannot be written ({0}); see the server log")]
+pub struct LogUnwritable(pub Arc<str>);
+
+impl LogUnwritable {
+    /// The stable error code sent to clients.
+    pub const CODE: ErrorCode = ErrorCode::CorpusUnwritable;
+
+    /// Said instead of an acknowledgement: what was asked for was done, but is not known to be
+    /// in the log.
+    pub fn after_the_fact(&self) -> String {
+        format!(
+            "carried out, but not confirmed in the log: {self}. New triggers are refused until \
+             the log can be written again."
+        )
+    }
+
+    /// Said when a trigger is refused before anything was done.
+    pub fn refusal(&self) -> String {
+        format!("not triggered: {self}. Triggers are accepted again once it can be written.")
+    }
+}
+
+/// `Ok` when `logged` covers `seq`; otherwise why not.
+pub(super) fn check_logged(logged: &Logged, seq: u64) -> Result<(), LogUnwritable> {
+    if logged.through >= seq {
+        return Ok(());
+    }
+    Err(LogUnwritable(match &logged.failure {
+        Some(failure) => Arc::clone(failure),
+        None => "the corpus writer has stopped".into(),
+    }))
+}
