@@ -40,7 +40,7 @@ impl Event {
 
     /// The event as one JSON object (no newline), serialized once: the stamps, then the
     /// kind's own fields. (Written out rather than through `#[serde(flatten)]`, which goes
-    /// through a generic map and took a third of the corpus writer's time.)
+    /// through a generic map: serializing events was 3.2 % of Docent's CPU under load.)
     pub fn json(&self) -> &str {
         self.json.get_or_init(|| {
             // The kind is an internally tagged enum: an object that starts with its "type".
