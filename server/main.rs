@@ -266,7 +266,7 @@ fn serve(args: &ServeArgs) -> anyhow::Result<ExitCode> {
         // A closed stdout (a supervisor that stopped reading) must not stop the server.
         let _ = writeln!(
             std::io::stdout(),
-            "Docent is serving {}\n  kiosk:       http://{addr}/\n  projector:   http://{addr}/projector\n  home page:   http://{addr}/pages/{home}\n  trigger API: http://{addr}/api/acts  (docs/PROTOCOL.md)\n  websocket:   ws://{addr}/ws\n  corpus log:  {}",
+            "Docent is serving {}\n  kiosk:       http://{addr}/\n  projector:   http://{addr}/projector\n  home page:   http://{addr}/pages/{home}\n  trigger API: http://{addr}/api/acts  (docs/PROTOCOL.md)\n  websocket:   ws://{addr}/ws\n  corpus:      {}  (sessions/: one folder per visitor session; days/: other events)",
             bundle_dir.display(),
             server.corpus_path().display()
         );

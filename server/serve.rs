@@ -18,7 +18,7 @@ use crate::content::config::{AdapterKind, SpeechConfig};
 use crate::content::{Bundle, BundleArea, resolve_in_bundle};
 use crate::corpus::CorpusWriter;
 use crate::dispatch::Dispatcher;
-use crate::events::{EventKind, Hub, Source};
+use crate::events::{EventKind, Hub, SessionEnd, Source};
 use crate::http::{ConnectionLimits, app, serve_connections};
 use crate::lifecycle::Lifecycle;
 use crate::reload::ReloadOptions;
@@ -102,9 +102,9 @@ impl Server {
         &self.state
     }
 
-    /// The corpus log file.
+    /// The corpus folder, absolute.
     pub fn corpus_path(&self) -> PathBuf {
-        self.corpus.path().to_owned()
+        self.corpus.dir().to_owned()
     }
 }
 
@@ -192,6 +192,7 @@ pub async fn run(
         stop.cancel();
     };
     let proxies = state.access.proxies().clone();
+    let visits = Arc::clone(&state.visits);
     serve_connections(listener, app(state), limits, proxies, signal).await;
     // axum's graceful shutdown does not wait for websocket tasks (tokio-rs/axum#3003).
     life.shutdown.cancel();
@@ -201,6 +202,15 @@ pub async fn run(
         .is_err()
     {
         tracing::warn!("some tasks did not finish within {SHUTDOWN_GRACE:?}");
+    }
+    // After every client left, so that their leaving is in the session's log.
+    if let Some(session) = visits.end() {
+        hub.publish(EventKind::SessionEnded {
+            session,
+            source: Source::Server,
+            client: None,
+            reason: SessionEnd::ServerStopping,
+        });
     }
     hub.close_corpus();
     let logged = corpus.finish().await?;

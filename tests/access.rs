@@ -136,7 +136,7 @@ async fn operator_and_dialog_manager_hellos_need_their_own_credential() {
         .client(json!({"type": "hello", "role": "adapter", "verbs": ["SAY"]}))
         .await;
     assert_eq!(adapter.welcome["role"], "adapter");
-    let corpus_text = std::fs::read_to_string(&server.corpus_file).unwrap();
+    let corpus_text = common::corpus_text(&server.corpus);
     let corpus = server.stop().await;
     let refusals: Vec<&Value> = corpus
         .iter()

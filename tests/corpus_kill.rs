@@ -103,11 +103,11 @@ async fn http_sender(addr: String, tally: Arc<Tally>) {
     }
 }
 
+/// Every event log in the corpus folder, with a checksum of its bytes.
 fn checksums(dir: &Path) -> BTreeMap<PathBuf, u64> {
-    std::fs::read_dir(dir)
-        .expect("corpus dir")
-        .map(|e| {
-            let path = e.expect("entry").path();
+    (docent::corpus::layout::event_logs(dir).expect("corpus dir"))
+        .into_iter()
+        .map(|path| {
             let bytes = std::fs::read(&path).expect("read");
             // FNV-1a: any change to an earlier file changes it.
             let sum = bytes.iter().fold(0xcbf29ce484222325u64, |h, b| {

@@ -87,12 +87,11 @@ async fn a_log_that_cannot_grow_refuses_triggers_and_keeps_every_acknowledged_on
     let exit = child.wait().expect("docent exits");
     assert_eq!(exit.code(), Some(1), "{exit}");
 
-    let log = std::fs::read_dir(&corpus)
-        .expect("corpus folder")
-        .map(|e| e.expect("entry").path())
-        .find(|p| p.extension().is_some_and(|e| e == "jsonl"))
-        .expect("a log file");
-    let bytes = std::fs::read(&log).expect("the log");
+    let logs = docent::corpus::layout::event_logs(&corpus).expect("corpus folder");
+    let [log] = logs.as_slice() else {
+        panic!("one day log: {logs:?}")
+    };
+    let bytes = std::fs::read(log).expect("the log");
     assert!(bytes.len() as u64 <= LIMIT_KIB * 1024);
     // Whole lines, parsed; a last piece without its newline was never acknowledged.
     let whole = &bytes[..bytes.iter().rposition(|b| *b == b'\n').map_or(0, |i| i + 1)];

@@ -138,7 +138,7 @@ async fn refused_http_credentials_are_logged_without_the_credential() {
     assert_eq!(status, 401);
     let (status, _) = server.post_with("/api/stop", None, None).await;
     assert_eq!(status, 401);
-    let text = std::fs::read_to_string(&server.corpus_file).unwrap();
+    let text = common::corpus_text(&server.corpus);
     let corpus = server.stop().await;
     let refused = events(&corpus, "request.refused");
     let seen: Vec<(&str, &str, &str, &str)> = refused

@@ -1,18 +1,22 @@
-//! The corpus writer: the only code that writes the event log. It runs on its own thread, off
-//! the dispatcher's hot path, and commits events in groups: it takes every event published
-//! since its last batch, writes their JSON lines with one `write(2)`, then reports through the
-//! hub how far the log is written, which releases the acknowledgements waiting on that batch
-//! ([`crate::events::Hub::logged`]). So an acknowledged event survives `kill -9`; a second
-//! thread syncs the file to disk at a bounded interval ([`sync`]), which bounds what a power
-//! cut can take. Format and guarantees: `docs/CORPUS.md`.
+//! The corpus writer: the only code that writes the corpus folder. It runs on its own thread,
+//! off the dispatcher's hot path, and commits events in groups: it takes every event published
+//! since its last batch, writes their JSON lines with one `write(2)` per file they go to (a
+//! visitor session's own log, or the day log: `layout.rs`, `route.rs`), then reports through
+//! the hub how far the log is written, which releases the acknowledgements waiting on that
+//! batch ([`crate::events::Hub::logged`]). So an acknowledged event survives `kill -9`; a
+//! second thread syncs the file to disk at a bounded interval ([`sync`]), which bounds what a
+//! power cut can take. Format and guarantees: `docs/CORPUS.md`.
 
+mod files;
+pub mod layout;
+pub mod manifest;
+mod route;
 mod sync;
 mod writer;
 
-use std::fs::OpenOptions;
 use std::io;
 use std::path::{Path, PathBuf};
-use std::time::{Duration, SystemTime};
+use std::time::Duration;
 
 use tokio::sync::oneshot;
 
@@ -23,40 +27,35 @@ pub const DEFAULT_SYNC_INTERVAL: Duration = Duration::from_secs(1);
 
 /// Handle to the running writer thread.
 pub struct CorpusWriter {
-    path: PathBuf,
+    dir: PathBuf,
     closed: Option<oneshot::Receiver<io::Result<u64>>>,
 }
 
 impl CorpusWriter {
-    /// Creates `dir` if needed, opens a new log file named after the start time and starts the
-    /// writer thread (and its sync thread, syncing every `sync_interval`), which end on
-    /// [`crate::events::Hub::close_corpus`].
+    /// Creates the corpus folder `dir` if needed (and checks that a file can be made in it),
+    /// then starts the writer thread (each file it writes synced every `sync_interval`), which
+    /// ends on [`crate::events::Hub::close_corpus`].
     pub fn start(dir: &Path, feed: CorpusFeed, sync_interval: Duration) -> io::Result<Self> {
-        std::fs::create_dir_all(dir)?;
-        let stamp = humantime::format_rfc3339_seconds(SystemTime::now())
-            .to_string()
-            .replace(':', "-");
-        let path = unique_path(dir, &stamp);
-        let file = OpenOptions::new()
-            .create_new(true)
-            .append(true)
-            .open(&path)?;
-        let syncer = sync::Syncer::start(file.try_clone()?, sync_interval)?;
+        std::fs::create_dir_all(dir.join(layout::DAYS_DIR))?;
+        let dir = dir.canonicalize()?;
+        // A folder Docent cannot write is said at start-up, not at the first event.
+        tempfile_probe(&dir.join(layout::DAYS_DIR))?;
         let (done_tx, done_rx) = oneshot::channel();
+        let theirs = dir.clone();
         std::thread::Builder::new()
             .name("corpus-writer".into())
             .spawn(move || {
-                let _ = done_tx.send(writer::run(file, feed, syncer));
+                let _ = done_tx.send(writer::run(theirs, feed, sync_interval));
             })?;
         Ok(CorpusWriter {
-            path,
+            dir,
             closed: Some(done_rx),
         })
     }
 
-    /// The log file.
-    pub fn path(&self) -> &Path {
-        &self.path
+    /// The corpus folder, absolute.
+    pub fn dir(&self) -> &Path {
+        &self.dir
     }
 
     /// Waits until the writer has written and synced everything (call
@@ -71,15 +70,11 @@ impl CorpusWriter {
     }
 }
 
-fn unique_path(dir: &Path, stamp: &str) -> PathBuf {
-    let first = dir.join(format!("docent-{stamp}.jsonl"));
-    if !first.exists() {
-        return first;
-    }
-    (1..)
-        .map(|n| dir.join(format!("docent-{stamp}-{n}.jsonl")))
-        .find(|p| !p.exists())
-        .unwrap_or(first)
+/// Makes and removes a file in `dir`, to learn early whether it can be written.
+fn tempfile_probe(dir: &Path) -> io::Result<()> {
+    let probe = dir.join(format!(".docent-probe-{}", std::process::id()));
+    std::fs::File::create(&probe)?;
+    std::fs::remove_file(&probe)
 }
 
 #[cfg(test)]
@@ -94,15 +89,18 @@ mod tests {
         }
     }
 
-    fn seqs(path: &Path) -> Vec<u64> {
-        let text = std::fs::read_to_string(path).unwrap();
-        text.lines()
-            .map(|l| {
+    /// The `seq` of every line in the corpus folder, in file order.
+    fn seqs(corpus: &Path) -> Vec<u64> {
+        let mut seqs = Vec::new();
+        for log in layout::event_logs(corpus).unwrap() {
+            let text = std::fs::read_to_string(log).unwrap();
+            seqs.extend(text.lines().map(|l| {
                 serde_json::from_str::<serde_json::Value>(l).unwrap()["seq"]
                     .as_u64()
                     .unwrap()
-            })
-            .collect()
+            }));
+        }
+        seqs
     }
 
     #[tokio::test]
@@ -113,10 +111,10 @@ mod tests {
         for n in 0..100 {
             hub.publish(context(n));
         }
-        let path = writer.path().to_owned();
+        let corpus = writer.dir().to_owned();
         hub.close_corpus();
         assert_eq!(writer.finish().await.unwrap(), 100);
-        assert_eq!(seqs(&path), (1..=100).collect::<Vec<_>>());
+        assert_eq!(seqs(&corpus), (1..=100).collect::<Vec<_>>());
     }
 
     #[tokio::test]
@@ -129,7 +127,7 @@ mod tests {
             let event = hub.publish(context(round as usize));
             hub.logged(event.seq).await.unwrap();
             // Read back while the writer still runs.
-            assert_eq!(seqs(writer.path()), (1..=round).collect::<Vec<_>>());
+            assert_eq!(seqs(writer.dir()), (1..=round).collect::<Vec<_>>());
         }
         hub.close_corpus();
         writer.finish().await.unwrap();

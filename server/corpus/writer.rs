@@ -1,16 +1,20 @@
 //! The writer thread's loop: group commit. Each batch of events becomes one buffer of whole
-//! JSON lines handed to the operating system with one `write(2)` (more only if the kernel takes
-//! part of it); only when that returned does the hub learn the batch is logged. A failed write
+//! JSON lines per file it goes to (`route.rs` decides: a session's log or the day log), each
+//! handed to the operating system with one `write(2)` (more only if the kernel takes part of
+//! it); only when that returned does the hub learn the batch is logged. A failed write
 //! (a full disk) keeps the bytes not written, in order, and retries them, so the file never
 //! gets a line with a gap in it; meanwhile acknowledgements are refused, and events wait in
 //! memory up to [`MAX_UNWRITTEN`].
 
-use std::fs::File;
-use std::io::{self, Write};
+use std::collections::VecDeque;
+use std::io;
+use std::path::PathBuf;
 use std::sync::{Arc, Mutex};
 use std::time::{Duration, Instant};
 
-use crate::corpus::sync::Syncer;
+use crate::corpus::files::{Files, Sink};
+use crate::corpus::manifest::SessionManifest;
+use crate::corpus::route::{Place, Route};
 use crate::events::{Committer, CorpusFeed, Event, Logged};
 use crate::sync::lock;
 
@@ -36,22 +40,31 @@ const RETRY_INTERVAL: Duration = Duration::from_secs(1);
 const MAX_UNWRITTEN: usize = 64 * 1024 * 1024;
 
 /// Runs until the hub closes the corpus; returns the number of events written.
-pub(super) fn run(file: File, feed: CorpusFeed, syncer: Syncer) -> io::Result<u64> {
+pub(super) fn run(corpus: PathBuf, feed: CorpusFeed, sync_interval: Duration) -> io::Result<u64> {
+    run_into(Files::new(sync_interval), corpus, feed)
+}
+
+/// Runs with `files` for the files (a test's failing disk).
+fn run_into<S: Sink + Send + 'static>(
+    files: S,
+    corpus: PathBuf,
+    feed: CorpusFeed,
+) -> io::Result<u64> {
     feed.attach_current_thread();
     let shared = Arc::new(Shared {
         log: Mutex::new(Log {
-            file,
+            route: Route::new(corpus),
+            files,
             batch: Vec::new(),
             out: Unwritten::default(),
             failures: Failures::default(),
-            syncer: Some(syncer),
         }),
         feed,
     });
     shared.feed.set_committer(Some(shared.clone()));
     let mut quiet = 0;
     loop {
-        if quiet >= QUIET_TICKS && lock(&shared.log).out.bytes.is_empty() {
+        if quiet >= QUIET_TICKS && lock(&shared.log).out.is_empty() {
             shared.feed.sleep_until_published();
             quiet = 0;
         }
@@ -70,12 +83,12 @@ pub(super) fn run(file: File, feed: CorpusFeed, syncer: Syncer) -> io::Result<u6
 }
 
 /// The log, written by the writer thread or, to spare a wake-up, by an acknowledgement itself.
-struct Shared {
-    log: Mutex<Log>,
+struct Shared<S> {
+    log: Mutex<Log<S>>,
     feed: CorpusFeed,
 }
 
-impl Committer for Shared {
+impl<S: Sink + Send> Committer for Shared<S> {
     fn try_commit(&self) -> bool {
         let Ok(mut log) = self.log.try_lock() else {
             return false;
@@ -89,32 +102,30 @@ impl Committer for Shared {
     }
 }
 
-struct Log {
-    file: File,
+struct Log<S> {
+    route: Route,
+    files: S,
     batch: Vec<Arc<Event>>,
     out: Unwritten,
     failures: Failures,
-    syncer: Option<Syncer>,
 }
 
-impl Log {
+impl<S: Sink> Log<S> {
     /// Takes every pending event and writes it with what still waits; returns the number of
     /// events taken.
     fn commit(&mut self, feed: &CorpusFeed) -> usize {
         feed.take_now(&mut self.batch);
         let took = self.batch.len();
         for event in self.batch.drain(..) {
-            self.out.push(&event, &mut self.failures);
+            let place = self.route.place(&event);
+            self.out.push(&event, place, &mut self.failures);
         }
-        if self.out.bytes.is_empty() || !self.failures.may_retry() {
+        if self.out.is_empty() || !self.failures.may_retry() {
             return took;
         }
-        match self.out.write_to(&mut self.file) {
+        match self.out.write_to(&mut self.files) {
             Ok(()) => {
                 self.failures.recovered();
-                if let Some(syncer) = &self.syncer {
-                    syncer.written();
-                }
                 feed.report(self.out.logged(None));
             }
             Err(error) => {
@@ -127,18 +138,15 @@ impl Log {
 
     /// The last write, the last sync, and the run's verdict.
     fn finish(&mut self, feed: &CorpusFeed) -> io::Result<u64> {
-        if !self.out.bytes.is_empty()
-            && let Err(error) = self.out.write_to(&mut self.file)
+        if !self.out.is_empty()
+            && let Err(error) = self.out.write_to(&mut self.files)
         {
             self.failures.note(&error);
             // What is still unwritten now never will be.
             self.failures.lost += self.out.waiting;
         }
         feed.report(self.out.logged(self.failures.current.clone()));
-        let synced = match self.syncer.take() {
-            Some(syncer) => syncer.finish(&self.file),
-            None => Ok(()),
-        };
+        let synced = self.files.close();
         match self.failures.count + self.failures.lost {
             0 => synced.map(|()| self.out.lines),
             _ => Err(io::Error::other(self.failures.summary())),
@@ -146,57 +154,98 @@ impl Log {
     }
 }
 
-/// Lines handed to the writer and not yet written, and how far the file is.
+/// Lines handed to the writer and not yet written, in order, one segment per run of lines
+/// for the same file; and how far the log is written.
 #[derive(Default)]
 struct Unwritten {
-    bytes: Vec<u8>,
-    /// The `seq` of the last line in `bytes` (or written, when `bytes` is empty).
-    last_seq: u64,
+    segments: VecDeque<Segment>,
+    /// Bytes in all segments.
+    bytes: usize,
     /// Every line up to this `seq` is written.
     through: u64,
     /// Lines written.
     lines: u64,
-    /// Lines in `bytes`.
+    /// Lines in the segments.
     waiting: u64,
 }
 
+/// Lines for one file.
+struct Segment {
+    file: PathBuf,
+    bytes: Vec<u8>,
+    /// The `seq` of its last line.
+    last_seq: u64,
+    lines: u64,
+    /// A session's manifest as its lines leave it, written once they are.
+    manifest: Option<(PathBuf, SessionManifest)>,
+}
+
 impl Unwritten {
-    fn push(&mut self, event: &Event, failures: &mut Failures) {
+    fn is_empty(&self) -> bool {
+        self.segments.is_empty()
+    }
+
+    fn push(&mut self, event: &Event, place: Place, failures: &mut Failures) {
         let json = event.json();
-        if self.bytes.len() + json.len() >= MAX_UNWRITTEN {
+        if self.bytes + json.len() >= MAX_UNWRITTEN {
             failures.lost += 1;
             return;
         }
-        self.bytes.reserve(json.len() + 1);
-        self.bytes.extend_from_slice(json.as_bytes());
-        self.bytes.push(b'\n');
-        self.last_seq = event.seq;
+        let same_file = self.segments.back().is_some_and(|s| s.file == place.file);
+        if !same_file {
+            self.segments.push_back(Segment {
+                file: place.file,
+                bytes: Vec::new(),
+                last_seq: 0,
+                lines: 0,
+                manifest: None,
+            });
+        }
+        let segment = self.segments.back_mut().expect("pushed above");
+        let before = segment.bytes.len();
+        event.write_line(&mut segment.bytes, place.session_start_us);
+        self.bytes += segment.bytes.len() - before;
+        segment.last_seq = event.seq;
+        segment.lines += 1;
+        if place.manifest.is_some() {
+            segment.manifest = place.manifest;
+        }
         self.waiting += 1;
     }
 
-    /// Writes every waiting byte, keeping what the kernel did not take when it fails.
-    fn write_to(&mut self, file: &mut impl Write) -> io::Result<()> {
-        let mut done = 0;
-        let result = loop {
-            if done == self.bytes.len() {
-                break Ok(());
+    /// Writes every waiting segment to its file, in order, and the manifests they carry;
+    /// keeps what the kernel did not take when a write fails.
+    fn write_to(&mut self, sink: &mut impl Sink) -> io::Result<()> {
+        while let Some(segment) = self.segments.front_mut() {
+            let file = sink.file_for(&segment.file)?;
+            let mut done = 0;
+            let result = loop {
+                if done == segment.bytes.len() {
+                    break Ok(());
+                }
+                match file.write(&segment.bytes[done..]) {
+                    Ok(0) => break Err(io::Error::from(io::ErrorKind::WriteZero)),
+                    Ok(n) => done += n,
+                    Err(e) if e.kind() == io::ErrorKind::Interrupted => {}
+                    Err(e) => break Err(e),
+                }
+            };
+            // What was taken is not written again: the rest follows right after it.
+            segment.bytes.drain(..done);
+            self.bytes -= done;
+            if done > 0 {
+                sink.written();
             }
-            match file.write(&self.bytes[done..]) {
-                Ok(0) => break Err(io::Error::from(io::ErrorKind::WriteZero)),
-                Ok(n) => done += n,
-                Err(e) if e.kind() == io::ErrorKind::Interrupted => {}
-                Err(e) => break Err(e),
+            result?;
+            if let Some((dir, manifest)) = &segment.manifest {
+                manifest.write_to(dir)?;
             }
-        };
-        if result.is_ok() {
-            self.bytes.clear();
-            self.through = self.last_seq;
-            self.lines += std::mem::take(&mut self.waiting);
-        } else {
-            // The rest goes out with the next attempt, right after what the file ends with.
-            self.bytes.drain(..done);
+            self.through = segment.last_seq;
+            self.lines += segment.lines;
+            self.waiting -= segment.lines;
+            self.segments.pop_front();
         }
-        result
+        Ok(())
     }
 
     fn logged(&self, failure: Option<Arc<str>>) -> Logged {
@@ -270,6 +319,8 @@ impl Failures {
 
 #[cfg(test)]
 mod tests {
+    use std::io::Write;
+
     use super::*;
     use crate::events::{EventKind, Hub, Source};
 
@@ -285,6 +336,41 @@ mod tests {
     struct Disk {
         data: Vec<u8>,
         room: usize,
+    }
+
+    impl Sink for Disk {
+        fn file_for(&mut self, _: &std::path::Path) -> io::Result<&mut dyn Write> {
+            Ok(self)
+        }
+
+        fn written(&mut self) {}
+
+        fn close(&mut self) -> io::Result<()> {
+            Ok(())
+        }
+    }
+
+    /// Every file is `/dev/full`.
+    struct FullDisk(std::fs::File);
+
+    impl Sink for FullDisk {
+        fn file_for(&mut self, _: &std::path::Path) -> io::Result<&mut dyn Write> {
+            Ok(&mut self.0)
+        }
+
+        fn written(&mut self) {}
+
+        fn close(&mut self) -> io::Result<()> {
+            Ok(())
+        }
+    }
+
+    fn place() -> Place {
+        Place {
+            file: "days/2026-11-24/09-00-00Z.jsonl".into(),
+            session_start_us: None,
+            manifest: None,
+        }
     }
 
     impl Write for Disk {
@@ -312,8 +398,8 @@ mod tests {
             room: 30,
         };
         let (first, second) = (event(1), event(2));
-        out.push(&first, &mut failures);
-        out.push(&second, &mut failures);
+        out.push(&first, place(), &mut failures);
+        out.push(&second, place(), &mut failures);
         assert!(out.write_to(&mut disk).is_err());
         assert_eq!(out.logged(None).through, 0, "nothing confirmed");
         disk.room = usize::MAX;
@@ -325,10 +411,13 @@ mod tests {
 
     #[tokio::test]
     async fn a_full_disk_refuses_acknowledgements_and_ends_the_run_with_an_error() {
-        let file = File::options().append(true).open("/dev/full").unwrap();
+        let file = std::fs::File::options()
+            .append(true)
+            .open("/dev/full")
+            .unwrap();
         let (hub, feed) = Hub::new();
-        let syncer = Syncer::start(file.try_clone().unwrap(), Duration::from_secs(3600)).unwrap();
-        let writer = std::thread::spawn(move || run(file, feed, syncer));
+        let corpus = tempfile::tempdir().unwrap().path().to_owned();
+        let writer = std::thread::spawn(move || run_into(FullDisk(file), corpus, feed));
         let e = hub.publish(EventKind::ContextChanged {
             source: Source::Http,
             context: "Text".into(),

@@ -10,6 +10,29 @@ use super::origin::{ActRef, ClientRole, Source};
 use crate::content::Args;
 use crate::wire::ErrorCode;
 
+/// Why a visitor session ended.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize)]
+#[serde(rename_all = "kebab-case")]
+pub enum SessionEnd {
+    /// Its end was marked.
+    Marked,
+    /// The next session was started.
+    NextSession,
+    /// The server shut down while it ran.
+    ServerStopping,
+}
+
+impl SessionEnd {
+    /// The name written in the corpus.
+    pub fn as_str(self) -> &'static str {
+        match self {
+            SessionEnd::Marked => "marked",
+            SessionEnd::NextSession => "next-session",
+            SessionEnd::ServerStopping => "server-stopping",
+        }
+    }
+}
+
 /// One thing that happened. Serialized with `type` as the tag.
 #[derive(Debug, Serialize)]
 #[serde(tag = "type")]
@@ -240,17 +263,21 @@ pub enum EventKind {
         /// Who marked it.
         source: Source,
         /// The marking client.
-        client: u64,
+        #[serde(skip_serializing_if = "Option::is_none")]
+        client: Option<u64>,
     },
     /// A visitor session ended.
     #[serde(rename = "session.ended")]
     SessionEnded {
         /// The session's number.
         session: u64,
-        /// Who marked it.
+        /// Who ended it.
         source: Source,
-        /// The marking client.
-        client: u64,
+        /// The client that ended it.
+        #[serde(skip_serializing_if = "Option::is_none")]
+        client: Option<u64>,
+        /// Why it ended.
+        reason: SessionEnd,
     },
     /// The operator noted who the visitors are.
     #[serde(rename = "visitor.group")]

@@ -13,11 +13,12 @@ mod origin;
 mod stamped;
 
 pub use hub::{Committer, CorpusFeed, EVENT_CHANNEL_CAPACITY, HISTORY_LEN, Hub};
-pub use kind::EventKind;
+pub use kind::{EventKind, SessionEnd};
 pub use logged::{LogUnwritable, Logged};
 pub use origin::{ActRef, ClientRole, Source};
 pub use stamped::Event;
 
 /// Version of the event format, written into every corpus line as `v`. 2: `command.sent`
-/// carries the parsed `args`.
-pub const EVENT_FORMAT_VERSION: u32 = 2;
+/// carries the parsed `args`. 3: a session's events are in its own log, with `session_us`;
+/// `session.ended` says why, and its `client` is left out when the server ended it.
+pub const EVENT_FORMAT_VERSION: u32 = 3;

@@ -26,6 +26,21 @@ pub enum Source {
     Server,
 }
 
+impl Source {
+    /// The name written in the corpus (as serialized).
+    pub fn as_str(self) -> &'static str {
+        match self {
+            Source::Http => "http",
+            Source::Kiosk => "kiosk",
+            Source::Projector => "projector",
+            Source::Operator => "operator",
+            Source::Dm => "dm",
+            Source::Adapter => "adapter",
+            Source::Server => "server",
+        }
+    }
+}
+
 /// The role a websocket client declares in `hello`.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, serde::Deserialize, Serialize)]
 #[serde(rename_all = "lowercase")]
@@ -72,4 +87,18 @@ pub struct ActRef {
     pub label: Arc<str>,
     /// Where the act is written, `file:line`.
     pub at: String,
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn a_source_is_named_as_it_is_serialized() {
+        use Source::*;
+        for source in [Http, Kiosk, Projector, Operator, Dm, Adapter, Server] {
+            let serialized = serde_json::to_value(source).unwrap();
+            assert_eq!(serialized, source.as_str());
+        }
+    }
 }

@@ -21,8 +21,8 @@ pub struct Event {
     pub mono_us: u64,
     /// What happened.
     pub kind: EventKind,
-    /// The JSON line, made once for all readers.
-    json: OnceLock<String>,
+    /// The JSON line, made once for all readers, and where its stamps end.
+    json: OnceLock<(String, usize)>,
 }
 
 impl Event {
@@ -42,6 +42,28 @@ impl Event {
     /// kind's own fields. (Written out rather than through `#[serde(flatten)]`, which goes
     /// through a generic map: serializing events was 3.2 % of Docent's CPU under load.)
     pub fn json(&self) -> &str {
+        &self.line().0
+    }
+
+    /// Appends the event's corpus line, with its `\n`, to `out`. In a session's log
+    /// (`session_start_us` given) the line carries `session_us`, the microseconds since the
+    /// session started on the same monotonic clock, right after `mono_us`.
+    pub fn write_line(&self, out: &mut Vec<u8>, session_start_us: Option<u64>) {
+        let (json, stamps) = self.line();
+        match session_start_us {
+            None => out.extend_from_slice(json.as_bytes()),
+            Some(start) => {
+                let (stamps, kind) = json.split_at(*stamps);
+                out.extend_from_slice(stamps.as_bytes());
+                let session_us = self.mono_us.saturating_sub(start);
+                out.extend_from_slice(format!("\"session_us\":{session_us},").as_bytes());
+                out.extend_from_slice(kind.as_bytes());
+            }
+        }
+        out.push(b'\n');
+    }
+
+    fn line(&self) -> &(String, usize) {
         self.json.get_or_init(|| {
             // The kind is an internally tagged enum: an object that starts with its "type".
             // Plain data with string keys always serializes; the fallback keeps the line JSON.
@@ -57,8 +79,9 @@ impl Event {
                 humantime::format_rfc3339_millis(self.time),
                 self.mono_us
             );
+            let stamps = line.len();
             line.push_str(kind.strip_prefix('{').unwrap_or(&kind));
-            line
+            (line, stamps)
         })
     }
 }
@@ -81,9 +104,15 @@ mod tests {
         let line = event.json();
         assert_eq!(
             line,
-            r#"{"v":2,"seq":7,"time":"2026-11-18T11:06:40.123Z","mono_us":42,"type":"context.changed","source":"http","context":"Text \"quoted\""}"#
+            r#"{"v":3,"seq":7,"time":"2026-11-18T11:06:40.123Z","mono_us":42,"type":"context.changed","source":"http","context":"Text \"quoted\""}"#
         );
         let parsed: serde_json::Value = serde_json::from_str(line).expect("valid JSON");
         assert_eq!(parsed["context"], "Text \"quoted\"");
+        let mut in_session = Vec::new();
+        event.write_line(&mut in_session, Some(40));
+        assert_eq!(
+            String::from_utf8(in_session).unwrap(),
+            r#"{"v":3,"seq":7,"time":"2026-11-18T11:06:40.123Z","mono_us":42,"session_us":2,"type":"context.changed","source":"http","context":"Text \"quoted\""}"#.to_owned() + "\n"
+        );
     }
 }

@@ -5,7 +5,7 @@
 //! changes the session: each handler answers the [`Client`] it is lent.
 
 use crate::dispatch::TriggerRequest;
-use crate::events::{ClientRole, EventKind};
+use crate::events::{ClientRole, EventKind, SessionEnd};
 use crate::operator::{Proposal, VISITOR_GROUPS};
 use crate::wire::ErrorCode;
 use crate::ws::client::Client;
@@ -156,13 +156,14 @@ pub(super) fn mark(
                 hub.publish(EventKind::SessionEnded {
                     session: ended,
                     source,
-                    client: id,
+                    client: Some(id),
+                    reason: SessionEnd::NextSession,
                 });
             }
             hub.publish(EventKind::SessionStarted {
                 session,
                 source,
-                client: id,
+                client: Some(id),
             });
             Some(session)
         }
@@ -174,7 +175,8 @@ pub(super) fn mark(
             hub.publish(EventKind::SessionEnded {
                 session,
                 source,
-                client: id,
+                client: Some(id),
+                reason: SessionEnd::Marked,
             });
             Some(session)
         }

@@ -84,7 +84,8 @@ impl TempBundle {
 /// A running server.
 pub struct TestServer {
     pub addr: std::net::SocketAddr,
-    pub corpus_file: PathBuf,
+    /// The corpus folder (absolute).
+    pub corpus: PathBuf,
     pub corpus_dir: tempfile::TempDir,
     shutdown: Option<oneshot::Sender<()>>,
     task: Option<JoinHandle<std::io::Result<()>>>,
@@ -125,7 +126,7 @@ impl TestServer {
         adjust(&mut options);
         let server = Server::start(loaded, &options).expect("server starts");
         prepare(&server);
-        let corpus_file = server.corpus_path();
+        let corpus = server.corpus_path();
         let listener = tokio::net::TcpListener::bind("127.0.0.1:0")
             .await
             .expect("bind");
@@ -136,7 +137,7 @@ impl TestServer {
         }));
         TestServer {
             addr,
-            corpus_file,
+            corpus,
             corpus_dir,
             shutdown: Some(tx),
             task: Some(task),
@@ -245,18 +246,28 @@ impl TestServer {
                 .expect("join")
                 .expect("run");
         }
-        read_corpus(&self.corpus_file)
+        read_corpus(&self.corpus)
     }
 }
 
-/// Every line of a corpus file, parsed.
-pub fn read_corpus(path: &Path) -> Vec<Value> {
-    std::fs::read_to_string(path)
-        .expect("corpus file")
+/// Every line of a corpus folder holding one run (its day logs and session logs), parsed, in
+/// `seq` order.
+pub fn read_corpus(corpus: &Path) -> Vec<Value> {
+    let mut lines: Vec<Value> = corpus_text(corpus)
         .lines()
         .map(|l| {
             serde_json::from_str(l).unwrap_or_else(|e| panic!("corpus line is not JSON ({e}): {l}"))
         })
+        .collect();
+    lines.sort_by_key(|e| e["seq"].as_u64());
+    lines
+}
+
+/// The text of every event log in a corpus folder, one after the other.
+pub fn corpus_text(corpus: &Path) -> String {
+    (docent::corpus::layout::event_logs(corpus).expect("corpus folder"))
+        .iter()
+        .map(|log| std::fs::read_to_string(log).expect("corpus log"))
         .collect()
 }
 

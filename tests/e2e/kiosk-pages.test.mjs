@@ -103,7 +103,7 @@ test('a link to a page deleted while Docent runs shows the friendly page in the 
       assert.deepEqual(changed, []);
     },
   );
-  const logged = corpusEvents(server.corpusFile).filter((e) => e.type === 'page.missing');
+  const logged = corpusEvents(server.corpus).filter((e) => e.type === 'page.missing');
   assert.equal(logged.length, 1, JSON.stringify(logged));
   assert.equal(logged[0].page, 'opening hours.html');
   assert.equal(logged[0].from, 'index.html');

@@ -73,7 +73,7 @@ test('tapping a data-act button changes the page and its SAY reaches a ws adapte
     });
 
     // The server has stopped gracefully: the corpus log is complete.
-    const events = corpusEvents(server.corpusFile);
+    const events = corpusEvents(server.corpus);
     const triggered = events.find((e) => e.type === 'act.triggered' && e.trigger === say.trigger);
     assert.equal(triggered?.label, 'GO_TO_MINICOMPUTER');
     assert.equal(triggered.source, 'kiosk', 'the act was not triggered by the kiosk');

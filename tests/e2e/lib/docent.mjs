@@ -120,12 +120,12 @@ export async function startDocent(bundle, { port = 0, corpus, args = [], env = {
       keep(chunk);
       stdout += chunk;
       const ws = /^\s*websocket:\s+(ws:\/\/\S+)$/m.exec(stdout);
-      const corpusLog = /^\s*corpus log:\s+(.+)$/m.exec(stdout);
+      const corpusLog = /^\s*corpus:\s+(\S+)/m.exec(stdout);
       if (ws && corpusLog) {
         // Keep draining: the server must never block on a full stdout pipe.
         child.stdout.off('data', onData);
         child.stdout.on('data', keep);
-        resolve({ wsUrl: ws[1], corpusFile: corpusLog[1].trim() });
+        resolve({ wsUrl: ws[1], corpus: corpusLog[1] });
       }
     };
     child.stdout.on('data', onData);
@@ -133,7 +133,7 @@ export async function startDocent(bundle, { port = 0, corpus, args = [], env = {
       reject(new Error(`docent exited (${code ?? signal}) before it was serving:\n${output}`)),
     );
   });
-  const { wsUrl, corpusFile } = await withDeadline(started, DEADLINE_MS, () => {
+  const { wsUrl, corpus: corpusFolder } = await withDeadline(started, DEADLINE_MS, () => {
     child.kill('SIGKILL');
     return `docent did not print its addresses within ${DEADLINE_MS} ms:\n${output}`;
   });
@@ -144,7 +144,8 @@ export async function startDocent(bundle, { port = 0, corpus, args = [], env = {
     base,
     wsUrl,
     corpusDir,
-    corpusFile,
+    /** The corpus folder as Docent printed it (absolute). */
+    corpus: corpusFolder,
     port: Number(new URL(base).port),
     process: child,
     output: () => output,
@@ -179,17 +180,35 @@ export async function startDocent(bundle, { port = 0, corpus, args = [], env = {
 }
 
 /** The events of a corpus log file, in order (a torn last line of a killed run is skipped). */
-export function corpusEvents(file) {
-  const lines = fs.readFileSync(file, 'utf8').split('\n').filter(Boolean);
+/**
+ * Every event of a corpus folder holding one run (its day logs and its sessions' logs, see
+ * docs/CORPUS.md), in `seq` order. A last line cut short by a kill is skipped.
+ */
+export function corpusEvents(corpus) {
+  const logs = [];
+  const days = path.join(corpus, 'days');
+  for (const day of listed(days)) {
+    for (const log of listed(path.join(days, day))) if (log.endsWith('.jsonl')) logs.push(path.join(days, day, log));
+  }
+  const sessions = path.join(corpus, 'sessions');
+  for (const session of listed(sessions)) logs.push(path.join(sessions, session, 'events.jsonl'));
   const events = [];
-  for (const [i, line] of lines.entries()) {
-    try {
-      events.push(JSON.parse(line));
-    } catch (e) {
-      if (i !== lines.length - 1) throw e;
+  for (const log of logs.filter((l) => fs.existsSync(l))) {
+    const lines = fs.readFileSync(log, 'utf8').split('\n').filter(Boolean);
+    for (const [i, line] of lines.entries()) {
+      try {
+        events.push(JSON.parse(line));
+      } catch (e) {
+        if (i !== lines.length - 1) throw e;
+      }
     }
   }
-  return events;
+  return events.sort((a, b) => a.seq - b.seq);
+}
+
+/** The names in `dir`, sorted; none when it does not exist. */
+function listed(dir) {
+  return fs.existsSync(dir) ? fs.readdirSync(dir).sort() : [];
 }
 
 /** Resolves like `promise`, or rejects with `message()` once `ms` have passed. */

@@ -180,5 +180,5 @@ export async function withConsoleServer(browser, bundle, body) {
   } finally {
     for (const step of cleanup) await step();
   }
-  return corpusEvents(server.corpusFile);
+  return corpusEvents(server.corpus);
 }

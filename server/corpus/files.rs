@@ -1,0 +1,129 @@
+//! The log file the writer appends to now, and its sync thread. Events go to several files
+//! (a day log, a session's log); the writer switches when the next lines belong elsewhere,
+//! syncing the file it leaves completely first, so that a finished session is on disk.
+
+use std::fs::{File, OpenOptions};
+use std::io::{self, Read, Seek, SeekFrom, Write};
+use std::path::{Path, PathBuf};
+use std::time::Duration;
+
+use crate::corpus::sync::Syncer;
+
+/// Where the writer's lines go: the file they belong in, opened on demand.
+pub(super) trait Sink {
+    /// The file at `path`, open for appending.
+    fn file_for(&mut self, path: &Path) -> io::Result<&mut dyn Write>;
+    /// Lines were written to the current file.
+    fn written(&mut self);
+    /// Syncs the open file completely and closes it.
+    fn close(&mut self) -> io::Result<()>;
+}
+
+/// The open log file and its syncer.
+pub(super) struct Files {
+    sync_interval: Duration,
+    open: Option<Open>,
+}
+
+struct Open {
+    path: PathBuf,
+    file: File,
+    syncer: Syncer,
+}
+
+impl Files {
+    /// No file open yet; each one opened is synced every `sync_interval` while written.
+    pub(super) fn new(sync_interval: Duration) -> Self {
+        Files {
+            sync_interval,
+            open: None,
+        }
+    }
+
+    fn open(&mut self, path: &Path) -> io::Result<&mut Open> {
+        if self.open.as_ref().is_some_and(|o| o.path != path) {
+            self.close()?;
+        }
+        if self.open.is_none() {
+            let file = open_for_append(path)?;
+            let syncer = Syncer::start(file.try_clone()?, self.sync_interval)?;
+            self.open = Some(Open {
+                path: path.to_owned(),
+                file,
+                syncer,
+            });
+        }
+        Ok(self.open.as_mut().expect("opened above"))
+    }
+}
+
+impl Sink for Files {
+    fn file_for(&mut self, path: &Path) -> io::Result<&mut dyn Write> {
+        Ok(&mut self.open(path)?.file)
+    }
+
+    fn written(&mut self) {
+        if let Some(open) = &self.open {
+            open.syncer.written();
+        }
+    }
+
+    fn close(&mut self) -> io::Result<()> {
+        match self.open.take() {
+            Some(open) => open.syncer.finish(&open.file),
+            None => Ok(()),
+        }
+    }
+}
+
+/// Opens `path` for appending, creating it and its folders. A file a crash left ending in the
+/// middle of a line first gets the missing `\n`: the torn line stays a line of its own (which
+/// readers skip), and the next one is whole.
+fn open_for_append(path: &Path) -> io::Result<File> {
+    if let Some(dir) = path.parent() {
+        std::fs::create_dir_all(dir)?;
+    }
+    let mut file = OpenOptions::new().create(true).append(true).open(path)?;
+    if !ends_a_line(path)? {
+        file.write_all(b"\n")?;
+    }
+    Ok(file)
+}
+
+/// Whether the file at `path` is empty or ends with `\n`.
+fn ends_a_line(path: &Path) -> io::Result<bool> {
+    let mut file = File::open(path)?;
+    if file.metadata()?.len() == 0 {
+        return Ok(true);
+    }
+    file.seek(SeekFrom::End(-1))?;
+    let mut last = [0u8];
+    file.read_exact(&mut last)?;
+    Ok(last[0] == b'\n')
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn a_torn_last_line_is_ended_before_anything_is_appended() {
+        let dir = tempfile::tempdir().unwrap();
+        let path = dir.path().join("days/2026-11-24.jsonl");
+        let mut files = Files::new(Duration::from_secs(3600));
+        files
+            .file_for(&path)
+            .unwrap()
+            .write_all(b"{\"seq\":1}\n{\"se")
+            .unwrap();
+        files.close().unwrap();
+        files
+            .file_for(&path)
+            .unwrap()
+            .write_all(b"{\"seq\":3}\n")
+            .unwrap();
+        files.close().unwrap();
+        let text = std::fs::read_to_string(&path).unwrap();
+        assert_eq!(text, "{\"seq\":1}\n{\"se\n{\"seq\":3}\n");
+    }
+}

@@ -1,0 +1,187 @@
+//! The corpus folder by visitor session: a session's events go to its own folder, with a
+//! manifest, and carry the session clock; every other event goes to the run's day log. Read
+//! back as a researcher would: from the files alone.
+
+mod common;
+
+use std::path::{Path, PathBuf};
+
+use common::process::spawn_docent;
+use common::{TempBundle, TestServer, WsClient, read_corpus};
+use docent::corpus::layout::{SESSION_EVENTS, SESSIONS_DIR};
+use docent::corpus::manifest::SessionManifest;
+use serde_json::{Value, json};
+
+const ACTS: &str = r#"
+- Label: WELCOME
+  Text: [Hello!]
+  TextChild: [Hi there!]
+"#;
+
+fn tour() -> TempBundle {
+    TempBundle::new(ACTS).with_file("docent.yaml", "speech: {adapter: log}\n")
+}
+
+/// The session folders, oldest first.
+fn session_dirs(corpus: &Path) -> Vec<PathBuf> {
+    let mut dirs: Vec<PathBuf> = match std::fs::read_dir(corpus.join(SESSIONS_DIR)) {
+        Ok(entries) => entries.map(|e| e.unwrap().path()).collect(),
+        Err(_) => Vec::new(),
+    };
+    dirs.sort();
+    dirs
+}
+
+fn lines(path: &Path) -> Vec<Value> {
+    std::fs::read_to_string(path)
+        .unwrap()
+        .lines()
+        .map(|l| serde_json::from_str(l).unwrap())
+        .collect()
+}
+
+#[tokio::test]
+async fn a_sessions_events_are_in_its_folder_on_its_clock_and_the_rest_in_the_day_log() {
+    let b = tour();
+    // Our own folder: the server's own is removed when it stops.
+    let folder = tempfile::tempdir().unwrap();
+    let server = TestServer::start_with(b.path(), |o| o.corpus_dir = folder.path().into()).await;
+    let corpus = server.corpus.clone();
+    let mut op = server.operator().await;
+    op.send(json!({"type": "trigger", "label": "WELCOME", "ref": "before"}))
+        .await;
+    op.recv_type("triggered").await;
+    op.send(json!({"type": "mark", "mark": "session_start"}))
+        .await;
+    op.recv_type("marked").await;
+    op.send(json!({"type": "mark", "mark": "group", "value": "children"}))
+        .await;
+    op.recv_type("marked").await;
+    op.send(json!({"type": "trigger", "label": "WELCOME", "ref": "during"}))
+        .await;
+    assert_eq!(op.recv_type("triggered").await["text"], "Hi there!");
+    op.send(json!({"type": "mark", "mark": "session_end"}))
+        .await;
+    op.recv_type("marked").await;
+    op.send(json!({"type": "trigger", "label": "WELCOME", "ref": "after"}))
+        .await;
+    op.recv_type("triggered").await;
+    let all = server.stop().await;
+
+    // Nothing lost, nothing twice: the files together hold the run, seq 1, 2, 3, ...
+    let seqs: Vec<u64> = all.iter().map(|e| e["seq"].as_u64().unwrap()).collect();
+    assert_eq!(seqs, (1..=all.len() as u64).collect::<Vec<_>>());
+
+    let dirs = session_dirs(&corpus);
+    assert_eq!(dirs.len(), 1, "{dirs:?}");
+    let session = lines(&dirs[0].join(SESSION_EVENTS));
+    let first = &session[0];
+    let last = session.last().unwrap();
+    assert_eq!(first["type"], "session.started");
+    assert_eq!(
+        (last["type"].as_str(), last["reason"].as_str()),
+        (Some("session.ended"), Some("marked"))
+    );
+    let start = first["mono_us"].as_u64().unwrap();
+    for e in &session {
+        assert_eq!(e["v"], 3);
+        let on_session_clock = e["session_us"].as_u64().expect("session_us");
+        assert_eq!(
+            on_session_clock,
+            e["mono_us"].as_u64().unwrap() - start,
+            "{e}"
+        );
+    }
+    let refs = |events: &[Value]| -> Vec<String> {
+        (events.iter())
+            .filter(|e| e["type"] == "act.triggered")
+            .map(|e| e["ref"].as_str().unwrap().to_owned())
+            .collect()
+    };
+    assert_eq!(refs(&session), ["during"]);
+    let outside: Vec<Value> = (all.iter())
+        .filter(|e| !session.iter().any(|s| s["seq"] == e["seq"]))
+        .cloned()
+        .collect();
+    assert_eq!(refs(&outside), ["before", "after"]);
+    assert!(outside.iter().all(|e| e.get("session_us").is_none()));
+    assert_eq!(outside[0]["type"], "server.started");
+
+    let manifest = SessionManifest::read_from(&dirs[0]).unwrap();
+    let name = dirs[0].file_name().unwrap().to_str().unwrap();
+    assert_eq!(manifest.session, name);
+    assert_eq!(manifest.number, 1);
+    assert_eq!(manifest.docent, env!("CARGO_PKG_VERSION"));
+    let bundle = std::fs::canonicalize(b.path()).unwrap();
+    assert_eq!(manifest.bundle.as_deref(), bundle.to_str());
+    assert_eq!(manifest.started.seq, first["seq"].as_u64().unwrap());
+    assert_eq!(manifest.started.time, first["time"].as_str().unwrap());
+    assert_eq!(manifest.started.source, "operator");
+    let ended = manifest.ended.expect("ended");
+    assert_eq!(
+        (ended.seq, ended.reason.as_deref()),
+        (last["seq"].as_u64().unwrap(), Some("marked"))
+    );
+    assert_eq!(manifest.group.as_deref(), Some("children"));
+    assert_eq!(manifest.context.as_deref(), Some("TextChild"));
+}
+
+#[tokio::test]
+async fn a_shutdown_ends_the_running_session_after_its_clients_left() {
+    let b = tour();
+    // Our own folder: the server's own is removed when it stops.
+    let folder = tempfile::tempdir().unwrap();
+    let server = TestServer::start_with(b.path(), |o| o.corpus_dir = folder.path().into()).await;
+    let corpus = server.corpus.clone();
+    let mut op = server.operator().await;
+    op.send(json!({"type": "mark", "mark": "session_start"}))
+        .await;
+    op.recv_type("marked").await;
+    read_corpus(&corpus); // readable while the server runs
+    server.stop().await;
+    let dirs = session_dirs(&corpus);
+    let session = lines(&dirs[0].join(SESSION_EVENTS));
+    let kinds: Vec<&str> = session
+        .iter()
+        .map(|e| e["type"].as_str().unwrap())
+        .collect();
+    assert!(kinds.contains(&"server.stopping"), "{kinds:?}");
+    assert!(kinds.contains(&"client.left"), "{kinds:?}");
+    let last = session.last().unwrap();
+    assert_eq!(last["type"], "session.ended");
+    assert_eq!(
+        (last["source"].as_str(), last["reason"].as_str()),
+        (Some("server"), Some("server-stopping"))
+    );
+    assert!(last.get("client").is_none(), "no client ended it: {last}");
+    let ended = SessionManifest::read_from(&dirs[0]).unwrap().ended.unwrap();
+    assert_eq!(ended.source, "server");
+}
+
+#[tokio::test]
+async fn a_killed_server_leaves_an_open_session_with_a_readable_log_and_manifest() {
+    let b = tour();
+    let corpus = tempfile::tempdir().unwrap();
+    let (mut child, addr) = spawn_docent(b.path(), corpus.path());
+    let mut op = WsClient::connect(&format!("ws://{addr}/ws")).await;
+    op.send(json!({"type": "hello", "role": "operator", "token": common::OPERATOR_TOKEN}))
+        .await;
+    op.recv_type("welcome").await;
+    op.send(json!({"type": "mark", "mark": "session_start"}))
+        .await;
+    op.recv_type("marked").await;
+    op.send(json!({"type": "trigger", "label": "WELCOME", "ref": "acknowledged"}))
+        .await;
+    op.recv_type("triggered").await;
+    child.kill().expect("SIGKILL");
+    child.wait().unwrap();
+    let dirs = session_dirs(corpus.path());
+    assert_eq!(dirs.len(), 1);
+    let manifest = SessionManifest::read_from(&dirs[0]).expect("a whole manifest");
+    assert_eq!(manifest.ended, None, "nobody ended it");
+    let session = lines(&dirs[0].join(SESSION_EVENTS));
+    assert!(
+        (session.iter()).any(|e| e["type"] == "act.triggered" && e["ref"] == "acknowledged"),
+        "the acknowledged trigger is in the session's log"
+    );
+}
