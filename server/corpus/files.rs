@@ -76,14 +76,20 @@ impl Sink for Files {
     }
 }
 
-/// Opens `path` for appending, creating it and its folders. A file a crash left ending in the
-/// middle of a line first gets the missing `\n`: the torn line stays a line of its own (which
-/// readers skip), and the next one is whole.
+/// Opens `path` for appending, creating it and its folders, and locks it (an advisory lock,
+/// released when it is closed or the server dies), so that `docent corpus` can tell a session
+/// being recorded from one a killed server left open. A file a crash left ending in the middle
+/// of a line first gets the missing `\n`: the torn line stays a line of its own (which readers
+/// skip), and the next one is whole.
 fn open_for_append(path: &Path) -> io::Result<File> {
     if let Some(dir) = path.parent() {
         std::fs::create_dir_all(dir)?;
     }
     let mut file = OpenOptions::new().create(true).append(true).open(path)?;
+    if let Err(error) = file.try_lock() {
+        // Every file a run writes is its own; only the lock's readers are misled.
+        tracing::warn!(path = %path.display(), %error, "cannot lock the corpus file being written");
+    }
     if !ends_a_line(path)? {
         file.write_all(b"\n")?;
     }
@@ -125,5 +131,22 @@ mod tests {
         files.close().unwrap();
         let text = std::fs::read_to_string(&path).unwrap();
         assert_eq!(text, "{\"seq\":1}\n{\"se\n{\"seq\":3}\n");
+    }
+
+    #[test]
+    fn the_file_being_written_is_locked_until_it_is_closed() {
+        let dir = tempfile::tempdir().unwrap();
+        let path = dir
+            .path()
+            .join("sessions/2026-11-24T10-00-00Z/events.jsonl");
+        let mut files = Files::new(Duration::from_secs(3600));
+        files.file_for(&path).unwrap();
+        let reader = File::open(&path).unwrap();
+        assert!(matches!(
+            reader.try_lock_shared(),
+            Err(std::fs::TryLockError::WouldBlock)
+        ));
+        files.close().unwrap();
+        reader.try_lock_shared().expect("free once closed");
     }
 }
