@@ -204,14 +204,7 @@ pub async fn run(
         tracing::warn!("some tasks did not finish within {SHUTDOWN_GRACE:?}");
     }
     // After every client left, so that their leaving is in the session's log.
-    if let Some(session) = visits.end() {
-        hub.publish(EventKind::SessionEnded {
-            session,
-            source: Source::Server,
-            client: None,
-            reason: SessionEnd::ServerStopping,
-        });
-    }
+    visits.end(Source::Server, None, SessionEnd::ServerStopping);
     hub.close_corpus();
     let logged = corpus.finish().await?;
     tracing::info!(events = logged, "corpus log flushed");

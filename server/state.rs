@@ -45,7 +45,7 @@ pub struct AppState {
     pub access: Arc<Access>,
     /// Proposals from dialog managers waiting for an operator.
     pub proposals: Arc<Proposals>,
-    /// The visitor session marked by operators.
+    /// The visitor session: marked by operators and dialog managers, or started by a touch.
     pub visits: Arc<Visits>,
     /// The allowance of `page.missing` reports (a flood of bad links is not all logged).
     pub missing_pages: Arc<MissingPageReports>,
@@ -109,13 +109,19 @@ impl AppState {
         access: Access,
     ) -> Self {
         let hub = dispatcher.hub().clone();
+        let visits = Arc::new(Visits::new(hub.clone()));
+        // Sessions a touch started end when visitors stop touching (the live bundle's setting).
+        let live = Arc::clone(&dispatcher);
+        let idle = Arc::clone(&visits)
+            .end_idle_sessions(move || live.bundle().config.corpus, life.shutdown.clone());
+        life.spawn(idle);
         AppState {
             dispatcher,
             hub,
             devices,
             access: Arc::new(access),
             proposals: Arc::default(),
-            visits: Arc::default(),
+            visits,
             missing_pages: Arc::default(),
             reload: Arc::default(),
             clients: Arc::new(Clients {

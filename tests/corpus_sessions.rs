@@ -22,6 +22,23 @@ fn tour() -> TempBundle {
     TempBundle::new(ACTS).with_file("docent.yaml", "speech: {adapter: log}\n")
 }
 
+/// A kiosk bundle whose page offers WELCOME, with `corpus` settings.
+fn kiosk_tour(corpus: &str) -> TempBundle {
+    TempBundle::new(ACTS)
+        .with_file(
+            "docent.yaml",
+            &format!("speech: {{adapter: log}}\ncorpus: {corpus}\n"),
+        )
+        .with_file(
+            "pages/index.html",
+            r#"<html><body><button data-act="WELCOME">Hello</button></body></html>"#,
+        )
+}
+
+fn is(kind: &'static str) -> impl Fn(&Value) -> bool {
+    move |e| e["type"] == kind
+}
+
 /// The session folders, oldest first.
 fn session_dirs(corpus: &Path) -> Vec<PathBuf> {
     let mut dirs: Vec<PathBuf> = match std::fs::read_dir(corpus.join(SESSIONS_DIR)) {
@@ -183,5 +200,84 @@ async fn a_killed_server_leaves_an_open_session_with_a_readable_log_and_manifest
     assert!(
         (session.iter()).any(|e| e["type"] == "act.triggered" && e["ref"] == "acknowledged"),
         "the acknowledged trigger is in the session's log"
+    );
+}
+
+#[tokio::test(start_paused = true)]
+async fn a_visitors_tap_starts_a_session_that_ends_after_the_idle_time_without_a_touch() {
+    // Shorter than the harness's deadline for a frame, which runs on the same paused clock.
+    let b = kiosk_tour("{session_idle: 5s}");
+    let server = TestServer::start(b.path()).await;
+    let mut op = server.operator().await;
+    let mut kiosk = server
+        .client(json!({"type": "hello", "role": "kiosk"}))
+        .await;
+    kiosk
+        .send(json!({"type": "trigger", "label": "WELCOME", "ref": "tap"}))
+        .await;
+    kiosk.recv_type("triggered").await;
+    let started = op.event_where(is("session.started")).await;
+    assert_eq!(
+        (started["source"].as_str(), started["session"].as_u64()),
+        (Some("kiosk"), Some(1))
+    );
+    let act = op
+        .event_where(|e| e["type"] == "act.triggered" && e["ref"] == "tap")
+        .await;
+    assert!(
+        started["seq"].as_u64() < act["seq"].as_u64(),
+        "the tap's act is in the session it started"
+    );
+    let tapped = tokio::time::Instant::now();
+    let ended = op.event_where(is("session.ended")).await;
+    assert_eq!(
+        tapped.elapsed().as_secs(),
+        5,
+        "the idle time after the last touch"
+    );
+    assert_eq!(
+        (ended["reason"].as_str(), ended["source"].as_str()),
+        (Some("idle"), Some("server"))
+    );
+    // (No graceful stop on a paused clock: the writer thread's last sync runs in real time.)
+}
+
+#[tokio::test]
+async fn with_session_start_marked_a_tap_starts_nothing_and_a_dialog_manager_may_mark_one() {
+    let b = kiosk_tour("{session_start: marked}");
+    let server = TestServer::start(b.path()).await;
+    let mut kiosk = server
+        .client(json!({"type": "hello", "role": "kiosk"}))
+        .await;
+    kiosk
+        .send(json!({"type": "trigger", "label": "WELCOME"}))
+        .await;
+    kiosk.recv_type("triggered").await;
+    let (_, state) = server.get("/api/state").await;
+    assert_eq!(state["session"], Value::Null, "no session from a tap");
+    let mut dm = server
+        .client(json!({"type": "hello", "role": "dm", "name": "planner"}))
+        .await;
+    dm.send(json!({"type": "mark", "mark": "session_start"}))
+        .await;
+    assert_eq!(dm.recv_type("marked").await["session"], 1);
+    dm.send(json!({"type": "mark", "mark": "group", "value": "children"}))
+        .await;
+    assert_eq!(
+        dm.recv_type("error").await["code"],
+        "forbidden",
+        "groups are the operator's"
+    );
+    dm.send(json!({"type": "mark", "mark": "session_end"}))
+        .await;
+    assert_eq!(dm.recv_type("marked").await["session"], 1);
+    let all = server.stop().await;
+    let started = all.iter().find(|e| e["type"] == "session.started").unwrap();
+    assert_eq!(started["source"], "dm");
+    assert_eq!(
+        all.iter()
+            .filter(|e| e["type"] == "session.started")
+            .count(),
+        1
     );
 }

@@ -145,7 +145,7 @@ async fn proposals_are_checked_and_each_role_keeps_to_its_part() {
     let id = dm.recv_type("proposed").await["proposal"].clone();
     dm.send(json!({"type": "accept", "proposal": id})).await;
     assert_eq!(dm.recv_type("error").await["code"], "forbidden");
-    dm.send(json!({"type": "mark", "mark": "session_start"}))
+    dm.send(json!({"type": "mark", "mark": "situation", "value": "question"}))
         .await;
     assert_eq!(dm.recv_type("error").await["code"], "forbidden");
     server.stop().await;

@@ -130,6 +130,33 @@ pub struct KioskConfig {
     pub leave_page_stops_speech: bool,
 }
 
+/// What starts a visitor session (`corpus: session_start:`).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum SessionStart {
+    /// A visitor's first touch when none runs (the default), or a mark.
+    Touch,
+    /// Only an operator's or a dialog manager's mark.
+    Marked,
+}
+
+/// How the corpus is cut into visitor sessions (`corpus:`).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct CorpusSettings {
+    /// What starts a session.
+    pub session_start: SessionStart,
+    /// A session a touch started ends after this long without a touch; zero: never.
+    pub session_idle: Duration,
+}
+
+impl Default for CorpusSettings {
+    fn default() -> Self {
+        CorpusSettings {
+            session_start: SessionStart::Touch,
+            session_idle: Duration::from_secs(120),
+        }
+    }
+}
+
 /// What the projector shows once a video has ended (`projector: after_video:`).
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum AfterVideo {
@@ -277,6 +304,8 @@ pub struct SiteConfig {
     pub kiosk: KioskConfig,
     /// Projector shell settings.
     pub projector: ProjectorConfig,
+    /// Visitor sessions in the corpus.
+    pub corpus: CorpusSettings,
     /// How long a ws adapter may take to answer a command once it is its turn.
     pub adapter_timeout: Duration,
     /// Site-declared verbs, by name (upper case).
@@ -322,6 +351,7 @@ impl Default for SiteConfig {
                 after_video: AfterVideo::Black,
                 highlight_edge: 0.02,
             },
+            corpus: CorpusSettings::default(),
             adapter_timeout: Duration::from_secs(30),
             verbs: BTreeMap::new(),
             access: AccessSettings::default(),

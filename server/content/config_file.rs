@@ -16,7 +16,7 @@ mod devices;
 pub(crate) mod operator;
 pub(crate) mod policy;
 mod reader;
-mod screens;
+pub(crate) mod screens;
 pub(crate) mod server;
 mod verbs;
 
@@ -49,6 +49,7 @@ pub(crate) const TOP_KEYS: &[&str] = &[
     "adapters",
     "kiosk",
     "projector",
+    "corpus",
     "verbs",
     "access",
     "operator",
@@ -106,6 +107,7 @@ impl Reader {
                 "drive" => self.drive(value, config),
                 "kiosk" => out.idle_act = self.kiosk(value, config),
                 "projector" => self.projector(value, config),
+                "corpus" => self.corpus(value, config),
                 "adapters" => {
                     for (_, value) in self.entries(value, &["timeout"], "adapters") {
                         let parse = |t: &str| parse_duration(t).filter(|d| !d.is_zero());

@@ -20,6 +20,8 @@ pub enum SessionEnd {
     NextSession,
     /// The server shut down while it ran.
     ServerStopping,
+    /// No visitor touched the screen for the site's idle time (a session a touch started).
+    Idle,
 }
 
 impl SessionEnd {
@@ -29,6 +31,7 @@ impl SessionEnd {
             SessionEnd::Marked => "marked",
             SessionEnd::NextSession => "next-session",
             SessionEnd::ServerStopping => "server-stopping",
+            SessionEnd::Idle => "idle",
         }
     }
 }

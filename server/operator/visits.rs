@@ -1,42 +1,153 @@
-//! Visitor sessions as the operator marks them: a session starts and ends by hand, and the
-//! group and situation marks made meanwhile carry its number into the corpus.
+//! Visitor sessions: the unit of the corpus. A session starts when an operator or a dialog
+//! manager marks it, or (by default) at a visitor's first touch; one that a touch started ends
+//! after the site's idle time without a touch; any ends when it is marked, when the next one
+//! starts, or at shutdown. Every start and end is published here, under the same lock that
+//! changes the state, so that the log's order is the order things happened.
 
-use std::sync::Mutex;
+use std::sync::{Arc, Mutex};
+use std::time::Duration;
 
+use tokio::sync::Notify;
+use tokio::time::Instant;
+use tokio_util::sync::CancellationToken;
+
+use crate::content::config::{CorpusSettings, SessionStart};
+use crate::events::{EventKind, Hub, SessionEnd, Source};
 use crate::sync::lock;
 
 /// The visitor groups an operator can note.
 pub const VISITOR_GROUPS: [&str; 3] = ["single", "group", "children"];
 
 /// The current visitor session.
-#[derive(Debug, Default)]
 pub struct Visits {
+    hub: Hub,
     inner: Mutex<Inner>,
+    /// A session started by a touch: the idle watch has a new deadline to keep.
+    started_by_touch: Notify,
 }
 
 #[derive(Debug, Default)]
 struct Inner {
     last: u64,
-    current: Option<u64>,
+    current: Option<Current>,
+}
+
+#[derive(Debug)]
+struct Current {
+    number: u64,
+    /// Started by a visitor's touch: it ends after the idle time.
+    by_touch: bool,
+    last_touch: Instant,
 }
 
 impl Visits {
-    /// Starts a new session; returns the one it ended (if one was running) and the new one.
-    pub fn start(&self) -> (Option<u64>, u64) {
-        let mut inner = lock(&self.inner);
-        inner.last += 1;
-        let session = inner.last;
-        (inner.current.replace(session), session)
+    /// No session yet; starts and ends are published to `hub`.
+    pub fn new(hub: Hub) -> Self {
+        Visits {
+            hub,
+            inner: Mutex::default(),
+            started_by_touch: Notify::new(),
+        }
     }
 
-    /// Ends the running session, if any, and returns it.
-    pub fn end(&self) -> Option<u64> {
-        lock(&self.inner).current.take()
+    /// Starts a new session (ending the running one, if any, first); returns its number.
+    pub fn start(&self, source: Source, client: Option<u64>) -> u64 {
+        let mut inner = lock(&self.inner);
+        self.begin(&mut inner, source, client, false)
+    }
+
+    /// Ends the running session, if any, and returns its number.
+    pub fn end(&self, source: Source, client: Option<u64>, reason: SessionEnd) -> Option<u64> {
+        let mut inner = lock(&self.inner);
+        let ended = inner.current.take()?;
+        self.publish_end(ended.number, source, client, reason);
+        Some(ended.number)
     }
 
     /// The running session.
     pub fn current(&self) -> Option<u64> {
-        lock(&self.inner).current
+        lock(&self.inner).current.as_ref().map(|c| c.number)
+    }
+
+    /// A visitor touched the screen of kiosk `client` (a trigger, a page): starts a session
+    /// when none runs and the site starts them so; keeps one going that a touch started.
+    /// Called before the touch's own events, so that they are in the session.
+    pub fn touched(&self, settings: &CorpusSettings, client: u64) {
+        let mut inner = lock(&self.inner);
+        match &mut inner.current {
+            Some(current) => current.last_touch = Instant::now(),
+            None if settings.session_start == SessionStart::Touch => {
+                self.begin(&mut inner, Source::Kiosk, Some(client), true);
+                self.started_by_touch.notify_one();
+            }
+            None => {}
+        }
+    }
+
+    /// Ends a session that a touch started once `settings()` idle time passed without a
+    /// touch, until `shutdown`. The settings are read anew each time (live reload).
+    pub async fn end_idle_sessions(
+        self: Arc<Self>,
+        settings: impl Fn() -> CorpusSettings,
+        shutdown: CancellationToken,
+    ) {
+        loop {
+            let deadline = self.idle_deadline(settings().session_idle);
+            let wait = async {
+                match deadline {
+                    Some(deadline) => tokio::time::sleep_until(deadline).await,
+                    None => std::future::pending().await,
+                }
+            };
+            tokio::select! {
+                () = wait => {}
+                () = self.started_by_touch.notified() => continue,
+                () = shutdown.cancelled() => return,
+            }
+            let idle = settings().session_idle;
+            let mut inner = lock(&self.inner);
+            let overdue = (inner.current.as_ref()).is_some_and(|c| {
+                c.by_touch && !idle.is_zero() && c.last_touch + idle <= Instant::now()
+            });
+            if overdue && let Some(ended) = inner.current.take() {
+                self.publish_end(ended.number, Source::Server, None, SessionEnd::Idle);
+            }
+        }
+    }
+
+    /// When the running session ends for want of touches, if it is one a touch started.
+    fn idle_deadline(&self, idle: Duration) -> Option<Instant> {
+        let inner = lock(&self.inner);
+        let current = inner.current.as_ref()?;
+        (current.by_touch && !idle.is_zero()).then(|| current.last_touch + idle)
+    }
+
+    fn begin(&self, inner: &mut Inner, source: Source, client: Option<u64>, by_touch: bool) -> u64 {
+        if let Some(ended) = inner.current.take() {
+            self.publish_end(ended.number, source, client, SessionEnd::NextSession);
+        }
+        inner.last += 1;
+        let number = inner.last;
+        inner.current = Some(Current {
+            number,
+            by_touch,
+            last_touch: Instant::now(),
+        });
+        self.hub.publish(EventKind::SessionStarted {
+            session: number,
+            source,
+            client,
+        });
+        number
+    }
+
+    fn publish_end(&self, session: u64, source: Source, client: Option<u64>, reason: SessionEnd) {
+        self.hub.publish(EventKind::SessionEnded {
+            session,
+            source,
+            client,
+            reason,
+        });
     }
 }
 
@@ -44,15 +155,81 @@ impl Visits {
 mod tests {
     use super::*;
 
+    fn touch_starts(idle: Duration) -> CorpusSettings {
+        CorpusSettings {
+            session_start: SessionStart::Touch,
+            session_idle: idle,
+        }
+    }
+
     #[test]
     fn starting_a_session_ends_the_running_one() {
-        let visits = Visits::default();
+        let (hub, _feed) = Hub::new();
+        let visits = Visits::new(hub);
         assert_eq!(visits.current(), None);
-        assert_eq!(visits.start(), (None, 1));
-        assert_eq!(visits.start(), (Some(1), 2));
+        assert_eq!(visits.start(Source::Operator, Some(1)), 1);
+        assert_eq!(visits.start(Source::Operator, Some(1)), 2);
         assert_eq!(visits.current(), Some(2));
-        assert_eq!(visits.end(), Some(2));
-        assert_eq!(visits.end(), None);
-        assert_eq!(visits.start(), (None, 3));
+        assert_eq!(
+            visits.end(Source::Operator, Some(1), SessionEnd::Marked),
+            Some(2)
+        );
+        assert_eq!(
+            visits.end(Source::Operator, Some(1), SessionEnd::Marked),
+            None
+        );
+        assert_eq!(visits.start(Source::Dm, None), 3);
+    }
+
+    #[test]
+    fn a_touch_starts_a_session_only_when_the_site_says_so() {
+        let (hub, _feed) = Hub::new();
+        let visits = Visits::new(hub);
+        let marked = CorpusSettings {
+            session_start: SessionStart::Marked,
+            session_idle: Duration::from_secs(60),
+        };
+        visits.touched(&marked, 7);
+        assert_eq!(visits.current(), None);
+        visits.touched(&touch_starts(Duration::from_secs(60)), 7);
+        assert_eq!(visits.current(), Some(1));
+        visits.touched(&touch_starts(Duration::from_secs(60)), 8);
+        assert_eq!(visits.current(), Some(1), "a running session goes on");
+    }
+
+    #[tokio::test(start_paused = true)]
+    async fn a_session_a_touch_started_ends_after_the_idle_time_without_a_touch() {
+        let (hub, _feed) = Hub::new();
+        let mut events = hub.subscribe();
+        let visits = Arc::new(Visits::new(hub));
+        let idle = Duration::from_secs(120);
+        let shutdown = CancellationToken::new();
+        let watch = tokio::spawn(
+            Arc::clone(&visits).end_idle_sessions(move || touch_starts(idle), shutdown.clone()),
+        );
+        visits.touched(&touch_starts(idle), 7);
+        let began = Instant::now();
+        tokio::time::sleep(Duration::from_secs(100)).await;
+        visits.touched(&touch_starts(idle), 7);
+        assert_eq!(visits.current(), Some(1), "kept going by the touch");
+        loop {
+            let event = events.recv().await.unwrap();
+            if let EventKind::SessionEnded { reason, source, .. } = &event.kind {
+                assert_eq!((*reason, *source), (SessionEnd::Idle, Source::Server));
+                break;
+            }
+        }
+        assert_eq!(
+            began.elapsed(),
+            Duration::from_secs(220),
+            "120 s after the last touch"
+        );
+        assert_eq!(visits.current(), None);
+        // A marked session does not end for want of touches.
+        visits.start(Source::Operator, Some(1));
+        tokio::time::sleep(Duration::from_secs(1000)).await;
+        assert_eq!(visits.current(), Some(2));
+        shutdown.cancel();
+        watch.await.unwrap();
     }
 }

@@ -14,6 +14,7 @@ use crate::ws::protocol::{
 };
 
 const OPERATOR: [ClientRole; 1] = [ClientRole::Operator];
+const SESSION_MARKERS: [ClientRole; 2] = [ClientRole::Operator, ClientRole::Dm];
 
 /// A dialog manager proposes an act for an operator to accept or dismiss.
 pub(super) fn propose(
@@ -134,7 +135,8 @@ pub(super) fn dismiss(
     }
 }
 
-/// An operator marks a visitor session, the visitor group or a dialog situation.
+/// An operator marks a visitor session, the visitor group or a dialog situation; a dialog
+/// manager may mark sessions.
 pub(super) fn mark(
     client: &Client,
     role: Option<ClientRole>,
@@ -143,41 +145,25 @@ pub(super) fn mark(
     reference: Option<String>,
 ) {
     let reference = reference.as_deref();
-    let Some(role) = client.allowed(role, &OPERATOR, reference) else {
+    // A dialog manager may cut sessions (it knows when visitors come and go); what the
+    // visitors are and what happened stays the operator's to say.
+    let roles: &[ClientRole] = match mark {
+        MarkKind::SessionStart | MarkKind::SessionEnd => &SESSION_MARKERS,
+        MarkKind::Group | MarkKind::Situation => &OPERATOR,
+    };
+    let Some(role) = client.allowed(role, roles, reference) else {
         return;
     };
     let (source, id) = (role.source(), client.id);
     let visits = &client.state.visits;
     let hub = &client.state.hub;
     let session = match mark {
-        MarkKind::SessionStart => {
-            let (ended, session) = visits.start();
-            if let Some(ended) = ended {
-                hub.publish(EventKind::SessionEnded {
-                    session: ended,
-                    source,
-                    client: Some(id),
-                    reason: SessionEnd::NextSession,
-                });
-            }
-            hub.publish(EventKind::SessionStarted {
-                session,
-                source,
-                client: Some(id),
-            });
-            Some(session)
-        }
+        MarkKind::SessionStart => Some(visits.start(source, Some(id))),
         MarkKind::SessionEnd => {
-            let Some(session) = visits.end() else {
+            let Some(session) = visits.end(source, Some(id), SessionEnd::Marked) else {
                 let message = "no visitor session is running; start one first";
                 return client.reply_error(ErrorCode::NoSession, message, reference, None);
             };
-            hub.publish(EventKind::SessionEnded {
-                session,
-                source,
-                client: Some(id),
-                reason: SessionEnd::Marked,
-            });
             Some(session)
         }
         MarkKind::Group => {

@@ -87,6 +87,11 @@ pub(super) fn trigger(
     if !client.log_writable(reference.as_deref()) {
         return run;
     }
+    if allowed == ClientRole::Kiosk {
+        // Before the trigger's events, so that they are in the session it starts.
+        let corpus = client.state.dispatcher.bundle().config.corpus;
+        client.state.visits.touched(&corpus, client.id);
+    }
     let request = TriggerRequest {
         label,
         context,
@@ -205,6 +210,8 @@ pub(super) fn page_shown(client: &Client, role: Option<ClientRole>, page: String
         client.reply_error(ErrorCode::UnknownPage, &message, None, None);
         return RefusedRun::Over;
     }
+    let corpus = client.state.dispatcher.bundle().config.corpus;
+    client.state.visits.touched(&corpus, client.id);
     client
         .state
         .devices

@@ -1,10 +1,10 @@
-//! The `kiosk:` and `projector:` sections of `docent.yaml`: how the touchscreen and projector
-//! shells behave (idle return home, idle act, what follows a video, the soft edge of
-//! highlights). Whether the idle act
+//! The `kiosk:`, `projector:` and `corpus:` sections of `docent.yaml`: how the touchscreen and
+//! projector shells behave (idle return home, idle act, what follows a video, the soft edge of
+//! highlights) and how visitors' touches cut the corpus into sessions. Whether the idle act
 //! exists is checked later, with the acts (`load.rs`).
 
 use crate::content::acts_file::yaml::Node;
-use crate::content::config::{AfterVideo, SiteConfig};
+use crate::content::config::{AfterVideo, SessionStart, SiteConfig};
 use crate::content::duration::parse_duration;
 use crate::content::model::Located;
 
@@ -15,6 +15,12 @@ pub(crate) const KIOSK_KEYS: &[&str] = &["idle", "idle_act", "leave_page_stops_s
 const IDLE_USAGE: &str = "`idle` is how long the touchscreen waits without a touch before it \
                           returns to the home page: a length of time with its unit, e.g. \
                           `idle: 2m` or `idle: 90s`; `idle: 0s` turns it off.";
+/// The keys of `corpus:`.
+pub(crate) const CORPUS_KEYS: &[&str] = &["session_start", "session_idle"];
+const SESSION_IDLE_USAGE: &str = "`session_idle` is how long a visitor session that a touch \
+                                  started goes on without a touch before it ends: a length of \
+                                  time with its unit, e.g. `session_idle: 2m`; `0s` keeps it \
+                                  going until it is marked ended.";
 const HIGHLIGHT_EDGE_USAGE: &str = "`highlight_edge` is how soft the edge of a HIGHLIGHT area \
                                     is, as a fraction of the projected width: a number from 0 \
                                     (a sharp edge) to 0.5, e.g. `highlight_edge: 0.02`.";
@@ -53,6 +59,25 @@ impl Reader {
             }
         }
         idle_act
+    }
+
+    /// Reads `corpus:` into `config.corpus`.
+    pub(super) fn corpus(&mut self, node: &Node, config: &mut SiteConfig) {
+        for (key, value) in self.entries(node, CORPUS_KEYS, "corpus") {
+            if key == "session_idle" {
+                if let Some(idle) = self.setting(value, SESSION_IDLE_USAGE, parse_duration) {
+                    config.corpus.session_idle = idle;
+                }
+                continue;
+            }
+            let options = [
+                ("touch", SessionStart::Touch),
+                ("marked", SessionStart::Marked),
+            ];
+            if let Some(start) = self.choice(value, "`session_start`", &options) {
+                config.corpus.session_start = start;
+            }
+        }
     }
 
     /// Reads `projector:` into `config.projector`.

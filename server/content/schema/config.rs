@@ -8,6 +8,7 @@ use crate::content::config::{Channel, MAX_PRIORITY, MAX_QUEUE_LIMIT};
 use crate::content::config_file::TOP_KEYS;
 use crate::content::config_file::operator::KEYS as OPERATOR_KEYS;
 use crate::content::config_file::policy::{CHANNEL_KEYS, PRIORITY_KEYS};
+use crate::content::config_file::screens::CORPUS_KEYS;
 use crate::content::config_file::server::KEYS as SERVER_KEYS;
 
 mod site;
@@ -83,6 +84,11 @@ fn top_level(key: &str) -> Value {
         ),
         "kiosk" => section(KIOSK_KEYS, kiosk, "How the touchscreen behaves."),
         "projector" => section(PROJECTOR_KEYS, projector, "How the projector behaves."),
+        "corpus" => section(
+            CORPUS_KEYS,
+            corpus,
+            "How the corpus is cut into visitor sessions.",
+        ),
         "verbs" => verbs(),
         "access" => section(
             ACCESS_KEYS,
@@ -174,6 +180,21 @@ fn drive(key: &str) -> Value {
             bounds["required"] = json!(BOUNDS_KEYS);
             bounds
         }
+        _ => json!({}),
+    }
+}
+
+fn corpus(key: &str) -> Value {
+    match key {
+        "session_start" => choice(
+            &["touch", "marked"],
+            "What starts a visitor session: `touch` (a visitor's first touch when none runs, \
+             or an operator's or dialog manager's mark; the default) or `marked` (only a mark).",
+        ),
+        "session_idle" => duration(
+            "How long a session that a touch started goes on without a touch before it ends, \
+             e.g. `2m` (the default) or `90s`; `0s`: until it is marked ended.",
+        ),
         _ => json!({}),
     }
 }
