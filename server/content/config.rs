@@ -6,6 +6,8 @@ use std::collections::BTreeMap;
 use std::fmt;
 use std::time::Duration;
 
+use crate::events::Consent;
+
 pub use crate::content::config_policy::{
     Channel, ChannelPolicies, ChannelPolicy, MAX_PRIORITY, MAX_QUEUE_LIMIT, Priorities, WhenBusy,
 };
@@ -146,6 +148,8 @@ pub struct CorpusSettings {
     pub session_start: SessionStart,
     /// A session a touch started ends after this long without a touch; zero: never.
     pub session_idle: Duration,
+    /// The consent each session starts with.
+    pub consent: Consent,
 }
 
 impl Default for CorpusSettings {
@@ -153,6 +157,7 @@ impl Default for CorpusSettings {
         CorpusSettings {
             session_start: SessionStart::Touch,
             session_idle: Duration::from_secs(120),
+            consent: Consent::Recorded,
         }
     }
 }

@@ -36,6 +36,8 @@ pub struct SessionManifest {
     pub group: Option<String>,
     /// The context in force when the session started, then as it changed.
     pub context: Option<String>,
+    /// What the visitors agreed to, as last noted: `recorded`, `declined` or `withdrawn`.
+    pub consent: String,
 }
 
 /// A session's start or end, as its event was stamped.

@@ -61,7 +61,10 @@ impl Route {
                 }
             }
             EventKind::SessionStarted {
-                session, source, ..
+                session,
+                source,
+                consent,
+                ..
             } => {
                 let dir = self.new_dir(event);
                 let manifest = SessionManifest {
@@ -74,9 +77,16 @@ impl Route {
                     ended: None,
                     group: None,
                     context: self.context.clone(),
+                    consent: consent.as_str().to_owned(),
                 };
                 self.open = Some((dir, manifest));
                 changed = true;
+            }
+            EventKind::ConsentChanged { consent, .. } => {
+                if let Some((_, manifest)) = &mut self.open {
+                    manifest.consent = consent.as_str().to_owned();
+                    changed = true;
+                }
             }
             EventKind::VisitorGroup { group, .. } => {
                 if let Some((_, manifest)) = &mut self.open {
@@ -155,7 +165,7 @@ mod tests {
     use std::time::{Duration, UNIX_EPOCH};
 
     use super::*;
-    use crate::events::{SessionEnd, Source};
+    use crate::events::{Consent, SessionEnd, Source};
 
     fn at(seq: u64, kind: EventKind) -> Event {
         let time = UNIX_EPOCH + Duration::from_secs(1_795_000_000 + seq);
@@ -186,6 +196,7 @@ mod tests {
             session: 1,
             source: Source::Operator,
             client: Some(4),
+            consent: Consent::Declined,
         };
         let first = route.place(&at(3, start));
         let folder = corpus.join("sessions/2026-11-18T11-06-43Z");

@@ -10,6 +10,36 @@ use super::origin::{ActRef, ClientRole, Source};
 use crate::content::Args;
 use crate::wire::ErrorCode;
 
+/// What a session's visitors agreed to: whether its audio and video may be kept.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, serde::Deserialize)]
+#[serde(rename_all = "kebab-case")]
+pub enum Consent {
+    /// They agreed (or the site records by default, with notice).
+    Recorded,
+    /// They did not agree: nothing of them is recorded.
+    Declined,
+    /// They took it back: what was recorded is removed, and nothing more is recorded.
+    Withdrawn,
+}
+
+impl Consent {
+    /// The name written in the corpus and in `mark` frames.
+    pub fn as_str(self) -> &'static str {
+        match self {
+            Consent::Recorded => "recorded",
+            Consent::Declined => "declined",
+            Consent::Withdrawn => "withdrawn",
+        }
+    }
+
+    /// The state named `word`, if any.
+    pub fn from_word(word: &str) -> Option<Consent> {
+        [Consent::Recorded, Consent::Declined, Consent::Withdrawn]
+            .into_iter()
+            .find(|c| c.as_str() == word)
+    }
+}
+
 /// Why a visitor session ended.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize)]
 #[serde(rename_all = "kebab-case")]
@@ -268,6 +298,20 @@ pub enum EventKind {
         /// The marking client.
         #[serde(skip_serializing_if = "Option::is_none")]
         client: Option<u64>,
+        /// The consent it starts with (the site's `corpus.consent`).
+        consent: Consent,
+    },
+    /// An operator noted what the session's visitors agreed to.
+    #[serde(rename = "consent.changed")]
+    ConsentChanged {
+        /// The session.
+        session: u64,
+        /// The new state.
+        consent: Consent,
+        /// Who noted it.
+        source: Source,
+        /// The noting client.
+        client: u64,
     },
     /// A visitor session ended.
     #[serde(rename = "session.ended")]

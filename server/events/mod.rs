@@ -13,7 +13,7 @@ mod origin;
 mod stamped;
 
 pub use hub::{Committer, CorpusFeed, EVENT_CHANNEL_CAPACITY, HISTORY_LEN, Hub};
-pub use kind::{EventKind, SessionEnd};
+pub use kind::{Consent, EventKind, SessionEnd};
 pub use logged::{LogUnwritable, Logged};
 pub use origin::{ActRef, ClientRole, Source};
 pub use stamped::Event;

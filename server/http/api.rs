@@ -207,6 +207,7 @@ pub async fn get_state(State(state): State<AppState>, _: Authorized) -> Json<Val
         "clients": state.clients(),
         "proposals": state.proposals.pending(),
         "session": state.visits.current(),
+        "consent": state.visits.consent(),
     }))
 }
 

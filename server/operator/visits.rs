@@ -12,11 +12,24 @@ use tokio::time::Instant;
 use tokio_util::sync::CancellationToken;
 
 use crate::content::config::{CorpusSettings, SessionStart};
-use crate::events::{EventKind, Hub, SessionEnd, Source};
+use crate::events::{Consent, EventKind, Hub, SessionEnd, Source};
 use crate::sync::lock;
 
 /// The visitor groups an operator can note.
 pub const VISITOR_GROUPS: [&str; 3] = ["single", "group", "children"];
+
+/// Why a consent mark was refused.
+#[derive(Debug, PartialEq, Eq, thiserror::Error)]
+pub enum ConsentRefused {
+    /// No session runs.
+    #[error("no visitor session is running; start one first")]
+    NoSession,
+    /// It was withdrawn before.
+    #[error(
+        "this session's consent was withdrawn, which cannot be undone; start a new session to record again"
+    )]
+    Withdrawn,
+}
 
 /// The current visitor session.
 pub struct Visits {
@@ -35,6 +48,7 @@ struct Inner {
 #[derive(Debug)]
 struct Current {
     number: u64,
+    consent: Consent,
     /// Started by a visitor's touch: it ends after the idle time.
     by_touch: bool,
     last_touch: Instant,
@@ -50,10 +64,34 @@ impl Visits {
         }
     }
 
-    /// Starts a new session (ending the running one, if any, first); returns its number.
-    pub fn start(&self, source: Source, client: Option<u64>) -> u64 {
+    /// Starts a new session (ending the running one, if any, first) with the site's
+    /// `settings`; returns its number.
+    pub fn start(&self, settings: &CorpusSettings, source: Source, client: Option<u64>) -> u64 {
         let mut inner = lock(&self.inner);
-        self.begin(&mut inner, source, client, false)
+        self.begin(&mut inner, settings, source, client, false)
+    }
+
+    /// Notes what the running session's visitors agreed to; returns the session's number.
+    /// Consent once withdrawn stays so: a new session records again.
+    pub fn set_consent(
+        &self,
+        consent: Consent,
+        source: Source,
+        client: u64,
+    ) -> Result<u64, ConsentRefused> {
+        let mut inner = lock(&self.inner);
+        let current = inner.current.as_mut().ok_or(ConsentRefused::NoSession)?;
+        if current.consent == Consent::Withdrawn && consent != Consent::Withdrawn {
+            return Err(ConsentRefused::Withdrawn);
+        }
+        current.consent = consent;
+        self.hub.publish(EventKind::ConsentChanged {
+            session: current.number,
+            consent,
+            source,
+            client,
+        });
+        Ok(current.number)
     }
 
     /// Ends the running session, if any, and returns its number.
@@ -69,6 +107,11 @@ impl Visits {
         lock(&self.inner).current.as_ref().map(|c| c.number)
     }
 
+    /// The running session's consent.
+    pub fn consent(&self) -> Option<Consent> {
+        lock(&self.inner).current.as_ref().map(|c| c.consent)
+    }
+
     /// A visitor touched the screen of kiosk `client` (a trigger, a page): starts a session
     /// when none runs and the site starts them so; keeps one going that a touch started.
     /// Called before the touch's own events, so that they are in the session.
@@ -77,7 +120,7 @@ impl Visits {
         match &mut inner.current {
             Some(current) => current.last_touch = Instant::now(),
             None if settings.session_start == SessionStart::Touch => {
-                self.begin(&mut inner, Source::Kiosk, Some(client), true);
+                self.begin(&mut inner, settings, Source::Kiosk, Some(client), true);
                 self.started_by_touch.notify_one();
             }
             None => {}
@@ -122,7 +165,14 @@ impl Visits {
         (current.by_touch && !idle.is_zero()).then(|| current.last_touch + idle)
     }
 
-    fn begin(&self, inner: &mut Inner, source: Source, client: Option<u64>, by_touch: bool) -> u64 {
+    fn begin(
+        &self,
+        inner: &mut Inner,
+        settings: &CorpusSettings,
+        source: Source,
+        client: Option<u64>,
+        by_touch: bool,
+    ) -> u64 {
         if let Some(ended) = inner.current.take() {
             self.publish_end(ended.number, source, client, SessionEnd::NextSession);
         }
@@ -130,6 +180,7 @@ impl Visits {
         let number = inner.last;
         inner.current = Some(Current {
             number,
+            consent: settings.consent,
             by_touch,
             last_touch: Instant::now(),
         });
@@ -137,6 +188,7 @@ impl Visits {
             session: number,
             source,
             client,
+            consent: settings.consent,
         });
         number
     }
@@ -159,6 +211,7 @@ mod tests {
         CorpusSettings {
             session_start: SessionStart::Touch,
             session_idle: idle,
+            consent: Consent::Recorded,
         }
     }
 
@@ -166,9 +219,10 @@ mod tests {
     fn starting_a_session_ends_the_running_one() {
         let (hub, _feed) = Hub::new();
         let visits = Visits::new(hub);
+        let settings = CorpusSettings::default();
         assert_eq!(visits.current(), None);
-        assert_eq!(visits.start(Source::Operator, Some(1)), 1);
-        assert_eq!(visits.start(Source::Operator, Some(1)), 2);
+        assert_eq!(visits.start(&settings, Source::Operator, Some(1)), 1);
+        assert_eq!(visits.start(&settings, Source::Operator, Some(1)), 2);
         assert_eq!(visits.current(), Some(2));
         assert_eq!(
             visits.end(Source::Operator, Some(1), SessionEnd::Marked),
@@ -178,7 +232,30 @@ mod tests {
             visits.end(Source::Operator, Some(1), SessionEnd::Marked),
             None
         );
-        assert_eq!(visits.start(Source::Dm, None), 3);
+        assert_eq!(visits.start(&settings, Source::Dm, None), 3);
+    }
+
+    #[test]
+    fn consent_needs_a_session_and_once_withdrawn_stays_withdrawn() {
+        let (hub, _feed) = Hub::new();
+        let visits = Visits::new(hub);
+        let refused = visits.set_consent(Consent::Declined, Source::Operator, 1);
+        assert_eq!(refused, Err(ConsentRefused::NoSession));
+        visits.start(&CorpusSettings::default(), Source::Operator, Some(1));
+        assert_eq!(
+            visits.set_consent(Consent::Declined, Source::Operator, 1),
+            Ok(1)
+        );
+        assert_eq!(
+            visits.set_consent(Consent::Recorded, Source::Operator, 1),
+            Ok(1)
+        );
+        assert_eq!(
+            visits.set_consent(Consent::Withdrawn, Source::Operator, 1),
+            Ok(1)
+        );
+        let again = visits.set_consent(Consent::Recorded, Source::Operator, 1);
+        assert_eq!(again, Err(ConsentRefused::Withdrawn));
     }
 
     #[test]
@@ -187,7 +264,7 @@ mod tests {
         let visits = Visits::new(hub);
         let marked = CorpusSettings {
             session_start: SessionStart::Marked,
-            session_idle: Duration::from_secs(60),
+            ..touch_starts(Duration::from_secs(60))
         };
         visits.touched(&marked, 7);
         assert_eq!(visits.current(), None);
@@ -226,7 +303,7 @@ mod tests {
         );
         assert_eq!(visits.current(), None);
         // A marked session does not end for want of touches.
-        visits.start(Source::Operator, Some(1));
+        visits.start(&touch_starts(idle), Source::Operator, Some(1));
         tokio::time::sleep(Duration::from_secs(1000)).await;
         assert_eq!(visits.current(), Some(2));
         shutdown.cancel();

@@ -5,8 +5,8 @@
 //! changes the session: each handler answers the [`Client`] it is lent.
 
 use crate::dispatch::TriggerRequest;
-use crate::events::{ClientRole, EventKind, SessionEnd};
-use crate::operator::{Proposal, VISITOR_GROUPS};
+use crate::events::{ClientRole, Consent, EventKind, SessionEnd};
+use crate::operator::{ConsentRefused, Proposal, VISITOR_GROUPS};
 use crate::wire::ErrorCode;
 use crate::ws::client::Client;
 use crate::ws::protocol::{
@@ -149,7 +149,7 @@ pub(super) fn mark(
     // visitors are and what happened stays the operator's to say.
     let roles: &[ClientRole] = match mark {
         MarkKind::SessionStart | MarkKind::SessionEnd => &SESSION_MARKERS,
-        MarkKind::Group | MarkKind::Situation => &OPERATOR,
+        MarkKind::Group | MarkKind::Situation | MarkKind::Consent => &OPERATOR,
     };
     let Some(role) = client.allowed(role, roles, reference) else {
         return;
@@ -158,7 +158,28 @@ pub(super) fn mark(
     let visits = &client.state.visits;
     let hub = &client.state.hub;
     let session = match mark {
-        MarkKind::SessionStart => Some(visits.start(source, Some(id))),
+        MarkKind::SessionStart => {
+            let corpus = client.state.dispatcher.bundle().config.corpus;
+            Some(visits.start(&corpus, source, Some(id)))
+        }
+        MarkKind::Consent => {
+            let words =
+                [Consent::Recorded, Consent::Declined, Consent::Withdrawn].map(Consent::as_str);
+            let Some(word) = known_value(client, value.as_deref(), &words, reference) else {
+                return;
+            };
+            let consent = Consent::from_word(word).expect("one of the words above");
+            match visits.set_consent(consent, source, id) {
+                Ok(session) => Some(session),
+                Err(refused) => {
+                    let code = match refused {
+                        ConsentRefused::NoSession => ErrorCode::NoSession,
+                        ConsentRefused::Withdrawn => ErrorCode::BadMark,
+                    };
+                    return client.reply_error(code, &refused.to_string(), reference, None);
+                }
+            }
+        }
         MarkKind::SessionEnd => {
             let Some(session) = visits.end(source, Some(id), SessionEnd::Marked) else {
                 let message = "no visitor session is running; start one first";

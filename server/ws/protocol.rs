@@ -153,6 +153,9 @@ pub enum MarkKind {
     Group,
     /// A dialog situation: `value` is one of the site's situations.
     Situation,
+    /// What the session's visitors agreed to: `value` is `recorded`, `declined` or
+    /// `withdrawn`.
+    Consent,
 }
 
 fn yes() -> bool {

@@ -80,7 +80,7 @@ export function createEvents({ panels, context, camera, operatorName, name, stop
     clients.snapshot(state.clients);
     proposals.snapshot(state.proposals);
     // Only what no event told since `welcome`: an event is newer than this answer.
-    if (!told.session) marks.setSession(state.session ?? null);
+    if (!told.session) marks.setSession(state.session ?? null, state.consent ?? null);
     if (!told.pose) map.pose(state.pose);
     if (!told.waypoint) map.waypoint(state.waypoint);
     document.body.dataset.snapshots = String(Number(document.body.dataset.snapshots ?? 0) + 1);

@@ -91,6 +91,7 @@ const marks = createMarks({
   session: byId("session"),
   start: byId("session-start"),
   end: byId("session-end"),
+  consent: byId("consent"),
   groups: byId("visitor-groups"),
   situations: byId("situation-buttons"),
   mark: (mark, value) => {

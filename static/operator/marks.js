@@ -1,7 +1,9 @@
-// marks.js: corpus marks. Start and end a visitor session, note the visitor group (single,
-// group, children; the server may switch the context for it, see docent.yaml
+// marks.js: corpus marks. Start and end a visitor session, note what its visitors agreed to
+// (consent: recorded, declined, withdrawn; a withdrawal is final), note the visitor group
+// (single, group, children; the server may switch the context for it, see docent.yaml
 // `operator.visitor_groups`) and mark dialog situations (from `operator.situations`, keys
-// Alt+Shift+1..9). Each sends a `mark` frame; the session shown follows the session.* events.
+// Alt+Shift+1..9). Each sends a `mark` frame; what is shown follows the session.* and
+// consent.changed events.
 
 import { h } from "./dom.js";
 
@@ -12,20 +14,35 @@ const GROUPS = [
 ];
 
 /**
- * @param {{session: HTMLElement, start: HTMLElement, end: HTMLElement, groups: HTMLElement,
- *          situations: HTMLElement, mark: (mark: string, value?: string) => void}} options
+ * @param {{session: HTMLElement, start: HTMLElement, end: HTMLElement, consent: HTMLSelectElement,
+ *          groups: HTMLElement, situations: HTMLElement,
+ *          mark: (mark: string, value?: string) => void}} options
  */
-export function createMarks({ session, start, end, groups, situations, mark }) {
+export function createMarks({ session, start, end, consent, groups, situations, mark }) {
   let current = null;
+  let consentNow = null;
   let situationNames = [];
 
   start.addEventListener("click", () => mark("session_start"));
   end.addEventListener("click", () => mark("session_end"));
+  consent.addEventListener("change", () => {
+    const chosen = consent.value;
+    // Shown as the server has it until its consent.changed arrives (or an error says why not).
+    showConsent();
+    if (chosen !== consentNow) mark("consent", chosen);
+  });
 
   function showSession() {
     session.textContent = current === null ? "no session" : `session ${current}`;
     session.classList.toggle("running", current !== null);
     end.disabled = current === null;
+    showConsent();
+  }
+
+  function showConsent() {
+    consent.disabled = current === null || consentNow === "withdrawn";
+    consent.value = consentNow ?? "recorded";
+    consent.dataset.state = current === null ? "none" : (consentNow ?? "unknown");
   }
 
   function showGroup(group) {
@@ -70,20 +87,28 @@ export function createMarks({ session, start, end, groups, situations, mark }) {
     },
     /** The situation bound to Alt+Shift+`n` (1-based), or null. */
     situation: (n) => situationNames[n - 1] ?? null,
-    /** The current session id (GET /api/state `session`, a `marked` answer). */
-    setSession(id) {
+    /** The current session id and its consent (GET /api/state `session`, `consent`). */
+    setSession(id, state) {
       current = id ?? null;
+      if (state !== undefined) consentNow = state ?? null;
       showSession();
     },
     event(e) {
       if (e.type === "session.started") {
         current = e.session;
+        consentNow = e.consent ?? null;
         showGroup(null);
         showSession();
       } else if (e.type === "session.ended") {
-        if (current === e.session) current = null;
+        if (current === e.session) {
+          current = null;
+          consentNow = null;
+        }
         showGroup(null);
         showSession();
+      } else if (e.type === "consent.changed") {
+        if (current === e.session) consentNow = e.consent;
+        showConsent();
       } else if (e.type === "visitor.group") {
         showGroup(e.group);
       }

@@ -288,6 +288,12 @@ test('session, visitor group and situation marks reach the corpus; the children 
       await page.click('#session-start');
       const started = await observer.waitForEvent((e) => e.type === 'session.started');
       await page.locator('#session', { hasText: `session ${started.session}` }).waitFor();
+      assert.equal(await page.inputValue('#consent'), 'recorded', "the site's default consent");
+      await page.selectOption('#consent', 'declined');
+      await observer.waitForEvent((e) => e.type === 'consent.changed' && e.consent === 'declined');
+      await page.selectOption('#consent', 'withdrawn');
+      await observer.waitForEvent((e) => e.type === 'consent.changed' && e.consent === 'withdrawn');
+      await page.waitForFunction(() => document.querySelector('#consent').disabled, null, { timeout: 10_000 });
       await page.click('#visitor-groups button[data-group="children"]');
       await observer.waitForEvent((e) => e.type === 'visitor.group' && e.group === 'children');
       await page.waitForFunction(() => document.querySelector('#context').value === 'TextChild');

@@ -7,6 +7,7 @@ use crate::content::acts_file::yaml::Node;
 use crate::content::config::{AfterVideo, SessionStart, SiteConfig};
 use crate::content::duration::parse_duration;
 use crate::content::model::Located;
+use crate::events::Consent;
 
 use super::Reader;
 
@@ -16,7 +17,7 @@ const IDLE_USAGE: &str = "`idle` is how long the touchscreen waits without a tou
                           returns to the home page: a length of time with its unit, e.g. \
                           `idle: 2m` or `idle: 90s`; `idle: 0s` turns it off.";
 /// The keys of `corpus:`.
-pub(crate) const CORPUS_KEYS: &[&str] = &["session_start", "session_idle"];
+pub(crate) const CORPUS_KEYS: &[&str] = &["session_start", "session_idle", "consent"];
 const SESSION_IDLE_USAGE: &str = "`session_idle` is how long a visitor session that a touch \
                                   started goes on without a touch before it ends: a length of \
                                   time with its unit, e.g. `session_idle: 2m`; `0s` keeps it \
@@ -67,6 +68,16 @@ impl Reader {
             if key == "session_idle" {
                 if let Some(idle) = self.setting(value, SESSION_IDLE_USAGE, parse_duration) {
                     config.corpus.session_idle = idle;
+                }
+                continue;
+            }
+            if key == "consent" {
+                let options = [
+                    ("recorded", Consent::Recorded),
+                    ("declined", Consent::Declined),
+                ];
+                if let Some(consent) = self.choice(value, "`consent`", &options) {
+                    config.corpus.consent = consent;
                 }
                 continue;
             }

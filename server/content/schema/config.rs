@@ -191,6 +191,13 @@ fn corpus(key: &str) -> Value {
             "What starts a visitor session: `touch` (a visitor's first touch when none runs, \
              or an operator's or dialog manager's mark; the default) or `marked` (only a mark).",
         ),
+        "consent" => choice(
+            &["recorded", "declined"],
+            "The consent each visitor session starts with: `recorded` (the default: the site \
+             records with notice, and an operator marks `declined` or `withdrawn` when \
+             visitors object) or `declined` (nothing is recorded until an operator marks \
+             `recorded`).",
+        ),
         "session_idle" => duration(
             "How long a session that a touch started goes on without a touch before it ends, \
              e.g. `2m` (the default) or `90s`; `0s`: until it is marked ended.",
