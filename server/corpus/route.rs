@@ -6,6 +6,7 @@
 use std::collections::HashSet;
 use std::path::PathBuf;
 
+use crate::content::DEFAULT_VARIANT;
 use crate::corpus::layout::{SESSION_EVENTS, new_day_log, new_session_dir, utc_date};
 use crate::corpus::manifest::{MANIFEST_FORMAT, SessionManifest, SessionMark};
 use crate::events::{Event, EventKind};
@@ -41,7 +42,8 @@ impl Route {
         Route {
             corpus,
             bundle: None,
-            context: None,
+            // Every run starts in the default context; changes are logged.
+            context: Some(DEFAULT_VARIANT.to_owned()),
             open: None,
             day: None,
             given: HashSet::new(),
@@ -177,6 +179,19 @@ mod tests {
             source: Source::Operator,
             context: name.into(),
         }
+    }
+
+    #[test]
+    fn a_session_started_before_any_context_change_is_in_the_default_context() {
+        let mut route = Route::new("/corpus".into());
+        let start = EventKind::SessionStarted {
+            session: 1,
+            source: Source::Kiosk,
+            client: Some(2),
+            consent: Consent::Recorded,
+        };
+        let (_, manifest) = route.place(&at(1, start)).manifest.unwrap();
+        assert_eq!(manifest.context.as_deref(), Some("Text"));
     }
 
     #[test]
