@@ -174,10 +174,7 @@ async fn the_log_survives_a_crash() {
     let b = TempBundle::new(ACTS).with_file("docent.yaml", CONFIG);
     let corpus = tempfile::tempdir().unwrap();
     let (mut child, addr) = spawn_docent(b.path(), corpus.path());
-    let mut op = WsClient::connect(&format!("ws://{addr}/ws")).await;
-    op.send(json!({"type": "hello", "role": "operator", "token": common::OPERATOR_TOKEN}))
-        .await;
-    op.recv_type("welcome").await;
+    let mut op = WsClient::operator_at(&addr).await;
     op.send(json!({"type": "trigger", "label": "GREET", "ref": "before-crash"}))
         .await;
     let t = op.recv_type("triggered").await;

@@ -180,10 +180,7 @@ async fn a_killed_server_leaves_an_open_session_with_a_readable_log_and_manifest
     let b = tour();
     let corpus = tempfile::tempdir().unwrap();
     let (mut child, addr) = spawn_docent(b.path(), corpus.path());
-    let mut op = WsClient::connect(&format!("ws://{addr}/ws")).await;
-    op.send(json!({"type": "hello", "role": "operator", "token": common::OPERATOR_TOKEN}))
-        .await;
-    op.recv_type("welcome").await;
+    let mut op = WsClient::operator_at(&addr).await;
     op.send(json!({"type": "mark", "mark": "session_start"}))
         .await;
     op.recv_type("marked").await;

@@ -278,6 +278,15 @@ pub struct WsClient {
 }
 
 impl WsClient {
+    /// An operator signed in to the server at `addr` (`host:port`), after its `welcome`.
+    pub async fn operator_at(addr: &str) -> Self {
+        let mut op = WsClient::connect(&format!("ws://{addr}/ws")).await;
+        op.send(json!({"type": "hello", "role": "operator", "token": OPERATOR_TOKEN}))
+            .await;
+        op.welcome = op.recv_type("welcome").await;
+        op
+    }
+
     /// Connects without saying anything.
     pub async fn connect(url: &str) -> Self {
         let (stream, _) = connect_async(url).await.expect("websocket connects");
