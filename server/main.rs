@@ -1,4 +1,5 @@
 //! The `docent` command: parses the command line, sets up logging and calls into the library.
+//! `docent corpus` (`corpus/cli.rs`) leaves room for `export` beside `list`, `show` and `purge`.
 
 use std::io::{IsTerminal, Write};
 use std::net::SocketAddr;
@@ -10,6 +11,7 @@ use clap::{Parser, Subcommand, ValueEnum};
 use docent::access::{AccessMode, AccessSetup, Origin, decide_access};
 use docent::content::config::AdapterKind;
 use docent::content::{Colour, Diagnostic, load_bundle, render_diagnostics, schema};
+use docent::corpus::cli as corpus_cli;
 use docent::http::ConnectionLimits;
 use docent::reload::ReloadOptions;
 use docent::serve::{ServeOptions, Server, run};
@@ -47,6 +49,34 @@ enum Cmd {
         /// Write `acts.schema.json` and `docent.schema.json` (or the one asked for) into DIR.
         #[arg(long, value_name = "DIR")]
         out: Option<PathBuf>,
+    },
+    /// Read the recorded corpus: list its visitor sessions, show one, purge one
+    /// (docs/CORPUS.md, "Command line"). Exit status 0 when done, 1 when refused or failed.
+    Corpus {
+        /// The corpus folder, as given to `docent serve --corpus`.
+        #[arg(long, value_name = "DIR", default_value = "corpus", global = true)]
+        corpus: PathBuf,
+        #[command(subcommand)]
+        command: CorpusCmd,
+    },
+}
+
+/// What `docent corpus` does. A session is named by its folder (`2026-11-24T10-15-02Z`) or
+/// given as that folder's path.
+#[derive(Subcommand)]
+enum CorpusCmd {
+    /// One line per session, oldest first: start, length, state, events, visitor group.
+    List,
+    /// One session: its manifest in words, its length, its events by type, its files.
+    Show {
+        /// The session's name or folder.
+        session: String,
+    },
+    /// Remove a session's folder completely, saying every file removed; refused while a
+    /// server records it.
+    Purge {
+        /// The session's name or folder.
+        session: String,
     },
 }
 
@@ -138,11 +168,34 @@ fn main() -> ExitCode {
         } => check(&bundle, format, deny_warnings),
         Cmd::Serve(args) => serve(&args),
         Cmd::Schema { which, out } => write_schema(which, out.as_deref()),
+        Cmd::Corpus { corpus, command } => return corpus_command(&corpus, &command),
     };
     match result {
         Ok(code) => code,
         Err(e) => {
             eprintln!("docent: {e:#}");
+            ExitCode::FAILURE
+        }
+    }
+}
+
+/// Runs a `docent corpus` command: 0 when done, 1 (with the reason on stderr) when refused
+/// or failed. A reader that stops reading (`| head`) is not an error.
+fn corpus_command(corpus: &Path, command: &CorpusCmd) -> ExitCode {
+    let mut out = std::io::stdout().lock();
+    let result = match command {
+        CorpusCmd::List => corpus_cli::list(corpus, &mut out),
+        CorpusCmd::Show { session } => corpus_cli::show(corpus, session, &mut out),
+        CorpusCmd::Purge { session } => corpus_cli::purge(corpus, session, &mut out),
+    };
+    let result = result.and_then(|()| Ok(out.flush()?));
+    match result {
+        Ok(()) => ExitCode::SUCCESS,
+        Err(corpus_cli::CommandError::Output(e)) if e.kind() == std::io::ErrorKind::BrokenPipe => {
+            ExitCode::SUCCESS
+        }
+        Err(e) => {
+            eprintln!("docent: {e}");
             ExitCode::FAILURE
         }
     }

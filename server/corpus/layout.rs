@@ -67,18 +67,26 @@ pub fn new_session_dir(
 /// Every event log in the corpus folder: the day logs by date and time, then each session's
 /// log by the session's start.
 pub fn event_logs(corpus: &Path) -> std::io::Result<Vec<PathBuf>> {
-    let mut logs = Vec::new();
-    for day in sorted_entries(&corpus.join(DAYS_DIR))? {
-        let mut runs = sorted_entries(&day)?;
-        runs.retain(|p| p.extension().is_some_and(|e| e == "jsonl"));
-        logs.extend(runs);
-    }
+    let mut logs = day_logs(corpus)?;
     let sessions = sorted_entries(&corpus.join(SESSIONS_DIR))?;
     logs.extend(
         (sessions.into_iter())
             .map(|s| s.join(SESSION_EVENTS))
             .filter(|p| p.is_file()),
     );
+    Ok(logs)
+}
+
+/// The day logs in the corpus folder, by date and time (files beside the date folders are
+/// not day logs).
+pub fn day_logs(corpus: &Path) -> std::io::Result<Vec<PathBuf>> {
+    let mut logs = Vec::new();
+    let days = sorted_entries(&corpus.join(DAYS_DIR))?;
+    for day in days.into_iter().filter(|d| d.is_dir()) {
+        let mut runs = sorted_entries(&day)?;
+        runs.retain(|p| p.extension().is_some_and(|e| e == "jsonl"));
+        logs.extend(runs);
+    }
     Ok(logs)
 }
 

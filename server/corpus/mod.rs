@@ -6,11 +6,19 @@
 //! batch ([`crate::events::Hub::logged`]). So an acknowledged event survives `kill -9`; a
 //! second thread syncs the file to disk at a bounded interval ([`sync`]), which bounds what a
 //! power cut can take. Format and guarantees: `docs/CORPUS.md`.
+//!
+//! The corpus folder is read (and a session removed) by `docent corpus`: [`catalog`],
+//! [`session_folder`], [`scan`], [`purge`], printed by [`cli`]; none of them writes a log.
 
+pub mod catalog;
+pub mod cli;
 mod files;
 pub mod layout;
 pub mod manifest;
+pub mod purge;
 mod route;
+pub mod scan;
+pub mod session_folder;
 mod sync;
 mod writer;
 
