@@ -50,34 +50,11 @@ enum Cmd {
         #[arg(long, value_name = "DIR")]
         out: Option<PathBuf>,
     },
-    /// Read the recorded corpus: list its visitor sessions, show one, purge one
-    /// (docs/CORPUS.md, "Command line"). Exit status 0 when done, 1 when refused or failed.
-    Corpus {
-        /// The corpus folder, as given to `docent serve --corpus`.
-        #[arg(long, value_name = "DIR", default_value = "corpus", global = true)]
-        corpus: PathBuf,
-        #[command(subcommand)]
-        command: CorpusCmd,
-    },
-}
-
-/// What `docent corpus` does. A session is named by its folder (`2026-11-24T10-15-02Z`) or
-/// given as that folder's path.
-#[derive(Subcommand)]
-enum CorpusCmd {
-    /// One line per session, oldest first: start, length, state, events, visitor group.
-    List,
-    /// One session: its manifest in words, its length, its events by type, its files.
-    Show {
-        /// The session's name or folder.
-        session: String,
-    },
-    /// Remove a session's folder completely, saying every file removed; refused while a
-    /// server records it.
-    Purge {
-        /// The session's name or folder.
-        session: String,
-    },
+    /// List the recorded visitor sessions, show one, purge one.
+    ///
+    /// Exit status 0 when done, 1 when refused or failed, 2 for a command line clap cannot
+    /// read (docs/CORPUS.md, "Command line").
+    Corpus(corpus_cli::CorpusArgs),
 }
 
 /// The schemas `docent schema` knows.
@@ -168,34 +145,12 @@ fn main() -> ExitCode {
         } => check(&bundle, format, deny_warnings),
         Cmd::Serve(args) => serve(&args),
         Cmd::Schema { which, out } => write_schema(which, out.as_deref()),
-        Cmd::Corpus { corpus, command } => return corpus_command(&corpus, &command),
+        Cmd::Corpus(args) => return corpus_cli::run(&args),
     };
     match result {
         Ok(code) => code,
         Err(e) => {
             eprintln!("docent: {e:#}");
-            ExitCode::FAILURE
-        }
-    }
-}
-
-/// Runs a `docent corpus` command: 0 when done, 1 (with the reason on stderr) when refused
-/// or failed. A reader that stops reading (`| head`) is not an error.
-fn corpus_command(corpus: &Path, command: &CorpusCmd) -> ExitCode {
-    let mut out = std::io::stdout().lock();
-    let result = match command {
-        CorpusCmd::List => corpus_cli::list(corpus, &mut out),
-        CorpusCmd::Show { session } => corpus_cli::show(corpus, session, &mut out),
-        CorpusCmd::Purge { session } => corpus_cli::purge(corpus, session, &mut out),
-    };
-    let result = result.and_then(|()| Ok(out.flush()?));
-    match result {
-        Ok(()) => ExitCode::SUCCESS,
-        Err(corpus_cli::CommandError::Output(e)) if e.kind() == std::io::ErrorKind::BrokenPipe => {
-            ExitCode::SUCCESS
-        }
-        Err(e) => {
-            eprintln!("docent: {e}");
             ExitCode::FAILURE
         }
     }

@@ -1,15 +1,67 @@
-//! What `docent corpus list`, `show` and `purge` print: the catalog (`catalog.rs`), one
-//! session (`session_folder.rs`) and a purge (`purge.rs`) in words for a researcher. The
-//! command line itself (clap) is in `main.rs`; the format and the exit codes are in
-//! docs/CORPUS.md, "Command line".
+//! `docent corpus`: its command line (`CorpusArgs`, one variant per command, so `export`
+//! slots in beside the others), its exit codes, and what `list` and `purge` print: the
+//! catalog (`catalog.rs`) and a purge (`purge.rs`) in words for a researcher; `show.rs` prints
+//! one session. Format and exit codes: docs/CORPUS.md, "Command line".
 
 use std::io::{self, Write};
-use std::path::Path;
+use std::path::{Path, PathBuf};
+use std::process::ExitCode;
 
-use crate::corpus::catalog::{Catalog, CorpusError, find_session, folder_contents};
-use crate::corpus::layout::SESSION_EVENTS;
+use crate::corpus::catalog::{Catalog, CorpusError};
 use crate::corpus::purge::{PurgeError, purge as purge_session};
 use crate::corpus::session_folder::{LogLock, SessionFolder, SessionState};
+use crate::corpus::show::show;
+use crate::corpus::units::{count, minute_and_second, short_duration, size};
+
+/// `docent corpus`'s arguments.
+#[derive(Debug, clap::Args)]
+pub struct CorpusArgs {
+    /// The corpus folder, as given to `docent serve --corpus`.
+    #[arg(long, value_name = "DIR", default_value = "corpus", global = true)]
+    pub corpus: PathBuf,
+    /// What to do.
+    #[command(subcommand)]
+    pub command: CorpusCommand,
+}
+
+/// What `docent corpus` does. A session is named by its folder (`2026-11-24T10-15-02Z`) or
+/// given as that folder's path.
+#[derive(Debug, clap::Subcommand)]
+pub enum CorpusCommand {
+    /// One line per session, oldest first: start, length, state, events, visitor group.
+    List,
+    /// One session: its manifest in words, its length, its events by type, its files.
+    Show {
+        /// The session's name or folder.
+        session: String,
+    },
+    /// Remove a session's folder completely, saying every file removed; refused while a
+    /// server records it.
+    Purge {
+        /// The session's name or folder.
+        session: String,
+    },
+}
+
+/// Runs a `docent corpus` command, writing to stdout: exit status 0 when done, 1 (the reason
+/// on stderr) when refused or failed. A reader that stops reading (`| head`) is no failure.
+pub fn run(args: &CorpusArgs) -> ExitCode {
+    let mut out = io::stdout().lock();
+    let corpus = args.corpus.as_path();
+    let result = match &args.command {
+        CorpusCommand::List => list(corpus, &mut out),
+        CorpusCommand::Show { session } => show(corpus, session, &mut out),
+        CorpusCommand::Purge { session } => purge(corpus, session, &mut out),
+    };
+    match result.and_then(|()| Ok(out.flush()?)) {
+        Ok(()) => ExitCode::SUCCESS,
+        Err(CommandError::Output(e)) if e.kind() == io::ErrorKind::BrokenPipe => ExitCode::SUCCESS,
+        Err(e) => {
+            eprintln!("docent: {e}");
+            ExitCode::FAILURE
+        }
+    }
+}
 
 /// Why a `docent corpus` command failed (exit status 1).
 #[derive(Debug, thiserror::Error)]
@@ -135,126 +187,6 @@ fn write_table(out: &mut dyn Write, rows: &[[String; 7]]) -> io::Result<()> {
     Ok(())
 }
 
-/// `docent corpus show SESSION`: the manifest in words, the length, the events by type, the
-/// files, and whatever is wrong.
-pub fn show(corpus: &Path, arg: &str, out: &mut dyn Write) -> Result<(), CommandError> {
-    let (name, dir) = find_session(corpus, arg)?;
-    let session = SessionFolder::read(&name, &dir);
-    let state = session.state();
-    writeln!(out, "session   {name}")?;
-    writeln!(out, "folder    {}", dir.display())?;
-    writeln!(out, "state     {}", state_in_words(&session))?;
-    match &session.manifest {
-        Some(m) => {
-            writeln!(
-                out,
-                "bundle    {}",
-                m.bundle.as_deref().unwrap_or("unknown")
-            )?;
-            writeln!(out, "docent    {}", m.docent)?;
-            writeln!(out, "started   {} by {}", m.started.time, m.started.source)?;
-        }
-        None => {
-            writeln!(out, "manifest  none readable (see the problems below)")?;
-            let started = session.started().unwrap_or("unknown");
-            writeln!(out, "started   {started} (from its first line)")?;
-        }
-    }
-    writeln!(out, "ended     {}", ended_in_words(&session, state))?;
-    if let Some(m) = &session.manifest {
-        writeln!(
-            out,
-            "group     {}",
-            m.group.as_deref().unwrap_or("none noted")
-        )?;
-        writeln!(out, "context   {}", m.context.as_deref().unwrap_or("none"))?;
-    }
-    let length = match session.last_session_us() {
-        None => "unknown (no line with session_us)".to_owned(),
-        Some(us) if session.ended() => long_duration(us),
-        Some(us) if state == SessionState::Recording => format!("{} so far", long_duration(us)),
-        Some(us) => format!("at least {}: it has no end", long_duration(us)),
-    };
-    let length = format!("{length} (on the session clock: session_us of its last line)");
-    writeln!(out, "duration  {length}")?;
-    writeln!(out, "events    {}", session.events())?;
-    if let Some(log) = &session.log {
-        let width = log.by_type.keys().map(String::len).max().unwrap_or(0);
-        for (kind, n) in &log.by_type {
-            writeln!(out, "  {kind:<width$}  {n:>6}")?;
-        }
-    }
-    write_files(out, &dir)?;
-    if !session.damage.is_empty() {
-        writeln!(out, "problems")?;
-        for damage in &session.damage {
-            writeln!(out, "  {damage}")?;
-        }
-    }
-    if let Some(line) = session.log.as_ref().and_then(|l| l.incomplete_last_line) {
-        let why = if state == SessionState::Recording {
-            "it is being written"
-        } else {
-            "a crash cut it short"
-        };
-        writeln!(
-            out,
-            "note      {SESSION_EVENTS}:{line}, its last line, is incomplete ({why}); it is not counted"
-        )?;
-    }
-    Ok(())
-}
-
-fn state_in_words(session: &SessionFolder) -> String {
-    let state = session.state();
-    let why = match (state, &session.lock) {
-        (SessionState::Recording, LogLock::Held) => "a running server holds its log".to_owned(),
-        (SessionState::Recording, LogLock::Newborn) => "a server created its log moments ago".to_owned(),
-        (SessionState::Recording, LogLock::Unknown(e)) => {
-            format!("perhaps: it has no end, and whether a server holds its log is unknown: {e}")
-        }
-        (SessionState::Interrupted, _) => {
-            "it has no end and no server holds its log: the server was killed or crashed while it ran".to_owned()
-        }
-        (SessionState::Damaged, _) => "see the problems below".to_owned(),
-        _ => return state.word().to_owned(),
-    };
-    format!("{} ({why})", state.word())
-}
-
-fn ended_in_words(session: &SessionFolder, state: SessionState) -> String {
-    match session.manifest.as_ref().and_then(|m| m.ended.as_ref()) {
-        Some(end) => {
-            let why = match end.reason.as_deref() {
-                Some("marked") => "its end was marked".to_owned(),
-                Some("next-session") => "the next session was started".to_owned(),
-                Some("server-stopping") => "the server shut down".to_owned(),
-                Some(other) => other.to_owned(),
-                None => "no reason given".to_owned(),
-            };
-            format!("{} by {} ({why})", end.time, end.source)
-        }
-        None if state == SessionState::Recording => "not yet".to_owned(),
-        None if session.ended() => "its log's last line ends it".to_owned(),
-        None => "never".to_owned(),
-    }
-}
-
-fn write_files(out: &mut dyn Write, dir: &Path) -> Result<(), CommandError> {
-    let contents = folder_contents(dir)?;
-    writeln!(out, "files")?;
-    let names: Vec<String> = (contents.files.iter())
-        .map(|(path, _)| path.strip_prefix(dir).unwrap_or(path).display().to_string())
-        .collect();
-    let width = names.iter().map(String::len).max().unwrap_or(0);
-    for (name, (_, bytes)) in names.iter().zip(&contents.files) {
-        writeln!(out, "  {name:<width$}  {bytes:>10} bytes")?;
-    }
-    let total: u64 = contents.files.iter().map(|(_, b)| b).sum();
-    writeln!(out, "  {}, {total} bytes", count(names.len(), "file"))?;
-    Ok(())
-}
-
 /// `docent corpus purge SESSION`: removes it, printing each file as it goes, then the total.
 pub fn purge(corpus: &Path, arg: &str, out: &mut dyn Write) -> Result<(), CommandError> {
     let mut output = Ok(());
@@ -288,90 +220,4 @@ pub fn purge(corpus: &Path, arg: &str, out: &mut dyn Write) -> Result<(), Comman
         }
     )?;
     Ok(())
-}
-
-/// `1 session`, `3 sessions`.
-fn count(n: usize, thing: &str) -> String {
-    if n == 1 {
-        format!("1 {thing}")
-    } else {
-        format!("{n} {thing}s")
-    }
-}
-
-/// `812 B`, `47.1 KiB`, `3.2 MiB`.
-fn size(bytes: u64) -> String {
-    let mut value = bytes as f64;
-    for unit in ["B", "KiB", "MiB", "GiB"] {
-        if value < 1024.0 || unit == "GiB" {
-            return if unit == "B" {
-                format!("{bytes} B")
-            } else {
-                format!("{value:.1} {unit}")
-            };
-        }
-        value /= 1024.0;
-    }
-    unreachable!("GiB returns")
-}
-
-/// `2026-11-24T10:15:02.629Z` as `2026-11-24 10:15:02`.
-fn minute_and_second(time: &str) -> String {
-    match time.get(..19) {
-        Some(head) if time.is_char_boundary(19) => head.replacen('T', " ", 1),
-        _ => time.to_owned(),
-    }
-}
-
-/// `4.2s`, `12m 04s`, `1h 02m 03s`.
-fn short_duration(us: u64) -> String {
-    let seconds = us / 1_000_000;
-    match seconds {
-        0..60 => format!("{:.1}s", us as f64 / 1e6),
-        60..3600 => format!("{}m {:02}s", seconds / 60, seconds % 60),
-        _ => format!(
-            "{}h {:02}m {:02}s",
-            seconds / 3600,
-            seconds / 60 % 60,
-            seconds % 60
-        ),
-    }
-}
-
-/// `4.183s`, `12m 04.183s`, `1h 02m 03.000s`: to the millisecond.
-fn long_duration(us: u64) -> String {
-    let minutes = us / 60_000_000;
-    let rest = (us % 60_000_000) as f64 / 1e6;
-    match minutes {
-        0 => format!("{rest:.3}s"),
-        1..60 => format!("{minutes}m {rest:06.3}s"),
-        _ => format!("{}h {:02}m {rest:06.3}s", minutes / 60, minutes % 60),
-    }
-}
-
-#[cfg(test)]
-mod tests {
-    use super::*;
-
-    #[test]
-    fn lengths_sizes_and_times_read_the_way_a_person_writes_them() {
-        assert_eq!(short_duration(4_200_000), "4.2s");
-        assert_eq!(short_duration(724_183_000), "12m 04s");
-        assert_eq!(short_duration(3_723_000_000), "1h 02m 03s");
-        assert_eq!(long_duration(1_776), "0.002s");
-        assert_eq!(long_duration(724_183_000), "12m 04.183s");
-        assert_eq!(long_duration(3_723_000_000), "1h 02m 03.000s");
-        assert_eq!(size(812), "812 B");
-        assert_eq!(size(48_213), "47.1 KiB");
-        assert_eq!(size(3_355_443), "3.2 MiB");
-        assert_eq!(
-            minute_and_second("2026-11-24T10:15:02.629Z"),
-            "2026-11-24 10:15:02"
-        );
-        assert_eq!(minute_and_second("yesterday"), "yesterday");
-        assert_eq!(
-            (count(1, "file"), count(2, "file")),
-            ("1 file".into(), "2 files".into())
-        );
-    }
 }

@@ -1,5 +1,5 @@
 //! One session's folder as `docent corpus` reads it: its manifest, its event log scanned
-//! (`scan.rs`), whether a running server holds the log (the writer locks the file it appends
+//! (`log_scan.rs`), whether a running server holds the log (the writer locks the file it appends
 //! to, `corpus/files.rs`), and from these its state: ended, being recorded, interrupted (a
 //! killed or crashed server left it open), or damaged (something a researcher must look at).
 
@@ -10,8 +10,8 @@ use std::path::{Path, PathBuf};
 use std::time::{Duration, SystemTime};
 
 use crate::corpus::layout::{SESSION_EVENTS, SESSION_MANIFEST};
+use crate::corpus::log_scan::LogScan;
 use crate::corpus::manifest::SessionManifest;
-use crate::corpus::scan::LogScan;
 
 /// The writer creates a session's log and locks it before it writes the first line. An empty
 /// log younger than this may be one it has created and not locked yet, so it is not probed
@@ -71,7 +71,7 @@ pub enum Damage {
     /// `events.jsonl` cannot be read.
     UnreadableLog(String),
     /// A line of `events.jsonl` (not an incomplete last one) is not an event.
-    BadLine(crate::corpus::scan::BadLine),
+    BadLine(crate::corpus::log_scan::BadLine),
     /// More bad lines than are listed one by one.
     MoreBadLines(u64),
 }
