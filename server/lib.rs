@@ -8,7 +8,7 @@
 //! - [`dispatch`]: the dialog act dispatcher, the only path from a trigger to a device.
 //! - [`adapters`]: speech, display, drive and external (websocket) adapters, and the router.
 //! - [`events`]: the event types and the hub that stamps and fans them out.
-//! - [`corpus`]: the JSON Lines corpus writer.
+//! - [`corpus`]: the JSON Lines corpus writer, and `docent corpus` reading it back.
 //! - [`http`]: the route table and HTTP handlers; [`ws`]: the websocket protocol.
 //! - [`wire`]: what goes to a client, shared by [`ws`] and [`adapters`]: the bounded outbox,
 //!   the frames adapters send and [`wire::ErrorCode`].

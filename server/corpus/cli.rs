@@ -103,6 +103,9 @@ pub fn list(corpus: &Path, out: &mut dyn Write) -> Result<(), CommandError> {
         .map(str::to_owned),
     ];
     rows.extend(catalog.sessions.iter().map(row));
+    if rows.iter().skip(1).all(|row| row[6].is_empty()) {
+        rows[0][6].clear();
+    }
     write_table(out, &rows)?;
     let mut states = Vec::new();
     for state in [
