@@ -8,8 +8,9 @@ use std::path::{Path, PathBuf};
 use std::process::ExitCode;
 
 use crate::corpus::catalog::{Catalog, CorpusError};
+use crate::corpus::log_lock::LogLock;
 use crate::corpus::purge::{PurgeError, purge as purge_session};
-use crate::corpus::session_folder::{LogLock, SessionFolder, SessionState};
+use crate::corpus::session_folder::{SessionFolder, SessionState};
 use crate::corpus::show::show;
 use crate::corpus::units::{count, minute_and_second, short_duration, size};
 

@@ -8,13 +8,14 @@
 //! power cut can take. Format and guarantees: `docs/CORPUS.md`.
 //!
 //! The corpus folder is read (and a session removed) by `docent corpus`: [`catalog`],
-//! [`session_folder`], [`log_scan`], [`purge`], printed by [`cli`] (`show.rs`, `units.rs`); none
-//! of them writes a log.
+//! [`session_folder`], [`log_lock`], [`log_scan`], [`purge`], printed by [`cli`] (`show.rs`,
+//! `units.rs`); none of them writes a log.
 
 pub mod catalog;
 pub mod cli;
 mod files;
 pub mod layout;
+pub mod log_lock;
 pub mod log_scan;
 pub mod manifest;
 pub mod purge;

@@ -11,7 +11,8 @@ use std::path::{Path, PathBuf};
 
 use crate::corpus::catalog::{CorpusError, FolderContents, find_session, folder_contents};
 use crate::corpus::layout::{SESSION_EVENTS, SESSIONS_DIR};
-use crate::corpus::session_folder::{LogLock, SessionFolder};
+use crate::corpus::log_lock::LogLock;
+use crate::corpus::session_folder::SessionFolder;
 
 /// Why a purge did not (completely) happen.
 #[derive(Debug, thiserror::Error)]

@@ -1,22 +1,17 @@
 //! One session's folder as `docent corpus` reads it: its manifest, its event log scanned
-//! (`log_scan.rs`), whether a running server holds the log (the writer locks the file it appends
-//! to, `corpus/files.rs`), and from these its state: ended, being recorded, interrupted (a
-//! killed or crashed server left it open), or damaged (something a researcher must look at).
+//! (`log_scan.rs`), whether a running server holds the log (`log_lock.rs`), and from these
+//! its state: ended, being recorded, interrupted (a killed or crashed server left it open), or
+//! damaged (something a researcher must look at).
 
 use std::fmt;
-use std::fs::{File, TryLockError};
+use std::fs::File;
 use std::io::{self, BufReader};
 use std::path::{Path, PathBuf};
-use std::time::{Duration, SystemTime};
 
 use crate::corpus::layout::{SESSION_EVENTS, SESSION_MANIFEST};
+use crate::corpus::log_lock::{LogLock, log_lock};
 use crate::corpus::log_scan::LogScan;
 use crate::corpus::manifest::SessionManifest;
-
-/// The writer creates a session's log and locks it before it writes the first line. An empty
-/// log younger than this may be one it has created and not locked yet, so it is not probed
-/// (a probe's shared lock would make the writer's own lock fail) and counts as being recorded.
-const NEWBORN: Duration = Duration::from_secs(10);
 
 /// What a session is now, as `docent corpus list` says it.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -43,22 +38,6 @@ impl SessionState {
     }
 }
 
-/// Whether a running server holds the session's log.
-#[derive(Clone, Debug, PartialEq, Eq)]
-pub enum LogLock {
-    /// Nobody holds it.
-    Free,
-    /// A server holds it: it is writing this session now, or just ended it and has not yet
-    /// written anything elsewhere.
-    Held,
-    /// The log was created moments ago and is still empty: a server is starting the session.
-    Newborn,
-    /// No log to lock.
-    NoLog,
-    /// The file system would not say (locks unsupported, say): the operating system's words.
-    Unknown(String),
-}
-
 /// Something wrong with a session's folder, in words that name the file (and line).
 #[derive(Clone, Debug, PartialEq)]
 pub enum Damage {
@@ -74,6 +53,8 @@ pub enum Damage {
     BadLine(crate::corpus::log_scan::BadLine),
     /// More bad lines than are listed one by one.
     MoreBadLines(u64),
+    /// The session's folder is a symbolic link, which is not followed.
+    Linked,
 }
 
 impl fmt::Display for Damage {
@@ -85,6 +66,7 @@ impl fmt::Display for Damage {
             Damage::UnreadableLog(why) => write!(f, "{SESSION_EVENTS} cannot be read: {why}"),
             Damage::BadLine(bad) => write!(f, "{SESSION_EVENTS}:{}: {}", bad.line, bad.fault),
             Damage::MoreBadLines(n) => write!(f, "{SESSION_EVENTS}: {n} more bad lines"),
+            Damage::Linked => write!(f, "a symbolic link, not a folder: not followed"),
         }
     }
 }
@@ -111,6 +93,17 @@ impl SessionFolder {
     /// [`Damage`].
     pub fn read(name: &str, dir: &Path) -> SessionFolder {
         let mut damage = Vec::new();
+        if std::fs::symlink_metadata(dir).is_ok_and(|m| m.file_type().is_symlink()) {
+            // What it points at may be anywhere: not the corpus's to read.
+            return SessionFolder {
+                name: name.to_owned(),
+                dir: dir.to_owned(),
+                manifest: None,
+                log: None,
+                lock: LogLock::NoLog,
+                damage: vec![Damage::Linked],
+            };
+        }
         let manifest = match SessionManifest::read_from(dir) {
             Ok(manifest) => Some(manifest),
             Err(e) if e.kind() == io::ErrorKind::NotFound => {
@@ -230,29 +223,6 @@ impl SessionFolder {
         (self.log.as_ref())
             .and_then(|log| log.last.as_ref())
             .is_some_and(|last| last.kind == kind)
-    }
-}
-
-/// Whether a server holds the log at `path`. The probe takes a shared lock for an instant;
-/// a log that may not be locked yet (empty and new) is not probed (see [`NEWBORN`]).
-pub fn log_lock(path: &Path) -> LogLock {
-    let file = match File::open(path) {
-        Ok(file) => file,
-        Err(e) if e.kind() == io::ErrorKind::NotFound => return LogLock::NoLog,
-        Err(e) => return LogLock::Unknown(e.to_string()),
-    };
-    if let Ok(meta) = file.metadata()
-        && meta.len() == 0
-        && (meta.modified().ok())
-            .and_then(|m| SystemTime::now().duration_since(m).ok())
-            .is_none_or(|age| age < NEWBORN)
-    {
-        return LogLock::Newborn;
-    }
-    match file.try_lock_shared() {
-        Ok(()) => LogLock::Free,
-        Err(TryLockError::WouldBlock) => LogLock::Held,
-        Err(TryLockError::Error(e)) => LogLock::Unknown(e.to_string()),
     }
 }
 
@@ -377,6 +347,21 @@ mod tests {
         assert_eq!(read.state(), SessionState::Damaged);
         let words: Vec<String> = read.damage.iter().map(ToString::to_string).collect();
         assert_eq!(words, ["events.jsonl:2: not JSON at column 2"]);
+    }
+
+    #[cfg(unix)]
+    #[test]
+    fn a_session_folder_that_is_a_link_is_damaged_and_not_read() {
+        let target = folder(Some(manifest(true)), Some(ENDED_LOG));
+        let sessions = tempfile::tempdir().unwrap();
+        let link = sessions.path().join(NAME);
+        std::os::unix::fs::symlink(target.path(), &link).unwrap();
+        let read = SessionFolder::read(NAME, &link);
+        assert_eq!(read.state(), SessionState::Damaged);
+        assert_eq!(
+            (read.damage, read.manifest, read.log),
+            (vec![Damage::Linked], None, None)
+        );
     }
 
     #[test]

@@ -8,7 +8,8 @@ use std::path::Path;
 use crate::corpus::catalog::{find_session, folder_contents};
 use crate::corpus::cli::CommandError;
 use crate::corpus::layout::SESSION_EVENTS;
-use crate::corpus::session_folder::{LogLock, SessionFolder, SessionState};
+use crate::corpus::log_lock::LogLock;
+use crate::corpus::session_folder::{SessionFolder, SessionState};
 use crate::corpus::units::{count, long_duration};
 
 /// `docent corpus show SESSION`: the manifest in words, the length, the events by type, the
