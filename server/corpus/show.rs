@@ -46,13 +46,15 @@ pub fn show(corpus: &Path, arg: &str, out: &mut dyn Write) -> Result<(), Command
         )?;
         writeln!(out, "context   {}", m.context.as_deref().unwrap_or("none"))?;
     }
+    let clock = "(on the session clock: session_us of its last line)";
     let length = match session.last_session_us() {
-        None => "unknown (no line with session_us)".to_owned(),
-        Some(us) if session.ended() => long_duration(us),
-        Some(us) if state == SessionState::Recording => format!("{} so far", long_duration(us)),
-        Some(us) => format!("at least {}: it has no end", long_duration(us)),
+        None => "unknown: no line has a session_us".to_owned(),
+        Some(us) if session.ended() => format!("{} {clock}", long_duration(us)),
+        Some(us) if state == SessionState::Recording => {
+            format!("{} so far {clock}", long_duration(us))
+        }
+        Some(us) => format!("at least {}: it has no end {clock}", long_duration(us)),
     };
-    let length = format!("{length} (on the session clock: session_us of its last line)");
     writeln!(out, "duration  {length}")?;
     writeln!(out, "events    {}", session.events())?;
     if let Some(log) = &session.log {
