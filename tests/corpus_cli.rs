@@ -162,6 +162,7 @@ async fn show_tells_a_session_in_words_with_its_events_by_type_and_its_files() {
         format!("ended     {} by operator (its end was marked)", ended.time),
         "group     children".to_owned(),
         "context   TextChild".to_owned(),
+        "consent   recorded".to_owned(),
     ];
     let us = last["session_us"].as_u64().unwrap();
     assert_eq!(us, ended.mono_us - manifest.started.mono_us);

@@ -251,6 +251,7 @@ mod tests {
             ended: ended.then(|| mark(32, Some("marked"))),
             group: Some("children".into()),
             context: None,
+            consent: "recorded".into(),
         }
     }
 

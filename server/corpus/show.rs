@@ -45,6 +45,7 @@ pub fn show(corpus: &Path, arg: &str, out: &mut dyn Write) -> Result<(), Command
             m.group.as_deref().unwrap_or("none noted")
         )?;
         writeln!(out, "context   {}", m.context.as_deref().unwrap_or("none"))?;
+        writeln!(out, "consent   {}", m.consent)?;
     }
     let clock = "(on the session clock: session_us of its last line)";
     let length = match session.last_session_us() {
@@ -108,6 +109,7 @@ fn ended_in_words(session: &SessionFolder, state: SessionState) -> String {
                 Some("marked") => "its end was marked".to_owned(),
                 Some("next-session") => "the next session was started".to_owned(),
                 Some("server-stopping") => "the server shut down".to_owned(),
+                Some("idle") => "no visitor touched the screen for the idle time".to_owned(),
                 Some(other) => other.to_owned(),
                 None => "no reason given".to_owned(),
             };

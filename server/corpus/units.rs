@@ -36,9 +36,13 @@ pub(super) fn minute_and_second(time: &str) -> String {
 
 /// `18ms`, `4.2s`, `12m 04s`, `1h 02m 03s`.
 pub(super) fn short_duration(us: u64) -> String {
+    if us < 999_500 {
+        // Rounded as `long_duration` rounds, so `list` and `show` agree.
+        return format!("{}ms", (us + 500) / 1000);
+    }
     let seconds = us / 1_000_000;
     match seconds {
-        0 => format!("{}ms", us / 1000),
+        0 => format!("{:.1}s", us as f64 / 1e6),
         1..60 => format!("{:.1}s", us as f64 / 1e6),
         60..3600 => format!("{}m {:02}s", seconds / 60, seconds % 60),
         _ => format!(
@@ -68,6 +72,8 @@ mod tests {
     #[test]
     fn lengths_sizes_and_times_read_the_way_a_person_writes_them() {
         assert_eq!(short_duration(18_400), "18ms");
+        assert_eq!(short_duration(22_600), "23ms");
+        assert_eq!(short_duration(999_700), "1.0s");
         assert_eq!(short_duration(4_200_000), "4.2s");
         assert_eq!(short_duration(724_183_000), "12m 04s");
         assert_eq!(short_duration(3_723_000_000), "1h 02m 03s");

@@ -11,7 +11,7 @@ use docent::corpus::manifest::SessionManifest;
 use serde_json::{Value, json};
 
 use crate::common::process::spawn_docent;
-use crate::common::{self, TempBundle, TestServer, WsClient};
+use crate::common::{TempBundle, TestServer, WsClient};
 
 pub const ACTS: &str = r#"
 - Label: WELCOME
@@ -167,10 +167,7 @@ pub async fn recording_server(bundle: &Path, corpus: &Path) -> (ServerProcess, W
     let before = session_dirs(corpus);
     let (child, addr) = spawn_docent(bundle, corpus);
     let child = ServerProcess(child);
-    let mut op = WsClient::connect(&format!("ws://{addr}/ws")).await;
-    op.send(json!({"type": "hello", "role": "operator", "token": common::OPERATOR_TOKEN}))
-        .await;
-    op.recv_type("welcome").await;
+    let mut op = WsClient::operator_at(&addr).await;
     marked(&mut op, "session_start", None).await;
     welcome(&mut op).await;
     // Acknowledged, so every event before it is in the log.
