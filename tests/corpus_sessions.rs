@@ -80,6 +80,11 @@ async fn a_sessions_events_are_in_its_folder_on_its_clock_and_the_rest_in_the_da
     op.send(json!({"type": "mark", "mark": "session_end"}))
         .await;
     op.recv_type("marked").await;
+    // Answered once the end is written, by then the session's log is closed and unlocked.
+    let log = std::fs::File::open(session_dirs(&corpus)[0].join(SESSION_EVENTS)).unwrap();
+    log.try_lock()
+        .expect("an ended session's log is no longer held");
+    drop(log);
     op.send(json!({"type": "trigger", "label": "WELCOME", "ref": "after"}))
         .await;
     op.recv_type("triggered").await;

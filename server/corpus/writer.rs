@@ -239,6 +239,11 @@ impl Unwritten {
             result?;
             if let Some((dir, manifest)) = &segment.manifest {
                 manifest.write_to(dir)?;
+                if manifest.ended.is_some() {
+                    // A finished session's log is synced and closed (its lock released) now,
+                    // not when the next event goes elsewhere.
+                    sink.close()?;
+                }
             }
             self.through = segment.last_seq;
             self.lines += segment.lines;
