@@ -7,6 +7,7 @@
 //! second thread syncs the file to disk at a bounded interval ([`sync`]), which bounds what a
 //! power cut can take. Format and guarantees: `docs/CORPUS.md`.
 
+pub mod export;
 mod files;
 pub mod layout;
 pub mod manifest;
