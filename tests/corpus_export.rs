@@ -8,13 +8,22 @@
 
 mod common;
 
-use std::collections::{BTreeMap, BTreeSet};
+#[path = "corpus_export/damaged.rs"]
+mod damaged;
+#[path = "corpus_export/expected.rs"]
+mod expected;
+
+use std::collections::BTreeSet;
 use std::path::{Path, PathBuf};
 use std::process::Command;
 
 use common::{TempBundle, TestServer, WsClient, repo};
-use docent::corpus::export::{ExportError, ExportFormat, ExportWarning, export_session};
+use docent::corpus::export::{ExportError, ExportFormat, export_session};
 use docent::corpus::layout::{SESSION_EVENTS, SESSIONS_DIR};
+use expected::{
+    assert_eaf_tier, assert_praat_intervals, assert_praat_points, close, expected, ms, point_spans,
+    s, spread,
+};
 use serde_json::{Value, json};
 
 const ACTS: &str = r#"
@@ -60,7 +69,7 @@ fn readers_python() -> PathBuf {
 }
 
 /// Reads back the exports `NAME.*` in `dir` with the researchers' tools.
-fn read_back(dir: &Path, name: &str) -> Value {
+pub fn read_back(dir: &Path, name: &str) -> Value {
     let output = Command::new(readers_python())
         .arg(repo().join("tests/readers/check_exports.py"))
         .arg(dir)
@@ -161,174 +170,6 @@ fn log_lines(session: &Path) -> Vec<Value> {
     .collect()
 }
 
-fn at(e: &Value) -> u64 {
-    e["session_us"].as_u64().unwrap()
-}
-
-/// What the log says each tool should read: (start µs, end µs drawn, value) per tier kind.
-struct Expected {
-    /// Each begun `SAY`: start, end, text, act label, and its act's variant and alternative.
-    speech: Vec<(u64, u64, String, String, Value, Value)>,
-    /// Each other command: start, end, `VERB arg`.
-    commands: Vec<(u64, u64, String)>,
-    pages: Vec<(u64, u64, String)>,
-    touches: Vec<(u64, String)>,
-    marks: Vec<(u64, String)>,
-    end_us: u64,
-}
-
-/// Worked out from the log's lines as the docs describe the tiers (an interval shorter than
-/// 1 ms drawn 1 ms long).
-fn expected(log: &[Value]) -> Expected {
-    let drawn = |start: u64, end: u64| end.max(start + 1000);
-    let mut commands: BTreeMap<u64, (Option<u64>, Option<u64>, String, Value)> = BTreeMap::new();
-    let mut acts = BTreeMap::new();
-    let (mut pages, mut touches, mut marks) = (Vec::new(), Vec::new(), Vec::new());
-    for e in log {
-        let id = e["command"].as_u64().unwrap_or(0);
-        match e["type"].as_str().unwrap() {
-            "act.triggered" => {
-                acts.insert(e["trigger"].as_u64().unwrap(), e.clone());
-                if e["source"] == "kiosk" {
-                    touches.push((at(e), e["label"].as_str().unwrap().to_owned()));
-                }
-            }
-            "command.sent" => {
-                let verb = e["verb"].as_str().unwrap();
-                let value = match e["arg"].as_str() {
-                    Some(arg) if verb != "SAY" => format!("{verb} {arg}"),
-                    Some(arg) => arg.to_owned(),
-                    None => verb.to_owned(),
-                };
-                commands.insert(id, (None, None, value, e.clone()));
-            }
-            "command.started" => commands.get_mut(&id).unwrap().0 = Some(at(e)),
-            "command.done" => commands.get_mut(&id).unwrap().1 = Some(at(e)),
-            "display.changed" => {
-                let page = e["page"].as_str().unwrap().to_owned();
-                if pages.last().is_none_or(|(_, p): &(u64, String)| *p != page) {
-                    if page == "index.html" {
-                        touches.push((at(e), format!("page: {page}")));
-                    }
-                    pages.push((at(e), page));
-                }
-            }
-            "situation.marked" => {
-                let situation = e["situation"].as_str().unwrap();
-                marks.push((at(e), format!("situation: {situation}")));
-            }
-            "visitor.group" => {
-                let group = e["group"].as_str().unwrap();
-                marks.push((at(e), format!("group: {group}")));
-            }
-            _ => {}
-        }
-    }
-    let end_us = at(log.last().unwrap());
-    let (mut speech, mut others) = (Vec::new(), Vec::new());
-    for (started, done, value, sent) in commands.into_values() {
-        let (start, end) = (started.unwrap(), done.unwrap());
-        if sent["verb"] == "SAY" {
-            let act = &acts[&sent["trigger"].as_u64().unwrap()];
-            let label = sent["label"].as_str().unwrap().to_owned();
-            let (variant, alternative) = (act["variant"].clone(), act["alternative"].clone());
-            speech.push((start, drawn(start, end), value, label, variant, alternative));
-        } else {
-            others.push((start, drawn(start, end), value));
-        }
-    }
-    let ends: Vec<u64> = pages
-        .iter()
-        .skip(1)
-        .map(|(t, _)| *t)
-        .chain([end_us])
-        .collect();
-    let pages = (pages.into_iter().zip(ends))
-        .map(|((start, page), end)| (start, end, page))
-        .collect();
-    Expected {
-        speech,
-        commands: others,
-        pages,
-        touches,
-        marks,
-        end_us,
-    }
-}
-
-fn ms(us: u64) -> u64 {
-    us / 1000
-}
-
-fn s(us: u64) -> f64 {
-    us as f64 / 1e6
-}
-
-fn close(a: &Value, b: f64) -> bool {
-    (a.as_f64().unwrap() - b).abs() < 1e-9
-}
-
-/// The documented rule for overlaps: each interval, by start, goes to the first tier of its
-/// kind (`base`, `base-2`, ...) whose intervals have all ended by then.
-fn spread(base: &str, spans: &[(u64, u64, String)]) -> Vec<(String, Vec<(u64, u64, String)>)> {
-    let mut sorted = spans.to_vec();
-    sorted.sort();
-    let mut tiers: Vec<(String, Vec<(u64, u64, String)>)> = vec![(base.to_owned(), Vec::new())];
-    for span in sorted {
-        let free = (tiers.iter_mut()).find(|(_, t)| t.last().is_none_or(|last| last.1 <= span.0));
-        match free {
-            Some((_, tier)) => tier.push(span),
-            None => {
-                let name = format!("{base}-{}", tiers.len() + 1);
-                tiers.push((name, vec![span]));
-            }
-        }
-    }
-    tiers
-}
-
-/// Points as the 1 ms intervals both formats lay them out by.
-fn point_spans(points: &[(u64, String)]) -> Vec<(u64, u64, String)> {
-    (points.iter())
-        .map(|(t, v)| (*t, t + 1000, v.clone()))
-        .collect()
-}
-
-/// An EAF tier as pympi read it, against spans in µs.
-fn assert_eaf_tier(eaf: &Value, name: &str, want: &[(u64, u64, String)]) {
-    let want: Vec<Value> = (want.iter())
-        .map(|(start, end, v)| json!([ms(*start), ms(*end), v]))
-        .collect();
-    assert_eq!(eaf["tiers"][name], json!(want), "EAF tier {name}");
-}
-
-/// A TextGrid interval tier as Praat read it (labelled intervals), against spans in µs.
-fn assert_praat_intervals(grid: &Value, name: &str, want: &[(u64, u64, String)]) {
-    let tier = &grid["tiers"][name];
-    assert_eq!(tier["class"], "IntervalTier", "{name}");
-    let read = tier["entries"].as_array().unwrap();
-    assert_eq!(read.len(), want.len(), "TextGrid tier {name}: {read:?}");
-    for (r, (start, end, value)) in read.iter().zip(want) {
-        assert!(
-            close(&r[0], s(*start)) && close(&r[1], s(*end)),
-            "{name}: {r} {start} {end}"
-        );
-        assert_eq!(r[2], json!(value), "TextGrid tier {name}");
-    }
-}
-
-/// A TextGrid point tier as Praat read it.
-fn assert_praat_points(grid: &Value, name: &str, want: &[(u64, String)]) {
-    let tier = &grid["tiers"][name];
-    assert_eq!(tier["class"], "TextTier", "{name}");
-    let read = tier["entries"].as_array().unwrap();
-    assert_eq!(read.len(), want.len(), "TextGrid tier {name}: {read:?}");
-    for (r, (t, value)) in read.iter().zip(want) {
-        assert!(close(&r[0], s(*t)), "{name}: {r} {t}");
-        assert_eq!(r[1], json!(value), "TextGrid tier {name}");
-    }
-}
-
 #[tokio::test]
 async fn a_recorded_session_reads_back_the_same_in_elan_praat_and_a_spreadsheet() {
     let b = bundle();
@@ -348,7 +189,11 @@ async fn a_recorded_session_reads_back_the_same_in_elan_praat_and_a_spreadsheet(
     let log = log_lines(&session);
     let want = expected(&log);
     let read = read_back(out.path(), &name);
-    assert_eq!(read["problems"], json!([]), "what the readers let pass");
+    assert_eq!(
+        read["problems"],
+        json!([]),
+        "what the readers found or let pass"
+    );
 
     // The session as it was played.
     let said: Vec<&str> = want.speech.iter().map(|u| u.2.as_str()).collect();
@@ -466,4 +311,50 @@ async fn a_recorded_session_reads_back_the_same_in_elan_praat_and_a_spreadsheet(
             "CSV row"
         );
     }
+}
+
+#[tokio::test]
+async fn a_session_being_recorded_is_refused_and_exports_once_it_has_ended() {
+    let b = bundle();
+    let corpus = tempfile::tempdir().unwrap();
+    let server = TestServer::start_with(b.path(), |o| o.corpus_dir = corpus.path().into()).await;
+    let mut op = server.operator().await;
+    op.send(json!({"type": "mark", "mark": "session_start"}))
+        .await;
+    op.recv_type("marked").await;
+    let sessions = corpus.path().join(SESSIONS_DIR);
+    let session = std::fs::read_dir(&sessions)
+        .unwrap()
+        .next()
+        .unwrap()
+        .unwrap()
+        .path();
+    let name = session.file_name().unwrap().to_str().unwrap().to_owned();
+    let out = tempfile::tempdir().unwrap();
+    let refused = export_session(&session, ExportFormat::Eaf, out.path()).unwrap_err();
+    assert!(
+        matches!(&refused, ExportError::Recording(n) if *n == name),
+        "{refused:?}"
+    );
+    assert_eq!(
+        refused.to_string(),
+        format!(
+            "session {name} is still being recorded: a running Docent is writing its log. End \
+             the session first (the console's session button, a dialog manager's \
+             `session_end` mark, or stopping the server), then export it"
+        )
+    );
+    assert_eq!(
+        std::fs::read_dir(out.path()).unwrap().count(),
+        0,
+        "nothing written"
+    );
+    // Ended, but the file still open (and locked) until the next line goes elsewhere: its end
+    // in the log is what counts.
+    op.send(json!({"type": "mark", "mark": "session_end"}))
+        .await;
+    op.recv_type("marked").await;
+    let exported = export_session(&session, ExportFormat::Csv, out.path()).unwrap();
+    assert_eq!(exported.warnings, []);
+    server.stop().await;
 }

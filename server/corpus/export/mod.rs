@@ -136,7 +136,7 @@ impl SessionExport {
         if !events.is_file() {
             return Err(ExportError::NotASession(dir.to_owned()));
         }
-        let bytes = read_unlocked(&events, &name)?;
+        let (bytes, locked) = read_with_lock(&events)?;
         let manifest =
             SessionManifest::read_from(dir).map_err(|e| ExportError::DamagedManifest {
                 path: dir.join(SESSION_MANIFEST),
@@ -144,6 +144,11 @@ impl SessionExport {
             })?;
         let mut warnings = Vec::new();
         let (log, timeline) = read_log(&events, bytes, &mut warnings)?;
+        // A running Docent keeps the file it writes locked, also for a while after the
+        // session's end: the end in the log is what tells a finished session.
+        if locked && !timeline.ended {
+            return Err(ExportError::Recording(name));
+        }
         if !timeline.ended {
             let end_s = textgrid::seconds(timeline.end_us);
             warnings.push(ExportWarning::NotEnded { end_s });
@@ -206,23 +211,23 @@ impl SessionExport {
     }
 }
 
-/// The log's bytes, refused while a running Docent holds its lock (it locks the file it is
-/// writing; a killed one's lock is gone). Held while reading, so no writer can start meanwhile.
-fn read_unlocked(events: &Path, name: &str) -> Result<Vec<u8>, ExportError> {
+/// The log's bytes, and whether a running Docent holds its lock (it locks the file it is
+/// writing; a killed one's lock is gone with it).
+fn read_with_lock(events: &Path) -> Result<(Vec<u8>, bool), ExportError> {
     let read_error = |source| ExportError::Read {
         path: events.to_owned(),
         source,
     };
     let mut file = File::open(events).map_err(read_error)?;
-    match file.try_lock_shared() {
-        Ok(()) => {}
-        Err(TryLockError::WouldBlock) => return Err(ExportError::Recording(name.to_owned())),
-        // A file system without locks: nothing tells a recording session, so read it.
-        Err(TryLockError::Error(_)) => {}
-    }
+    let locked = match file.try_lock_shared() {
+        Ok(()) => false,
+        Err(TryLockError::WouldBlock) => true,
+        // A file system without locks: only the log's end can tell a recording session.
+        Err(TryLockError::Error(_)) => false,
+    };
     let mut bytes = Vec::new();
     file.read_to_end(&mut bytes).map_err(read_error)?;
-    Ok(bytes)
+    Ok((bytes, locked))
 }
 
 /// Reads the log's whole lines into a timeline; a last line without its `\n` (a kill cut it
@@ -278,7 +283,7 @@ fn vocabulary(
                 None => {
                     let first = report.diagnostics.iter().find(|d| d.is_error());
                     let why = first.map_or_else(String::new, |d| {
-                        format!(" ({}:{}: {})", d.file, d.line, d.message)
+                        format!(": {}:{}: {}", d.file, d.line, d.message)
                     });
                     Some(format!("its bundle {folder} does not load any more{why}"))
                 }

@@ -62,7 +62,7 @@ fn only_a_begun_say_is_an_utterance_and_only_the_acts_own_text_has_its_variant()
         command("failed", 4, 94, "SAY", r#","reason":"espeak-ng failed""#),
     ];
     let timeline = read(&lines.iter().map(String::as_str).collect::<Vec<_>>());
-    let said: Vec<(u64, u64, &str, Option<&str>, Option<u64>, &Outcome)> = (timeline.utterances)
+    let said: Vec<_> = (timeline.utterances)
         .iter()
         .map(|u| {
             (
