@@ -16,10 +16,23 @@ pub fn at(e: &Value) -> u64 {
     e["session_us"].as_u64().unwrap()
 }
 
+/// A `SAY` as the log tells it.
+pub struct Said {
+    pub start: u64,
+    /// Its end, drawn at least 1 ms after its start.
+    pub end: u64,
+    pub text: String,
+    pub label: String,
+    /// Who triggered its act, and the act's variant and alternative.
+    pub source: Value,
+    pub variant: Value,
+    pub alternative: Value,
+}
+
 /// What the log says each tool should read: (start µs, end µs drawn, value) per tier kind.
 pub struct Expected {
-    /// Each begun `SAY`: start, end, text, act label, and its act's variant and alternative.
-    pub speech: Vec<(u64, u64, String, String, Value, Value)>,
+    /// Each begun `SAY`.
+    pub speech: Vec<Said>,
     /// Each other command: start, end, `VERB arg`.
     pub commands: Vec<(u64, u64, String)>,
     pub pages: Vec<(u64, u64, String)>,
@@ -86,8 +99,15 @@ pub fn expected(log: &[Value]) -> Expected {
         if sent["verb"] == "SAY" {
             let act = &acts[&sent["trigger"].as_u64().unwrap()];
             let label = sent["label"].as_str().unwrap().to_owned();
-            let (variant, alternative) = (act["variant"].clone(), act["alternative"].clone());
-            speech.push((start, drawn(start, end), value, label, variant, alternative));
+            speech.push(Said {
+                start,
+                end: drawn(start, end),
+                text: value,
+                label,
+                source: sent["source"].clone(),
+                variant: act["variant"].clone(),
+                alternative: act["alternative"].clone(),
+            });
         } else {
             others.push((start, drawn(start, end), value));
         }
@@ -182,4 +202,115 @@ pub fn assert_praat_points(grid: &Value, name: &str, want: &[(u64, String)]) {
         assert!(close(&r[0], s(*t)), "{name}: {r} {t}");
         assert_eq!(r[1], json!(value), "TextGrid tier {name}");
     }
+}
+
+/// Compares what every reader read (`read`, from `check_exports.py`) with what `log` says,
+/// tier by tier, time by time, text by text; returns what the log says.
+pub fn assert_reads_back(log: &[Value], read: &Value) -> Expected {
+    assert_eq!(
+        read["problems"],
+        json!([]),
+        "what the readers found or let pass"
+    );
+    let want = expected(log);
+    let commands = spread("commands", &want.commands);
+    let speech: Vec<Span> = (want.speech.iter())
+        .map(|u| (u.start, u.end, u.text.clone()))
+        .collect();
+    let acts: Vec<Span> = (want.speech.iter())
+        .map(|u| (u.start, u.end, u.label.clone()))
+        .collect();
+    let pages = [("pages".to_owned(), want.pages.clone())];
+    let touches = spread("touches", &point_spans(&want.touches));
+    let marks = spread("marks", &point_spans(&want.marks));
+    let mut order = vec!["speech".to_owned(), "act".to_owned()];
+    order.extend(commands.iter().map(|(n, _)| n.clone()));
+    order.push("pages".to_owned());
+    order.extend(touches.iter().chain(&marks).map(|(n, _)| n.clone()));
+
+    // ELAN, through pympi.
+    let eaf = &read["eaf"];
+    assert_eq!(eaf["order"], json!(order));
+    assert_eq!(eaf["parents"], json!({"act": "speech"}));
+    assert_eaf_tier(eaf, "speech", &speech);
+    let act_tier: Vec<Value> = (want.speech.iter())
+        .map(|u| json!([ms(u.start), ms(u.end), u.label, u.text]))
+        .collect();
+    assert_eq!(
+        eaf["ref_tiers"]["act"],
+        json!(act_tier),
+        "labels beside their parents' texts"
+    );
+    for (name, spans) in commands.iter().chain(&pages).chain(&touches).chain(&marks) {
+        assert_eaf_tier(eaf, name, spans);
+    }
+
+    // Praat's own reading (praatio's agrees: `problems` is empty).
+    let praat = &read["textgrid_praat"];
+    assert_eq!(praat["order"], json!(order));
+    assert!(close(&praat["xmin"], 0.0) && close(&praat["xmax"], s(want.end_us)));
+    assert_praat_intervals(praat, "speech", &speech);
+    assert_praat_intervals(praat, "act", &acts);
+    for (name, spans) in commands.iter().chain(&pages) {
+        assert_praat_intervals(praat, name, spans);
+    }
+    for (name, spans) in touches.iter().chain(&marks) {
+        let points: Vec<(u64, String)> = spans.iter().map(|(t, _, v)| (*t, v.clone())).collect();
+        assert_praat_points(praat, name, &points);
+    }
+
+    // The spreadsheet, through Python's csv module.
+    let csv = &read["csv"];
+    let header = "start_s end_s source act variant alternative text kind";
+    assert_eq!(csv["header"], json!(header.split(' ').collect::<Vec<_>>()));
+    let mut rows: Vec<(u64, Value)> = (want.speech.iter())
+        .map(|u| {
+            let alternative = match &u.alternative {
+                Value::Null => String::new(),
+                n => n.to_string(),
+            };
+            let variant = u.variant.as_str().unwrap_or_default();
+            let row = json!([
+                s(u.start),
+                s(u.end),
+                u.source,
+                u.label,
+                variant,
+                alternative,
+                u.text,
+                "utterance"
+            ]);
+            (u.start, row)
+        })
+        .collect();
+    for (t, value) in &want.touches {
+        let (act, text) = match value.strip_prefix("page: ") {
+            Some(_) => ("", value.as_str()),
+            None => (value.as_str(), ""),
+        };
+        rows.push((
+            *t,
+            json!([s(*t), s(*t), "kiosk", act, "", "", text, "touch"]),
+        ));
+    }
+    rows.sort_by_key(|(t, _)| *t);
+    let read_rows = csv["rows"].as_array().unwrap();
+    assert_eq!(read_rows.len(), rows.len(), "{read_rows:?}");
+    for (r, (_, w)) in read_rows.iter().zip(&rows) {
+        let number = |v: &Value| v.as_str().unwrap().parse::<f64>().unwrap();
+        assert!(
+            (number(&r[0]) - w[0].as_f64().unwrap()).abs() < 1e-9,
+            "{r} {w}"
+        );
+        assert!(
+            (number(&r[1]) - w[1].as_f64().unwrap()).abs() < 1e-9,
+            "{r} {w}"
+        );
+        assert_eq!(
+            r.as_array().unwrap()[2..],
+            w.as_array().unwrap()[2..],
+            "CSV row"
+        );
+    }
+    want
 }
