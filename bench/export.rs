@@ -49,6 +49,14 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
         assert!(read.warnings().is_empty(), "{:?}", read.warnings());
     }
     println!("{:<22} {}", "read (log + bundle)", summary(times));
+    let mut times = Vec::new();
+    for _ in 0..runs {
+        let started = Instant::now();
+        let report = docent::content::load_bundle(std::path::Path::new(bundle));
+        times.push(started.elapsed());
+        assert!(report.bundle.is_some(), "{:?}", report.diagnostics.first());
+    }
+    println!("{:<22} {}", "  of which the bundle", summary(times));
     let out = root.join("exports");
     for format in ExportFormat::ALL {
         let mut times = Vec::new();

@@ -5,7 +5,8 @@
 //! the hub how far the log is written, which releases the acknowledgements waiting on that
 //! batch ([`crate::events::Hub::logged`]). So an acknowledged event survives `kill -9`; a
 //! second thread syncs the file to disk at a bounded interval ([`sync`]), which bounds what a
-//! power cut can take. Format and guarantees: `docs/CORPUS.md`.
+//! power cut can take. Format and guarantees: `docs/CORPUS.md`. ([`export`] only reads a
+//! session's folder, and writes its exports where it is told.)
 
 pub mod export;
 mod files;
