@@ -184,6 +184,7 @@ impl SessionExport {
     /// Writes the session in `format` to `out_dir` (created if needed), as `NAME.EXTENSION`.
     pub fn write(&self, format: ExportFormat, out_dir: &Path) -> Result<Exported, ExportError> {
         let mut warnings = self.warnings.clone();
+        let file = out_dir.join(format!("{}.{}", self.name, format.extension()));
         let bytes = match format {
             ExportFormat::Eaf => {
                 let header = eaf::Header {
@@ -191,7 +192,11 @@ impl SessionExport {
                     session: &self.name,
                     docent: &self.manifest.docent,
                 };
-                let (bytes, replaced) = eaf::write(&self.tiers, &self.vocabulary, &header);
+                let written = eaf::write(&self.tiers, &self.vocabulary, &header);
+                let (bytes, replaced) = written.map_err(|source| ExportError::Write {
+                    path: file.clone(),
+                    source,
+                })?;
                 if replaced > 0 {
                     let count = replaced;
                     warnings.push(ExportWarning::CharactersReplaced { count });
@@ -202,7 +207,6 @@ impl SessionExport {
             ExportFormat::Csv => csv::write(&self.timeline),
             ExportFormat::Jsonl => self.log.clone(),
         };
-        let file = out_dir.join(format!("{}.{}", self.name, format.extension()));
         write_whole(out_dir, &file, &bytes)?;
         Ok(Exported {
             files: vec![file],

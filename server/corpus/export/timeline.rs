@@ -21,6 +21,11 @@ pub enum Outcome {
     Open,
 }
 
+/// The text of a `SAY` sent before the session began (queued, then begun within it): the
+/// session's log does not have it, the day log does.
+pub const UNKNOWN_TEXT: &str = "(text not in this session's log: the SAY was sent before the \
+                                session began; see the day log)";
+
 /// A `SAY` the speech device began: from its `command.started` to its outcome.
 #[derive(Clone, Debug, PartialEq)]
 pub struct Utterance {
@@ -351,7 +356,7 @@ impl TimelineReader {
             .arg
             .clone()
             .or_else(|| chosen.as_ref().and_then(|t| t.text.clone()))
-            .unwrap_or_default();
+            .unwrap_or_else(|| UNKNOWN_TEXT.to_owned());
         let (mut variant, mut alternative) = (None, None);
         if let Some(chosen) = chosen
             && !chosen.said
