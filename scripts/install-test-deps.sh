@@ -51,9 +51,11 @@ if [ ! -f "$e2e/node_modules/.package-lock.json" ] ||
 fi
 
 # The corpus export test's readers (tests/corpus_export.rs). The venv keeps a copy of the
-# requirements it was made from, so a changed requirements.txt (not a touched one) reinstalls.
+# requirements it was made from, so a changed requirements.txt (not a touched one) reinstalls;
+# so does a venv whose Python is gone (it links to the interpreter that made it).
 readers=tests/readers
-if ! cmp -s "$readers/requirements.txt" "$readers/.venv/requirements.installed"; then
+if ! cmp -s "$readers/requirements.txt" "$readers/.venv/requirements.installed" ||
+  ! "$readers/.venv/bin/python" -c '' >/dev/null 2>&1; then
   echo "installing test dependencies: Python packages of $readers (PyPI)" >&2
   rm -rf "$readers/.venv"
   python3 -m venv "$readers/.venv"

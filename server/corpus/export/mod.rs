@@ -13,8 +13,8 @@ mod csv;
 mod eaf;
 mod error;
 mod log_line;
-pub mod textgrid;
-pub mod tiers;
+mod textgrid;
+mod tiers;
 pub mod timeline;
 
 use std::collections::BTreeSet;
