@@ -221,12 +221,11 @@ impl TimelineReader {
                     self.timeline.touches.push(Touch { at_us: at, what });
                 }
                 self.timeline.labels.insert(label);
-                let said = false;
                 let chosen = ChosenText {
                     text,
                     variant,
                     alternative,
-                    said,
+                    said: false,
                 };
                 self.chosen.insert(trigger, chosen);
             }
