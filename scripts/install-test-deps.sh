@@ -5,7 +5,11 @@
 #                      browser download of Playwright's own: playwright-core drives /usr/bin/chromium);
 #   fonts-dejavu-core  the font the pages and screenshots are drawn with;
 #   tests/e2e npm packages (playwright-core, ws), with `npm ci` from package-lock.json when
-#                      node_modules is missing or older than the lock file.
+#                      node_modules is missing or older than the lock file;
+#   python3, python3-venv and, from PyPI into tests/readers/.venv (git-ignored), the readers
+#                      the corpus export test reads exports back with (pympi-ling, praatio,
+#                      praat-parselmouth, pinned in tests/readers/requirements.txt), installed
+#                      again only when requirements.txt changed since the last install.
 # Debian packages need root or sudo (one `apt-get update` per run at most); npm needs Node 20.
 # Called by scripts/test.sh; safe to run by hand.
 set -euo pipefail
@@ -16,6 +20,11 @@ command -v espeak-ng >/dev/null 2>&1 || packages+=(espeak-ng)
 [ -x /usr/bin/chromium ] || packages+=(chromium)
 dpkg-query -W -f='${Status}' fonts-dejavu-core 2>/dev/null | grep -q 'ok installed' ||
   packages+=(fonts-dejavu-core)
+if ! command -v python3 >/dev/null 2>&1; then
+  packages+=(python3 python3-venv)
+elif ! python3 -c 'import ensurepip, venv' >/dev/null 2>&1; then
+  packages+=(python3-venv)
+fi
 
 as_root() {
   if [ "$(id -u)" -eq 0 ]; then "$@"; else sudo "$@"; fi
@@ -39,4 +48,18 @@ if [ ! -f "$e2e/node_modules/.package-lock.json" ] ||
   fi
   echo "installing test dependencies: npm packages of $e2e" >&2
   (cd "$e2e" && npm ci --no-audit --no-fund --loglevel=error >/dev/null)
+fi
+
+# The corpus export test's readers (tests/corpus_export.rs). The venv keeps a copy of the
+# requirements it was made from, so a changed requirements.txt (not a touched one) reinstalls;
+# so does a venv whose Python is gone (it links to the interpreter that made it).
+readers=tests/readers
+if ! cmp -s "$readers/requirements.txt" "$readers/.venv/requirements.installed" ||
+  ! "$readers/.venv/bin/python" -c '' >/dev/null 2>&1; then
+  echo "installing test dependencies: Python packages of $readers (PyPI)" >&2
+  rm -rf "$readers/.venv"
+  python3 -m venv "$readers/.venv"
+  "$readers/.venv/bin/python" -m pip install --quiet --disable-pip-version-check \
+    --no-input -r "$readers/requirements.txt"
+  cp "$readers/requirements.txt" "$readers/.venv/requirements.installed"
 fi

@@ -9,10 +9,12 @@
 //!
 //! The corpus folder is read (and a session removed) by `docent corpus`: [`catalog`],
 //! [`session_folder`], [`log_lock`], [`log_scan`], [`purge`], printed by [`cli`] (`show.rs`,
-//! `units.rs`); none of them writes a log.
+//! `units.rs`); [`export`] reads a session's folder and writes its exports where it is told.
+//! None of them writes a log.
 
 pub mod catalog;
 pub mod cli;
+pub mod export;
 mod files;
 pub mod layout;
 pub mod log_lock;

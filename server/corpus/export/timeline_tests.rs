@@ -1,0 +1,124 @@
+//! The timeline read from hand-written log lines: what each event becomes.
+
+use super::*;
+
+/// Reads `lines` (JSON objects without `v`, which is added) into a timeline.
+fn read(lines: &[&str]) -> Timeline {
+    let mut reader = TimelineReader::default();
+    for line in lines {
+        let line = format!("{{\"v\":3,{}", &line[1..]);
+        reader.read_line(line.as_bytes()).expect(&line);
+    }
+    reader.finish()
+}
+
+fn command(kind: &str, id: u64, at: u64, verb: &str, extra: &str) -> String {
+    format!(
+        r#"{{"session_us":{at},"type":"command.{kind}","command":{id},"trigger":1,"source":"operator","label":"TOUR","verb":"{verb}"{extra}}}"#
+    )
+}
+
+#[test]
+fn a_page_no_command_asked_for_is_a_touch_and_every_page_lasts_until_the_next() {
+    let lines = [
+        r#"{"session_us":0,"type":"session.started"}"#.to_owned(),
+        command("sent", 2, 10, "DISPLAY_PAGE", r#","arg":"map.html""#),
+        r#"{"session_us":11,"type":"display.changed","page":"map.html"}"#.to_owned(),
+        command("done", 2, 500, "DISPLAY_PAGE", ""),
+        r#"{"session_us":900,"type":"display.changed","page":"index.html"}"#.to_owned(),
+        r#"{"session_us":950,"type":"display.changed","page":"index.html"}"#.to_owned(),
+        r#"{"session_us":2000,"type":"session.ended"}"#.to_owned(),
+    ];
+    let timeline = read(&lines.iter().map(String::as_str).collect::<Vec<_>>());
+    let pages: Vec<(u64, u64, &str)> = (timeline.pages.iter())
+        .map(|p| (p.start_us, p.end_us, p.page.as_str()))
+        .collect();
+    assert_eq!(pages, [(11, 900, "map.html"), (900, 2000, "index.html")]);
+    let page = Touched::Page {
+        page: "index.html".into(),
+    };
+    assert_eq!(
+        timeline.touches,
+        [Touch {
+            at_us: 900,
+            what: page
+        }]
+    );
+    assert!(timeline.ended);
+}
+
+#[test]
+fn only_a_begun_say_is_an_utterance_and_only_the_acts_own_text_has_its_variant() {
+    let act = r#"{"session_us":5,"type":"act.triggered","trigger":1,"source":"kiosk","label":"TOUR","variant":"TextChild","alternative":1,"text":"Come along"}"#;
+    let lines = [
+        r#"{"session_us":0,"type":"session.started"}"#.to_owned(),
+        act.to_owned(),
+        command("sent", 2, 6, "SAY", r#","arg":"Come along""#),
+        command("started", 2, 7, "SAY", ""),
+        command("cancelled", 2, 90, "SAY", r#","reason":"stop request""#),
+        command("sent", 3, 91, "SAY", r#","arg":"Here we are""#),
+        command("started", 3, 92, "SAY", ""),
+        command("sent", 4, 93, "SAY", r#","arg":"Never said""#),
+        command("failed", 4, 94, "SAY", r#","reason":"espeak-ng failed""#),
+    ];
+    let timeline = read(&lines.iter().map(String::as_str).collect::<Vec<_>>());
+    let said: Vec<_> = (timeline.utterances)
+        .iter()
+        .map(|u| {
+            (
+                u.start_us,
+                u.end_us,
+                &*u.text,
+                u.variant.as_deref(),
+                u.alternative,
+                &u.outcome,
+            )
+        })
+        .collect();
+    let cut = Outcome::Cancelled("stop request".into());
+    assert_eq!(
+        said,
+        [
+            (7, 90, "Come along", Some("TextChild"), Some(1), &cut),
+            (92, 94, "Here we are", None, None, &Outcome::Open),
+        ],
+        "the second SAY has no outcome: it ends with the log"
+    );
+    let never = &timeline.commands[0];
+    assert_eq!(
+        (never.start_us, never.end_us, &*never.verb),
+        (93, 94, "SAY")
+    );
+    assert_eq!(never.outcome, Outcome::Failed("espeak-ng failed".into()));
+    assert!(!timeline.ended, "no session.ended");
+    assert_eq!(timeline.end_us, 94);
+    assert_eq!(timeline.touches.len(), 1, "a kiosk's trigger is a touch");
+}
+
+#[test]
+fn a_line_that_is_not_a_session_line_says_why() {
+    let problem = |line: &str| {
+        TimelineReader::default()
+            .read_line(line.as_bytes())
+            .unwrap_err()
+            .0
+    };
+    assert_eq!(
+        problem(r#"{"v":3,"seq":1,"type":"server.started"}"#),
+        "the line has no `session_us`: this is not a session's log (a day log's events belong \
+         to no session)"
+    );
+    assert_eq!(
+        problem(r#"{"v":4,"session_us":1,"type":"pose"}"#),
+        "event format 4 is newer than this Docent reads (3): export it with the Docent that \
+         wrote it"
+    );
+    assert_eq!(
+        problem(r#"{"v":3,"session_us":1,"type":"command.done","command":2}"#),
+        "missing field `trigger` (column 56)"
+    );
+    assert_eq!(
+        problem(r#"{"v":3,"session_us":1,"type":"pose","x":1"#),
+        "EOF while parsing an object (column 41)"
+    );
+}
