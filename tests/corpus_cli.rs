@@ -276,3 +276,56 @@ fn a_missing_corpus_is_an_error_naming_it_and_an_empty_one_is_said_plainly() {
         )
     );
 }
+
+#[tokio::test]
+async fn export_writes_a_sessions_files_and_all_passes_over_one_recorded_and_names_a_damaged_one() {
+    let b = tour();
+    let folder = tempfile::tempdir().unwrap();
+    let corpus = folder.path();
+    recorded_run(b.path(), corpus).await;
+    let recorded = sessions_by_number(corpus);
+    let (a_name, a_dir) = recorded[&1].clone();
+
+    let (code, out, err) = corpus_cmd(corpus, &["export", &a_name, "--format", "eaf,csv"]);
+    assert_eq!(code, 0, "{err}");
+    for extension in ["eaf", "csv"] {
+        let file = a_dir.join("exports").join(format!("{a_name}.{extension}"));
+        assert!(file.is_file(), "{file:?}: {out}");
+        assert!(out.contains(&format!("wrote {}", file.display())), "{out}");
+    }
+    assert!(out.ends_with("exported 2 files\n"), "{out}");
+
+    let (bad, _bare) = damaged_sessions(corpus, &a_dir);
+    let (mut child, _op, running) = recording_server(b.path(), corpus).await;
+    let running_name = running.file_name().unwrap().to_str().unwrap().to_owned();
+    let bad_name = bad.file_name().unwrap().to_str().unwrap().to_owned();
+    let out_dir = folder.path().join("for-elan");
+    let (code, out, err) = corpus_cmd(
+        corpus,
+        &[
+            "export",
+            "--all",
+            "--format",
+            "textgrid",
+            "--out",
+            out_dir.to_str().unwrap(),
+        ],
+    );
+    child.kill();
+    assert_eq!(code, 1, "a damaged session fails the run: {out}");
+    assert!(
+        out.contains(&format!("{running_name}: being recorded, passed over")),
+        "{out}"
+    );
+    assert!(out.contains(&format!("{bad_name}: not exported:")), "{out}");
+    assert!(err.contains(&bad_name), "{err}");
+    let (_, b_dir) = recorded[&2].clone();
+    for dir in [&a_dir, &b_dir] {
+        let name = dir.file_name().unwrap().to_str().unwrap();
+        assert!(out_dir.join(format!("{name}.TextGrid")).is_file(), "{out}");
+    }
+    assert!(!out_dir.join(format!("{running_name}.TextGrid")).exists());
+
+    let (code, _, err) = corpus_cmd(corpus, &["export", "--format", "csv"]);
+    assert_eq!(code, 2, "no session and no --all: {err}");
+}

@@ -1,13 +1,15 @@
-//! `docent corpus`: its command line (`CorpusArgs`, one variant per command, so `export`
-//! slots in beside the others), its exit codes, and what `list` and `purge` print: the
-//! catalog (`catalog.rs`) and a purge (`purge.rs`) in words for a researcher; `show.rs` prints
-//! one session. Format and exit codes: docs/CORPUS.md, "Command line".
+//! `docent corpus`: its command line (`CorpusArgs`, one variant per command), its exit codes,
+//! and what `list` and `purge` print: the catalog (`catalog.rs`) and a purge (`purge.rs`) in
+//! words for a researcher; `show.rs` prints one session, `export_command.rs` runs an export.
+//! Format and exit codes: docs/CORPUS.md, "Command line".
 
 use std::io::{self, Write};
 use std::path::{Path, PathBuf};
 use std::process::ExitCode;
 
 use crate::corpus::catalog::{Catalog, CorpusError};
+use crate::corpus::export::ExportFormat;
+use crate::corpus::export_command::{ExportRequest, export};
 use crate::corpus::log_lock::LogLock;
 use crate::corpus::purge::{PurgeError, purge as purge_session};
 use crate::corpus::session_folder::{SessionFolder, SessionState};
@@ -42,6 +44,22 @@ pub enum CorpusCommand {
         /// The session's name or folder.
         session: String,
     },
+    /// Export a session (or every one, `--all`) for ELAN, Praat, a spreadsheet or a script:
+    /// `--format eaf,textgrid,csv,jsonl`. By default into the session's own `exports/`.
+    Export {
+        /// The session's name or folder.
+        #[arg(required_unless_present = "all", conflicts_with = "all")]
+        session: Option<String>,
+        /// Every session of the corpus (one being recorded is passed over).
+        #[arg(long)]
+        all: bool,
+        /// The formats: eaf, textgrid, csv, jsonl (several with commas).
+        #[arg(long, value_delimiter = ',', required = true)]
+        format: Vec<ExportFormat>,
+        /// Where the files go (created if needed); by default SESSION/exports.
+        #[arg(long, value_name = "DIR")]
+        out: Option<PathBuf>,
+    },
 }
 
 /// Runs a `docent corpus` command, writing to stdout: exit status 0 when done, 1 (the reason
@@ -53,6 +71,21 @@ pub fn run(args: &CorpusArgs) -> ExitCode {
         CorpusCommand::List => list(corpus, &mut out),
         CorpusCommand::Show { session } => show(corpus, session, &mut out),
         CorpusCommand::Purge { session } => purge(corpus, session, &mut out),
+        CorpusCommand::Export {
+            session,
+            all,
+            format,
+            out: out_dir,
+        } => {
+            let request = ExportRequest {
+                corpus,
+                session: session.as_deref(),
+                all: *all,
+                formats: format,
+                out: out_dir.as_deref(),
+            };
+            export(&request, &mut out)
+        }
     };
     match result.and_then(|()| Ok(out.flush()?)) {
         Ok(()) => ExitCode::SUCCESS,
@@ -73,6 +106,12 @@ pub enum CommandError {
     /// The purge was refused or stopped.
     #[error(transparent)]
     Purge(#[from] PurgeError),
+    /// An export was refused or failed.
+    #[error(transparent)]
+    Export(crate::corpus::export::ExportError),
+    /// The command cannot be carried out as given.
+    #[error("{0}")]
+    Usage(String),
     /// The output could not be written (a closed pipe: the reader stopped reading).
     #[error("could not write the output: {0}")]
     Output(#[from] io::Error),
