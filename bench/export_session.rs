@@ -9,6 +9,7 @@
 use std::io::Write;
 use std::path::Path;
 
+use docent::corpus::manifest::{MANIFEST_FORMAT, SessionManifest, SessionMark};
 use serde_json::{Value, json};
 
 /// The session's name (its folder's).
@@ -102,13 +103,31 @@ pub fn write_session(dir: &Path, seconds: u64, bundle: Option<&str>) -> std::io:
         log.write_all(b"\n")?;
     }
     log.flush()?;
-    let manifest = json!({
-        "format": 1, "session": NAME, "number": 1, "docent": "0.1.0", "bundle": bundle,
-        "started": {"seq": 1, "time": "2026-11-24T10:00:00.000Z", "mono_us": 1_000_000, "source": "operator"},
-        "ended": {"seq": count, "time": "2026-11-24T11:00:00.000Z", "mono_us": end + 1_000_000, "source": "operator", "reason": "marked"},
-        "group": "group", "context": "TextGroup"
-    });
-    std::fs::write(dir.join("session.json"), manifest.to_string())?;
+    let mark = |seq, time: &str, mono_us, reason: Option<&str>| SessionMark {
+        seq,
+        time: time.to_owned(),
+        mono_us,
+        source: "operator".to_owned(),
+        reason: reason.map(str::to_owned),
+    };
+    let manifest = SessionManifest {
+        format: MANIFEST_FORMAT,
+        session: NAME.to_owned(),
+        number: 1,
+        docent: "0.1.0".to_owned(),
+        bundle: bundle.map(str::to_owned),
+        started: mark(1, "2026-11-24T10:00:00.000Z", 1_000_000, None),
+        ended: Some(mark(
+            count as u64,
+            "2026-11-24T11:00:00.000Z",
+            end + 1_000_000,
+            Some("marked"),
+        )),
+        group: Some("group".to_owned()),
+        context: Some("TextGroup".to_owned()),
+        consent: "recorded".to_owned(),
+    };
+    manifest.write_to(dir)?;
     Ok(count)
 }
 

@@ -8,6 +8,7 @@ use std::path::PathBuf;
 use docent::corpus::export::{
     ExportError, ExportFormat, ExportWarning, UnknownFormat, export_session,
 };
+use docent::corpus::manifest::{MANIFEST_FORMAT, SessionManifest, SessionMark};
 use serde_json::json;
 
 use super::read_back;
@@ -21,12 +22,25 @@ fn session(log: &str, bundle: &str) -> (tempfile::TempDir, PathBuf) {
     let dir = corpus.path().join("sessions").join(NAME);
     std::fs::create_dir_all(&dir).unwrap();
     std::fs::write(dir.join("events.jsonl"), log).unwrap();
-    let manifest = json!({
-        "format": 1, "session": NAME, "number": 1, "docent": "0.1.0", "bundle": bundle,
-        "started": {"seq": 5, "time": "2026-11-24T10:15:02.000Z", "mono_us": 100, "source": "operator"},
-        "ended": null, "group": null, "context": "Text"
-    });
-    std::fs::write(dir.join("session.json"), manifest.to_string()).unwrap();
+    let manifest = SessionManifest {
+        format: MANIFEST_FORMAT,
+        session: NAME.to_owned(),
+        number: 1,
+        docent: "0.1.0".to_owned(),
+        bundle: Some(bundle.to_owned()),
+        started: SessionMark {
+            seq: 5,
+            time: "2026-11-24T10:15:02.000Z".to_owned(),
+            mono_us: 100,
+            source: "operator".to_owned(),
+            reason: None,
+        },
+        ended: None,
+        group: None,
+        context: Some("Text".to_owned()),
+        consent: "recorded".to_owned(),
+    };
+    manifest.write_to(&dir).unwrap();
     (corpus, dir)
 }
 
