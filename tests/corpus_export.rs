@@ -162,11 +162,7 @@ async fn record_session(b: &TempBundle, corpus: &Path) -> PathBuf {
 }
 
 fn log_lines(session: &Path) -> Vec<Value> {
-    (std::fs::read_to_string(session.join(SESSION_EVENTS))
-        .unwrap()
-        .lines())
-    .map(|l| serde_json::from_str(l).unwrap())
-    .collect()
+    common::json_lines(&session.join(SESSION_EVENTS))
 }
 
 #[tokio::test]

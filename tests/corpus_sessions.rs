@@ -4,11 +4,9 @@
 
 mod common;
 
-use std::path::{Path, PathBuf};
-
 use common::process::spawn_docent;
-use common::{TempBundle, TestServer, WsClient, read_corpus};
-use docent::corpus::layout::{SESSION_EVENTS, SESSIONS_DIR};
+use common::{TempBundle, TestServer, WsClient, json_lines, read_corpus, session_dirs};
+use docent::corpus::layout::SESSION_EVENTS;
 use docent::corpus::manifest::SessionManifest;
 use serde_json::{Value, json};
 
@@ -37,24 +35,6 @@ fn kiosk_tour(corpus: &str) -> TempBundle {
 
 fn is(kind: &'static str) -> impl Fn(&Value) -> bool {
     move |e| e["type"] == kind
-}
-
-/// The session folders, oldest first.
-fn session_dirs(corpus: &Path) -> Vec<PathBuf> {
-    let mut dirs: Vec<PathBuf> = match std::fs::read_dir(corpus.join(SESSIONS_DIR)) {
-        Ok(entries) => entries.map(|e| e.unwrap().path()).collect(),
-        Err(_) => Vec::new(),
-    };
-    dirs.sort();
-    dirs
-}
-
-fn lines(path: &Path) -> Vec<Value> {
-    std::fs::read_to_string(path)
-        .unwrap()
-        .lines()
-        .map(|l| serde_json::from_str(l).unwrap())
-        .collect()
 }
 
 #[tokio::test]
@@ -96,7 +76,7 @@ async fn a_sessions_events_are_in_its_folder_on_its_clock_and_the_rest_in_the_da
 
     let dirs = session_dirs(&corpus);
     assert_eq!(dirs.len(), 1, "{dirs:?}");
-    let session = lines(&dirs[0].join(SESSION_EVENTS));
+    let session = json_lines(&dirs[0].join(SESSION_EVENTS));
     let first = &session[0];
     let last = session.last().unwrap();
     assert_eq!(first["type"], "session.started");
@@ -162,7 +142,7 @@ async fn a_shutdown_ends_the_running_session_after_its_clients_left() {
     read_corpus(&corpus); // readable while the server runs
     server.stop().await;
     let dirs = session_dirs(&corpus);
-    let session = lines(&dirs[0].join(SESSION_EVENTS));
+    let session = json_lines(&dirs[0].join(SESSION_EVENTS));
     let kinds: Vec<&str> = session
         .iter()
         .map(|e| e["type"].as_str().unwrap())
@@ -198,7 +178,7 @@ async fn a_killed_server_leaves_an_open_session_with_a_readable_log_and_manifest
     assert_eq!(dirs.len(), 1);
     let manifest = SessionManifest::read_from(&dirs[0]).expect("a whole manifest");
     assert_eq!(manifest.ended, None, "nobody ended it");
-    let session = lines(&dirs[0].join(SESSION_EVENTS));
+    let session = json_lines(&dirs[0].join(SESSION_EVENTS));
     assert!(
         (session.iter()).any(|e| e["type"] == "act.triggered" && e["ref"] == "acknowledged"),
         "the acknowledged trigger is in the session's log"

@@ -78,13 +78,7 @@ pub fn events(log: &Path) -> u64 {
     events_by_type(log).values().sum()
 }
 
-/// Every folder in `corpus/sessions/`.
-pub fn session_dirs(corpus: &Path) -> Vec<PathBuf> {
-    match std::fs::read_dir(corpus.join("sessions")) {
-        Ok(entries) => entries.map(|e| e.unwrap().path()).collect(),
-        Err(_) => Vec::new(),
-    }
-}
+pub use crate::common::session_dirs;
 
 /// The session folders of `corpus` (one run's), by their number within the run.
 pub fn sessions_by_number(corpus: &Path) -> BTreeMap<u64, (String, PathBuf)> {
