@@ -6,8 +6,7 @@ use std::collections::BTreeMap;
 use std::fmt;
 use std::time::Duration;
 
-use crate::events::Consent;
-
+pub use crate::content::config_corpus::{CorpusSettings, SessionStart};
 pub use crate::content::config_policy::{
     Channel, ChannelPolicies, ChannelPolicy, MAX_PRIORITY, MAX_QUEUE_LIMIT, Priorities, WhenBusy,
 };
@@ -130,36 +129,6 @@ pub struct KioskConfig {
     pub idle_act: Option<String>,
     /// Whether leaving a page cancels the speech that page started (`leave_page_stops_speech`).
     pub leave_page_stops_speech: bool,
-}
-
-/// What starts a visitor session (`corpus: session_start:`).
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub enum SessionStart {
-    /// A visitor's first touch when none runs (the default), or a mark.
-    Touch,
-    /// Only an operator's or a dialog manager's mark.
-    Marked,
-}
-
-/// How the corpus is cut into visitor sessions (`corpus:`).
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub struct CorpusSettings {
-    /// What starts a session.
-    pub session_start: SessionStart,
-    /// A session a touch started ends after this long without a touch; zero: never.
-    pub session_idle: Duration,
-    /// The consent each session starts with.
-    pub consent: Consent,
-}
-
-impl Default for CorpusSettings {
-    fn default() -> Self {
-        CorpusSettings {
-            session_start: SessionStart::Touch,
-            session_idle: Duration::from_secs(120),
-            consent: Consent::Recorded,
-        }
-    }
 }
 
 /// What the projector shows once a video has ended (`projector: after_video:`).

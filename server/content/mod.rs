@@ -39,6 +39,7 @@ pub mod schema;
 
 mod acts_file;
 mod commands;
+mod config_corpus;
 mod config_file;
 mod config_policy;
 mod contexts;

@@ -16,6 +16,7 @@ pub mod catalog;
 pub mod cli;
 pub mod export;
 mod export_command;
+mod failures;
 mod files;
 pub mod layout;
 pub mod log_lock;

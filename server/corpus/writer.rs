@@ -10,8 +10,9 @@ use std::collections::VecDeque;
 use std::io;
 use std::path::PathBuf;
 use std::sync::{Arc, Mutex};
-use std::time::{Duration, Instant};
+use std::time::Duration;
 
+use crate::corpus::failures::Failures;
 use crate::corpus::files::{Files, Sink};
 use crate::corpus::manifest::SessionManifest;
 use crate::corpus::route::{Place, Route};
@@ -31,9 +32,6 @@ const MAX_BACKOFF: u32 = 4;
 /// After this many ticks without events (about a second), the writer sleeps until the next
 /// publish wakes it.
 const QUIET_TICKS: u32 = 16;
-
-/// How often writing is tried again after it failed.
-const RETRY_INTERVAL: Duration = Duration::from_secs(1);
 
 /// While the log cannot be written, at most this many bytes of events wait for it; events
 /// beyond are lost (counted, and the run ends with an error).
@@ -259,66 +257,6 @@ impl Unwritten {
             failure,
             ended: false,
         }
-    }
-}
-
-/// Write failures (a full disk, say): the writer keeps going, since space may come back, and
-/// says so loudly at once, then at most every 10 s.
-#[derive(Default)]
-struct Failures {
-    count: u64,
-    /// Events dropped because too much waited unwritten.
-    lost: u64,
-    reported: Option<Instant>,
-    /// The current failure, while writing fails.
-    current: Option<Arc<str>>,
-    /// When writing last failed.
-    failed_at: Option<Instant>,
-}
-
-impl Failures {
-    /// Whether to write now: always, unless the last attempt failed less than
-    /// [`RETRY_INTERVAL`] ago.
-    fn may_retry(&self) -> bool {
-        self.current.is_none() || self.failed_at.is_none_or(|t| t.elapsed() >= RETRY_INTERVAL)
-    }
-
-    fn note(&mut self, error: &io::Error) -> Arc<str> {
-        self.count += 1;
-        self.failed_at = Some(Instant::now());
-        if self
-            .reported
-            .is_none_or(|t| t.elapsed() >= Duration::from_secs(10))
-        {
-            tracing::error!(
-                %error,
-                failures = self.count,
-                lost = self.lost,
-                "cannot write the corpus log: events wait in memory and new triggers are refused"
-            );
-            self.reported = Some(Instant::now());
-        }
-        let message: Arc<str> = error.to_string().into();
-        self.current = Some(Arc::clone(&message));
-        message
-    }
-
-    fn recovered(&mut self) {
-        if self.current.take().is_some() {
-            tracing::warn!(
-                failures = self.count,
-                lost = self.lost,
-                "the corpus log can be written again"
-            );
-        }
-    }
-
-    fn summary(&self) -> String {
-        let mut text = format!("{} corpus writes failed", self.count);
-        if self.lost > 0 {
-            text += &format!(" and {} events were lost", self.lost);
-        }
-        text + "; see the server log"
     }
 }
 

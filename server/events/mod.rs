@@ -10,12 +10,14 @@ mod hub;
 mod kind;
 mod logged;
 mod origin;
+mod session;
 mod stamped;
 
 pub use hub::{Committer, CorpusFeed, EVENT_CHANNEL_CAPACITY, HISTORY_LEN, Hub};
-pub use kind::{Consent, EventKind, SessionEnd};
+pub use kind::EventKind;
 pub use logged::{LogUnwritable, Logged};
 pub use origin::{ActRef, ClientRole, Source};
+pub use session::{Consent, SessionEnd};
 pub use stamped::Event;
 
 /// Version of the event format, written into every corpus line as `v`. 2: `command.sent`
