@@ -27,7 +27,7 @@ pub fn write_session(dir: &Path, seconds: u64, bundle: Option<&str>) -> std::io:
     };
     events.push((
         0,
-        json!({"type": "session.started", "session": 1, "source": "operator", "client": 1}),
+        json!({"type": "session.started", "session": 1, "source": "operator", "client": 1, "consent": "recorded", "page": "index.html", "projector": null}),
     ));
     events.push((400, json!({"type": "visitor.group", "session": 1, "group": "group", "context": "TextGroup", "source": "operator", "client": 1})));
     for n in 0..seconds / 10 {
@@ -45,6 +45,10 @@ pub fn write_session(dir: &Path, seconds: u64, bundle: Option<&str>) -> std::io:
         let mut triggered = act.clone();
         let fields = json!({"type": "act.triggered", "context": "TextGroup", "variant": "TextGroup", "alternative": n % 3, "text": text, "interrupt": false});
         merge(&mut triggered, &fields);
+        if kiosk {
+            let element = format!("button[data-act={label}] \"{label}\"");
+            events.push((at, json!({"type": "touch", "client": 2, "page": "index.html", "element": element, "act": label})));
+        }
         events.push((at, triggered));
         let mut command = |verb: &str, arg: Option<&str>, start: u64, end: u64| {
             let id = next();
@@ -77,6 +81,11 @@ pub fn write_session(dir: &Path, seconds: u64, bundle: Option<&str>) -> std::io:
     for n in 0..seconds / 90 {
         let at = n * 90_000_000 + 7_000_000;
         let page = format!("detail-{}.html", n % 7);
+        let element = format!("a[href={page}] \"More\"");
+        events.push((
+            at,
+            json!({"type": "touch", "client": 2, "page": null, "element": element, "link": page}),
+        ));
         events.push((at, json!({"type": "display.changed", "page": page, "projector": null, "highlight": null, "projector_state": "black"})));
     }
     for n in 1..seconds / 300 {
@@ -97,7 +106,7 @@ pub fn write_session(dir: &Path, seconds: u64, bundle: Option<&str>) -> std::io:
     let mut log = std::io::BufWriter::new(std::fs::File::create(dir.join("events.jsonl"))?);
     let count = events.len();
     for (seq, (at, event)) in events.into_iter().enumerate() {
-        let mut line = json!({"v": 3, "seq": seq + 1, "time": "2026-11-24T10:00:00.000Z", "mono_us": at + 1_000_000, "session_us": at});
+        let mut line = json!({"v": 4, "seq": seq + 1, "time": "2026-11-24T10:00:00.000Z", "mono_us": at + 1_000_000, "session_us": at});
         merge(&mut line, &event);
         serde_json::to_writer(&mut log, &line)?;
         log.write_all(b"\n")?;

@@ -109,7 +109,9 @@ impl AppState {
         access: Access,
     ) -> Self {
         let hub = dispatcher.hub().clone();
-        let visits = Arc::new(Visits::new(hub.clone()));
+        let display = Arc::clone(&devices.display);
+        let shown = Box::new(move || display.snapshot());
+        let visits = Arc::new(Visits::new(hub.clone(), shown));
         // Sessions a touch started end when visitors stop touching (the live bundle's setting).
         let live = Arc::clone(&dispatcher);
         let idle = Arc::clone(&visits)

@@ -8,7 +8,7 @@
 // (`parent.docentShell`, static/kiosk.js); calls made before the shell is reachable wait for
 // it until the page has loaded, and opened on its own the page only warns.
 // The API: docent.trigger(label, {context, interrupt}) -> Promise of the `triggered` or
-// `error` frame; docent.on(type, fn) -> stop function; docent.ready(fn): fn runs once the
+// `error` frame (the shell tells Docent whether a visitor's touch, a timer or a script asked); docent.on(type, fn) -> stop function; docent.ready(fn): fn runs once the
 // page's document is parsed (its elements exist), at once if it already is;
 // docent.stopSpeech() ends the speech visitors started (never the operator's), and so does a
 // tap on an element with `data-docent-stop` (a page's own stop control). While the robot
@@ -72,16 +72,44 @@ function runReady() {
   }
 }
 
+/**
+ * An element as the corpus names a touch on it: tag, id, act or link, and its words, e.g.
+ * `button#start[data-act=GREETING] "Start the tour"`. The server keeps at most 160 characters.
+ */
+function describe(element) {
+  if (!element?.tagName) return undefined;
+  let said = element.tagName.toLowerCase();
+  if (element.id) said += `#${element.id}`;
+  if (element.dataset?.act) said += `[data-act=${element.dataset.act}]`;
+  else if (element.getAttribute("href")) said += `[href=${element.getAttribute("href")}]`;
+  const words = (element.getAttribute("aria-label") || element.textContent || element.getAttribute("alt") || "")
+    .replace(/\s+/g, " ").trim();
+  return words ? `${said} "${words.slice(0, 80)}"` : said;
+}
+
+// The element the visitor last pressed: a page's own script that triggers from its click
+// handler is a touch on it (docs/PROTOCOL.md, `via`).
+let lastPressed = null;
+addEventListener("pointerdown", (event) => { lastPressed = event.target; }, { capture: true, passive: true });
+
+/** Asks the shell for `label`; `via` says why (touch, timer, script) for the corpus. */
+function ask(label, { context = null, interrupt = false, via = "script", element } = {}) {
+  return Promise.resolve(withShell(
+    (shell) => shell.trigger(label, { context, interrupt, via, element }),
+    () => {
+      noShell(`act ${label} not triggered`);
+      return { type: "error", code: "no-shell", message: "not in the kiosk shell" };
+    },
+  ));
+}
+
 window.docent = Object.freeze({
-  /** Triggers an act; resolves with Docent's `triggered` or `error` frame. */
+  /** Triggers an act; resolves with Docent's `triggered` or `error` frame. Called from a
+   * visitor's tap or key press (the browser's user activation), it counts as their touch. */
   trigger(label, { context = null, interrupt = false } = {}) {
-    return Promise.resolve(withShell(
-      (shell) => shell.trigger(label, { context, interrupt }),
-      () => {
-        noShell(`act ${label} not triggered`);
-        return { type: "error", code: "no-shell", message: "not in the kiosk shell" };
-      },
-    ));
+    const touched = navigator.userActivation?.isActive === true;
+    const target = lastPressed?.closest?.("[data-act], a, button, [role=button]") ?? lastPressed;
+    return ask(label, { context, interrupt, via: touched ? "touch" : "script", element: touched ? describe(target) : undefined });
   },
   /** Calls `fn` for each frame or shell event of this type while the page is shown. */
   on(event, fn) {
@@ -165,12 +193,20 @@ document.addEventListener("click", (event) => {
   if (now - (lastFired.get(target) ?? -Infinity) < REPEAT_GUARD_MS) return;
   lastFired.set(target, now);
   if (!target.classList.contains("docent-pressed")) press(target)();
-  window.docent.trigger(target.dataset.act).then((answer) => {
+  ask(target.dataset.act, { via: "touch", element: describe(target) }).then((answer) => {
     if (answer?.code !== "already-speaking") return;
     target.classList.add("docent-already-speaking");
     setTimeout(() => target.classList.remove("docent-already-speaking"), ALREADY_SPEAKING_MS);
   });
 }, { capture: true });
+
+// A link the visitor follows: the shell names it when it reports the page it leads to.
+document.addEventListener("click", (event) => {
+  const link = event.target.closest?.("a[href]:not([data-act])");
+  if (!link || event.defaultPrevented) return;
+  const shell = findShell();
+  shell?.linkTouched?.(describe(link));
+});
 
 // Timers: each data-act-after element fires its act once, after its delay. Leaving the page
 // unloads it, and its timers with it. The elements exist once the document is parsed.
@@ -182,7 +218,7 @@ window.docent.ready(() => {
       console.warn("docent: data-act-after needs data-act and a delay like 500ms, 20s or 1m", element);
       continue;
     }
-    setTimeout(() => window.docent.trigger(element.dataset.act), delay);
+    setTimeout(() => ask(element.dataset.act, { via: "timer", element: describe(element) }), delay);
   }
 });
 

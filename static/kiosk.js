@@ -19,6 +19,7 @@ import { speechState } from "./speech-state.js";
 
 const TRIGGER_ANSWER_TIMEOUT_MS = 10_000;
 const IDLE_CHECK_MS = 1_000;
+const LINK_TOUCH_MS = 10_000; // a link's page reported later was not that touch's doing
 
 const config = document.body.dataset;
 const pagesPath = config.pages || "/pages/";
@@ -32,6 +33,8 @@ let wanted = null; // the page shown or being loaded
 let serverPage = null; // the page the server's display state names
 let lastActivity = performance.now();
 let idle = false;
+let idleShown = null; // the home page the idle return showed, until it is reported
+let linkTouch = null; // {element, at}: the link a visitor touched, until its page is reported
 
 const listeners = new Map(); // frame or event type -> Set of functions
 const pending = new Map(); // trigger ref -> resolve function
@@ -128,9 +131,21 @@ function reportShown(frame) {
   }
   if (!frame.classList.contains("shown") && page !== wanted) return;
   if (frame.contentDocument?.querySelector('meta[name="docent-page"][content="missing"]')) return;
+  // The frame on show went there itself (a link): that is the page shown now, so the idle
+  // return home and a later DISPLAY_PAGE of the page left behind both work.
+  if (frame.classList.contains("shown")) wanted = page;
   if (page === serverPage) return;
   serverPage = page;
-  socket.send({ type: "page", page });
+  const frameOut = { type: "page", page, via: "script" };
+  if (linkTouch && performance.now() - linkTouch.at < LINK_TOUCH_MS) {
+    frameOut.via = "touch";
+    if (linkTouch.element) frameOut.element = linkTouch.element;
+  } else if (page === idleShown) {
+    frameOut.via = "idle";
+  }
+  linkTouch = null;
+  idleShown = null;
+  socket.send(frameOut);
 }
 
 const speech = speechState({
@@ -182,12 +197,13 @@ const socket = keepConnected({
  * `page` ({page}) and `connection` ({online}); it returns a function that stops listening.
  */
 window.docentShell = {
-  trigger(label, { context = null, interrupt = false } = {}) {
-    activity();
+  trigger(label, { context = null, interrupt = false, via = "script", element } = {}) {
+    activity(); // timers and scripts too: a page that moves on by itself is not idle
     const ref = `kiosk-${Date.now().toString(36)}-${++refCount}`;
-    const frame = { type: "trigger", label: String(label), ref };
+    const frame = { type: "trigger", label: String(label), ref, via };
     if (context) frame.context = String(context);
     if (interrupt) frame.interrupt = true;
+    if (element) frame.element = String(element);
     return new Promise((resolve) => {
       if (!socket.send(frame)) {
         resolve({ type: "error", code: "offline", message: "not connected to Docent", ref });
@@ -204,6 +220,10 @@ window.docentShell = {
    * whether the request went out (the answer is a `stopped` frame, then `speaking`). */
   stopSpeech() {
     return Promise.resolve(socket.send({ type: "stop", ref: `kiosk-stop-${++refCount}` }));
+  },
+  /** A page's link was touched: the page it leads to is reported as that touch's. */
+  linkTouched(element) {
+    linkTouch = { element: element ? String(element) : undefined, at: performance.now() };
   },
   on(type, fn) {
     if (!listeners.has(type)) listeners.set(type, new Set());
@@ -244,6 +264,7 @@ if (idleMs > 0) {
     if (idle || performance.now() - lastActivity < idleMs) return;
     idle = true;
     if (wanted === home) return; // already home: nothing to do, nothing to send
+    idleShown = home;
     show(home);
     if (idleAct) triggerOnArrival(home, idleAct);
     idle = true; // the trigger above counted as activity
@@ -258,7 +279,7 @@ function triggerOnArrival(page, label) {
   const stop = window.docentShell.on("page", (shown) => {
     if (shown.page !== page) return;
     stop();
-    window.docentShell.trigger(label);
+    window.docentShell.trigger(label, { via: "idle" });
   });
 }
 

@@ -189,6 +189,8 @@ mod tests {
             source: Source::Kiosk,
             client: Some(2),
             consent: Consent::Recorded,
+            page: None,
+            projector: None,
         };
         let (_, manifest) = route.place(&at(1, start)).manifest.unwrap();
         assert_eq!(manifest.context.as_deref(), Some("Text"));
@@ -212,6 +214,8 @@ mod tests {
             source: Source::Operator,
             client: Some(4),
             consent: Consent::Declined,
+            page: None,
+            projector: None,
         };
         let first = route.place(&at(3, start));
         let folder = corpus.join("sessions/2026-11-18T11-06-43Z");

@@ -245,6 +245,27 @@ pub enum EventKind {
         client: Option<u64>,
         /// The consent it starts with (the site's `corpus.consent`).
         consent: Consent,
+        /// The page the touchscreen showed as it began (the session's pages start with it).
+        page: Option<String>,
+        /// The film or picture the projector showed as it began.
+        projector: Option<String>,
+    },
+    /// A visitor touched the kiosk: a `data-act` element (its trigger follows) or a link (the
+    /// page change follows).
+    #[serde(rename = "touch")]
+    Touch {
+        /// The kiosk.
+        client: u64,
+        /// The page touched, as the server's display state had it.
+        page: Option<String>,
+        /// The element, as the kiosk described it (`button#start [data-act=GREETING] "Hello"`).
+        element: Option<String>,
+        /// The act it asked for.
+        #[serde(skip_serializing_if = "Option::is_none")]
+        act: Option<String>,
+        /// The page a link led to.
+        #[serde(skip_serializing_if = "Option::is_none")]
+        link: Option<String>,
     },
     /// An operator noted what the session's visitors agreed to.
     #[serde(rename = "consent.changed")]

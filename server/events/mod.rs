@@ -12,6 +12,7 @@ mod logged;
 mod origin;
 mod session;
 mod stamped;
+mod touch;
 
 pub use hub::{Committer, CorpusFeed, EVENT_CHANNEL_CAPACITY, HISTORY_LEN, Hub};
 pub use kind::EventKind;
@@ -19,8 +20,11 @@ pub use logged::{LogUnwritable, Logged};
 pub use origin::{ActRef, ClientRole, Source};
 pub use session::{Consent, SessionEnd};
 pub use stamped::Event;
+pub use touch::{ELEMENT_CHARS, KioskCause, element_description};
 
 /// Version of the event format, written into every corpus line as `v`. 2: `command.sent`
 /// carries the parsed `args`. 3: a session's events are in its own log, with `session_us`;
-/// `session.ended` says why, and its `client` is left out when the server ended it.
-pub const EVENT_FORMAT_VERSION: u32 = 3;
+/// `session.ended` says why, and its `client` is left out when the server ended it. 4: a
+/// visitor's touch is a `touch` event; a kiosk's `act.triggered` or page change may be its
+/// timer's, idle return's or script's doing, so readers no longer take them for touches.
+pub const EVENT_FORMAT_VERSION: u32 = 4;

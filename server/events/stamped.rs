@@ -104,7 +104,7 @@ mod tests {
         let line = event.json();
         assert_eq!(
             line,
-            r#"{"v":3,"seq":7,"time":"2026-11-18T11:06:40.123Z","mono_us":42,"type":"context.changed","source":"http","context":"Text \"quoted\""}"#
+            r#"{"v":4,"seq":7,"time":"2026-11-18T11:06:40.123Z","mono_us":42,"type":"context.changed","source":"http","context":"Text \"quoted\""}"#
         );
         let parsed: serde_json::Value = serde_json::from_str(line).expect("valid JSON");
         assert_eq!(parsed["context"], "Text \"quoted\"");
@@ -112,7 +112,7 @@ mod tests {
         event.write_line(&mut in_session, Some(40));
         assert_eq!(
             String::from_utf8(in_session).unwrap(),
-            r#"{"v":3,"seq":7,"time":"2026-11-18T11:06:40.123Z","mono_us":42,"session_us":2,"type":"context.changed","source":"http","context":"Text \"quoted\""}"#.to_owned() + "\n"
+            r#"{"v":4,"seq":7,"time":"2026-11-18T11:06:40.123Z","mono_us":42,"session_us":2,"type":"context.changed","source":"http","context":"Text \"quoted\""}"#.to_owned() + "\n"
         );
     }
 }

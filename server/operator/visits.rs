@@ -11,9 +11,13 @@ use tokio::sync::Notify;
 use tokio::time::Instant;
 use tokio_util::sync::CancellationToken;
 
+use crate::adapters::Display;
 use crate::content::config::{CorpusSettings, SessionStart};
 use crate::events::{Consent, EventKind, Hub, SessionEnd, Source};
 use crate::sync::lock;
+
+/// What the screens show now (the display state's snapshot).
+pub type Shown = Box<dyn Fn() -> Display + Send + Sync>;
 
 /// The visitor groups an operator can note.
 pub const VISITOR_GROUPS: [&str; 3] = ["single", "group", "children"];
@@ -34,6 +38,8 @@ pub enum ConsentRefused {
 /// The current visitor session.
 pub struct Visits {
     hub: Hub,
+    /// What the screens show now: a session's start says it, so its pages begin there.
+    shown: Shown,
     inner: Mutex<Inner>,
     /// A session started by a touch: the idle watch has a new deadline to keep.
     started_by_touch: Notify,
@@ -55,10 +61,12 @@ struct Current {
 }
 
 impl Visits {
-    /// No session yet; starts and ends are published to `hub`.
-    pub fn new(hub: Hub) -> Self {
+    /// No session yet; starts and ends are published to `hub`, each start with what `shown`
+    /// says the screens show.
+    pub fn new(hub: Hub, shown: Shown) -> Self {
         Visits {
             hub,
+            shown,
             inner: Mutex::default(),
             started_by_touch: Notify::new(),
         }
@@ -184,11 +192,14 @@ impl Visits {
             by_touch,
             last_touch: Instant::now(),
         });
+        let shown = (self.shown)();
         self.hub.publish(EventKind::SessionStarted {
             session: number,
             source,
             client,
             consent: settings.consent,
+            page: shown.page,
+            projector: shown.projector,
         });
         number
     }
@@ -218,7 +229,7 @@ mod tests {
     #[test]
     fn starting_a_session_ends_the_running_one() {
         let (hub, _feed) = Hub::new();
-        let visits = Visits::new(hub);
+        let visits = Visits::new(hub, Box::new(Display::default));
         let settings = CorpusSettings::default();
         assert_eq!(visits.current(), None);
         assert_eq!(visits.start(&settings, Source::Operator, Some(1)), 1);
@@ -238,7 +249,7 @@ mod tests {
     #[test]
     fn consent_needs_a_session_and_once_withdrawn_stays_withdrawn() {
         let (hub, _feed) = Hub::new();
-        let visits = Visits::new(hub);
+        let visits = Visits::new(hub, Box::new(Display::default));
         let refused = visits.set_consent(Consent::Declined, Source::Operator, 1);
         assert_eq!(refused, Err(ConsentRefused::NoSession));
         visits.start(&CorpusSettings::default(), Source::Operator, Some(1));
@@ -261,7 +272,7 @@ mod tests {
     #[test]
     fn a_touch_starts_a_session_only_when_the_site_says_so() {
         let (hub, _feed) = Hub::new();
-        let visits = Visits::new(hub);
+        let visits = Visits::new(hub, Box::new(Display::default));
         let marked = CorpusSettings {
             session_start: SessionStart::Marked,
             ..touch_starts(Duration::from_secs(60))
@@ -278,7 +289,7 @@ mod tests {
     async fn a_session_a_touch_started_ends_after_the_idle_time_without_a_touch() {
         let (hub, _feed) = Hub::new();
         let mut events = hub.subscribe();
-        let visits = Arc::new(Visits::new(hub));
+        let visits = Arc::new(Visits::new(hub, Box::new(Display::default)));
         let idle = Duration::from_secs(120);
         let shutdown = CancellationToken::new();
         let watch = tokio::spawn(

@@ -6,7 +6,7 @@
 use serde::{Deserialize, Serialize};
 
 use crate::adapters::{Display, Pose};
-use crate::events::ClientRole;
+use crate::events::{ClientRole, KioskCause};
 use crate::reload::ReloadView;
 
 /// The protocol version sent in `welcome`. 4: `command` frames carry the parsed `args`.
@@ -50,6 +50,13 @@ pub enum ClientFrame {
         /// Echoed back.
         #[serde(default, rename = "ref")]
         reference: Option<String>,
+        /// A kiosk's reason: a visitor's touch (the default), a timer, the idle return, a
+        /// script. Only a touch starts a session and is logged as a `touch`.
+        #[serde(default)]
+        via: Option<KioskCause>,
+        /// The element touched, as the kiosk describes it.
+        #[serde(default)]
+        element: Option<String>,
     },
     /// Stop everything.
     Stop {
@@ -69,6 +76,12 @@ pub enum ClientFrame {
     Page {
         /// The page, relative to `pages/`.
         page: String,
+        /// Why: a visitor's touch on a link (the default), the idle return home, a script.
+        #[serde(default)]
+        via: Option<KioskCause>,
+        /// The link touched, as the kiosk describes it.
+        #[serde(default)]
+        element: Option<String>,
     },
     /// A dialog manager proposes an act to the operators.
     Propose {

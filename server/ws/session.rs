@@ -106,12 +106,16 @@ impl Session {
                 context,
                 interrupt,
                 reference,
+                via,
+                element,
             } => {
                 let trigger = Trigger {
                     label,
                     context,
                     interrupt,
                     reference,
+                    via,
+                    element,
                 };
                 let run = triggers::trigger(client, role, trigger, self.refusals_logged);
                 self.record(run);
@@ -120,8 +124,8 @@ impl Session {
             ClientFrame::Context { context, reference } => {
                 triggers::set_context(client, role, context, reference);
             }
-            ClientFrame::Page { page } => {
-                let run = triggers::page_shown(client, role, page);
+            ClientFrame::Page { page, via, element } => {
+                let run = triggers::page_shown(client, role, page, via, element);
                 self.record(run);
             }
             ClientFrame::Propose {

@@ -11,7 +11,7 @@ use std::time::Instant;
 
 use crate::content::{BundleArea, resolve_in_bundle};
 use crate::dispatch::TriggerRequest;
-use crate::events::{ClientRole, EventKind};
+use crate::events::{ClientRole, EventKind, KioskCause, element_description};
 use crate::wire::ErrorCode;
 use crate::ws::client::Client;
 use crate::ws::protocol::{context_frame, stopped_frame, triggered_frame};
@@ -25,6 +25,10 @@ pub(super) struct Trigger {
     pub(super) context: Option<String>,
     pub(super) interrupt: bool,
     pub(super) reference: Option<String>,
+    /// Why a kiosk sent it (a touch when it does not say).
+    pub(super) via: Option<KioskCause>,
+    /// The element a visitor touched.
+    pub(super) element: Option<String>,
 }
 
 /// What a frame did to the client's run of refused triggers, which is logged once (one
@@ -52,6 +56,8 @@ pub(super) fn trigger(
         context,
         interrupt,
         reference,
+        via,
+        element,
     } = trigger;
     let Some(allowed) = client.allowed(role, &TRIGGER_ROLES, reference.as_deref()) else {
         // Once per connection: a role does not change, repeating it says nothing new.
@@ -77,20 +83,32 @@ pub(super) fn trigger(
             return RefusedRun::Logged;
         }
         run = RefusedRun::Over;
+        let touch = KioskCause::is_touch(via).then(|| Touched {
+            element: element_description(element),
+            act: Some(label.clone()),
+            link: None,
+        });
         if let Err(message) = offered(client, &label) {
             let code = ErrorCode::NotOffered;
             client.reply_error(code, &message, reference.as_deref(), None);
+            if let Some(touch) = touch {
+                touch.log(client, None);
+            }
             log_refused(client, allowed, label, code, message);
             return run;
         }
-    }
-    if !client.log_writable(reference.as_deref()) {
+        if !client.log_writable(reference.as_deref()) {
+            return run;
+        }
+        if let Some(touch) = touch {
+            // Before the trigger's events, so that they are in the session it starts.
+            let page = client.state.devices.display.snapshot().page;
+            let corpus = client.state.dispatcher.bundle().config.corpus;
+            client.state.visits.touched(&corpus, client.id);
+            touch.log(client, page);
+        }
+    } else if !client.log_writable(reference.as_deref()) {
         return run;
-    }
-    if allowed == ClientRole::Kiosk {
-        // Before the trigger's events, so that they are in the session it starts.
-        let corpus = client.state.dispatcher.bundle().config.corpus;
-        client.state.visits.touched(&corpus, client.id);
     }
     let request = TriggerRequest {
         label,
@@ -194,7 +212,13 @@ pub(super) fn set_context(
 /// A kiosk reports a page it shows on its own, so the server's display state (what a
 /// reconnecting kiosk is sent back to, what the log says) stays true. It takes from the same
 /// allowance as triggers, so one within it ends a run of refused triggers.
-pub(super) fn page_shown(client: &Client, role: Option<ClientRole>, page: String) -> RefusedRun {
+pub(super) fn page_shown(
+    client: &Client,
+    role: Option<ClientRole>,
+    page: String,
+    via: Option<KioskCause>,
+    element: Option<String>,
+) -> RefusedRun {
     if client.allowed(role, &[ClientRole::Kiosk], None).is_none() {
         return RefusedRun::Unchanged;
     }
@@ -210,12 +234,38 @@ pub(super) fn page_shown(client: &Client, role: Option<ClientRole>, page: String
         client.reply_error(ErrorCode::UnknownPage, &message, None, None);
         return RefusedRun::Over;
     }
-    let corpus = client.state.dispatcher.bundle().config.corpus;
-    client.state.visits.touched(&corpus, client.id);
-    client
-        .state
-        .devices
-        .display
-        .page_shown(page, &client.state.hub);
+    let display = &client.state.devices.display;
+    if KioskCause::is_touch(via) {
+        let touched = Touched {
+            element: element_description(element),
+            act: None,
+            link: Some(page.clone()),
+        };
+        let from = display.snapshot().page;
+        let corpus = client.state.dispatcher.bundle().config.corpus;
+        client.state.visits.touched(&corpus, client.id);
+        touched.log(client, from);
+    }
+    display.page_shown(page, &client.state.hub);
     RefusedRun::Over
+}
+
+/// A visitor's touch, logged as a `touch` before what it caused.
+struct Touched {
+    element: Option<String>,
+    act: Option<String>,
+    link: Option<String>,
+}
+
+impl Touched {
+    /// Logs the touch on `page`, the page the server's display state has the kiosk on.
+    fn log(self, client: &Client, page: Option<String>) {
+        client.state.hub.publish(EventKind::Touch {
+            client: client.id,
+            page,
+            element: self.element,
+            act: self.act,
+            link: self.link,
+        });
+    }
 }

@@ -51,12 +51,19 @@ pub fn expected(log: &[Value]) -> Expected {
     for e in log {
         let id = e["command"].as_u64().unwrap_or(0);
         match e["type"].as_str().unwrap() {
-            "act.triggered" => {
-                acts.insert(e["trigger"].as_u64().unwrap(), e.clone());
-                if e["source"] == "kiosk" {
-                    touches.push((at(e), e["label"].as_str().unwrap().to_owned()));
+            "session.started" => {
+                if let Some(page) = e["page"].as_str() {
+                    pages.push((at(e), page.to_owned()));
                 }
             }
+            "act.triggered" => {
+                acts.insert(e["trigger"].as_u64().unwrap(), e.clone());
+            }
+            "touch" => match (e["act"].as_str(), e["link"].as_str()) {
+                (Some(act), _) => touches.push((at(e), act.to_owned())),
+                (None, Some(link)) => touches.push((at(e), format!("page: {link}"))),
+                (None, None) => {}
+            },
             "command.sent" => {
                 let verb = e["verb"].as_str().unwrap();
                 let value = match e["arg"].as_str() {
@@ -71,13 +78,6 @@ pub fn expected(log: &[Value]) -> Expected {
             "display.changed" => {
                 let page = e["page"].as_str().unwrap().to_owned();
                 if pages.last().is_none_or(|(_, p): &(u64, String)| *p != page) {
-                    // Shown by a DISPLAY_PAGE under way, or else by the kiosk on its own.
-                    let asked = (commands.values()).any(|(_, done, value, _)| {
-                        done.is_none() && *value == format!("DISPLAY_PAGE {page}")
-                    });
-                    if !asked {
-                        touches.push((at(e), format!("page: {page}")));
-                    }
                     pages.push((at(e), page));
                 }
             }

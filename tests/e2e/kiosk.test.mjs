@@ -243,6 +243,48 @@ test('the idle return home is known to the server: display state and corpus log'
   }
 });
 
+test('the corpus names a visitor\'s touches, with the element, and never a page\'s timer or the idle return', { timeout: 60_000 }, async () => {
+  const bundle = makeBundle({
+    'docent.yaml': 'home: index.html\nspeech: {adapter: log}\nkiosk: {idle: 1s}\n',
+    'acts.yaml': '- Label: HINT\n  Text: [Touch the screen.]\n- Label: GREET\n  Text: [Hello!]\n',
+    'pages/index.html': page('Home', '<p data-act="HINT" data-act-after="300ms"></p><a id="more" href="other.html">More</a>'),
+    'pages/other.html': page('Other', '<button type="button" id="hello" data-act="GREET">Hello</button>'),
+  });
+  try {
+    await withKiosk(bundle, async ({ server, page: shell, operator }) => {
+      const problems = watchProblems(shell);
+      const home = await openShell(shell, server, 'index.html');
+      // The page's timer: a trigger from the kiosk, but no visitor, so no session and no touch.
+      await operator.waitForEvent((e) => e.type === 'act.triggered' && e.label === 'HINT');
+      const early = operator.events().filter((e) => e.type === 'touch' || e.type === 'session.started');
+      assert.deepEqual(early, [], 'a timer is not a touch');
+
+      await home.locator('#more').tap();
+      const link = await operator.waitForEvent((e) => e.type === 'touch');
+      assert.equal(link.link, 'other.html');
+      assert.equal(link.page, 'index.html');
+      assert.equal(link.element, 'a#more[href=other.html] "More"');
+      const other = await waitForShownPage(shell, 'other.html');
+      await other.locator('#hello').tap();
+      const tap = await operator.waitForEvent((e) => e.type === 'touch');
+      assert.deepEqual([tap.act, tap.page, tap.element], ['GREET', 'other.html', 'button#hello[data-act=GREET] "Hello"']);
+
+      // The idle return home and the timer there again: neither is a touch.
+      await waitForShownPage(shell, 'index.html', { timeout: 10_000 });
+      const back = await operator.waitForEvent((e) => e.type === 'display.changed' && e.page === 'index.html' && e.seq > tap.seq);
+      await operator.waitForEvent((e) => e.type === 'act.triggered' && e.label === 'HINT' && e.seq > back.seq);
+      const touches = operator.events().filter((e) => e.type === 'touch');
+      assert.equal(touches.length, 2, JSON.stringify(touches));
+      const started = operator.events().filter((e) => e.type === 'session.started');
+      assert.equal(started.length, 1);
+      assert.ok(started[0].seq < link.seq, 'the first touch started the session, before its own event');
+      assert.deepEqual(problems, [], 'problems in the kiosk shell');
+    });
+  } finally {
+    removeTemp(bundle);
+  }
+});
+
 test('a kiosk may trigger only the acts its pages offer', { timeout: 60_000 }, async () => {
   const bundle = makeBundle({
     'acts.yaml': [

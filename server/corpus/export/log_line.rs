@@ -82,6 +82,15 @@ pub enum Event {
     /// `visitor.group`: An operator noted who the visitors are.
     #[serde(rename = "visitor.group")]
     VisitorGroup { group: String },
+    /// `touch`: A visitor touched the kiosk (format 4 on).
+    #[serde(rename = "touch")]
+    Touch {
+        act: Option<String>,
+        link: Option<String>,
+    },
+    /// `session.started`: The session began (`page`: what the touchscreen showed, format 4 on).
+    #[serde(rename = "session.started")]
+    SessionStarted { page: Option<String> },
     /// `session.ended`: The session ended.
     #[serde(rename = "session.ended")]
     SessionEnded,
@@ -91,7 +100,11 @@ pub enum Event {
 }
 
 /// The newest event format this reader knows (`docs/CORPUS.md`, "Common fields").
-pub const KNOWN_FORMAT: u32 = 3;
+pub const KNOWN_FORMAT: u32 = 4;
+
+/// The first event format whose visitors' touches are `touch` events; before it, a kiosk's
+/// `act.triggered` and a page change no `DISPLAY_PAGE` asked for are taken for touches.
+pub const EXPLICIT_TOUCHES: u32 = 4;
 
 impl LogLine {
     /// Parses one line (without its `\n`); the error says what is wrong, and in which column.

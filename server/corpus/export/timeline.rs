@@ -6,7 +6,9 @@
 
 use std::collections::{BTreeMap, BTreeSet, HashMap};
 
-use crate::corpus::export::log_line::{CommandFields, Event, KNOWN_FORMAT, LogLine};
+use crate::corpus::export::log_line::{
+    CommandFields, EXPLICIT_TOUCHES, Event, KNOWN_FORMAT, LogLine,
+};
 
 /// How a command ended, as its outcome event said.
 #[derive(Clone, Debug, PartialEq, Eq)]
@@ -179,6 +181,8 @@ pub struct TimelineReader {
     /// The page shown and when it began.
     page: Option<(u64, String)>,
     last_us: u64,
+    /// The log names its touches (`touch` events, format 4 on): nothing else is taken for one.
+    explicit_touches: bool,
 }
 
 impl TimelineReader {
@@ -200,6 +204,7 @@ impl TimelineReader {
             ));
         };
         self.last_us = self.last_us.max(at);
+        self.explicit_touches |= line.v >= EXPLICIT_TOUCHES;
         self.take(at, line.event);
         Ok(())
     }
@@ -214,7 +219,7 @@ impl TimelineReader {
                 alternative,
                 text,
             } => {
-                if source == "kiosk" {
+                if source == "kiosk" && !self.explicit_touches {
                     let what = Touched::Act {
                         label: label.clone(),
                     };
@@ -234,7 +239,23 @@ impl TimelineReader {
                 label,
                 code,
             } if source == "kiosk" => {
+                // The touch that asked for it (logged just before) was refused.
+                let asked = self.timeline.touches.last_mut().filter(|t| {
+                    self.explicit_touches
+                        && matches!(&t.what, Touched::Act { label: l } if *l == label)
+                });
                 let what = Touched::Refused { label, code };
+                match asked {
+                    Some(touch) => touch.what = what,
+                    None => self.timeline.touches.push(Touch { at_us: at, what }),
+                }
+            }
+            Event::Touch { act, link } => {
+                let what = match (act, link) {
+                    (Some(label), _) => Touched::Act { label },
+                    (None, Some(page)) => Touched::Page { page },
+                    (None, None) => return,
+                };
                 self.timeline.touches.push(Touch { at_us: at, what });
             }
             Event::TriggerRefused { .. } | Event::Other => {}
@@ -257,6 +278,11 @@ impl TimelineReader {
             Event::VisitorGroup { group } => {
                 let what = Marked::Group(group);
                 self.timeline.marks.push(Mark { at_us: at, what });
+            }
+            Event::SessionStarted { page } => {
+                if let Some(page) = page {
+                    self.page = Some((at, page));
+                }
             }
             Event::SessionEnded => self.timeline.ended = true,
         }
@@ -301,7 +327,7 @@ impl TimelineReader {
         let asked = self.commands.values().any(|c| {
             c.verb == "DISPLAY_PAGE" && c.end.is_none() && c.arg.as_deref() == Some(page.as_str())
         });
-        if !asked {
+        if !asked && !self.explicit_touches {
             let what = Touched::Page { page: page.clone() };
             self.timeline.touches.push(Touch { at_us: at, what });
         }

@@ -4,12 +4,76 @@ use super::*;
 
 /// Reads `lines` (JSON objects without `v`, which is added) into a timeline.
 fn read(lines: &[&str]) -> Timeline {
+    read_format(3, lines)
+}
+
+/// Reads `lines` as written in event format `v`.
+fn read_format(v: u32, lines: &[&str]) -> Timeline {
     let mut reader = TimelineReader::default();
     for line in lines {
-        let line = format!("{{\"v\":3,{}", &line[1..]);
+        let line = format!("{{\"v\":{v},{}", &line[1..]);
         reader.read_line(line.as_bytes()).expect(&line);
     }
     reader.finish()
+}
+
+#[test]
+fn from_format_4_only_touch_events_are_touches() {
+    let lines = [
+        r#"{"session_us":0,"type":"session.started","page":"index.html"}"#,
+        // A page's timer: not a visitor.
+        r#"{"session_us":5,"type":"act.triggered","trigger":1,"source":"kiosk","label":"HINT"}"#,
+        r#"{"session_us":10,"type":"touch","client":3,"page":"index.html","element":"button#a","act":"TOUR"}"#,
+        r#"{"session_us":11,"type":"act.triggered","trigger":2,"source":"kiosk","label":"TOUR"}"#,
+        r#"{"session_us":20,"type":"touch","client":3,"page":"index.html","element":"button#b","act":"SECRET"}"#,
+        r#"{"session_us":21,"type":"trigger.refused","source":"kiosk","label":"SECRET","code":"not-offered"}"#,
+        r#"{"session_us":30,"type":"touch","client":3,"page":"index.html","element":"a[href=map.html]","link":"map.html"}"#,
+        r#"{"session_us":31,"type":"display.changed","page":"map.html"}"#,
+        // The idle return home: the kiosk's own doing.
+        r#"{"session_us":40,"type":"display.changed","page":"index.html"}"#,
+        // A run of rate-limited touches is logged once, as its refusal.
+        r#"{"session_us":50,"type":"trigger.refused","source":"kiosk","label":"TOUR","code":"rate-limited"}"#,
+        r#"{"session_us":60,"type":"session.ended"}"#,
+    ];
+    let timeline = read_format(4, &lines);
+    let pages: Vec<(u64, u64, &str)> = (timeline.pages.iter())
+        .map(|p| (p.start_us, p.end_us, p.page.as_str()))
+        .collect();
+    assert_eq!(
+        pages,
+        [
+            (0, 31, "index.html"),
+            (31, 40, "map.html"),
+            (40, 60, "index.html")
+        ],
+        "the page shown at the start begins the pages"
+    );
+    let touches: Vec<(u64, Touched)> = (timeline.touches.into_iter())
+        .map(|t| (t.at_us, t.what))
+        .collect();
+    let refused = |label: &str, code: &str| Touched::Refused {
+        label: label.into(),
+        code: code.into(),
+    };
+    assert_eq!(
+        touches,
+        [
+            (
+                10,
+                Touched::Act {
+                    label: "TOUR".into()
+                }
+            ),
+            (20, refused("SECRET", "not-offered")),
+            (
+                30,
+                Touched::Page {
+                    page: "map.html".into()
+                }
+            ),
+            (50, refused("TOUR", "rate-limited")),
+        ]
+    );
 }
 
 fn command(kind: &str, id: u64, at: u64, verb: &str, extra: &str) -> String {
@@ -109,8 +173,8 @@ fn a_line_that_is_not_a_session_line_says_why() {
          to no session)"
     );
     assert_eq!(
-        problem(r#"{"v":4,"session_us":1,"type":"pose"}"#),
-        "event format 4 is newer than this Docent reads (3): export it with the Docent that \
+        problem(r#"{"v":5,"session_us":1,"type":"pose"}"#),
+        "event format 5 is newer than this Docent reads (4): export it with the Docent that \
          wrote it"
     );
     assert_eq!(
