@@ -125,6 +125,7 @@ pub fn write_session(dir: &Path, seconds: u64, bundle: Option<&str>) -> std::io:
         number: 1,
         docent: "0.1.0".to_owned(),
         bundle: bundle.map(str::to_owned),
+        bundle_hash: None,
         started: mark(1, "2026-11-24T10:00:00.000Z", 1_000_000, None),
         ended: Some(mark(
             count as u64,

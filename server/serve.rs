@@ -74,6 +74,7 @@ impl Server {
         let (devices, router) = Devices::start(&bundle.config, home, speech, output, &hub, &life);
         hub.publish(EventKind::ServerStarted {
             bundle: bundle.root.display().to_string(),
+            bundle_hash: crate::content::corpus_fingerprint(&bundle.root),
             version: env!("CARGO_PKG_VERSION"),
             seed: options.seed,
         });

@@ -66,7 +66,7 @@ async fn the_log_holds_every_event_with_its_fields_in_sequence() {
     assert!(monos.windows(2).all(|w| w[0] <= w[1]));
     for e in &log {
         fields(e, &["v", "seq", "time", "mono_us", "type"]);
-        assert_eq!(e["v"], 3);
+        assert_eq!(e["v"], 4);
         assert!(e["time"].as_str().unwrap().ends_with('Z'));
     }
     assert_eq!(log[0]["type"], "server.started");

@@ -86,7 +86,7 @@ async fn a_sessions_events_are_in_its_folder_on_its_clock_and_the_rest_in_the_da
     );
     let start = first["mono_us"].as_u64().unwrap();
     for e in &session {
-        assert_eq!(e["v"], 3);
+        assert_eq!(e["v"], 4);
         let on_session_clock = e["session_us"].as_u64().expect("session_us");
         assert_eq!(
             on_session_clock,

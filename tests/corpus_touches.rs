@@ -1,11 +1,13 @@
 //! A visitor's touch is a `touch` event (page, element, act or link) and starts the session;
 //! what a page does by itself (its timers, the idle return home, its scripts) is not a touch
-//! and starts nothing. Read back from the corpus files, as a researcher would.
+//! and starts nothing. The session's manifest names the content it was recorded with. Read back
+//! from the corpus files, as a researcher would.
 
 mod common;
 
 use common::{TempBundle, TestServer, json_lines, session_dirs};
 use docent::corpus::layout::SESSION_EVENTS;
+use docent::corpus::manifest::SessionManifest;
 use serde_json::{Value, json};
 
 const ACTS: &str = r#"
@@ -62,6 +64,13 @@ async fn timers_and_the_idle_return_start_nothing_and_a_touch_is_logged_with_its
     let sessions = session_dirs(&corpus);
     assert_eq!(sessions.len(), 1, "the tap started one session");
     let session = json_lines(&sessions[0].join(SESSION_EVENTS));
+    let manifest = SessionManifest::read_from(&sessions[0]).unwrap();
+    let fingerprint = docent::content::bundle_fingerprint(b.path()).unwrap();
+    assert_eq!(
+        manifest.bundle_hash.as_deref(),
+        Some(fingerprint.as_str()),
+        "the manifest names the content it was recorded with"
+    );
     let types: Vec<&str> = (session.iter())
         .map(|e| e["type"].as_str().unwrap_or(""))
         .filter(|t| {

@@ -27,6 +27,11 @@ pub struct SessionManifest {
     pub docent: String,
     /// The bundle folder served, as `server.started` logged it.
     pub bundle: Option<String>,
+    /// The bundle's content when the session started (`sha256:…`, see
+    /// `content::bundle_fingerprint`); `None` when unknown (an older manifest, or a file
+    /// that could not be read).
+    #[serde(default)]
+    pub bundle_hash: Option<String>,
     /// The first line of the session's log.
     pub started: SessionMark,
     /// The line that ended it; `None` while it runs, or when the server stopped without

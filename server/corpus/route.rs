@@ -27,6 +27,7 @@ pub(super) struct Route {
     corpus: PathBuf,
     /// The bundle and the context as the log said last (for a new session's manifest).
     bundle: Option<String>,
+    bundle_hash: Option<String>,
     context: Option<String>,
     open: Option<(PathBuf, SessionManifest)>,
     /// This run's day log for the date it was made for.
@@ -42,6 +43,7 @@ impl Route {
         Route {
             corpus,
             bundle: None,
+            bundle_hash: None,
             // Every run starts in the default context; changes are logged.
             context: Some(DEFAULT_VARIANT.to_owned()),
             open: None,
@@ -54,7 +56,17 @@ impl Route {
     pub(super) fn place(&mut self, event: &Event) -> Place {
         let mut changed = false;
         match &event.kind {
-            EventKind::ServerStarted { bundle, .. } => self.bundle = Some(bundle.clone()),
+            EventKind::ServerStarted {
+                bundle,
+                bundle_hash,
+                ..
+            } => {
+                self.bundle = Some(bundle.clone());
+                self.bundle_hash = bundle_hash.clone();
+            }
+            // A bundle that goes live during a session changes what it was recorded with: the
+            // manifest keeps the one it started with, the log has the reload.
+            EventKind::BundleReloaded { bundle_hash, .. } => self.bundle_hash = bundle_hash.clone(),
             EventKind::ContextChanged { context, .. } => {
                 self.context = Some(context.clone());
                 if let Some((_, manifest)) = &mut self.open {
@@ -75,6 +87,7 @@ impl Route {
                     number: *session,
                     docent: env!("CARGO_PKG_VERSION").to_owned(),
                     bundle: self.bundle.clone(),
+                    bundle_hash: self.bundle_hash.clone(),
                     started: mark(event, source.as_str(), None),
                     ended: None,
                     group: None,
@@ -202,6 +215,7 @@ mod tests {
         let mut route = Route::new(corpus.to_owned());
         let started = EventKind::ServerStarted {
             bundle: "/bundles/tour".into(),
+            bundle_hash: Some("sha256:00".into()),
             version: "0.1.0",
             seed: None,
         };

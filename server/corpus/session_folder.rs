@@ -247,6 +247,7 @@ mod tests {
             number: 1,
             docent: "0.1.0".into(),
             bundle: Some("/srv/docent/tour".into()),
+            bundle_hash: None,
             started: mark(28, None),
             ended: ended.then(|| mark(32, Some("marked"))),
             group: Some("children".into()),

@@ -28,6 +28,9 @@ pub fn show(corpus: &Path, arg: &str, out: &mut dyn Write) -> Result<(), Command
                 "bundle    {}",
                 m.bundle.as_deref().unwrap_or("unknown")
             )?;
+            if let Some(hash) = &m.bundle_hash {
+                writeln!(out, "content   {hash}")?;
+            }
             writeln!(out, "docent    {}", m.docent)?;
             writeln!(out, "started   {} by {}", m.started.time, m.started.source)?;
         }

@@ -20,6 +20,9 @@ pub enum EventKind {
     ServerStarted {
         /// Bundle folder.
         bundle: String,
+        /// The bundle's content, `sha256:…` (`content::bundle_fingerprint`); `None` when a
+        /// file could not be read for it (the reason is in Docent's output).
+        bundle_hash: Option<String>,
         /// Docent's version.
         version: &'static str,
         /// The random seed, when reproducible runs were asked for.
@@ -321,6 +324,8 @@ pub enum EventKind {
     /// A saved bundle without errors went live in place of the running one.
     #[serde(rename = "bundle.reloaded")]
     BundleReloaded {
+        /// The new bundle's content, `sha256:…`, as in `server.started`.
+        bundle_hash: Option<String>,
         /// Acts in the new bundle.
         acts: usize,
         /// Contexts in the new bundle.

@@ -11,7 +11,7 @@ use std::time::Instant;
 use tokio::sync::mpsc;
 
 use crate::content::config::SiteConfig;
-use crate::content::{Bundle, Diagnostic, load_bundle};
+use crate::content::{Bundle, Diagnostic, corpus_fingerprint, load_bundle};
 use crate::events::{ClientRole, EventKind};
 use crate::reload::settings::{kiosk_shell_changed, not_applied};
 use crate::reload::watch::{BundleWatcher, Seen};
@@ -134,8 +134,17 @@ impl Reloader {
         }
         let started = Instant::now();
         let root = self.root.clone();
-        let report = match tokio::task::spawn_blocking(move || load_bundle(&root)).await {
-            Ok(report) => report,
+        let loaded = tokio::task::spawn_blocking(move || {
+            let report = load_bundle(&root);
+            // Only for a bundle that goes live; the same thread, so the same files.
+            let hash = report
+                .bundle
+                .as_ref()
+                .and_then(|_| corpus_fingerprint(&root));
+            (report, hash)
+        });
+        let (report, bundle_hash) = match loaded.await {
+            Ok(loaded) => loaded,
             Err(e) => {
                 return self.watch_failed(format!("checking the saved bundle failed: {e}"));
             }
@@ -143,13 +152,19 @@ impl Reloader {
         let checked_ms = millis(started);
         let changed: Vec<String> = self.pending.iter().cloned().collect();
         match report.bundle {
-            Some(bundle) => self.go_live(bundle, &report.diagnostics, changed),
+            Some(bundle) => self.go_live(bundle, bundle_hash, &report.diagnostics, changed),
             None if !self.root.is_dir() => self.folder_missing(),
             None => self.refuse(report.diagnostics, changed, checked_ms),
         }
     }
 
-    fn go_live(&mut self, mut bundle: Bundle, diagnostics: &[Diagnostic], changed: Vec<String>) {
+    fn go_live(
+        &mut self,
+        mut bundle: Bundle,
+        bundle_hash: Option<String>,
+        diagnostics: &[Diagnostic],
+        changed: Vec<String>,
+    ) {
         if let Some(speech) = self.options.speech_override {
             bundle.config.speech.adapter = Some(speech);
         }
@@ -169,6 +184,7 @@ impl Reloader {
         }
         self.state.reload.went_live(not_applied.clone());
         self.state.hub.publish(EventKind::BundleReloaded {
+            bundle_hash,
             acts,
             contexts,
             page_acts,

@@ -28,6 +28,7 @@ fn session(log: &str, bundle: &str) -> (tempfile::TempDir, PathBuf) {
         number: 1,
         docent: "0.1.0".to_owned(),
         bundle: Some(bundle.to_owned()),
+        bundle_hash: None,
         started: SessionMark {
             seq: 5,
             time: "2026-11-24T10:15:02.000Z".to_owned(),
