@@ -145,6 +145,9 @@ async fn record_session(b: &TempBundle, corpus: &Path) -> PathBuf {
     op.send(json!({"type": "mark", "mark": "situation", "value": "question"}))
         .await;
     op.recv_type("marked").await;
+    op.send(json!({"type": "mark", "mark": "note", "value": "she asks \"why\"; he laughs"}))
+        .await;
+    op.recv_type("marked").await;
     op.send(json!({"type": "trigger", "label": "GOODBYE"}))
         .await;
     let goodbye = command_ids(&op.recv_type("triggered").await);

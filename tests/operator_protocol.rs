@@ -148,6 +148,9 @@ async fn proposals_are_checked_and_each_role_keeps_to_its_part() {
     dm.send(json!({"type": "mark", "mark": "situation", "value": "question"}))
         .await;
     assert_eq!(dm.recv_type("error").await["code"], "forbidden");
+    dm.send(json!({"type": "mark", "mark": "note", "value": "a note"}))
+        .await;
+    assert_eq!(dm.recv_type("error").await["code"], "forbidden");
     server.stop().await;
 }
 
@@ -188,6 +191,19 @@ async fn marks_go_to_the_corpus_and_a_group_sets_its_context() {
             .contains("question, laughter"),
         "{bad}"
     );
+    op.send(json!({"type": "mark", "mark": "note", "value": "  the father reads aloud "}))
+        .await;
+    assert_eq!(op.recv_type("marked").await["session"], 1);
+    for (value, says) in [
+        (json!("   "), "needs its text"),
+        (json!("x".repeat(501)), "at most 500"),
+    ] {
+        op.send(json!({"type": "mark", "mark": "note", "value": value}))
+            .await;
+        let bad = op.recv_type("error").await;
+        assert_eq!(bad["code"], "bad-mark");
+        assert!(bad["message"].as_str().unwrap().contains(says), "{bad}");
+    }
     op.send(json!({"type": "mark", "mark": "session_start"}))
         .await;
     assert_eq!(op.recv_type("marked").await["session"], 2);
@@ -201,12 +217,16 @@ async fn marks_go_to_the_corpus_and_a_group_sets_its_context() {
         .iter()
         .filter(|e| {
             let t = e["type"].as_str().unwrap();
-            t.starts_with("session.") || t == "visitor.group" || t == "situation.marked"
+            t.starts_with("session.")
+                || t == "visitor.group"
+                || t == "situation.marked"
+                || t == "note.written"
         })
         .map(|e| {
             let what = e["group"]
                 .as_str()
                 .or(e["situation"].as_str())
+                .or(e["text"].as_str())
                 .unwrap_or("");
             format!("{} {} {}", e["type"].as_str().unwrap(), e["session"], what)
         })
@@ -217,6 +237,7 @@ async fn marks_go_to_the_corpus_and_a_group_sets_its_context() {
             "session.started 1 ",
             "visitor.group 1 children",
             "situation.marked 1 laughter",
+            "note.written 1 the father reads aloud",
             "session.ended 1 ",
             "session.started 2 ",
             "session.ended 2 ",

@@ -321,6 +321,18 @@ pub enum EventKind {
         /// The marking client.
         client: u64,
     },
+    /// An operator wrote a note about the moment, in their own words.
+    #[serde(rename = "note.written")]
+    NoteWritten {
+        /// The running session, if any.
+        session: Option<u64>,
+        /// The note, trimmed.
+        text: String,
+        /// Who wrote it.
+        source: Source,
+        /// The writing client.
+        client: u64,
+    },
     /// A saved bundle without errors went live in place of the running one.
     #[serde(rename = "bundle.reloaded")]
     BundleReloaded {
@@ -432,6 +444,7 @@ impl EventKind {
                 | EventKind::SessionEnded { .. }
                 | EventKind::VisitorGroup { .. }
                 | EventKind::SituationMarked { .. }
+                | EventKind::NoteWritten { .. }
         )
     }
 }

@@ -149,7 +149,7 @@ pub(super) fn mark(
     // visitors are and what happened stays the operator's to say.
     let roles: &[ClientRole] = match mark {
         MarkKind::SessionStart | MarkKind::SessionEnd => &SESSION_MARKERS,
-        MarkKind::Group | MarkKind::Situation | MarkKind::Consent => &OPERATOR,
+        MarkKind::Group | MarkKind::Situation | MarkKind::Consent | MarkKind::Note => &OPERATOR,
     };
     let Some(role) = client.allowed(role, roles, reference) else {
         return;
@@ -224,11 +224,47 @@ pub(super) fn mark(
             });
             session
         }
+        MarkKind::Note => {
+            let Some(text) = note_text(client, value.as_deref(), reference) else {
+                return;
+            };
+            let session = visits.current();
+            hub.publish(EventKind::NoteWritten {
+                session,
+                text: text.to_owned(),
+                source,
+                client: id,
+            });
+            session
+        }
     };
     client.send_logged(
         marked_frame(reference, mark, value.as_deref(), session),
         reference,
     );
+}
+
+/// The longest note an operator may write, in characters.
+pub const NOTE_CHARS: usize = 500;
+
+/// A note's text, trimmed, if it has 1 to [`NOTE_CHARS`] characters; otherwise answers with an
+/// error saying what is wrong.
+fn note_text<'a>(
+    client: &Client,
+    value: Option<&'a str>,
+    reference: Option<&str>,
+) -> Option<&'a str> {
+    let text = value.map(str::trim).unwrap_or_default();
+    let count = text.chars().count();
+    let problem = if count == 0 {
+        "a note needs its text in \"value\"".to_owned()
+    } else if count > NOTE_CHARS {
+        format!("a note may have at most {NOTE_CHARS} characters (this one has {count}): split it")
+    } else {
+        return Some(text);
+    };
+    client.reply_error(ErrorCode::BadMark, &problem, reference, None);
+    None
 }
 
 /// The context the site maps a visitor group to, if any.

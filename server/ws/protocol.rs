@@ -169,6 +169,8 @@ pub enum MarkKind {
     /// What the session's visitors agreed to: `value` is `recorded`, `declined` or
     /// `withdrawn`.
     Consent,
+    /// An operator's note in their own words: `value` is its text.
+    Note,
 }
 
 fn yes() -> bool {

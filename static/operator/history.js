@@ -52,6 +52,8 @@ export function createHistory(list) {
         return ["mark", [`visitor group: ${e.group}`, e.context ? ` (context ${e.context})` : ""]];
       case "situation.marked":
         return ["mark", [`situation: ${e.situation}`]];
+      case "note.written":
+        return ["mark", [`note: ${e.text}`]];
       default:
         return null;
     }

@@ -6,7 +6,7 @@
 // search typed or after Up/Down it always fires the choice, never a button that happens to have
 // the focus. Alt+<key> fires the act with that `Key`, F2 repeats the last act, F4 stars the
 // chosen act, F9 accepts the newest proposal and Shift+F9 dismisses it, Alt+Shift+1..9 mark a
-// situation. A held key's auto-repeat fires nothing again (Esc excepted: stopping twice is
+// situation, Alt+Shift+N goes to the note field. A held key's auto-repeat fires nothing again (Esc excepted: stopping twice is
 // harmless).
 
 /**
@@ -15,6 +15,7 @@
  *          repeat: () => void, favourite: () => void, accept: () => void,
  *          dismiss: () => void, actKey: (key: string, options: {repeat: boolean}) => boolean,
  *          situation: (n: number, options: {repeat: boolean}) => boolean,
+ *          note: () => void,
  *          typed: () => void}} handlers `active`: whether the console takes keys (signed in,
  *          no dialog open); `actKey` and `situation` say whether the key is bound and act only
  *          when it is not a `repeat`; `typed`: the search text changed.
@@ -70,6 +71,9 @@ export function bindKeys(handlers) {
         const letter = /^Key([A-Z])$/.exec(event.code)?.[1];
         if (event.shiftKey && digit && digit !== "0") {
           if (handlers.situation(Number(digit), { repeat: event.repeat })) done();
+        } else if (event.shiftKey && letter === "N") {
+          done();
+          handlers.note();
         } else if (!event.shiftKey && (digit || letter)) {
           if (handlers.actKey(digit ?? letter, { repeat: event.repeat })) done();
         }

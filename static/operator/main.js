@@ -94,6 +94,7 @@ const marks = createMarks({
   consent: byId("consent"),
   groups: byId("visitor-groups"),
   situations: byId("situation-buttons"),
+  note: { form: byId("note-form"), input: byId("note") },
   mark: (mark, value) => {
     if (mark === "group") context.expect(settings?.visitor_groups?.[value]);
     send({ type: "mark", mark, ...(value ? { value } : {}), ref: ref("mark") }, `mark ${mark}`);
@@ -227,6 +228,7 @@ bindKeys({
     if (situation && !repeat) send({ type: "mark", mark: "situation", value: situation, ref: ref("mark") }, `situation ${situation}`);
     return Boolean(situation);
   },
+  note: () => marks.focusNote(),
   typed: () => list.setQuery(search.value),
 });
 

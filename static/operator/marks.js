@@ -2,8 +2,9 @@
 // (consent: recorded, declined, withdrawn; a withdrawal is final), note the visitor group
 // (single, group, children; the server may switch the context for it, see docent.yaml
 // `operator.visitor_groups`) and mark dialog situations (from `operator.situations`, keys
-// Alt+Shift+1..9). Each sends a `mark` frame; what is shown follows the session.* and
-// consent.changed events.
+// Alt+Shift+1..9), and write a note in the operator's own words (Alt+Shift+N goes to it; the
+// text stays in the field until its note.written event says it is in the corpus). Each sends
+// a `mark` frame; what is shown follows the session.* and consent.changed events.
 
 import { h } from "./dom.js";
 
@@ -16,12 +17,19 @@ const GROUPS = [
 /**
  * @param {{session: HTMLElement, start: HTMLElement, end: HTMLElement, consent: HTMLSelectElement,
  *          groups: HTMLElement, situations: HTMLElement,
+ *          note: {form: HTMLFormElement, input: HTMLInputElement},
  *          mark: (mark: string, value?: string) => void}} options
  */
-export function createMarks({ session, start, end, consent, groups, situations, mark }) {
+export function createMarks({ session, start, end, consent, groups, situations, note, mark }) {
   let current = null;
   let consentNow = null;
   let situationNames = [];
+
+  note.form.addEventListener("submit", (event) => {
+    event.preventDefault();
+    const text = note.input.value.trim();
+    if (text) mark("note", text);
+  });
 
   start.addEventListener("click", () => mark("session_start"));
   end.addEventListener("click", () => mark("session_end"));
@@ -85,6 +93,8 @@ export function createMarks({ session, start, end, consent, groups, situations, 
           : [h("p", { class: "muted small" }, "none configured (docent.yaml operator.situations)")]),
       );
     },
+    /** Puts the keyboard in the note field. */
+    focusNote: () => note.input.focus(),
     /** The situation bound to Alt+Shift+`n` (1-based), or null. */
     situation: (n) => situationNames[n - 1] ?? null,
     /** The current session id and its consent (GET /api/state `session`, `consent`). */
@@ -111,6 +121,8 @@ export function createMarks({ session, start, end, consent, groups, situations, 
         showConsent();
       } else if (e.type === "visitor.group") {
         showGroup(e.group);
+      } else if (e.type === "note.written" && e.text === note.input.value.trim()) {
+        note.input.value = ""; // in the corpus now: the field is free for the next one
       }
     },
   };

@@ -85,6 +85,10 @@ pub fn expected(log: &[Value]) -> Expected {
                 let situation = e["situation"].as_str().unwrap();
                 marks.push((at(e), format!("situation: {situation}")));
             }
+            "note.written" => {
+                let text = e["text"].as_str().unwrap();
+                marks.push((at(e), format!("note: {text}")));
+            }
             "visitor.group" => {
                 let group = e["group"].as_str().unwrap();
                 marks.push((at(e), format!("group: {group}")));

@@ -278,7 +278,7 @@ test('proposals come newest first with their age; F9 accepts the newest, Shift+F
   }
 });
 
-test('session, visitor group and situation marks reach the corpus; the children group sets the context', { timeout: 90_000 }, async () => {
+test('session, visitor group, situation marks and a typed note reach the corpus; the children group sets the context', { timeout: 90_000 }, async () => {
   const bundle = museumTour();
   try {
     const events = await withServer(bundle, async ({ server, observer, newPage }) => {
@@ -301,19 +301,27 @@ test('session, visitor group and situation marks reach the corpus; the children 
       await observer.waitForEvent((e) => e.type === 'situation.marked' && e.situation === 'question');
       await page.click('#situation-buttons button[data-situation="laughter"]');
       await observer.waitForEvent((e) => e.type === 'situation.marked' && e.situation === 'laughter');
+      // A note by keyboard: Alt+Shift+N to the field, type, Enter; the field empties once it is logged.
+      await page.keyboard.press('Alt+Shift+KeyN');
+      assert.equal(await page.evaluate(() => document.activeElement?.id), 'note');
+      await page.keyboard.type('the boy asks about the punch cards');
+      await page.keyboard.press('Enter');
+      await observer.waitForEvent((e) => e.type === 'note.written');
+      await page.waitForFunction(() => document.querySelector('#note').value === '');
       await page.click('#session-end');
       await observer.waitForEvent((e) => e.type === 'session.ended');
       await page.locator('#session', { hasText: 'no session' }).waitFor();
       assert.deepEqual(problems, [], 'problems in the console');
     });
     const marks = events
-      .filter((e) => ['session.started', 'visitor.group', 'situation.marked', 'session.ended'].includes(e.type))
-      .map((e) => [e.type, e.group ?? e.situation ?? null, e.source]);
+      .filter((e) => ['session.started', 'visitor.group', 'situation.marked', 'note.written', 'session.ended'].includes(e.type))
+      .map((e) => [e.type, e.group ?? e.situation ?? e.text ?? null, e.source]);
     assert.deepEqual(marks, [
       ['session.started', null, 'operator'],
       ['visitor.group', 'children', 'operator'],
       ['situation.marked', 'question', 'operator'],
       ['situation.marked', 'laughter', 'operator'],
+      ['note.written', 'the boy asks about the punch cards', 'operator'],
       ['session.ended', null, 'operator'],
     ]);
     const group = events.find((e) => e.type === 'visitor.group');

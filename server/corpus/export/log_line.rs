@@ -79,6 +79,9 @@ pub enum Event {
     /// `situation.marked`: An operator marked a dialog situation.
     #[serde(rename = "situation.marked")]
     SituationMarked { situation: String },
+    /// `note.written`: An operator wrote a note.
+    #[serde(rename = "note.written")]
+    NoteWritten { text: String },
     /// `visitor.group`: An operator noted who the visitors are.
     #[serde(rename = "visitor.group")]
     VisitorGroup { group: String },

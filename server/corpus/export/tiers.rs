@@ -121,6 +121,7 @@ impl Tiers {
             at_us: m.at_us,
             value: match &m.what {
                 Marked::Situation(situation) => format!("situation: {situation}"),
+                Marked::Note(text) => format!("note: {text}"),
                 Marked::Group(group) => format!("group: {group}"),
             },
         });

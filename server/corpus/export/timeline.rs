@@ -121,6 +121,8 @@ pub struct Mark {
 pub enum Marked {
     /// A dialog situation (`question`, `laughter`, ...).
     Situation(String),
+    /// An operator's note, in their words.
+    Note(String),
     /// Who the visitors are (`single`, `group`, `children`).
     Group(String),
 }
@@ -273,6 +275,10 @@ impl TimelineReader {
             Event::DisplayChanged { page } => self.page_changed(at, page),
             Event::SituationMarked { situation } => {
                 let what = Marked::Situation(situation);
+                self.timeline.marks.push(Mark { at_us: at, what });
+            }
+            Event::NoteWritten { text } => {
+                let what = Marked::Note(text);
                 self.timeline.marks.push(Mark { at_us: at, what });
             }
             Event::VisitorGroup { group } => {
