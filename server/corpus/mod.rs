@@ -12,6 +12,7 @@
 //! `units.rs`); [`export`] reads a session's folder and writes its exports where it is told.
 //! None of them writes a log.
 
+pub mod annotations;
 pub mod catalog;
 pub mod cli;
 pub mod export;

@@ -26,6 +26,16 @@ pub const DEFAULT_TIER: &str = "situation";
 /// The names of the exports' own tiers (`corpus/export/tiers.rs`): a codebook tier may not
 /// take one, nor one of their numbered forms (`speech-2`).
 const EXPORT_TIERS: &[&str] = &["speech", "act", "commands", "pages", "touches", "marks"];
+/// The other names an EAF uses, in the one `xsd:ID` space tier names share
+/// (`corpus/export/eaf/elements.rs`).
+const EAF_NAMES: &[&str] = &[
+    "utterance",
+    "act-label",
+    "event",
+    "instant",
+    "act-labels",
+    "und",
+];
 /// Longest code or tier name.
 const MAX_NAME: usize = 64;
 
@@ -104,13 +114,23 @@ fn tier_name_ok(name: &str) -> bool {
         && chars.all(|c| c.is_ascii_alphanumeric() || matches!(c, '-' | '_' | '.'))
 }
 
-/// Whether `name` is an export's own tier, or one of its numbered forms.
-fn export_tier(name: &str) -> bool {
+/// Whether `name` is taken by the exports: one of their own tiers or one of its numbered
+/// forms, a codebook tier's point tier (`NAME-points`), or a name of the EAF's id space.
+fn reserved(name: &str) -> bool {
+    let digits = |n: &str| !n.is_empty() && n.chars().all(|c| c.is_ascii_digit());
     let base = match name.rsplit_once('-') {
-        Some((base, n)) if !n.is_empty() && n.chars().all(|c| c.is_ascii_digit()) => base,
+        Some((base, n)) if digits(n) => base,
         _ => name,
     };
     EXPORT_TIERS.contains(&base)
+        || EAF_NAMES.contains(&name)
+        || base.ends_with("-points")
+        || ["coded-", "codebook-", "cveid_"]
+            .iter()
+            .any(|p| name.starts_with(p))
+        || ["a", "ts"]
+            .iter()
+            .any(|p| name.strip_prefix(p).is_some_and(digits))
 }
 
 /// A shortcut as written, if it is one letter or digit (letters in lower case).
@@ -147,9 +167,10 @@ impl Reader {
                 self.bad(name_node, TIER_USAGE);
                 continue;
             }
-            if export_tier(name) {
+            if reserved(name) {
                 let message = format!(
-                    "`{name}` is the name of one of the exports' own tiers ({}). Give the \
+                    "`{name}` is a name the exports use themselves (their tiers {}; names \
+                     ending in `-points` or starting with `coded-` or `codebook-`). Give the \
                      annotation tier another name, e.g. `{name}-code`.",
                     EXPORT_TIERS.join(", ")
                 );
@@ -328,14 +349,16 @@ mod tests {
         assert_eq!(
             located(
                 "codebook:\n  situation: [question, question]\n  situation: [x]\n  \
-                 2nd: [a]\n  speech-2: [b]\n  empty: []\n"
+                 2nd: [a]\n  speech-2: [b]\n  empty: []\n  mood-points: [c]\n  ts3: [d]\n"
             ),
             [
                 ("duplicate-key", 2, 25),
                 ("duplicate-key", 3, 3),
                 ("config-bad-value", 4, 3),
                 ("config-bad-value", 5, 3),
-                ("config-bad-value", 6, 10)
+                ("config-bad-value", 6, 10),
+                ("config-bad-value", 7, 3),
+                ("config-bad-value", 8, 3)
             ]
         );
     }
