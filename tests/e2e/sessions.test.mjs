@@ -1,0 +1,166 @@
+// The replay and annotation page (`GET /sessions`) in headless Chromium, on a session a real
+// Docent recorded (an operator and a kiosk over the websocket: the tour's introduction said with
+// its page shown, a situation marked while it was said, a page the visitor followed, the session
+// ended). Signed in, the page lists the session and opens it; seeking to the operator's mark
+// shows the page and the utterance the log has at that time; a codebook key pressed twice saves
+// an interval and Shift with a key a point, both found in annotations.jsonl as the page showed
+// them; at 4× the playhead moves faster than at 1× (measured on the playhead's own reported
+// time, awaiting it, never sleeping).
+
+import assert from 'node:assert/strict';
+import fs from 'node:fs';
+import path from 'node:path';
+import { after, before, test } from 'node:test';
+
+import { launchBrowser, watchProblems } from './lib/browser.mjs';
+import { copyBundle, DEADLINE_MS, OPERATOR_TOKEN, REPO, removeTemp, startDocent } from './lib/docent.mjs';
+import { connectOperator, DocentClient } from './lib/ws-client.mjs';
+
+let browser;
+before(async () => {
+  browser = await launchBrowser();
+});
+after(() => browser?.close());
+
+/** museum-tour, its speech logged at 600 words a minute (the introduction takes ~4.5 s). */
+function tourBundle() {
+  const config = fs.readFileSync(path.join(REPO, 'dialogs/museum-tour/docent.yaml'), 'utf8');
+  const fast = config.replace('speech: { voice: en-us, rate: 160 }', 'speech: { adapter: log, voice: en-us, rate: 600 }');
+  assert.notEqual(fast, config, 'the speech line is there to change');
+  return copyBundle('museum-tour', { 'docent.yaml': fast });
+}
+
+/** Records one session on `server`; returns its folder. */
+async function recordSession(server) {
+  const op = await connectOperator(server.wsUrl);
+  const kiosk = await DocentClient.connect(server.wsUrl, { role: 'kiosk', name: 'e2e-kiosk' });
+  kiosk.onFrame = (frame) => {
+    if (frame.type === 'command') kiosk.send({ type: 'done', id: frame.id });
+  };
+  const mark = async (body) => {
+    op.send({ type: 'mark', ...body });
+    await op.waitFor((f) => f.type === 'marked');
+  };
+  await mark({ mark: 'session_start' });
+  op.send({ type: 'trigger', label: 'ABOUT_TOUR' });
+  await op.waitForEvent((e) => e.type === 'command.started' && e.verb === 'SAY');
+  await mark({ mark: 'situation', value: 'question' });
+  await op.waitForEvent((e) => e.type === 'command.done' && e.verb === 'SAY');
+  kiosk.send({ type: 'page', page: 'card-punch.html' });
+  await op.waitForEvent((e) => e.type === 'display.changed' && e.page === 'card-punch.html');
+  await mark({ mark: 'group', value: 'children' });
+  await mark({ mark: 'session_end' });
+  await op.close();
+  await kiosk.close();
+  const sessions = path.join(server.corpus, 'sessions');
+  const names = fs.readdirSync(sessions);
+  assert.equal(names.length, 1, `${names}`);
+  return path.join(sessions, names[0]);
+}
+
+/** What the log says was shown and said at the situation mark. */
+function atTheMark(dir) {
+  const log = fs.readFileSync(path.join(dir, 'events.jsonl'), 'utf8').trim().split('\n').map((l) => JSON.parse(l));
+  const markUs = log.find((e) => e.type === 'situation.marked').session_us;
+  const page = log.filter((e) => e.type === 'display.changed' && e.session_us <= markUs).at(-1).page;
+  const started = log.find((e) => e.type === 'command.started' && e.verb === 'SAY');
+  const ended = log.find((e) => e.type === 'command.done' && e.command === started.command);
+  assert.ok(started.session_us <= markUs && markUs < ended.session_us, 'the mark fell while it spoke');
+  const said = log.find((e) => e.type === 'command.sent' && e.command === started.command);
+  const text = said.arg ?? log.find((e) => e.type === 'act.triggered' && e.trigger === started.trigger).text;
+  return { markUs, page, text };
+}
+
+/** The playhead's reported time, µs. */
+const playheadUs = (page) => page.locator('#playhead').getAttribute('data-time-us').then(Number);
+
+/** Awaits the playhead reaching `us` or beyond; returns how fast it went there (session µs per wall ms). */
+async function pace(page, fromUs, toUs) {
+  return page.evaluate(
+    ([from, to]) =>
+      new Promise((resolve) => {
+        const playhead = document.getElementById('playhead');
+        const started = performance.now();
+        const startUs = Number(playhead.dataset.timeUs);
+        const check = () => {
+          const now = Number(playhead.dataset.timeUs);
+          if (now >= to) resolve((now - startUs) / (performance.now() - started));
+          else requestAnimationFrame(check);
+        };
+        check();
+      }),
+    [fromUs, toUs],
+  );
+}
+
+test('a recorded session replays in step with its log and is annotated by key', { timeout: 90_000 }, async (t) => {
+  const bundle = tourBundle();
+  const server = await startDocent(bundle);
+  const context = await browser.newContext({ viewport: { width: 1280, height: 900 } });
+  try {
+    const dir = await recordSession(server);
+    const name = path.basename(dir);
+    const want = atTheMark(dir);
+    const page = await context.newPage();
+    const problems = watchProblems(page);
+
+    await page.goto(`${server.base}/sessions`);
+    await page.locator('#signin[open]').waitFor();
+    await page.fill('#signin-token', OPERATOR_TOKEN);
+    await page.fill('#signin-name', 'Ana');
+    await page.click('#signin-submit');
+    await page.locator('body[data-state="ready"]').waitFor();
+    await page.click(`button[data-session="${name}"]`);
+    await page.locator('body[data-state="open"]').waitFor();
+
+    // Seek to the operator's mark: what the page shows is what the log says.
+    await page.click('.tier-marks button.mark-situation');
+    await page.locator(`#playhead[data-time-us="${want.markUs}"]`).waitFor();
+    assert.equal(await page.locator('#now-page').textContent(), want.page);
+    assert.equal(await page.locator('#now-utterance').textContent(), want.text);
+    assert.equal(await page.locator('#now-page-frame').getAttribute('src'), `/pages/${want.page}`);
+
+    // `q` begins "question" here, one second on `q` ends it; Shift+W marks "watching" there.
+    await page.keyboard.press('q');
+    await page.locator('#pending').filter({ hasText: 'situation: question' }).waitFor();
+    await page.focus('#timeline');
+    await page.keyboard.press('ArrowRight');
+    await page.locator(`#playhead[data-time-us="${want.markUs + 1_000_000}"]`).waitFor();
+    await page.keyboard.press('q');
+    await page.locator('#annotations tr').nth(0).waitFor();
+    await page.keyboard.press('Shift+W');
+    await page.locator('#annotations tr').nth(1).waitFor();
+    await page.locator('#save-status', { hasText: 'Saved' }).waitFor();
+    assert.equal(await page.locator('#save-error').isHidden(), true);
+    const lines = fs.readFileSync(path.join(dir, 'annotations.jsonl'), 'utf8').trim().split('\n').map((l) => JSON.parse(l));
+    const saved = lines.map(({ tier, code, start_us, end_us, annotator }) => ({ tier, code, start_us, end_us, annotator }));
+    const end = want.markUs + 1_000_000;
+    assert.deepEqual(saved, [
+      { tier: 'situation', code: 'question', start_us: want.markUs, end_us: end, annotator: 'Ana' },
+      { tier: 'behaviour', code: 'watching', start_us: end, end_us: end, annotator: 'Ana' },
+    ]);
+    assert.equal(await page.locator('.tier-coded button.annotation').count(), 2, 'both on the timeline');
+    const events = fs.readFileSync(path.join(dir, 'events.jsonl'), 'utf8');
+    assert.doesNotMatch(events, /watching/, 'annotations never go into the event log');
+
+    // Playing from the start: 4× moves the playhead faster than 1×.
+    await page.focus('#timeline');
+    await page.keyboard.press('Home');
+    await page.locator('#playhead[data-time-us="0"]').waitFor();
+    await page.click('#play');
+    const normal = await pace(page, 0, 500_000);
+    await page.selectOption('#speed', '4');
+    const from = await playheadUs(page);
+    const fast = await pace(page, from, from + 2_000_000);
+    await page.click('#play');
+    t.diagnostic(`playhead pace: ${normal.toFixed(0)} µs per ms at 1×, ${fast.toFixed(0)} at 4×`);
+    assert.ok(fast > 2 * normal, `4× went ${fast.toFixed(0)} µs per ms, 1× ${normal.toFixed(0)}`);
+    assert.ok(normal > 500 && normal < 1_500, `1× went ${normal.toFixed(0)} µs per ms`);
+
+    assert.deepEqual(problems, [], 'no console errors or failed requests');
+  } finally {
+    await context.close();
+    await server.stop();
+    removeTemp(bundle);
+  }
+});
