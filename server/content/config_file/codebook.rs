@@ -27,15 +27,8 @@ pub const DEFAULT_TIER: &str = "situation";
 /// take one, nor one of their numbered forms (`speech-2`).
 const EXPORT_TIERS: &[&str] = &["speech", "act", "commands", "pages", "touches", "marks"];
 /// The other names an EAF uses, in the one `xsd:ID` space tier names share
-/// (`corpus/export/eaf/elements.rs`).
-const EAF_NAMES: &[&str] = &[
-    "utterance",
-    "act-label",
-    "event",
-    "instant",
-    "act-labels",
-    "und",
-];
+/// (`corpus/export/eaf/elements.rs`), separated by spaces (names, not diagnostic codes).
+const EAF_NAMES: &str = "utterance act-label event instant act-labels und";
 /// Longest code or tier name.
 const MAX_NAME: usize = 64;
 
@@ -123,7 +116,7 @@ fn reserved(name: &str) -> bool {
         _ => name,
     };
     EXPORT_TIERS.contains(&base)
-        || EAF_NAMES.contains(&name)
+        || EAF_NAMES.split(' ').any(|n| n == name)
         || base.ends_with("-points")
         || ["coded-", "codebook-", "cveid_"]
             .iter()
