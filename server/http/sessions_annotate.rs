@@ -11,8 +11,10 @@ use axum::http::StatusCode;
 use axum::response::{IntoResponse, Response};
 use serde::Deserialize;
 
-use crate::corpus::annotations::{AnnotationError, AppendError, Draft, Edit, append, validate};
-use crate::corpus::export::SessionExport;
+use crate::corpus::annotations::{
+    ANNOTATIONS_FILE, AnnotationError, AppendError, Draft, Edit, append, validate,
+};
+use crate::corpus::export::{ExportError, SessionExport};
 use crate::http::AppError;
 use crate::http::auth::Authorized;
 use crate::http::body::RequestBody;
@@ -99,6 +101,16 @@ fn refused(e: AnnotationError) -> AppError {
     AppError::new(status, code, e.to_string())
 }
 
+/// `503 annotations-unwritable`, logged once.
+fn unwritable(dir: &std::path::Path, e: &std::io::Error) -> AppError {
+    tracing::error!(error = %e, dir = %dir.display(), "annotation not saved");
+    AppError::new(
+        StatusCode::SERVICE_UNAVAILABLE,
+        ErrorCode::AnnotationsUnwritable,
+        format!("the annotation was not saved: {ANNOTATIONS_FILE} cannot be written ({e})"),
+    )
+}
+
 /// `POST /api/sessions/{name}/annotations`: 201 with the annotation added, 200 with the
 /// annotation changed or the line that deleted it.
 pub async fn post_annotation(
@@ -123,7 +135,11 @@ pub async fn post_annotation(
             // The session's length, as its log says it (a running session's so far).
             let length_us = match SessionExport::open(&dir) {
                 Ok(session) => session.timeline().end_us,
-                Err(crate::corpus::export::ExportError::Recording(_)) => u64::MAX,
+                Err(ExportError::Recording(_)) => u64::MAX,
+                // The annotations file itself cannot be read: it cannot be appended to either.
+                Err(ExportError::Read { path, source }) if path.ends_with(ANNOTATIONS_FILE) => {
+                    return Err(unwritable(&dir, &source));
+                }
                 Err(e) => return Err(AppError::internal(e)),
             };
             validate(&codebook, length_us, draft).map_err(refused)?;
@@ -132,14 +148,7 @@ pub async fn post_annotation(
         match append(&dir, edit, time) {
             Ok(line) => Ok((status, line)),
             Err(AppendError::Refused(e)) => Err(refused(e)),
-            Err(AppendError::Io(e)) => {
-                tracing::error!(error = %e, dir = %dir.display(), "annotation not saved");
-                Err(AppError::new(
-                    StatusCode::SERVICE_UNAVAILABLE,
-                    ErrorCode::AnnotationsUnwritable,
-                    format!("the annotation was not saved: {e}"),
-                ))
-            }
+            Err(AppendError::Io(e)) => Err(unwritable(&dir, &e)),
         }
     })
     .await

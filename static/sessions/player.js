@@ -6,7 +6,7 @@
 // must be. A recording that refuses to play is reported through `onProblem`, never ignored.
 
 /** How far a recording may drift from the clock before it is moved, in seconds. */
-const DRIFT_S = 0.25;
+const DRIFT_S = 0.12;
 
 /**
  * @param {{lengthUs: number, media: {el: HTMLMediaElement, startUs: number}[],

@@ -5,9 +5,13 @@
 // shows the page and the utterance the log has at that time; a codebook key pressed twice saves
 // an interval and Shift with a key a point, both found in annotations.jsonl as the page showed
 // them; at 4× the playhead moves faster than at 1× (measured on the playhead's own reported
-// time, awaiting it, never sleeping).
+// time, awaiting it, never sleeping). With a recording (an Opus WebM made by Debian's ffmpeg,
+// listed in the manifest as the recorder lists its files) the audio plays in step with the
+// playhead, fetched by ticket with range requests; a save that fails is shown at once and can
+// be tried again.
 
 import assert from 'node:assert/strict';
+import { execFileSync } from 'node:child_process';
 import fs from 'node:fs';
 import path from 'node:path';
 import { after, before, test } from 'node:test';
@@ -58,6 +62,32 @@ async function recordSession(server) {
   return path.join(sessions, names[0]);
 }
 
+/** An 8 s Opus WebM (a 440 Hz tone) at `file`, made by ffmpeg. */
+function makeWebm(file) {
+  fs.mkdirSync(path.dirname(file), { recursive: true });
+  execFileSync('ffmpeg', ['-hide_banner', '-loglevel', 'error', '-f', 'lavfi', '-i', 'sine=frequency=440:duration=8', '-c:a', 'libopus', '-b:a', '32k', '-y', file]);
+}
+
+/** Lists `file` in the session's manifest, as the recorder does. */
+function listMedia(dir, file, startUs) {
+  const manifestPath = path.join(dir, 'session.json');
+  const manifest = JSON.parse(fs.readFileSync(manifestPath, 'utf8'));
+  manifest.media = [...(manifest.media ?? []), { file, track: 'audio', mime: 'audio/webm;codecs=opus', start_us: startUs, recording: 1 }];
+  fs.writeFileSync(manifestPath, JSON.stringify(manifest, null, 2));
+}
+
+/** Opens /sessions, signs in as Ana and opens session `name`. */
+async function openSession(page, server, name) {
+  await page.goto(`${server.base}/sessions`);
+  await page.locator('#signin[open]').waitFor();
+  await page.fill('#signin-token', OPERATOR_TOKEN);
+  await page.fill('#signin-name', 'Ana');
+  await page.click('#signin-submit');
+  await page.locator('body[data-state="ready"]').waitFor();
+  await page.click(`button[data-session="${name}"]`);
+  await page.locator('body[data-state="open"]').waitFor();
+}
+
 /** What the log says was shown and said at the situation mark. */
 function atTheMark(dir) {
   const log = fs.readFileSync(path.join(dir, 'events.jsonl'), 'utf8').trim().split('\n').map((l) => JSON.parse(l));
@@ -104,14 +134,7 @@ test('a recorded session replays in step with its log and is annotated by key', 
     const page = await context.newPage();
     const problems = watchProblems(page);
 
-    await page.goto(`${server.base}/sessions`);
-    await page.locator('#signin[open]').waitFor();
-    await page.fill('#signin-token', OPERATOR_TOKEN);
-    await page.fill('#signin-name', 'Ana');
-    await page.click('#signin-submit');
-    await page.locator('body[data-state="ready"]').waitFor();
-    await page.click(`button[data-session="${name}"]`);
-    await page.locator('body[data-state="open"]').waitFor();
+    await openSession(page, server, name);
 
     // Seek to the operator's mark: what the page shows is what the log says.
     await page.click('.tier-marks button.mark-situation');
@@ -158,6 +181,88 @@ test('a recorded session replays in step with its log and is annotated by key', 
     assert.ok(normal > 500 && normal < 1_500, `1× went ${normal.toFixed(0)} µs per ms`);
 
     assert.deepEqual(problems, [], 'no console errors or failed requests');
+  } finally {
+    await context.close();
+    await server.stop();
+    removeTemp(bundle);
+  }
+});
+
+test('a recording plays in step with the playhead, by ticket with ranges; a failed save is shown and tried again', { timeout: 90_000 }, async (t) => {
+  const bundle = tourBundle();
+  const server = await startDocent(bundle);
+  const context = await browser.newContext({ viewport: { width: 1280, height: 900 } });
+  try {
+    const dir = await recordSession(server);
+    const name = path.basename(dir);
+    makeWebm(path.join(dir, 'media/audio-1.webm'));
+    const startUs = 1_000_000;
+    listMedia(dir, 'media/audio-1.webm', startUs);
+    const page = await context.newPage();
+    const problems = watchProblems(page);
+    const media = [];
+    page.on('response', (res) => {
+      if (res.url().includes('/session-media/')) media.push({ status: res.status(), range: res.request().headers().range ?? null });
+    });
+    await openSession(page, server, name);
+
+    const audio = page.locator('#media audio');
+    assert.equal(await audio.count(), 1);
+    const src = await audio.getAttribute('src');
+    assert.match(src, /^\/session-media\/[0-9a-f]{32}\/media\/audio-1\.webm$/);
+    assert.doesNotMatch(src, new RegExp(OPERATOR_TOKEN), 'no credential in an address');
+
+    // From 2 s on the session clock, the recording plays from 1 s into itself, and stays in step.
+    await page.focus('#timeline');
+    await page.keyboard.press('Home');
+    await page.keyboard.press('ArrowRight');
+    await page.keyboard.press('ArrowRight');
+    await page.locator('#playhead[data-time-us="2000000"]').waitFor();
+    await page.click('#play');
+    // Once it plays, compare it with the clock at every frame for a second of the recording.
+    const drift = await page.evaluate(
+      (start) =>
+        new Promise((resolve) => {
+          const audio = document.querySelector('#media audio');
+          const playhead = document.getElementById('playhead');
+          let worst = 0;
+          let frames = 0;
+          const check = () => {
+            const clockS = (Number(playhead.dataset.timeUs) - start) / 1e6;
+            if (!audio.paused && audio.currentTime > 1.5) {
+              worst = Math.max(worst, Math.abs(audio.currentTime - clockS));
+              frames += 1;
+            }
+            if (audio.currentTime > 2.5) resolve({ worst, frames });
+            else requestAnimationFrame(check);
+          };
+          check();
+        }),
+      startUs,
+    );
+    await page.click('#play');
+    t.diagnostic(`recording vs clock over ${drift.frames} frames: at most ${(drift.worst * 1000).toFixed(0)} ms apart`);
+    assert.ok(drift.frames > 10 && drift.worst < 0.2, `the recording drifted up to ${drift.worst} s from the clock`);
+    assert.ok(media.some((m) => m.status === 206 && m.range), `range requests: ${JSON.stringify(media)}`);
+
+    // A save that cannot be written is said at once; once it can, Try again saves it.
+    const file = path.join(dir, 'annotations.jsonl');
+    fs.mkdirSync(file);
+    await page.focus('#timeline');
+    await page.keyboard.press('Shift+Q');
+    const error = page.locator('#save-error');
+    await error.waitFor();
+    assert.match(await error.textContent(), /Not saved: situation: question at .* \(annotations-unwritable\)/);
+    assert.equal(await page.locator('#annotations tr').count(), 0, 'nothing shown as saved');
+    fs.rmdirSync(file);
+    await error.locator('button', { hasText: 'Try again' }).click();
+    await page.locator('#annotations tr').waitFor();
+    assert.equal(await error.isHidden(), true);
+    const lines = fs.readFileSync(file, 'utf8').trim().split('\n').map((l) => JSON.parse(l));
+    assert.deepEqual(lines.map((l) => [l.tier, l.code, l.start_us === l.end_us]), [['situation', 'question', true]]);
+
+    const unexpected = problems.filter((p) => !(p.includes('503') && p.includes('/annotations')));
+    assert.deepEqual(unexpected, [], 'no console errors or failed requests but the refused save');
   } finally {
     await context.close();
     await server.stop();
