@@ -101,6 +101,20 @@ function atTheMark(dir) {
   return { markUs, page, text };
 }
 
+/**
+ * The controls Chromium's accessibility tree has without a name (buttons, fields, the timeline
+ * slider, frames): each as `role "name"`. (axe-core is not among the test dependencies; this
+ * asks the browser itself what a screen reader would be told.)
+ */
+async function unnamedControls(page) {
+  const cdp = await page.context().newCDPSession(page);
+  const { nodes } = await cdp.send('Accessibility.getFullAXTree');
+  const roles = new Set(['button', 'combobox', 'slider', 'textbox', 'checkbox', 'Iframe', 'link', 'listbox']);
+  const controls = nodes.filter((n) => !n.ignored && roles.has(n.role?.value));
+  assert.ok(controls.length > 15, `the tree has the page's controls: ${controls.length}`);
+  return controls.filter((n) => !(n.name?.value ?? '').trim()).map((n) => `${n.role.value} ${JSON.stringify(n.name?.value ?? '')}`);
+}
+
 /** The playhead's reported time, µs. */
 const playheadUs = (page) => page.locator('#playhead').getAttribute('data-time-us').then(Number);
 
@@ -180,6 +194,7 @@ test('a recorded session replays in step with its log and is annotated by key', 
     assert.ok(fast > 2 * normal, `4× went ${fast.toFixed(0)} µs per ms, 1× ${normal.toFixed(0)}`);
     assert.ok(normal > 500 && normal < 1_500, `1× went ${normal.toFixed(0)} µs per ms`);
 
+    assert.deepEqual(await unnamedControls(page), [], 'every control has a name');
     assert.deepEqual(problems, [], 'no console errors or failed requests');
   } finally {
     await context.close();
