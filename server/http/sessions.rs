@@ -247,6 +247,23 @@ mod tests {
     use super::*;
 
     #[test]
+    fn only_the_name_of_a_session_folder_names_a_session() {
+        let corpus = tempfile::tempdir().unwrap();
+        let sessions = corpus.path().join("sessions");
+        std::fs::create_dir_all(sessions.join("2026-11-24T10-15-02Z")).unwrap();
+        std::fs::create_dir_all(corpus.path().join("days")).unwrap();
+        std::os::unix::fs::symlink(corpus.path().join("days"), sessions.join("linked")).unwrap();
+        let (name, dir) = session_dir(corpus.path(), "2026-11-24T10-15-02Z").unwrap();
+        assert_eq!((name.as_str(), dir), ("2026-11-24T10-15-02Z", sessions.join(&name)));
+        let refused = ["..", ".", "", "../days", "sessions/2026-11-24T10-15-02Z", "a\\b"];
+        for name in refused.into_iter().chain(["linked", "2026-11-24T10-15-03Z", "/etc"]) {
+            let error = session_dir(corpus.path(), name).unwrap_err();
+            let text = format!("{error:?}");
+            assert!(text.contains("UnknownSession"), "{name}: {text}");
+        }
+    }
+
+    #[test]
     fn the_sessions_page_carries_its_contract_and_no_session() {
         let page = SessionsPage {
             api_path: "/api/sessions",
