@@ -5,10 +5,10 @@
 // shows the page and the utterance the log has at that time; a codebook key pressed twice saves
 // an interval and Shift with a key a point, both found in annotations.jsonl as the page showed
 // them; at 4× the playhead moves faster than at 1× (measured on the playhead's own reported
-// time, awaiting it, never sleeping). With a recording (an Opus WebM made by Debian's ffmpeg,
-// listed in the manifest as the recorder lists its files) the audio plays in step with the
-// playhead, fetched by ticket with range requests; a save that fails is shown at once and can
-// be tried again.
+// time, awaiting it, never sleeping). With recordings (an Opus WebM and a later VP8 one, made
+// by Debian's ffmpeg and listed in the manifest as the recorder lists its files) both play in
+// step with the playhead, fetched by ticket with range requests; a save that fails is shown at
+// once and can be tried again.
 
 import assert from 'node:assert/strict';
 import { execFileSync } from 'node:child_process';
@@ -68,11 +68,19 @@ function makeWebm(file) {
   execFileSync('ffmpeg', ['-hide_banner', '-loglevel', 'error', '-f', 'lavfi', '-i', 'sine=frequency=440:duration=8', '-c:a', 'libopus', '-b:a', '32k', '-y', file]);
 }
 
+/** An 8 s VP8 and Opus WebM (a test picture and a tone) at `file`, made by ffmpeg. */
+function makeVideoWebm(file) {
+  fs.mkdirSync(path.dirname(file), { recursive: true });
+  const inputs = ['-f', 'lavfi', '-i', 'testsrc=size=160x120:rate=10:duration=8', '-f', 'lavfi', '-i', 'sine=frequency=330:duration=8'];
+  execFileSync('ffmpeg', ['-hide_banner', '-loglevel', 'error', ...inputs, '-c:v', 'libvpx', '-b:v', '100k', '-c:a', 'libopus', '-shortest', '-y', file]);
+}
+
 /** Lists `file` in the session's manifest, as the recorder does. */
-function listMedia(dir, file, startUs) {
+function listMedia(dir, file, startUs, track = 'audio') {
   const manifestPath = path.join(dir, 'session.json');
   const manifest = JSON.parse(fs.readFileSync(manifestPath, 'utf8'));
-  manifest.media = [...(manifest.media ?? []), { file, track: 'audio', mime: 'audio/webm;codecs=opus', start_us: startUs, recording: 1 }];
+  const mime = track === 'video' ? 'video/webm;codecs=vp8,opus' : 'audio/webm;codecs=opus';
+  manifest.media = [...(manifest.media ?? []), { file, track, mime, start_us: startUs, recording: 1 }];
   fs.writeFileSync(manifestPath, JSON.stringify(manifest, null, 2));
 }
 
@@ -203,7 +211,7 @@ test('a recorded session replays in step with its log and is annotated by key', 
   }
 });
 
-test('a recording plays in step with the playhead, by ticket with ranges; a failed save is shown and tried again', { timeout: 90_000 }, async (t) => {
+test('recordings play in step with the playhead, by ticket with ranges; a failed save is shown and tried again', { timeout: 90_000 }, async (t) => {
   const bundle = tourBundle();
   const server = await startDocent(bundle);
   const context = await browser.newContext({ viewport: { width: 1280, height: 900 } });
@@ -213,6 +221,10 @@ test('a recording plays in step with the playhead, by ticket with ranges; a fail
     makeWebm(path.join(dir, 'media/audio-1.webm'));
     const startUs = 1_000_000;
     listMedia(dir, 'media/audio-1.webm', startUs);
+    // The camera's recording began later, 1.5 s into the session.
+    makeVideoWebm(path.join(dir, 'media/video-1.webm'));
+    const videoStartUs = 1_500_000;
+    listMedia(dir, 'media/video-1.webm', videoStartUs, 'video');
     const page = await context.newPage();
     const problems = watchProblems(page);
     const media = [];
@@ -223,6 +235,7 @@ test('a recording plays in step with the playhead, by ticket with ranges; a fail
 
     const audio = page.locator('#media audio');
     assert.equal(await audio.count(), 1);
+    assert.equal(await page.locator('#media video').count(), 1);
     const src = await audio.getAttribute('src');
     assert.match(src, /^\/session-media\/[0-9a-f]{32}\/media\/audio-1\.webm$/);
     assert.doesNotMatch(src, new RegExp(OPERATOR_TOKEN), 'no credential in an address');
@@ -234,18 +247,23 @@ test('a recording plays in step with the playhead, by ticket with ranges; a fail
     await page.keyboard.press('ArrowRight');
     await page.locator('#playhead[data-time-us="2000000"]').waitFor();
     await page.click('#play');
-    // Once it plays, compare it with the clock at every frame for a second of the recording.
+    // Once they play, compare each with the clock at every frame for a second of the audio.
     const drift = await page.evaluate(
-      (start) =>
+      ([audioStart, videoStart]) =>
         new Promise((resolve) => {
           const audio = document.querySelector('#media audio');
+          const video = document.querySelector('#media video');
           const playhead = document.getElementById('playhead');
           let worst = 0;
           let frames = 0;
           const check = () => {
-            const clockS = (Number(playhead.dataset.timeUs) - start) / 1e6;
-            if (!audio.paused && audio.currentTime > 1.5) {
-              worst = Math.max(worst, Math.abs(audio.currentTime - clockS));
+            const clockUs = Number(playhead.dataset.timeUs);
+            if (!audio.paused && !video.paused && audio.currentTime > 1.5) {
+              const apart = [
+                Math.abs(audio.currentTime - (clockUs - audioStart) / 1e6),
+                Math.abs(video.currentTime - (clockUs - videoStart) / 1e6),
+              ];
+              worst = Math.max(worst, ...apart);
               frames += 1;
             }
             if (audio.currentTime > 2.5) resolve({ worst, frames });
@@ -253,10 +271,10 @@ test('a recording plays in step with the playhead, by ticket with ranges; a fail
           };
           check();
         }),
-      startUs,
+      [startUs, videoStartUs],
     );
     await page.click('#play');
-    t.diagnostic(`recording vs clock over ${drift.frames} frames: at most ${(drift.worst * 1000).toFixed(0)} ms apart`);
+    t.diagnostic(`recordings (audio, video) vs clock over ${drift.frames} frames: at most ${(drift.worst * 1000).toFixed(0)} ms apart`);
     assert.ok(drift.frames > 10 && drift.worst < 0.2, `the recording drifted up to ${drift.worst} s from the clock`);
     assert.ok(media.some((m) => m.status === 206 && m.range), `range requests: ${JSON.stringify(media)}`);
 
