@@ -21,6 +21,7 @@ use crate::corpus::annotations::read_annotations;
 use crate::corpus::catalog::{Catalog, CorpusError, find_session};
 use crate::corpus::export::timeline::{Marked, Outcome, Timeline, Touched};
 use crate::corpus::export::{ExportError, SessionExport};
+use crate::corpus::layout::SESSION_MANIFEST;
 use crate::http::AppError;
 use crate::http::auth::Authorized;
 use crate::http::sessions_media::media_list;
@@ -125,7 +126,7 @@ pub async fn get_session(
         let (name, dir) = session_dir(&corpus, &name)?;
         let session = SessionExport::open(&dir).map_err(|e| opened(&name, e))?;
         let annotated = read_annotations(&dir).map_err(AppError::internal)?;
-        let manifest: Value = std::fs::read(dir.join("session.json"))
+        let manifest: Value = std::fs::read(dir.join(SESSION_MANIFEST))
             .ok()
             .and_then(|t| serde_json::from_slice(&t).ok())
             .unwrap_or(Value::Null);
@@ -254,9 +255,22 @@ mod tests {
         std::fs::create_dir_all(corpus.path().join("days")).unwrap();
         std::os::unix::fs::symlink(corpus.path().join("days"), sessions.join("linked")).unwrap();
         let (name, dir) = session_dir(corpus.path(), "2026-11-24T10-15-02Z").unwrap();
-        assert_eq!((name.as_str(), dir), ("2026-11-24T10-15-02Z", sessions.join(&name)));
-        let refused = ["..", ".", "", "../days", "sessions/2026-11-24T10-15-02Z", "a\\b"];
-        for name in refused.into_iter().chain(["linked", "2026-11-24T10-15-03Z", "/etc"]) {
+        assert_eq!(
+            (name.as_str(), dir),
+            ("2026-11-24T10-15-02Z", sessions.join(&name))
+        );
+        let refused = [
+            "..",
+            ".",
+            "",
+            "../days",
+            "sessions/2026-11-24T10-15-02Z",
+            "a\\b",
+        ];
+        for name in refused
+            .into_iter()
+            .chain(["linked", "2026-11-24T10-15-03Z", "/etc"])
+        {
             let error = session_dir(corpus.path(), name).unwrap_err();
             let text = format!("{error:?}");
             assert!(text.contains("UnknownSession"), "{name}: {text}");
