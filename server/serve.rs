@@ -81,7 +81,8 @@ impl Server {
         let proxies = TrustedProxies::new(bundle.config.server.trusted_proxies.clone());
         let dispatcher = Dispatcher::new(Arc::new(bundle), router, hub, options.seed, life.clone());
         let access = Access::new(options.access.clone(), proxies);
-        let state = AppState::new(dispatcher, Arc::new(devices), life, access);
+        let corpus_dir = corpus.dir().to_owned();
+        let state = AppState::new(dispatcher, Arc::new(devices), life, access, corpus_dir);
         let notices = crate::ws::ClientNotices::new(state.links());
         state.dispatcher.set_notifier(Arc::new(notices));
         Ok(Server {

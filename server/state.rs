@@ -1,6 +1,7 @@
 //! The server's shared state: cheap handles cloned into every request and connection.
 
 use std::collections::BTreeMap;
+use std::path::PathBuf;
 use std::sync::atomic::{AtomicU64, Ordering};
 use std::sync::{Arc, Mutex};
 
@@ -10,7 +11,7 @@ use crate::access::Access;
 use crate::adapters::Devices;
 use crate::dispatch::Dispatcher;
 use crate::events::{ClientRole, Hub};
-use crate::http::MissingPageReports;
+use crate::http::{MissingPageReports, Replay};
 use crate::lifecycle::Lifecycle;
 use crate::operator::{Proposals, Visits};
 use crate::reload::ReloadStatus;
@@ -51,6 +52,8 @@ pub struct AppState {
     pub missing_pages: Arc<MissingPageReports>,
     /// What live reload has to tell operators (a refused save, a missing folder).
     pub reload: Arc<ReloadStatus>,
+    /// The corpus folder as the `/sessions` page reads it, and its media tickets.
+    pub replay: Arc<Replay>,
     clients: Arc<Clients>,
 }
 
@@ -101,12 +104,13 @@ struct Connected {
 }
 
 impl AppState {
-    /// State over a running dispatcher and its devices.
+    /// State over a running dispatcher and its devices, writing the corpus folder `corpus`.
     pub fn new(
         dispatcher: Arc<Dispatcher>,
         devices: Arc<Devices>,
         life: Lifecycle,
         access: Access,
+        corpus: PathBuf,
     ) -> Self {
         let hub = dispatcher.hub().clone();
         let display = Arc::clone(&devices.display);
@@ -126,6 +130,7 @@ impl AppState {
             visits,
             missing_pages: Arc::default(),
             reload: Arc::default(),
+            replay: Arc::new(Replay::new(corpus)),
             clients: Arc::new(Clients {
                 next: AtomicU64::default(),
                 connected: Mutex::default(),

@@ -8,6 +8,8 @@
 
 mod common;
 
+#[path = "corpus_export/coded.rs"]
+mod coded;
 #[path = "corpus_export/damaged.rs"]
 mod damaged;
 #[path = "corpus_export/expected.rs"]
@@ -20,6 +22,7 @@ use std::path::{Path, PathBuf};
 use std::process::Command;
 
 use common::{TempBundle, TestServer, WsClient, repo};
+use docent::corpus::annotations::{ANNOTATIONS_FILE, Draft, Edit, append};
 use docent::corpus::export::{ExportError, ExportFormat, ExportWarning, export_session};
 use docent::corpus::layout::{SESSION_EVENTS, SESSIONS_DIR};
 use expected::assert_reads_back;
@@ -164,6 +167,34 @@ async fn record_session(b: &TempBundle, corpus: &Path) -> PathBuf {
     sessions.into_iter().next().unwrap()
 }
 
+/// Researchers' annotations of `session`: two overlapping intervals and a point of the
+/// codebook's `situation`, one deleted, one changed, and one of a tier since taken out of the
+/// codebook.
+fn annotate(session: &Path) {
+    let draft = |tier: &str, code: &str, start_us, end_us| {
+        let (tier, code, annotator) = (tier.to_owned(), code.to_owned(), None);
+        Draft {
+            tier,
+            code,
+            start_us,
+            end_us,
+            annotator,
+        }
+    };
+    let edits = [
+        Edit::Add(draft("situation", "question", 1_000, 40_000)),
+        Edit::Add(draft("situation", "laughter", 20_000, 30_500)),
+        Edit::Add(draft("situation", "question", 12_345, 12_345)),
+        Edit::Add(draft("situation", "laughter", 5_000, 6_000)),
+        Edit::Delete("a4".into()),
+        Edit::Add(draft("mood", "cheerful", 2_000, 3_000)),
+        Edit::Change("a2".into(), draft("situation", "laughter", 20_000, 31_000)),
+    ];
+    for edit in edits {
+        append(session, edit, "2026-11-24T12:00:00Z".into()).unwrap();
+    }
+}
+
 fn log_lines(session: &Path) -> Vec<Value> {
     common::json_lines(&session.join(SESSION_EVENTS))
 }
@@ -174,13 +205,20 @@ async fn a_recorded_session_reads_back_the_same_in_elan_praat_and_a_spreadsheet(
     let corpus = tempfile::tempdir().unwrap();
     let session = record_session(&b, corpus.path()).await;
     let name = session.file_name().unwrap().to_str().unwrap().to_owned();
+    annotate(&session);
     let out = tempfile::tempdir().unwrap();
     for format in ExportFormat::ALL {
         let exported = export_session(&session, format, out.path()).unwrap();
-        let file = out.path().join(format!("{name}.{}", format.extension()));
-        assert_eq!(exported.files, [file], "{format}");
+        let mut files = vec![out.path().join(format!("{name}.{}", format.extension()))];
+        if format == ExportFormat::Jsonl {
+            files.push(out.path().join(format!("{name}.annotations.jsonl")));
+        }
+        assert_eq!(exported.files, files, "{format}");
         assert_eq!(exported.warnings, [], "{format}");
     }
+    let annotations = common::json_lines(&session.join(ANNOTATIONS_FILE));
+    let live = common::json_lines(&out.path().join(format!("{name}.annotations.jsonl")));
+    assert_eq!(live.len(), 4, "the deleted one is gone: {live:?}");
     let copy = std::fs::read(out.path().join(format!("{name}.jsonl"))).unwrap();
     assert_eq!(copy, std::fs::read(session.join(SESSION_EVENTS)).unwrap());
 
@@ -192,7 +230,14 @@ async fn a_recorded_session_reads_back_the_same_in_elan_praat_and_a_spreadsheet(
         "what the readers found or let pass"
     );
 
-    let want = assert_reads_back(&log, &read);
+    let want = assert_reads_back(&log, &coded::coded(&["situation"], &annotations), &read);
+    for tier in ["situation", "situation-2", "situation-points", "mood"] {
+        let read = read["eaf"]["tiers"][tier].as_array();
+        assert!(
+            read.is_some_and(|r| !r.is_empty()),
+            "{tier} has annotations"
+        );
+    }
 
     // The session as it was played.
     let said: Vec<&str> = want.speech.iter().map(|u| u.text.as_str()).collect();
@@ -205,8 +250,14 @@ async fn a_recorded_session_reads_back_the_same_in_elan_praat_and_a_spreadsheet(
         commands.contains(&json!("commands-2")),
         "the drive and the page overlap: {commands:?}"
     );
-    let vocabulary: BTreeSet<&str> = (read["eaf"]["vocabulary"].as_object().unwrap().values())
-        .map(|v| v.as_str().unwrap())
+    // The act labels' entries (`cveid_N`; a codebook tier's are `cveid_TIER_N`).
+    let acts = |id: &str| {
+        id.strip_prefix("cveid_")
+            .is_some_and(|n| n.parse::<u32>().is_ok())
+    };
+    let vocabulary: BTreeSet<&str> = (read["eaf"]["vocabulary"].as_object().unwrap().iter())
+        .filter(|(id, _)| acts(id))
+        .map(|(_, v)| v.as_str().unwrap())
         .collect();
     assert_eq!(
         vocabulary,
@@ -274,7 +325,8 @@ fn a_generated_hour_with_overlapping_commands_reads_back_the_same_too() {
         assert_eq!(exported.warnings, told, "{format}");
     }
     let read = read_back(out.path(), generated::NAME);
-    let want = assert_reads_back(&log_lines(&session), &read);
+    let none = coded::coded(&[], &[]);
+    let want = assert_reads_back(&log_lines(&session), &none, &read);
     assert_eq!(
         (want.speech.len(), want.commands.len(), want.touches.len()),
         (360, 282, 220),

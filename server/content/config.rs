@@ -7,6 +7,7 @@ use std::fmt;
 use std::time::Duration;
 
 pub use crate::content::config_corpus::{CorpusSettings, SessionStart};
+pub use crate::content::config_file::codebook::{Code, Codebook, CodebookTier};
 pub use crate::content::config_policy::{
     Channel, ChannelPolicies, ChannelPolicy, MAX_PRIORITY, MAX_QUEUE_LIMIT, Priorities, WhenBusy,
 };
@@ -294,6 +295,8 @@ pub struct SiteConfig {
     pub channels: ChannelPolicies,
     /// Each trigger source's priority.
     pub priorities: Priorities,
+    /// The annotation tiers and codes of the `/sessions` page (`codebook:`).
+    pub codebook: Codebook,
 }
 
 impl Default for SiteConfig {
@@ -333,6 +336,7 @@ impl Default for SiteConfig {
             server: ServerSettings::default(),
             channels: ChannelPolicies::default(),
             priorities: Priorities::default(),
+            codebook: Codebook::default(),
         }
     }
 }

@@ -12,6 +12,7 @@ use crate::content::duration::parse_duration;
 use crate::content::model::Located;
 
 mod access;
+pub(crate) mod codebook;
 mod devices;
 pub(crate) mod operator;
 pub(crate) mod policy;
@@ -20,6 +21,7 @@ pub(crate) mod screens;
 pub(crate) mod server;
 mod verbs;
 
+use codebook::Codebook;
 use reader::Reader;
 
 /// What `docent.yaml` gave, beyond the settings themselves.
@@ -56,6 +58,7 @@ pub(crate) const TOP_KEYS: &[&str] = &[
     "server",
     "channels",
     "priorities",
+    "codebook",
 ];
 const HOME_USAGE: &str = "`home` names the page under pages/ the kiosk starts on, e.g. \
                           `home: index.html`.";
@@ -82,6 +85,7 @@ impl Reader {
     fn top_level(&mut self, root: &Node, out: &mut ConfigFile) {
         // Read after the loop: a site command's channel needs `verbs:`, wherever it is written.
         let mut channels = None;
+        let mut codebook = None;
         for (key, value) in self.entries(root, TOP_KEYS, "docent.yaml") {
             let config = &mut out.config;
             match key {
@@ -121,12 +125,16 @@ impl Reader {
                 "server" => self.server(value, &mut config.server),
                 "channels" => channels = Some(value),
                 "priorities" => self.priorities(value, config),
+                "codebook" => codebook = Some(self.codebook(value)),
                 _ => self.verbs(value, config),
             }
         }
         if let Some(channels) = channels {
             self.channels(channels, &mut out.config);
         }
+        // Read last: without a `codebook:`, the operator's situations are its one tier.
+        out.config.codebook =
+            codebook.unwrap_or_else(|| Codebook::from_situations(&out.config.operator.situations));
     }
 
     /// A single name or a list of names, each `Text` followed by something, no repeats.

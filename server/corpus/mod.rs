@@ -10,8 +10,10 @@
 //! The corpus folder is read (and a session removed) by `docent corpus`: [`catalog`],
 //! [`session_folder`], [`log_lock`], [`log_scan`], [`purge`], printed by [`cli`] (`show.rs`,
 //! `units.rs`); [`export`] reads a session's folder and writes its exports where it is told.
-//! None of them writes a log.
+//! None of them writes a log. [`annotations`] keeps researchers' annotations of a session
+//! beside its log (`annotations.jsonl`), for the `/sessions` page and the exports.
 
+pub mod annotations;
 pub mod catalog;
 pub mod cli;
 pub mod export;

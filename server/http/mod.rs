@@ -8,6 +8,8 @@
 //! - `static_files`: `/static/...`, the shells' scripts and styles, embedded in the binary.
 //! - `operator`: the operator console (`/operator`) and its settings (`/api/operator`).
 //! - `report`: the content report (`/report`) and its data (`/api/report`).
+//! - `sessions`: the replay and annotation page (`/sessions`) and its data (`/api/sessions`);
+//!   `sessions_annotate`: annotations saved; `sessions_media`: recordings by media ticket.
 //! - `auth`: who is asking ([`auth::Peer`]) and whether they may ([`auth::Authorized`]).
 //! - `body`: request bodies, JSON objects only, read within a time limit.
 //! - `connections`: the accept loop: header and body time limits, connection caps.
@@ -25,6 +27,9 @@ mod framing;
 mod missing_page;
 mod operator;
 mod report;
+mod sessions;
+mod sessions_annotate;
+mod sessions_media;
 mod shells;
 mod static_files;
 
@@ -36,6 +41,7 @@ use tower_http::trace::TraceLayer;
 pub use connections::{ConnectionLimits, ConnectionSlot, serve_connections};
 pub use error::AppError;
 pub use missing_page::MissingPageReports;
+pub use sessions_media::Replay;
 
 use crate::state::AppState;
 use crate::ws::ws_upgrade;
@@ -61,6 +67,21 @@ pub fn app(state: AppState) -> Router {
         .route("/api/state", get(api::get_state))
         .route("/api/operator", get(operator::settings))
         .route("/api/report", get(report::get_report))
+        .route("/sessions", get(sessions::sessions_page))
+        .route("/api/sessions", get(sessions::list_sessions))
+        .route("/api/sessions/{name}", get(sessions::get_session))
+        .route(
+            "/api/sessions/{name}/annotations",
+            post(sessions_annotate::post_annotation),
+        )
+        .route(
+            "/api/sessions/{name}/media-ticket",
+            post(sessions_media::media_ticket),
+        )
+        .route(
+            "/session-media/{ticket}/{*file}",
+            get(sessions_media::serve_media),
+        )
         .route("/pages/{*path}", get(files::serve_page))
         .route("/media/{*path}", get(files::serve_media))
         .route("/ws", get(ws_upgrade))

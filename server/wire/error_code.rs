@@ -82,11 +82,29 @@ pub enum ErrorCode {
     UnknownClient,
     /// `verb-not-routed`: Some of an adapter's verbs are routed to another adapter.
     VerbNotRouted,
+    /// `unknown-session`: No corpus session has this name (or the name is a path).
+    UnknownSession,
+    /// `session-recording`: The session is still being recorded: it can be replayed once it has ended.
+    SessionRecording,
+    /// `unknown-tier`: An annotation's tier is not in the codebook.
+    UnknownTier,
+    /// `unknown-code`: An annotation's code is not one of its tier's.
+    UnknownCode,
+    /// `bad-time`: An annotation that ends before it starts or after the session.
+    BadTime,
+    /// `unknown-annotation`: A change or removal of an annotation the session does not have.
+    UnknownAnnotation,
+    /// `annotations-unwritable`: The session's annotations file cannot be written: nothing was saved.
+    AnnotationsUnwritable,
+    /// `bad-ticket`: A media address whose ticket is unknown, expired or for another session.
+    BadTicket,
+    /// `session-damaged`: The session's log or manifest is damaged: it cannot be replayed as it is.
+    SessionDamaged,
 }
 
 impl ErrorCode {
     /// Every code, for tests and documentation checks.
-    pub const ALL: [ErrorCode; 37] = [
+    pub const ALL: [ErrorCode; 46] = [
         ErrorCode::BadRequest,
         ErrorCode::BodyNotObject,
         ErrorCode::ConflictingLength,
@@ -124,6 +142,15 @@ impl ErrorCode {
         ErrorCode::BadSignal,
         ErrorCode::UnknownClient,
         ErrorCode::VerbNotRouted,
+        ErrorCode::UnknownSession,
+        ErrorCode::SessionRecording,
+        ErrorCode::UnknownTier,
+        ErrorCode::UnknownCode,
+        ErrorCode::BadTime,
+        ErrorCode::UnknownAnnotation,
+        ErrorCode::AnnotationsUnwritable,
+        ErrorCode::BadTicket,
+        ErrorCode::SessionDamaged,
     ];
 
     /// The code as sent (the same string serde writes), for events and logs.
@@ -166,6 +193,15 @@ impl ErrorCode {
             ErrorCode::BadSignal => "bad-signal",
             ErrorCode::UnknownClient => "unknown-client",
             ErrorCode::VerbNotRouted => "verb-not-routed",
+            ErrorCode::UnknownSession => "unknown-session",
+            ErrorCode::SessionRecording => "session-recording",
+            ErrorCode::UnknownTier => "unknown-tier",
+            ErrorCode::UnknownCode => "unknown-code",
+            ErrorCode::BadTime => "bad-time",
+            ErrorCode::UnknownAnnotation => "unknown-annotation",
+            ErrorCode::AnnotationsUnwritable => "annotations-unwritable",
+            ErrorCode::BadTicket => "bad-ticket",
+            ErrorCode::SessionDamaged => "session-damaged",
         }
     }
 }
@@ -228,6 +264,18 @@ mod tests {
         assert_eq!(ErrorCode::BadSignal.as_str(), "bad-signal");
         assert_eq!(ErrorCode::UnknownClient.as_str(), "unknown-client");
         assert_eq!(ErrorCode::VerbNotRouted.as_str(), "verb-not-routed");
+        assert_eq!(ErrorCode::UnknownSession.as_str(), "unknown-session");
+        assert_eq!(ErrorCode::SessionRecording.as_str(), "session-recording");
+        assert_eq!(ErrorCode::UnknownTier.as_str(), "unknown-tier");
+        assert_eq!(ErrorCode::UnknownCode.as_str(), "unknown-code");
+        assert_eq!(ErrorCode::BadTime.as_str(), "bad-time");
+        assert_eq!(ErrorCode::UnknownAnnotation.as_str(), "unknown-annotation");
+        assert_eq!(
+            ErrorCode::AnnotationsUnwritable.as_str(),
+            "annotations-unwritable"
+        );
+        assert_eq!(ErrorCode::BadTicket.as_str(), "bad-ticket");
+        assert_eq!(ErrorCode::SessionDamaged.as_str(), "session-damaged");
     }
 
     /// The codes in the first column of `docs/PROTOCOL.md`'s HTTP error table (`| status |

@@ -6,6 +6,8 @@ use std::collections::BTreeMap;
 
 use serde_json::{Value, json};
 
+use super::coded::Coded;
+
 /// An interval: start and end in µs, and its value.
 pub type Span = (u64, u64, String);
 
@@ -208,9 +210,10 @@ pub fn assert_praat_points(grid: &Value, name: &str, want: &[(u64, String)]) {
     }
 }
 
-/// Compares what every reader read (`read`, from `check_exports.py`) with what `log` says,
-/// tier by tier, time by time, text by text; returns what the log says.
-pub fn assert_reads_back(log: &[Value], read: &Value) -> Expected {
+/// Compares what every reader read (`read`, from `check_exports.py`) with what `log` and the
+/// annotations (`coded`) say, tier by tier, time by time, text by text; returns what the log
+/// says.
+pub fn assert_reads_back(log: &[Value], coded: &Coded, read: &Value) -> Expected {
     assert_eq!(
         read["problems"],
         json!([]),
@@ -231,6 +234,7 @@ pub fn assert_reads_back(log: &[Value], read: &Value) -> Expected {
     order.extend(commands.iter().map(|(n, _)| n.clone()));
     order.push("pages".to_owned());
     order.extend(touches.iter().chain(&marks).map(|(n, _)| n.clone()));
+    order.extend(coded.order());
 
     // ELAN, through pympi.
     let eaf = &read["eaf"];
@@ -262,6 +266,9 @@ pub fn assert_reads_back(log: &[Value], read: &Value) -> Expected {
         let points: Vec<(u64, String)> = spans.iter().map(|(t, _, v)| (*t, v.clone())).collect();
         assert_praat_points(praat, name, &points);
     }
+
+    // The researchers' annotations, in both.
+    coded.assert_read(read);
 
     // The spreadsheet, through Python's csv module.
     let csv = &read["csv"];
@@ -297,6 +304,7 @@ pub fn assert_reads_back(log: &[Value], read: &Value) -> Expected {
             json!([s(*t), s(*t), "kiosk", act, "", "", text, "touch"]),
         ));
     }
+    rows.extend(coded.csv_rows());
     rows.sort_by_key(|(t, _)| *t);
     let read_rows = csv["rows"].as_array().unwrap();
     assert_eq!(read_rows.len(), rows.len(), "{read_rows:?}");

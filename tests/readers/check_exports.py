@@ -12,7 +12,8 @@ reads EXPORT_DIR/NAME.eaf, NAME.TextGrid and NAME.csv:
   schema's element order, one xsd:ID space without duplicates, no dangling reference (time
   slots, parents, linguistic types, constraints, vocabularies, languages, annotations), every
   CVE_REF in the vocabulary and equal to its value, no overlap on a tier, time slots in time
-  order, lastUsedAnnotationId. (The EAF 3.0 XSD ships in no registry package, so no schema
+  order, lastUsedAnnotationId; each annotation tier's CVE_REFs name entries of its vocabulary
+  equal to their values. (The EAF 3.0 XSD ships in no registry package, so no schema
   validator runs.)
 - TextGrid: praatio (which refuses overlaps) and Praat's own parser (praat-parselmouth); the
   two must agree. Checked here: UTF-8 without a byte-order mark, every interval tier tiled from
@@ -181,6 +182,42 @@ def check_eaf_xml(path):
     return cve_refs
 
 
+def read_coded(path):
+    """The annotation tiers (a time-aligned tier whose linguistic type has a controlled
+    vocabulary): for each, the vocabulary value each annotation's CVE_REF names, in time order;
+    an annotation without a CVE_REF, or one naming an entry that is not there or says another
+    value than the annotation, is a problem."""
+    root = ET.parse(path).getroot()
+    types = {t.attrib["LINGUISTIC_TYPE_ID"]: t for t in root.iter("LINGUISTIC_TYPE")}
+    vocabularies = {v.attrib["CV_ID"]: v for v in root.iter("CONTROLLED_VOCABULARY")}
+    slots = {s.attrib["TIME_SLOT_ID"]: int(s.attrib["TIME_VALUE"]) for s in root.iter("TIME_SLOT")}
+    coded = {}
+    for tier in root.iter("TIER"):
+        kind = types.get(tier.attrib["LINGUISTIC_TYPE_REF"])
+        if kind is None or kind.attrib.get("TIME_ALIGNABLE") != "true":
+            continue
+        cv = vocabularies.get(kind.attrib.get("CONTROLLED_VOCABULARY_REF"))
+        if cv is None:
+            continue
+        entries = {e.attrib["CVE_ID"]: e.findtext("CVE_VALUE") for e in cv.iter("CV_ENTRY_ML")}
+        values = []
+        for a in tier.iter("ALIGNABLE_ANNOTATION"):
+            value = a.findtext("ANNOTATION_VALUE")
+            cve = a.attrib.get("CVE_REF")
+            if cve not in entries:
+                problem(f"EAF: {a.attrib['ANNOTATION_ID']} on {tier.attrib['TIER_ID']} has "
+                        f"CVE_REF {cve!r}, not an entry of {cv.attrib['CV_ID']}")
+                continue
+            if entries[cve] != value:
+                problem(f"EAF: {a.attrib['ANNOTATION_ID']} says {value!r}, its CVE_REF "
+                        f"{entries[cve]!r}")
+            start = slots[a.attrib["TIME_SLOT_REF1"]]
+            end = slots[a.attrib["TIME_SLOT_REF2"]]
+            values.append((start, end, entries[cve]))
+        coded[tier.attrib["TIER_ID"]] = [v for (_, _, v) in sorted(values)]
+    return coded
+
+
 def read_eaf(path):
     eaf = pympi.Elan.Eaf(path)
     tiers, ref_tiers, parents = {}, {}, {}
@@ -310,7 +347,8 @@ def main():
     folder, name = sys.argv[1], sys.argv[2]
     base = f"{folder}/{name}"
     summary = {"eaf": attempt("pympi", read_eaf, base + ".eaf"),
-               "eaf_cve_refs": attempt("the EAF checks", check_eaf_xml, base + ".eaf")}
+               "eaf_cve_refs": attempt("the EAF checks", check_eaf_xml, base + ".eaf"),
+               "eaf_coded": attempt("the EAF annotation checks", read_coded, base + ".eaf")}
     check_textgrid_bytes(base + ".TextGrid")
     summary["textgrid_praatio"] = attempt("praatio", read_textgrid_praatio, base + ".TextGrid")
     summary["textgrid_praat"] = attempt("Praat", read_textgrid_praat, base + ".TextGrid")

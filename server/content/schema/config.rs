@@ -115,9 +115,46 @@ fn top_level(key: &str) -> Value {
             "Which trigger source wins when several ask for the same channel (defaults: \
              operator 3, http 3, dm 2, kiosk 1).",
         ),
+        "codebook" => codebook(),
         // A key added to the loader without a schema here fails the tests (no description).
         _ => json!({}),
     }
+}
+
+/// `codebook:`: tier name to codes, each code with a one-key shortcut or none; or a list of
+/// codes without shortcuts.
+fn codebook() -> Value {
+    let key = json!({
+        "anyOf": [
+            { "type": "null" },
+            { "type": "string", "pattern": "^[A-Za-z0-9]$" },
+            { "type": "integer", "minimum": 0, "maximum": 9 },
+        ],
+        "description": "The code's shortcut on the /sessions page: one letter or digit, or \
+                        nothing (chosen by click only).",
+    });
+    let code = json!({ "type": "string", "minLength": 1, "maxLength": 64 });
+    let tier = json!({
+        "description": "A tier's codes: `{question: q, laughter: l}` (code: shortcut), or a \
+                        list of codes without shortcuts.",
+        "anyOf": [
+            { "type": "object", "minProperties": 1, "additionalProperties": key },
+            { "type": "array", "minItems": 1, "items": code, "uniqueItems": true },
+        ],
+    });
+    json!({
+        "description": "The annotation tiers researchers code recorded sessions with on the \
+                        /sessions page, e.g. `{situation: {question: q, laughter: l}}`. \
+                        Without it: one `situation` tier of `operator.situations`, keyed 1 to 9.",
+        "anyOf": [
+            { "type": "null" },
+            {
+                "type": "object",
+                "propertyNames": { "pattern": "^[A-Za-z][A-Za-z0-9._-]{0,63}$" },
+                "additionalProperties": tier,
+            },
+        ],
+    })
 }
 
 fn speech(key: &str) -> Value {

@@ -1,9 +1,12 @@
 //! The CSV of a session's utterances and touches, one row each, for a spreadsheet, R or
 //! pandas (and ELAN's CSV import): `start_s,end_s,source,act,variant,alternative,text,kind`,
-//! times in seconds on the session clock (exact to the microsecond), sorted by start. RFC 4180:
+//! times in seconds on the session clock (exact to the microsecond), sorted by start. The
+//! researchers' annotations are rows too: source `annotation`, the code as `text`, the
+//! codebook tier as `kind` (a point's end is its start). RFC 4180:
 //! UTF-8 without a byte-order mark, lines ended by CRLF, a field with a comma, a quote or a
 //! line break in double quotes with each `"` doubled.
 
+use crate::corpus::annotations::Annotation;
 use crate::corpus::export::textgrid::seconds;
 use crate::corpus::export::timeline::{Timeline, Touched};
 
@@ -19,8 +22,8 @@ pub const HEADER: [&str; 8] = [
     "kind",
 ];
 
-/// The CSV of `timeline`'s utterances and touches.
-pub fn write(timeline: &Timeline) -> Vec<u8> {
+/// The CSV of `timeline`'s utterances and touches, and of the `annotations`.
+pub fn write(timeline: &Timeline, annotations: &[Annotation]) -> Vec<u8> {
     let mut rows: Vec<(u64, u8, [String; 8])> = Vec::new();
     for u in &timeline.utterances {
         let row = [
@@ -54,6 +57,20 @@ pub fn write(timeline: &Timeline) -> Vec<u8> {
             "touch".to_owned(),
         ];
         rows.push((t.at_us, 1, row));
+    }
+    for a in annotations {
+        let none = String::new;
+        let row = [
+            seconds(a.start_us),
+            seconds(a.end_us),
+            "annotation".to_owned(),
+            none(),
+            none(),
+            none(),
+            a.code.clone(),
+            a.tier.clone(),
+        ];
+        rows.push((a.start_us, 2, row));
     }
     rows.sort_by_key(|(at, kind, _)| (*at, *kind));
     let mut out = String::with_capacity(64 * (rows.len() + 1));
@@ -108,7 +125,7 @@ mod tests {
             touches: vec![touch],
             ..Timeline::default()
         };
-        let text = String::from_utf8(write(&timeline)).unwrap();
+        let text = String::from_utf8(write(&timeline, &[])).unwrap();
         assert_eq!(
             text,
             "start_s,end_s,source,act,variant,alternative,text,kind\r\n\

@@ -5,8 +5,10 @@
 //! vocabulary entries `cveid_1`..., the language `und`, each kind of name distinct from the
 //! others). The `act` tiers are `Symbolic_Association` children of their `speech` tier: one
 //! `REF_ANNOTATION` per utterance, its `CVE_REF` naming the act's label in the vocabulary.
-//! Points (touches, marks) are 1 ms annotations, since ELAN has no point tiers. No media yet:
-//! the `HEADER` has no `MEDIA_DESCRIPTOR`.
+//! Points (touches, marks) are 1 ms annotations, since ELAN has no point tiers. Each codebook
+//! tier's annotations (its intervals, then its points) have a linguistic type `coded-TIER`
+//! whose controlled vocabulary `codebook-TIER` is the tier's codes, and each annotation names
+//! its code by `CVE_REF`. No media yet: the `HEADER` has no `MEDIA_DESCRIPTOR`.
 
 mod elements;
 
@@ -15,10 +17,11 @@ use std::io;
 use quick_xml::Writer;
 use quick_xml::events::{BytesDecl, BytesText, Event};
 
-use crate::corpus::export::tiers::{Annotation, MIN_INTERVAL_US, Tiers};
+use crate::corpus::export::tiers::{Annotation, CodedTier, MIN_INTERVAL_US, Point, Tiers};
 use elements::{
-    EVENT_TYPE, INSTANT_TYPE, LABEL_TYPE, UTTERANCE_TYPE, annotation, controlled_vocabulary,
-    eaf_date, language_and_constraints, linguistic_types, xml_text,
+    EVENT_TYPE, INSTANT_TYPE, LABEL_TYPE, UTTERANCE_TYPE, annotation, coded_codes, coded_entry,
+    coded_type, coded_types, controlled_vocabulary, eaf_date, language_and_constraints,
+    linguistic_types, xml_text,
 };
 
 /// The schema ELAN names in every file it writes.
@@ -40,12 +43,14 @@ struct Aligned<'a> {
     start_ms: u64,
     end_ms: u64,
     value: &'a str,
+    /// The vocabulary entry its value is (codebook tiers).
+    cve: Option<String>,
 }
 
 /// A tier in file order.
 struct TierOut<'a> {
     name: &'a str,
-    kind: &'a str,
+    kind: String,
     /// The parent of an act tier, with its labels.
     parent: Option<(&'a str, &'a [String])>,
 }
@@ -76,6 +81,7 @@ pub fn write(
         times,
         slot,
         vocabulary,
+        coded: &tiers.coded,
         header,
         replaced: 0,
     };
@@ -105,6 +111,8 @@ struct Document<'a> {
     /// The time slot of each boundary (`2i` the start of annotation `i`, `2i+1` its end).
     slot: Vec<usize>,
     vocabulary: &'a [String],
+    /// The codebook tiers, for their types and vocabularies.
+    coded: &'a [CodedTier],
     header: &'a Header<'a>,
     replaced: usize,
 }
@@ -132,9 +140,15 @@ impl Document<'_> {
         })?;
         self.tiers(w)?;
         linguistic_types(w)?;
+        coded_types(w, self.coded.iter().map(|c| c.name.as_str()))?;
         language_and_constraints(w)?;
         let entries: Vec<String> = (self.vocabulary.iter()).map(|l| self.clean(l)).collect();
-        controlled_vocabulary(w, &entries)
+        controlled_vocabulary(w, &entries)?;
+        for coded in self.coded {
+            let codes: Vec<String> = coded.codes.iter().map(|c| self.clean(c)).collect();
+            coded_codes(w, &coded.name, &codes)?;
+        }
+        Ok(())
     }
 
     fn head(&mut self, w: &mut Out) -> io::Result<()> {
@@ -172,9 +186,9 @@ impl Document<'_> {
         let mut next_ref = self.aligned.len();
         for t in 0..self.out.len() {
             let tier = &self.out[t];
-            let (name, kind, parent) = (tier.name, tier.kind, tier.parent);
+            let (name, kind, parent) = (tier.name, tier.kind.clone(), tier.parent);
             let mut element = w.create_element("TIER");
-            element = element.with_attribute(("LINGUISTIC_TYPE_REF", kind));
+            element = element.with_attribute(("LINGUISTIC_TYPE_REF", kind.as_str()));
             if let Some((parent, _)) = parent {
                 element = element.with_attribute(("PARENT_REF", parent));
             }
@@ -191,11 +205,14 @@ impl Document<'_> {
             }
             element.write_inner_content(|w| {
                 for id in first..first + mine {
-                    let attributes = [
+                    let mut attributes = vec![
                         ("ANNOTATION_ID", format!("a{}", id + 1)),
                         ("TIME_SLOT_REF1", format!("ts{}", self.slot[2 * id])),
                         ("TIME_SLOT_REF2", format!("ts{}", self.slot[2 * id + 1])),
                     ];
+                    if let Some(cve) = &self.aligned[id].cve {
+                        attributes.push(("CVE_REF", cve.clone()));
+                    }
                     let value = self.clean(self.aligned[id].value);
                     annotation(w, "ALIGNABLE_ANNOTATION", &attributes, &value)?;
                 }
@@ -225,13 +242,14 @@ fn layout(tiers: &Tiers) -> (Vec<TierOut<'_>>, Vec<Aligned<'_>>) {
     let mut aligned = Vec::new();
     for s in &tiers.speech {
         let name = s.speech.name.as_str();
+        let utterances = spans(&s.speech.annotations);
         add(
             &mut out,
             &mut aligned,
             name,
             UTTERANCE_TYPE,
             None,
-            spans(&s.speech.annotations),
+            utterances,
         );
         let parent = Some((name, s.labels.as_slice()));
         add(
@@ -244,19 +262,11 @@ fn layout(tiers: &Tiers) -> (Vec<TierOut<'_>>, Vec<Aligned<'_>>) {
         );
     }
     for tier in tiers.commands.iter().chain(&tiers.pages) {
-        add(
-            &mut out,
-            &mut aligned,
-            &tier.name,
-            EVENT_TYPE,
-            None,
-            spans(&tier.annotations),
-        );
+        let events = spans(&tier.annotations);
+        add(&mut out, &mut aligned, &tier.name, EVENT_TYPE, None, events);
     }
     for tier in tiers.point_tiers() {
-        let points = (tier.points.iter())
-            .map(|p| (p.at_us, p.at_us + MIN_INTERVAL_US, p.value.as_str()))
-            .collect();
+        let points = point_spans(&tier.points);
         add(
             &mut out,
             &mut aligned,
@@ -266,7 +276,32 @@ fn layout(tiers: &Tiers) -> (Vec<TierOut<'_>>, Vec<Aligned<'_>>) {
             points,
         );
     }
+    for coded in &tiers.coded {
+        let kind = coded_type(&coded.name);
+        let intervals = (coded.intervals.iter()).map(|t| (&t.name, spans(&t.annotations)));
+        let points = (coded.points.iter()).map(|t| (&t.name, point_spans(&t.points)));
+        for (name, spans) in intervals.chain(points) {
+            let first = aligned.len();
+            add(&mut out, &mut aligned, name, &kind, None, spans);
+            // Each annotation names its code in the tier's vocabulary.
+            for a in &mut aligned[first..] {
+                let n = coded
+                    .codes
+                    .iter()
+                    .position(|c| c == a.value)
+                    .map_or(0, |n| n + 1);
+                a.cve = Some(coded_entry(&coded.name, n));
+            }
+        }
+    }
     (out, aligned)
+}
+
+/// Points as the 1 ms annotations ELAN draws them as.
+fn point_spans(points: &[Point]) -> Vec<Span<'_>> {
+    (points.iter())
+        .map(|p| (p.at_us, p.at_us + MIN_INTERVAL_US, p.value.as_str()))
+        .collect()
 }
 
 /// An annotation's start, end and value, in microseconds.
@@ -283,16 +318,18 @@ fn add<'a>(
     out: &mut Vec<TierOut<'a>>,
     aligned: &mut Vec<Aligned<'a>>,
     name: &'a str,
-    kind: &'a str,
+    kind: &str,
     parent: Option<(&'a str, &'a [String])>,
     spans: Vec<Span<'a>>,
 ) {
     let tier = out.len();
+    let kind = kind.to_owned();
     out.push(TierOut { name, kind, parent });
     aligned.extend(spans.into_iter().map(|(start_us, end_us, value)| Aligned {
         tier,
         start_ms: start_us / 1000,
         end_ms: end_us / 1000,
         value,
+        cve: None,
     }));
 }

@@ -104,6 +104,16 @@ pub enum ExportWarning {
         /// How many.
         count: usize,
     },
+    /// Lines of `annotations.jsonl` that could not be read were left out.
+    #[error("{path}:{line}: left out of the export: {problem}")]
+    AnnotationLineLeftOut {
+        /// `annotations.jsonl`.
+        path: PathBuf,
+        /// Its line number.
+        line: usize,
+        /// Why.
+        problem: String,
+    },
 }
 
 /// A name given for `--format` that is not one.

@@ -2,8 +2,10 @@
 //! Praat's TextGrid (`textgrid.rs`), a CSV of utterances and touches (`csv.rs`) and a copy of
 //! the JSON Lines log they are all made from. The session's log is read once
 //! (`timeline.rs`) into intervals and points on the session clock, which `tiers.rs` lays out
-//! as the tiers ELAN and Praat both get. Formats, tiers and time base: `docs/CORPUS.md`,
-//! "Exports".
+//! as the tiers ELAN and Praat both get. The researchers' annotations
+//! (`corpus/annotations.rs`) are their own tiers in each format, with the codebook of the
+//! session's bundle (`docent.yaml`'s `codebook:`) as their vocabulary when it still loads.
+//! Formats, tiers and time base: `docs/CORPUS.md`, "Exports".
 //!
 //! An export never writes half a file: each is written beside its place and renamed. A session
 //! still being recorded is refused; one whose server was killed is exported up to its last
@@ -26,7 +28,9 @@ use std::str::FromStr;
 
 pub use error::{ExportError, ExportWarning, UnknownFormat};
 
+use crate::content::config::Codebook;
 use crate::content::load_bundle;
+use crate::corpus::annotations::{ANNOTATIONS_FILE, Annotation, read_annotations};
 use crate::corpus::layout::{SESSION_EVENTS, SESSION_MANIFEST};
 use crate::corpus::manifest::SessionManifest;
 use tiers::Tiers;
@@ -45,7 +49,8 @@ pub enum ExportFormat {
     TextGrid,
     /// Utterances and touches, one row each (RFC 4180), `NAME.csv`.
     Csv,
-    /// The session's log as it is, `NAME.jsonl`.
+    /// The session's log as it is, `NAME.jsonl`, and its annotations as they stand,
+    /// `NAME.annotations.jsonl` (when it has any).
     Jsonl,
 }
 
@@ -115,6 +120,8 @@ pub struct SessionExport {
     /// The log's whole lines, as they are.
     log: Vec<u8>,
     timeline: Timeline,
+    /// The researchers' annotations as they stand.
+    annotations: Vec<Annotation>,
     tiers: Tiers,
     /// The act labels of the EAF's controlled vocabulary, sorted.
     vocabulary: Vec<String>,
@@ -153,13 +160,27 @@ impl SessionExport {
             let end_s = textgrid::seconds(timeline.end_us);
             warnings.push(ExportWarning::NotEnded { end_s });
         }
-        let vocabulary = vocabulary(&manifest, &timeline, &mut warnings);
-        let tiers = Tiers::of(&timeline);
+        let (vocabulary, codebook) = vocabulary(&manifest, &timeline, &mut warnings);
+        let annotated = read_annotations(dir).map_err(|source| ExportError::Read {
+            path: dir.join(ANNOTATIONS_FILE),
+            source,
+        })?;
+        for (line, problem) in annotated.problems {
+            let path = dir.join(ANNOTATIONS_FILE);
+            warnings.push(ExportWarning::AnnotationLineLeftOut {
+                path,
+                line,
+                problem,
+            });
+        }
+        let annotations = annotated.annotations;
+        let tiers = Tiers::of(&timeline).with_annotations(&codebook, &annotations);
         Ok(SessionExport {
             name,
             manifest,
             log,
             timeline,
+            annotations,
             tiers,
             vocabulary,
             warnings,
@@ -179,6 +200,11 @@ impl SessionExport {
     /// The session as read: what every format is made from.
     pub fn timeline(&self) -> &Timeline {
         &self.timeline
+    }
+
+    /// The researchers' annotations as they stand.
+    pub fn annotations(&self) -> &[Annotation] {
+        &self.annotations
     }
 
     /// Writes the session in `format` to `out_dir` (created if needed), as `NAME.EXTENSION`.
@@ -204,14 +230,26 @@ impl SessionExport {
                 bytes
             }
             ExportFormat::TextGrid => textgrid::write(&self.tiers),
-            ExportFormat::Csv => csv::write(&self.timeline),
+            ExportFormat::Csv => csv::write(&self.timeline, &self.annotations),
             ExportFormat::Jsonl => self.log.clone(),
         };
         write_whole(out_dir, &file, &bytes)?;
-        Ok(Exported {
-            files: vec![file],
-            warnings,
-        })
+        let mut files = vec![file];
+        if format == ExportFormat::Jsonl && !self.annotations.is_empty() {
+            let file = out_dir.join(format!("{}.annotations.jsonl", self.name));
+            let mut bytes = Vec::new();
+            for a in &self.annotations {
+                let line = serde_json::to_vec(a).map_err(|e| ExportError::Write {
+                    path: file.clone(),
+                    source: io::Error::other(e),
+                })?;
+                bytes.extend(line);
+                bytes.push(b'\n');
+            }
+            write_whole(out_dir, &file, &bytes)?;
+            files.push(file);
+        }
+        Ok(Exported { files, warnings })
     }
 }
 
@@ -268,13 +306,15 @@ fn read_log(
 }
 
 /// The act labels of the EAF's vocabulary: the labels the session used and, when the session's
-/// bundle still loads, all of the bundle's; sorted.
+/// bundle still loads, all of the bundle's; sorted. And the bundle's codebook, when it loads
+/// (without it, the annotations' own tiers and codes are the vocabulary).
 fn vocabulary(
     manifest: &SessionManifest,
     timeline: &Timeline,
     warnings: &mut Vec<ExportWarning>,
-) -> Vec<String> {
+) -> (Vec<String>, Codebook) {
     let mut labels: BTreeSet<String> = timeline.labels.clone();
+    let mut codebook = Codebook::default();
     let why_not = match &manifest.bundle {
         None => Some("the session's manifest names no bundle".to_owned()),
         Some(folder) => {
@@ -282,6 +322,7 @@ fn vocabulary(
             match report.bundle {
                 Some(bundle) => {
                     labels.extend(bundle.acts.into_iter().map(|a| a.label));
+                    codebook = bundle.config.codebook;
                     None
                 }
                 None => {
@@ -297,7 +338,7 @@ fn vocabulary(
     if let Some(why) = why_not {
         warnings.push(ExportWarning::VocabularyFromSessionOnly(why));
     }
-    labels.into_iter().collect()
+    (labels.into_iter().collect(), codebook)
 }
 
 /// Writes `bytes` to `file` whole: beside it first, then renamed over it.

@@ -2,6 +2,7 @@
 //! mark (a BOM breaks tgt, UTF-16 breaks pympi): the interval tiers (`speech`, `act`,
 //! `commands`, `pages`) tiled from the session's start to its end with empty intervals between
 //! the labelled ones, as Praat keeps them; `touches` and `marks` as point tiers (`TextTier`).
+//! Then each codebook tier's annotations: its intervals, then its points (`situation-points`).
 //! Times are seconds on the session clock, written exactly to the microsecond; a `"` in a
 //! label is doubled, as Praat escapes it.
 
@@ -13,7 +14,10 @@ use crate::corpus::export::tiers::{Annotation, IntervalTier, PointTier, Tiers};
 pub fn write(tiers: &Tiers) -> Vec<u8> {
     let end = seconds(tiers.end_us);
     let count = 2 * tiers.speech.len() + tiers.commands.len() + tiers.pages.len();
-    let count = count + tiers.point_tiers().count();
+    let coded: usize = (tiers.coded.iter())
+        .map(|c| c.intervals.len() + c.points.len())
+        .sum();
+    let count = count + tiers.point_tiers().count() + coded;
     let mut out = String::with_capacity(4096);
     out.push_str("File type = \"ooTextFile\"\nObject class = \"TextGrid\"\n\n");
     let _ = write!(
@@ -44,6 +48,14 @@ pub fn write(tiers: &Tiers) -> Vec<u8> {
     }
     for tier in tiers.point_tiers() {
         point_tier(&mut out, next(), tier, &end);
+    }
+    for coded in &tiers.coded {
+        for tier in &coded.intervals {
+            interval_tier(&mut out, next(), tier, tiers.end_us);
+        }
+        for tier in &coded.points {
+            point_tier(&mut out, next(), tier, &end);
+        }
     }
     out.into_bytes()
 }

@@ -5,8 +5,13 @@
 //! intervals that would overlap go to numbered tiers (`commands-2`, `speech-2` with `act-2`)
 //! rather than being dropped or overlapped. An interval shorter than [`MIN_INTERVAL_US`] is
 //! drawn that long, so that every tool can show it; a point takes as much room on its tier,
-//! because ELAN draws it as a 1 ms annotation.
+//! because ELAN draws it as a 1 ms annotation. Researchers' annotations (`annotations.jsonl`)
+//! follow as tiers of their own, two per codebook tier: its intervals (`situation`,
+//! `situation-2`, ...) and its points (`situation-points`, ...), each with the tier's codes as
+//! its vocabulary.
 
+use crate::content::config::Codebook;
+use crate::corpus::annotations::Annotation as Coded;
 use crate::corpus::export::timeline::{CommandRun, Marked, Outcome, Timeline, Touched};
 
 /// The shortest interval drawn, and the room a point takes: 1 ms, ELAN's time unit.
@@ -89,7 +94,25 @@ pub struct Tiers {
     pub touches: Vec<PointTier>,
     /// `marks`, ...
     pub marks: Vec<PointTier>,
+    /// The researchers' annotations, one entry per codebook tier.
+    pub coded: Vec<CodedTier>,
 }
+
+/// The annotations of one codebook tier.
+#[derive(Clone, Debug, PartialEq)]
+pub struct CodedTier {
+    /// The codebook tier's name.
+    pub name: String,
+    /// Its codes (the vocabulary): the codebook's, then any other code its annotations use.
+    pub codes: Vec<String>,
+    /// Its intervals: `NAME`, `NAME-2`, ...
+    pub intervals: Vec<IntervalTier>,
+    /// Its points: `NAME-points`, `NAME-points-2`, ...
+    pub points: Vec<PointTier>,
+}
+
+/// The suffix of a codebook tier's point tier.
+pub const POINTS: &str = "-points";
 
 impl Tiers {
     /// Lays `timeline` out as tiers. The first tier of each kind is always there, empty or not.
@@ -132,9 +155,56 @@ impl Tiers {
             pages: interval_tiers(PAGES, pages),
             touches: point_tiers(TOUCHES, touches),
             marks: point_tiers(MARKS, marks),
+            coded: Vec::new(),
         };
         tiers.end_us = tiers.latest().max(timeline.end_us).max(MIN_INTERVAL_US);
         tiers
+    }
+
+    /// Adds the researchers' `annotations` as tiers: one pair per tier of `codebook`, then
+    /// one for any other tier the annotations name (a tier since taken out of the codebook
+    /// keeps its annotations).
+    pub fn with_annotations(mut self, codebook: &Codebook, annotations: &[Coded]) -> Tiers {
+        let mut coded: Vec<CodedTier> = (codebook.tiers.iter())
+            .map(|t| CodedTier {
+                name: t.name.clone(),
+                codes: t.codes.iter().map(|c| c.code.clone()).collect(),
+                intervals: Vec::new(),
+                points: Vec::new(),
+            })
+            .collect();
+        for a in annotations {
+            let at = match coded.iter().position(|t| t.name == a.tier) {
+                Some(at) => at,
+                None => {
+                    coded.push(CodedTier {
+                        name: a.tier.clone(),
+                        codes: Vec::new(),
+                        intervals: Vec::new(),
+                        points: Vec::new(),
+                    });
+                    coded.len() - 1
+                }
+            };
+            if !coded[at].codes.contains(&a.code) {
+                coded[at].codes.push(a.code.clone());
+            }
+        }
+        for tier in &mut coded {
+            let mine = || annotations.iter().filter(|a| a.tier == tier.name);
+            let intervals = mine()
+                .filter(|a| !a.is_point())
+                .map(|a| annotation(a.start_us, a.end_us, &a.code));
+            tier.intervals = interval_tiers(&tier.name, intervals);
+            let points = mine().filter(|a| a.is_point()).map(|a| Point {
+                at_us: a.start_us,
+                value: a.code.clone(),
+            });
+            tier.points = point_tiers(&format!("{}{POINTS}", tier.name), points);
+        }
+        self.coded = coded;
+        self.end_us = self.latest().max(self.end_us);
+        self
     }
 
     /// Every interval tier (the act tiers aside), in file order.
@@ -151,8 +221,10 @@ impl Tiers {
 
     /// The latest end of an interval or a point's room.
     fn latest(&self) -> u64 {
-        let intervals = self.interval_tiers().flat_map(|t| &t.annotations);
-        let points = self.point_tiers().flat_map(|t| &t.points);
+        let coded_intervals = self.coded.iter().flat_map(|c| &c.intervals);
+        let coded_points = self.coded.iter().flat_map(|c| &c.points);
+        let intervals = (self.interval_tiers().chain(coded_intervals)).flat_map(|t| &t.annotations);
+        let points = (self.point_tiers().chain(coded_points)).flat_map(|t| &t.points);
         (intervals.map(|a| a.end_us))
             .chain(points.map(|p| p.at_us))
             .max()

@@ -63,7 +63,7 @@ pub(super) fn language_and_constraints(w: &mut Out) -> io::Result<()> {
 pub(super) fn annotation(
     w: &mut Out,
     kind: &str,
-    attributes: &[(&str, String); 3],
+    attributes: &[(&str, String)],
     value: &str,
 ) -> io::Result<()> {
     w.create_element("ANNOTATION").write_inner_content(|w| {
@@ -77,6 +77,71 @@ pub(super) fn annotation(
             })?;
         Ok(())
     })?;
+    Ok(())
+}
+
+/// The linguistic type of a codebook tier's annotations, and its vocabulary: named apart from
+/// every tier (`codebook.rs` keeps tier names off these prefixes).
+pub(super) fn coded_type(tier: &str) -> String {
+    format!("coded-{tier}")
+}
+
+/// The vocabulary of a codebook tier's codes.
+pub(super) fn coded_vocabulary(tier: &str) -> String {
+    format!("codebook-{tier}")
+}
+
+/// The id of a codebook tier's `n`th code (from 1).
+pub(super) fn coded_entry(tier: &str, n: usize) -> String {
+    format!("cveid_{tier}_{n}")
+}
+
+/// The linguistic types of the codebook tiers: time-aligned, each with its vocabulary.
+pub(super) fn coded_types<'a>(w: &mut Out, tiers: impl Iterator<Item = &'a str>) -> io::Result<()> {
+    for tier in tiers {
+        w.create_element("LINGUISTIC_TYPE")
+            .with_attributes([
+                ("CONTROLLED_VOCABULARY_REF", coded_vocabulary(tier).as_str()),
+                ("GRAPHIC_REFERENCES", "false"),
+                ("LINGUISTIC_TYPE_ID", coded_type(tier).as_str()),
+                ("TIME_ALIGNABLE", "true"),
+            ])
+            .write_empty()?;
+    }
+    Ok(())
+}
+
+/// A codebook tier's vocabulary: its codes.
+pub(super) fn coded_codes(w: &mut Out, tier: &str, codes: &[String]) -> io::Result<()> {
+    let entries = (codes.iter().enumerate()).map(|(n, code)| (coded_entry(tier, n + 1), code));
+    let description = format!("The codes of the codebook tier {tier} (docent.yaml)");
+    vocabulary(w, &coded_vocabulary(tier), &description, entries)
+}
+
+fn vocabulary<'a>(
+    w: &mut Out,
+    id: &str,
+    description: &str,
+    entries: impl Iterator<Item = (String, &'a String)>,
+) -> io::Result<()> {
+    w.create_element("CONTROLLED_VOCABULARY")
+        .with_attribute(("CV_ID", id))
+        .write_inner_content(|w| {
+            w.create_element("DESCRIPTION")
+                .with_attribute(("LANG_REF", LANGUAGE))
+                .write_text_content(BytesText::new(description))?;
+            for (entry, value) in entries {
+                w.create_element("CV_ENTRY_ML")
+                    .with_attribute(("CVE_ID", entry.as_str()))
+                    .write_inner_content(|w| {
+                        w.create_element("CVE_VALUE")
+                            .with_attribute(("LANG_REF", LANGUAGE))
+                            .write_text_content(BytesText::new(value))?;
+                        Ok(())
+                    })?;
+            }
+            Ok(())
+        })?;
     Ok(())
 }
 
@@ -102,27 +167,10 @@ pub(super) fn linguistic_types(w: &mut Out) -> io::Result<()> {
 }
 
 pub(super) fn controlled_vocabulary(w: &mut Out, entries: &[String]) -> io::Result<()> {
-    w.create_element("CONTROLLED_VOCABULARY")
-        .with_attribute(("CV_ID", ACT_LABELS))
-        .write_inner_content(|w| {
-            w.create_element("DESCRIPTION")
-                .with_attribute(("LANG_REF", LANGUAGE))
-                .write_text_content(BytesText::new(
-                    "The labels of the acts of the session's bundle (docent)",
-                ))?;
-            for (n, label) in entries.iter().enumerate() {
-                w.create_element("CV_ENTRY_ML")
-                    .with_attribute(("CVE_ID", format!("cveid_{}", n + 1).as_str()))
-                    .write_inner_content(|w| {
-                        w.create_element("CVE_VALUE")
-                            .with_attribute(("LANG_REF", LANGUAGE))
-                            .write_text_content(BytesText::new(label))?;
-                        Ok(())
-                    })?;
-            }
-            Ok(())
-        })?;
-    Ok(())
+    let entries =
+        (entries.iter().enumerate()).map(|(n, label)| (format!("cveid_{}", n + 1), label));
+    let description = "The labels of the acts of the session's bundle (docent)";
+    vocabulary(w, ACT_LABELS, description, entries)
 }
 
 /// The manifest's `2026-11-22T21:38:37.629Z` as ELAN writes a date: `2026-11-22T21:38:37+00:00`.
