@@ -143,13 +143,11 @@ pub fn write(session: &Session<'_>) -> Result<Written, McapProblem> {
         .map_err(McapProblem::Writer)?;
     let mut channels = [0u16; Topic::ALL.len()];
     for topic in Topic::ALL {
-        let schema = serde_json::to_vec(&topic.schema()).expect("a schema serializes");
-        let title = topic.schema()["title"]
-            .as_str()
-            .unwrap_or_default()
-            .to_owned();
+        let schema = topic.schema();
+        let name = schema["title"].as_str().unwrap_or_default();
+        let bytes = serde_json::to_vec(&schema).expect("a schema serializes");
         let schema_id =
-            (writer.add_schema(&title, "jsonschema", &schema)).map_err(McapProblem::Writer)?;
+            (writer.add_schema(name, "jsonschema", &bytes)).map_err(McapProblem::Writer)?;
         let no_metadata = BTreeMap::new();
         channels[topic as usize] = writer
             .add_channel(schema_id, topic.name(), "json", &no_metadata)

@@ -34,16 +34,27 @@ impl LogLevel {
     }
 }
 
-/// The fields of a line this export reads; a field another event type lacks is `None`.
+/// What every line has: its place on the session clock and its type.
 #[derive(Deserialize)]
-struct Fields {
+struct Stamp {
     session_us: Option<u64>,
     #[serde(rename = "type")]
     kind: String,
+}
+
+/// The fields of a `pose` this export reads (read only from a `pose`, so that another event
+/// type may have fields of these names and other types).
+#[derive(Deserialize)]
+struct PoseFields {
     x: Option<f64>,
     y: Option<f64>,
     heading: Option<f64>,
     frame: Option<String>,
+}
+
+/// The projector's fields of a `display.changed`.
+#[derive(Deserialize)]
+struct DisplayFields {
     projector: Option<String>,
     highlight: Option<String>,
     projector_state: Option<String>,
@@ -100,32 +111,41 @@ pub fn read(log: &[u8]) -> Result<Vec<LogEvent<'_>>, (usize, String)> {
         }
         let damaged = |problem: String| (n + 1, problem);
         let line = std::str::from_utf8(line).map_err(|e| damaged(e.to_string()))?;
-        let fields: Fields = serde_json::from_str(line).map_err(|e| damaged(e.to_string()))?;
-        let session_us = fields
+        let parse_error = |e: serde_json::Error| damaged(e.to_string());
+        let stamp: Stamp = serde_json::from_str(line).map_err(parse_error)?;
+        let session_us = stamp
             .session_us
             .ok_or_else(|| damaged("the line has no `session_us`".into()))?;
-        let pose = match (fields.kind.as_str(), fields.x, fields.y, fields.heading) {
-            ("pose", Some(x), Some(y), Some(heading)) => Some(Pose {
-                x,
-                y,
-                heading,
-                frame: fields.frame.unwrap_or_else(|| DEFAULT_FRAME.to_owned()),
-            }),
-            ("pose", ..) => {
-                return Err(damaged(
-                    "a `pose` without its numbers `x`, `y` and `heading`".into(),
-                ));
+        let (mut pose, mut projection) = (None, None);
+        match stamp.kind.as_str() {
+            "pose" => {
+                let p: PoseFields = serde_json::from_str(line).map_err(parse_error)?;
+                let (Some(x), Some(y), Some(heading)) = (p.x, p.y, p.heading) else {
+                    return Err(damaged(
+                        "a `pose` without its numbers `x`, `y` and `heading`".into(),
+                    ));
+                };
+                let frame = p.frame.unwrap_or_else(|| DEFAULT_FRAME.to_owned());
+                pose = Some(Pose {
+                    x,
+                    y,
+                    heading,
+                    frame,
+                });
             }
-            _ => None,
-        };
-        let projection = (fields.kind == "display.changed").then(|| Projection {
-            projector: fields.projector,
-            highlight: fields.highlight,
-            projector_state: fields.projector_state,
-        });
+            "display.changed" => {
+                let d: DisplayFields = serde_json::from_str(line).map_err(parse_error)?;
+                projection = Some(Projection {
+                    projector: d.projector,
+                    highlight: d.highlight,
+                    projector_state: d.projector_state,
+                });
+            }
+            _ => {}
+        }
         events.push(LogEvent {
             session_us,
-            kind: fields.kind,
+            kind: stamp.kind,
             line,
             pose,
             projection,
