@@ -15,6 +15,7 @@ mod schemas;
 
 use std::collections::BTreeMap;
 use std::io::Cursor;
+use std::ops::Range;
 use std::path::Path;
 use std::time::UNIX_EPOCH;
 
@@ -154,7 +155,7 @@ pub fn write(session: &Session<'_>) -> Result<Written, McapProblem> {
             .map_err(McapProblem::Writer)?;
     }
     let mut sequence = [0u32; Topic::ALL.len()];
-    for (log_time, topic, data) in &messages.list {
+    for (log_time, topic, bytes) in &messages.list {
         let n = &mut sequence[*topic as usize];
         *n += 1;
         let header = MessageHeader {
@@ -164,7 +165,7 @@ pub fn write(session: &Session<'_>) -> Result<Written, McapProblem> {
             publish_time: *log_time,
         };
         writer
-            .write_to_known_channel(&header, data)
+            .write_to_known_channel(&header, &messages.data[bytes.clone()])
             .map_err(McapProblem::Writer)?;
     }
     let mut media_not_found = Vec::new();
@@ -192,10 +193,12 @@ pub fn write(session: &Session<'_>) -> Result<Written, McapProblem> {
     })
 }
 
-/// The messages of every channel: log time (ns), channel, JSON.
+/// The messages of every channel: log time (ns), channel, and where its JSON is in `data`
+/// (one buffer for all: an hour has 40,000 messages).
 struct Messages {
     zero_ns: u64,
-    list: Vec<(u64, Topic, Vec<u8>)>,
+    list: Vec<(u64, Topic, Range<usize>)>,
+    data: Vec<u8>,
 }
 
 impl Messages {
@@ -203,6 +206,7 @@ impl Messages {
         Messages {
             zero_ns,
             list: Vec::new(),
+            data: Vec::new(),
         }
     }
 
@@ -212,8 +216,10 @@ impl Messages {
     }
 
     fn push(&mut self, session_us: u64, topic: Topic, message: &impl Serialize) {
-        let data = serde_json::to_vec(message).expect("a message serializes");
-        self.list.push((self.ns(session_us), topic, data));
+        let start = self.data.len();
+        serde_json::to_writer(&mut self.data, message).expect("a message serializes");
+        let at = self.ns(session_us);
+        self.list.push((at, topic, start..self.data.len()));
     }
 }
 
