@@ -2,8 +2,8 @@
 //! Praat's TextGrid (`textgrid.rs`), a CSV of utterances and touches (`csv.rs`), MCAP for
 //! Foxglove and Lichtblick (`mcap.rs`) and a copy of the JSON Lines log they are all made
 //! from. The session's log is read once (`timeline.rs`) into intervals and points on the
-//! session clock, which `tiers.rs` lays out as the tiers ELAN and Praat both get. Formats, tiers and time base: `docs/CORPUS.md`,
-//! "Exports".
+//! session clock, which `tiers.rs` lays out as the tiers ELAN and Praat both get. Formats,
+//! tiers and time base: `docs/CORPUS.md`, "Exports".
 //!
 //! An export never writes half a file: each is written beside its place and renamed. A session
 //! still being recorded is refused; one whose server was killed is exported up to its last
