@@ -8,7 +8,8 @@
 #                      node_modules is missing or older than the lock file;
 #   python3, python3-venv and, from PyPI into tests/readers/.venv (git-ignored), the readers
 #                      the corpus export test reads exports back with (pympi-ling, praatio,
-#                      praat-parselmouth, pinned in tests/readers/requirements.txt), installed
+#                      praat-parselmouth, mcap and jsonschema, pinned in
+#                      tests/readers/requirements.txt), installed
 #                      again only when requirements.txt changed since the last install.
 # Debian packages need root or sudo (one `apt-get update` per run at most); npm needs Node 20.
 # Called by scripts/test.sh; safe to run by hand.

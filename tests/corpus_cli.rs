@@ -287,14 +287,14 @@ async fn export_writes_a_sessions_files_and_all_passes_over_one_recorded_and_nam
     let recorded = sessions_by_number(corpus);
     let (a_name, a_dir) = recorded[&1].clone();
 
-    let (code, out, err) = corpus_cmd(corpus, &["export", &a_name, "--format", "eaf,csv"]);
+    let (code, out, err) = corpus_cmd(corpus, &["export", &a_name, "--format", "eaf,csv,mcap"]);
     assert_eq!(code, 0, "{err}");
-    for extension in ["eaf", "csv"] {
+    for extension in ["eaf", "csv", "mcap"] {
         let file = a_dir.join("exports").join(format!("{a_name}.{extension}"));
         assert!(file.is_file(), "{file:?}: {out}");
         assert!(out.contains(&format!("wrote {}", file.display())), "{out}");
     }
-    assert!(out.ends_with("exported 2 files\n"), "{out}");
+    assert!(out.ends_with("exported 3 files\n"), "{out}");
 
     let (bad, _bare) = damaged_sessions(corpus, &a_dir);
     let (mut child, _op, running) = recording_server(b.path(), corpus).await;

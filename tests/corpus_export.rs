@@ -16,6 +16,10 @@ mod damaged;
 mod expected;
 #[path = "../bench/export_session.rs"]
 mod generated;
+#[path = "corpus_export/mcap.rs"]
+mod mcap;
+#[path = "corpus_export/mcap_cases.rs"]
+mod mcap_cases;
 
 use std::collections::BTreeSet;
 use std::path::{Path, PathBuf};
@@ -26,6 +30,7 @@ use docent::corpus::annotations::{ANNOTATIONS_FILE, Draft, Edit, append};
 use docent::corpus::export::{ExportError, ExportFormat, ExportWarning, export_session};
 use docent::corpus::layout::{SESSION_EVENTS, SESSIONS_DIR};
 use expected::assert_reads_back;
+use mcap::{assert_mcap_reads_back, read_mcap};
 use serde_json::{Value, json};
 
 const ACTS: &str = r#"
@@ -199,6 +204,16 @@ fn log_lines(session: &Path) -> Vec<Value> {
     common::json_lines(&session.join(SESSION_EVENTS))
 }
 
+/// Reads `NAME.mcap` in `out` back and compares it with the session's log and manifest.
+fn assert_mcap_matches(session: &Path, out: &Path, name: &str) -> Value {
+    let read = read_mcap(&out.join(format!("{name}.mcap")));
+    let text = std::fs::read_to_string(session.join(SESSION_EVENTS)).unwrap();
+    let manifest: Value =
+        serde_json::from_slice(&std::fs::read(session.join("session.json")).unwrap()).unwrap();
+    assert_mcap_reads_back(&log_lines(session), &text, &manifest, &read);
+    read
+}
+
 #[tokio::test]
 async fn a_recorded_session_reads_back_the_same_in_elan_praat_and_a_spreadsheet() {
     let b = bundle();
@@ -264,6 +279,13 @@ async fn a_recorded_session_reads_back_the_same_in_elan_praat_and_a_spreadsheet(
         BTreeSet::from(["GOODBYE", "LATER", "TOUR", "WELCOME"]),
         "the bundle's labels, the unused too"
     );
+
+    // Foxglove's reader: the drive's poses and the tour's page are there too.
+    let read = assert_mcap_matches(&session, out.path(), &name);
+    let poses = read["channels"]["/docent/pose"]["messages"]
+        .as_array()
+        .unwrap();
+    assert!(poses.len() > 2, "the drive moved: {poses:?}");
 }
 
 #[tokio::test]
@@ -334,4 +356,9 @@ fn a_generated_hour_with_overlapping_commands_reads_back_the_same_too() {
     );
     let order = read["eaf"]["order"].as_array().unwrap();
     assert!(order.contains(&json!("commands-3")), "{order:?}");
+    let read = assert_mcap_matches(&session, out.path(), generated::NAME);
+    let poses = read["channels"]["/docent/pose"]["messages"]
+        .as_array()
+        .unwrap();
+    assert_eq!(poses.len(), 18_000, "5 a second");
 }

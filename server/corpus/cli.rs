@@ -44,8 +44,8 @@ pub enum CorpusCommand {
         /// The session's name or folder.
         session: String,
     },
-    /// Export a session (or every one, `--all`) for ELAN, Praat, a spreadsheet or a script:
-    /// `--format eaf,textgrid,csv,jsonl`. By default into the session's own `exports/`.
+    /// Export a session (or every one, `--all`) for ELAN, Praat, a spreadsheet, Foxglove or
+    /// a script: `--format eaf,textgrid,csv,jsonl,mcap`. By default into the session's own `exports/`.
     Export {
         /// The session's name or folder.
         #[arg(required_unless_present = "all", conflicts_with = "all")]
@@ -53,7 +53,7 @@ pub enum CorpusCommand {
         /// Every session of the corpus (one being recorded is passed over).
         #[arg(long)]
         all: bool,
-        /// The formats: eaf, textgrid, csv, jsonl (several with commas).
+        /// The formats: eaf, textgrid, csv, jsonl, mcap (several with commas).
         #[arg(long, value_delimiter = ',', required = true)]
         format: Vec<ExportFormat>,
         /// Where the files go (created if needed); by default SESSION/exports.

@@ -134,13 +134,14 @@ fn a_session_without_its_manifest_is_damaged() {
 #[test]
 fn a_format_is_named_as_the_command_line_takes_it() {
     let names: Vec<String> = ExportFormat::ALL.iter().map(|f| f.to_string()).collect();
-    assert_eq!(names, ["eaf", "textgrid", "csv", "jsonl"]);
+    assert_eq!(names, ["eaf", "textgrid", "csv", "jsonl", "mcap"]);
     assert_eq!("TextGrid".parse(), Ok(ExportFormat::TextGrid));
+    assert_eq!("MCAP".parse(), Ok(ExportFormat::Mcap));
     let unknown = "elan".parse::<ExportFormat>().unwrap_err();
     assert_eq!(unknown, UnknownFormat("elan".into()));
     assert_eq!(
         unknown.to_string(),
-        "\"elan\" is not an export format: use eaf, textgrid, csv or jsonl"
+        "\"elan\" is not an export format: use eaf, textgrid, csv, jsonl or mcap"
     );
 }
 

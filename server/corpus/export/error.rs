@@ -114,9 +114,19 @@ pub enum ExportWarning {
         /// Why.
         problem: String,
     },
+    /// The manifest lists a media file the session's folder does not have.
+    #[error(
+        "session.json lists the media file {file:?}, which is not a file in the session's \
+         folder (deleted, moved, or a path outside it): the MCAP's `docent.media` names it all \
+         the same, but a player will not find it there"
+    )]
+    MediaNotInSession {
+        /// The `file` as the manifest gives it.
+        file: String,
+    },
 }
 
 /// A name given for `--format` that is not one.
 #[derive(Clone, Debug, PartialEq, Eq, thiserror::Error)]
-#[error("{0:?} is not an export format: use eaf, textgrid, csv or jsonl")]
+#[error("{0:?} is not an export format: use eaf, textgrid, csv, jsonl or mcap")]
 pub struct UnknownFormat(pub String);

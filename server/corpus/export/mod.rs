@@ -1,11 +1,11 @@
 //! Exports one visitor session to the formats researchers open: ELAN's EAF 3.0 (`eaf.rs`),
-//! Praat's TextGrid (`textgrid.rs`), a CSV of utterances and touches (`csv.rs`) and a copy of
-//! the JSON Lines log they are all made from. The session's log is read once
-//! (`timeline.rs`) into intervals and points on the session clock, which `tiers.rs` lays out
-//! as the tiers ELAN and Praat both get. The researchers' annotations
-//! (`corpus/annotations.rs`) are their own tiers in each format, with the codebook of the
-//! session's bundle (`docent.yaml`'s `codebook:`) as their vocabulary when it still loads.
-//! Formats, tiers and time base: `docs/CORPUS.md`, "Exports".
+//! Praat's TextGrid (`textgrid.rs`), a CSV of utterances and touches (`csv.rs`), MCAP for
+//! Foxglove and Lichtblick (`mcap.rs`) and a copy of the JSON Lines log they are all made
+//! from. The session's log is read once (`timeline.rs`) into intervals and points on the
+//! session clock, which `tiers.rs` lays out as the tiers ELAN and Praat both get. The
+//! researchers' annotations (`corpus/annotations.rs`) are their own tiers in each format, with
+//! the codebook of the session's bundle (`docent.yaml`'s `codebook:`) as their vocabulary when
+//! it still loads. Formats, tiers and time base: `docs/CORPUS.md`, "Exports".
 //!
 //! An export never writes half a file: each is written beside its place and renamed. A session
 //! still being recorded is refused; one whose server was killed is exported up to its last
@@ -15,6 +15,7 @@ mod csv;
 mod eaf;
 mod error;
 mod log_line;
+mod mcap;
 mod textgrid;
 mod tiers;
 pub mod timeline;
@@ -52,11 +53,19 @@ pub enum ExportFormat {
     /// The session's log as it is, `NAME.jsonl`, and its annotations as they stand,
     /// `NAME.annotations.jsonl` (when it has any).
     Jsonl,
+    /// MCAP for Foxglove and Lichtblick, `NAME.mcap`.
+    Mcap,
 }
 
 impl ExportFormat {
     /// Every format, in the order `--format` lists them.
-    pub const ALL: [ExportFormat; 4] = [Self::Eaf, Self::TextGrid, Self::Csv, Self::Jsonl];
+    pub const ALL: [ExportFormat; 5] = [
+        Self::Eaf,
+        Self::TextGrid,
+        Self::Csv,
+        Self::Jsonl,
+        Self::Mcap,
+    ];
 
     /// The name `--format` takes.
     pub fn name(self) -> &'static str {
@@ -65,6 +74,7 @@ impl ExportFormat {
             Self::TextGrid => "textgrid",
             Self::Csv => "csv",
             Self::Jsonl => "jsonl",
+            Self::Mcap => "mcap",
         }
     }
 
@@ -75,6 +85,7 @@ impl ExportFormat {
             Self::TextGrid => "TextGrid",
             Self::Csv => "csv",
             Self::Jsonl => "jsonl",
+            Self::Mcap => "mcap",
         }
     }
 }
@@ -116,6 +127,7 @@ pub fn export_session(
 /// A session read for export: its log read once, ready to be written in any format.
 pub struct SessionExport {
     name: String,
+    dir: PathBuf,
     manifest: SessionManifest,
     /// The log's whole lines, as they are.
     log: Vec<u8>,
@@ -177,6 +189,7 @@ impl SessionExport {
         let tiers = Tiers::of(&timeline).with_annotations(&codebook, &annotations);
         Ok(SessionExport {
             name,
+            dir: dir.to_owned(),
             manifest,
             log,
             timeline,
@@ -232,6 +245,7 @@ impl SessionExport {
             ExportFormat::TextGrid => textgrid::write(&self.tiers),
             ExportFormat::Csv => csv::write(&self.timeline, &self.annotations),
             ExportFormat::Jsonl => self.log.clone(),
+            ExportFormat::Mcap => self.mcap(&file, &mut warnings)?,
         };
         write_whole(out_dir, &file, &bytes)?;
         let mut files = vec![file];
@@ -250,6 +264,43 @@ impl SessionExport {
             files.push(file);
         }
         Ok(Exported { files, warnings })
+    }
+}
+
+impl SessionExport {
+    /// The MCAP file's bytes; the manifest is read again as it is, so that fields this Docent
+    /// does not know (a newer one's) reach the metadata too.
+    fn mcap(&self, file: &Path, warnings: &mut Vec<ExportWarning>) -> Result<Vec<u8>, ExportError> {
+        let path = self.dir.join(SESSION_MANIFEST);
+        let damaged = |problem: String| ExportError::DamagedManifest {
+            path: path.clone(),
+            problem,
+        };
+        let text = std::fs::read(&path).map_err(|e| damaged(e.to_string()))?;
+        let manifest: serde_json::Value =
+            serde_json::from_slice(&text).map_err(|e| damaged(e.to_string()))?;
+        let session = mcap::Session {
+            dir: &self.dir,
+            manifest: &manifest,
+            log: &self.log,
+            timeline: &self.timeline,
+        };
+        let written = mcap::write(&session).map_err(|problem| match problem {
+            mcap::McapProblem::NoClock(problem) => damaged(problem),
+            mcap::McapProblem::DamagedLine(line, problem) => ExportError::DamagedLog {
+                path: self.dir.join(SESSION_EVENTS),
+                line,
+                problem,
+            },
+            mcap::McapProblem::Writer(e) => ExportError::Write {
+                path: file.to_owned(),
+                source: io::Error::other(e),
+            },
+        })?;
+        for file in written.media_not_found {
+            warnings.push(ExportWarning::MediaNotInSession { file });
+        }
+        Ok(written.bytes)
     }
 }
 
