@@ -18,7 +18,7 @@ use crate::content::config::{AdapterKind, SpeechConfig};
 use crate::content::{Bundle, BundleArea, resolve_in_bundle};
 use crate::corpus::CorpusWriter;
 use crate::dispatch::Dispatcher;
-use crate::events::{EventKind, Hub, SessionEnd, Source};
+use crate::events::{EventKind, Hub, SessionEnd, Source, StopReason};
 use crate::http::{ConnectionLimits, app, serve_connections};
 use crate::lifecycle::Lifecycle;
 use crate::reload::ReloadOptions;
@@ -80,7 +80,8 @@ impl Server {
         let proxies = TrustedProxies::new(bundle.config.server.trusted_proxies.clone());
         let dispatcher = Dispatcher::new(Arc::new(bundle), router, hub, options.seed, life.clone());
         let access = Access::new(options.access.clone(), proxies);
-        let state = AppState::new(dispatcher, Arc::new(devices), life, access);
+        let folders = corpus.session_folders();
+        let state = AppState::new(dispatcher, Arc::new(devices), life, access, folders);
         let notices = crate::ws::ClientNotices::new(state.links());
         state.dispatcher.set_notifier(Arc::new(notices));
         Ok(Server {
@@ -193,6 +194,7 @@ pub async fn run(
     };
     let proxies = state.access.proxies().clone();
     let visits = Arc::clone(&state.visits);
+    let recordings = Arc::clone(&state.recordings);
     serve_connections(listener, app(state), limits, proxies, signal).await;
     // axum's graceful shutdown does not wait for websocket tasks (tokio-rs/axum#3003).
     life.shutdown.cancel();
@@ -203,6 +205,8 @@ pub async fn run(
     {
         tracing::warn!("some tasks did not finish within {SHUTDOWN_GRACE:?}");
     }
+    // Kiosks can upload no more: what each recording acknowledged is what it holds.
+    recordings.close_all(StopReason::ServerStopping);
     // After every client left, so that their leaving is in the session's log.
     visits.end(Source::Server, None, SessionEnd::ServerStopping);
     hub.close_corpus();

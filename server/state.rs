@@ -8,11 +8,13 @@ use serde::Serialize;
 
 use crate::access::Access;
 use crate::adapters::Devices;
+use crate::corpus::SessionFolders;
 use crate::dispatch::Dispatcher;
 use crate::events::{ClientRole, Hub};
 use crate::http::MissingPageReports;
 use crate::lifecycle::Lifecycle;
 use crate::operator::{Proposals, Visits};
+use crate::recording::Recordings;
 use crate::reload::ReloadStatus;
 use crate::sync::lock;
 use crate::wire::linger::Linger;
@@ -51,6 +53,8 @@ pub struct AppState {
     pub missing_pages: Arc<MissingPageReports>,
     /// What live reload has to tell operators (a refused save, a missing folder).
     pub reload: Arc<ReloadStatus>,
+    /// The kiosks' recordings of visitor sessions.
+    pub recordings: Arc<Recordings>,
     clients: Arc<Clients>,
 }
 
@@ -107,6 +111,7 @@ impl AppState {
         devices: Arc<Devices>,
         life: Lifecycle,
         access: Access,
+        folders: SessionFolders,
     ) -> Self {
         let hub = dispatcher.hub().clone();
         let visits = Arc::new(Visits::new(hub.clone()));
@@ -115,6 +120,18 @@ impl AppState {
         let idle = Arc::clone(&visits)
             .end_idle_sessions(move || live.bundle().config.corpus, life.shutdown.clone());
         life.spawn(idle);
+        let clients = Arc::new(Clients {
+            next: AtomicU64::default(),
+            connected: Mutex::default(),
+            linger: Linger::start(&life),
+        });
+        let links = ClientLinks(Arc::clone(&clients));
+        let recordings = Arc::new(Recordings::new(hub.clone(), links, folders));
+        // Subscribed now, before any client can connect or any session start.
+        let live = Arc::clone(&dispatcher);
+        let follow = Arc::clone(&recordings)
+            .follow(move || live.bundle().config.corpus.record, life.shutdown.clone());
+        life.spawn(follow);
         AppState {
             dispatcher,
             hub,
@@ -124,11 +141,8 @@ impl AppState {
             visits,
             missing_pages: Arc::default(),
             reload: Arc::default(),
-            clients: Arc::new(Clients {
-                next: AtomicU64::default(),
-                connected: Mutex::default(),
-                linger: Linger::start(&life),
-            }),
+            recordings,
+            clients,
             life,
         }
     }

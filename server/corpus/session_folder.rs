@@ -252,6 +252,7 @@ mod tests {
             group: Some("children".into()),
             context: None,
             consent: "recorded".into(),
+            media: Vec::new(),
         }
     }
 

@@ -10,6 +10,7 @@ mod hub;
 mod kind;
 mod logged;
 mod origin;
+mod recording;
 mod session;
 mod stamped;
 
@@ -17,6 +18,7 @@ pub use hub::{Committer, CorpusFeed, EVENT_CHANNEL_CAPACITY, HISTORY_LEN, Hub};
 pub use kind::EventKind;
 pub use logged::{LogUnwritable, Logged};
 pub use origin::{ActRef, ClientRole, Source};
+pub use recording::{FailureCode, RecordingEvent, StopReason, Track};
 pub use session::{Consent, SessionEnd};
 pub use stamped::Event;
 

@@ -82,11 +82,15 @@ pub enum ErrorCode {
     UnknownClient,
     /// `verb-not-routed`: Some of an adapter's verbs are routed to another adapter.
     VerbNotRouted,
+    /// `chunk-out-of-order`: A recording chunk after a gap (the answer says the `next` one).
+    ChunkOutOfOrder,
+    /// `recording-gone`: A chunk for a recording that is closed or unknown.
+    RecordingGone,
 }
 
 impl ErrorCode {
     /// Every code, for tests and documentation checks.
-    pub const ALL: [ErrorCode; 37] = [
+    pub const ALL: [ErrorCode; 39] = [
         ErrorCode::BadRequest,
         ErrorCode::BodyNotObject,
         ErrorCode::ConflictingLength,
@@ -124,6 +128,8 @@ impl ErrorCode {
         ErrorCode::BadSignal,
         ErrorCode::UnknownClient,
         ErrorCode::VerbNotRouted,
+        ErrorCode::ChunkOutOfOrder,
+        ErrorCode::RecordingGone,
     ];
 
     /// The code as sent (the same string serde writes), for events and logs.
@@ -166,6 +172,8 @@ impl ErrorCode {
             ErrorCode::BadSignal => "bad-signal",
             ErrorCode::UnknownClient => "unknown-client",
             ErrorCode::VerbNotRouted => "verb-not-routed",
+            ErrorCode::ChunkOutOfOrder => "chunk-out-of-order",
+            ErrorCode::RecordingGone => "recording-gone",
         }
     }
 }
@@ -228,6 +236,8 @@ mod tests {
         assert_eq!(ErrorCode::BadSignal.as_str(), "bad-signal");
         assert_eq!(ErrorCode::UnknownClient.as_str(), "unknown-client");
         assert_eq!(ErrorCode::VerbNotRouted.as_str(), "verb-not-routed");
+        assert_eq!(ErrorCode::ChunkOutOfOrder.as_str(), "chunk-out-of-order");
+        assert_eq!(ErrorCode::RecordingGone.as_str(), "recording-gone");
     }
 
     /// The codes in the first column of `docs/PROTOCOL.md`'s HTTP error table (`| status |
