@@ -129,8 +129,10 @@ impl AppState {
         let recordings = Arc::new(Recordings::new(hub.clone(), links, folders));
         // Subscribed now, before any client can connect or any session start.
         let live = Arc::clone(&dispatcher);
-        let follow = Arc::clone(&recordings)
-            .follow(move || live.bundle().config.corpus.record, life.shutdown.clone());
+        let follow = Arc::clone(&recordings).follow(
+            move || live.bundle().config.corpus.record,
+            life.shutdown.clone(),
+        );
         life.spawn(follow);
         AppState {
             dispatcher,

@@ -38,20 +38,12 @@ const QUIET_TICKS: u32 = 16;
 const MAX_UNWRITTEN: usize = 64 * 1024 * 1024;
 
 /// Runs until the hub closes the corpus; returns the number of events written.
-pub(super) fn run(
-    route: Route,
-    feed: CorpusFeed,
-    sync_interval: Duration,
-) -> io::Result<u64> {
+pub(super) fn run(route: Route, feed: CorpusFeed, sync_interval: Duration) -> io::Result<u64> {
     run_into(Files::new(sync_interval), route, feed)
 }
 
 /// Runs with `files` for the files (a test's failing disk).
-fn run_into<S: Sink + Send + 'static>(
-    files: S,
-    route: Route,
-    feed: CorpusFeed,
-) -> io::Result<u64> {
+fn run_into<S: Sink + Send + 'static>(files: S, route: Route, feed: CorpusFeed) -> io::Result<u64> {
     feed.attach_current_thread();
     let shared = Arc::new(Shared {
         log: Mutex::new(Log {

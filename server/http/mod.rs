@@ -74,7 +74,9 @@ pub fn app(state: AppState) -> Router {
                     "/api/recordings/{recording}/chunks/{seq}",
                     put(crate::recording::put_chunk),
                 )
-                .layer(RequestBodyLimitLayer::new(crate::recording::MAX_CHUNK_BYTES)),
+                .layer(RequestBodyLimitLayer::new(
+                    crate::recording::MAX_CHUNK_BYTES,
+                )),
         )
         .layer(TraceLayer::new_for_http())
         .with_state(state)

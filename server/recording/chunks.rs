@@ -72,7 +72,10 @@ impl ChunkFile {
             let (Some(Ok(seq)), Some(Ok(end))) = (fields.next(), fields.next()) else {
                 return Err(io::Error::new(
                     io::ErrorKind::InvalidData,
-                    format!("{} has a damaged line: {line:?}", index_path(path).display()),
+                    format!(
+                        "{} has a damaged line: {line:?}",
+                        index_path(path).display()
+                    ),
                 ));
             };
             (acked, next) = (end, seq + 1);
@@ -108,7 +111,11 @@ impl ChunkFile {
         // A torn append left bytes behind: they go before anything is added.
         self.cut_unacknowledged()?;
         self.media.seek(SeekFrom::Start(self.acked))?;
-        if let Err(e) = self.media.write_all(bytes).and_then(|()| self.media.sync_data()) {
+        if let Err(e) = self
+            .media
+            .write_all(bytes)
+            .and_then(|()| self.media.sync_data())
+        {
             // Best effort: the next append or opening cuts it anyway.
             let _ = self.media.set_len(self.acked);
             return Err(e);

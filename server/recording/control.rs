@@ -118,7 +118,13 @@ impl Recordings {
 
     /// Session `number` may be recorded: once its first line is logged (its folder made), every
     /// connected kiosk is asked to record.
-    async fn begin(self: &Arc<Self>, number: u64, seq: u64, start_mono_us: u64, tracks: RecordTracks) {
+    async fn begin(
+        self: &Arc<Self>,
+        number: u64,
+        seq: u64,
+        start_mono_us: u64,
+        tracks: RecordTracks,
+    ) {
         if !tracks.any() || self.hub.logged(seq).await.is_err() {
             return;
         }
@@ -176,7 +182,9 @@ impl Recordings {
                 file: Some(recording.file.clone()),
                 ..off(client)
             };
-            inner.open.insert(recording.id, (Arc::clone(&recording), None));
+            inner
+                .open
+                .insert(recording.id, (Arc::clone(&recording), None));
         }
         self.links.send_to(client, &Frame::from(frame));
     }
@@ -269,7 +277,10 @@ impl Recordings {
 
 /// Registers the next recording of the session being recorded for kiosk `client`: its id,
 /// file and token. `None` when no session is being recorded.
-fn plan(inner: &mut Inner, client: u64) -> Option<(Arc<Recording>, std::path::PathBuf, RecordTracks)> {
+fn plan(
+    inner: &mut Inner,
+    client: u64,
+) -> Option<(Arc<Recording>, std::path::PathBuf, RecordTracks)> {
     let session = inner.session.as_mut()?;
     let track = if session.tracks.video {
         Track::Video
@@ -316,7 +327,10 @@ fn remove_media(media: &Path) -> std::io::Result<Vec<String>> {
     for entry in entries {
         let entry = entry?;
         std::fs::remove_file(entry.path())?;
-        removed.push(format!("{MEDIA_DIR}/{}", entry.file_name().to_string_lossy()));
+        removed.push(format!(
+            "{MEDIA_DIR}/{}",
+            entry.file_name().to_string_lossy()
+        ));
     }
     std::fs::remove_dir(media)?;
     removed.sort();

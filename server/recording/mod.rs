@@ -134,7 +134,14 @@ impl Recordings {
     /// The kiosk `client` reports that recording `id` began at `mono_us` on the hub's clock
     /// (within `clock_error_us`): `recording.started` places it on the session clock. False
     /// when it is not this kiosk's open recording.
-    pub fn started(&self, client: u64, id: u64, mime: &str, mono_us: u64, clock_error_us: u64) -> bool {
+    pub fn started(
+        &self,
+        client: u64,
+        id: u64,
+        mime: &str,
+        mono_us: u64,
+        clock_error_us: u64,
+    ) -> bool {
         let mut inner = lock(&self.inner);
         let Some((recording, None)) = inner.open.get(&id).cloned() else {
             return false;
@@ -182,7 +189,13 @@ impl Recordings {
                 code,
                 message: message.chars().take(500).collect(),
             }));
-        let owned = recording.and_then(|id| inner.open.get(&id).filter(|(r, _)| r.client == client).map(|(r, _)| r.id));
+        let owned = recording.and_then(|id| {
+            inner
+                .open
+                .get(&id)
+                .filter(|(r, _)| r.client == client)
+                .map(|(r, _)| r.id)
+        });
         drop(inner);
         if let Some(id) = owned {
             self.close(id, StopReason::Failed);

@@ -56,6 +56,9 @@ pub(super) fn failed(
         } else {
             message
         };
-        client.state.recordings.failed(client.id, recording, code, message);
+        client
+            .state
+            .recordings
+            .failed(client.id, recording, code, message);
     }
 }

@@ -225,7 +225,11 @@ mod tests {
             assert_eq!(file.config.corpus.record, audio, "default kept: {text}");
         }
         let typo = parse("corpus:\n  record: [vidoe]\n");
-        assert!(typo.diagnostics[0].message.contains("Did you mean `video`?"));
+        assert!(
+            typo.diagnostics[0]
+                .message
+                .contains("Did you mean `video`?")
+        );
     }
 
     #[test]
