@@ -24,6 +24,7 @@ const RETRY_BUDGET_MS = 60_000; // failing this long without one chunk stored: r
  */
 export function answerRecordRequests({ send, on }) {
   let current = null;
+  const asked = []; // every `record` frame's recording and session, for tests and diagnosis
   const clockWaiters = new Map(); // t0 -> resolve
   on("clock", (frame) => {
     clockWaiters.get(frame.t0)?.({ t1: performance.now(), serverUs: frame.server_us });
@@ -45,13 +46,19 @@ export function answerRecordRequests({ send, on }) {
     return best;
   };
   on("record", (frame) => {
+    asked.push({ recording: frame.recording, session: frame.session });
     current?.abandon();
     current = record(frame, { send, syncClock });
   });
   on("record-stop", (frame) => {
     if (current?.id === frame.recording) current.stop();
   });
-  window.docentRecorder = { get current() { return current?.status(); } };
+  window.docentRecorder = {
+    get current() {
+      return current?.status();
+    },
+    asked,
+  };
 }
 
 function record(frame, { send, syncClock }) {
@@ -180,8 +187,7 @@ function record(frame, { send, syncClock }) {
     };
     recorder.onerror = (event) => fail("recorder-error", String(event.error?.message ?? "MediaRecorder failed"));
     recorder.onstop = () => finishIfDone();
-    recorder.onstart = async (event) => {
-      startTime = event.timeStamp;
+    recorder.onstart = async () => {
       const best = await clock;
       if (!best || ended) return;
       const offsetMs = best.serverUs / 1000 - (best.t0 + best.t1) / 2;
@@ -196,6 +202,10 @@ function record(frame, { send, syncClock }) {
     for (const track of stream.getTracks()) {
       track.onended = () => fail("no-device", `the ${track.kind} device stopped (unplugged or taken by another program)`);
     }
+    // The first sample is the one arriving as `start()` is called: Chromium fires the `start`
+    // event about 50 ms later, and taking that time put every sound 62 ms late (measured by
+    // tests/e2e/recording.test.mjs's alignment test; docs/CORPUS.md, "Recording").
+    startTime = performance.now();
     recorder.start(CHUNK_MS);
   };
 
