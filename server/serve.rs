@@ -60,6 +60,21 @@ impl Server {
         let (hub, feed) = Hub::new();
         let corpus = CorpusWriter::start(&options.corpus_dir, feed, options.corpus_sync)?;
         let mut warnings = Vec::new();
+        // Before this run records anything: a crash may have left bytes no kiosk was told are
+        // stored.
+        let (cuts, problems) = crate::recording::cut_unacknowledged(corpus.dir());
+        for cut in cuts {
+            warnings.push(format!(
+                "{} held {} bytes a crash left unacknowledged; cut back to its last acknowledged chunk",
+                cut.file.display(),
+                cut.bytes
+            ));
+        }
+        warnings.extend(
+            problems
+                .into_iter()
+                .map(|p| format!("a recording could not be checked: {p}")),
+        );
         let output = match &options.speech_wav {
             Some(dir) => {
                 std::fs::create_dir_all(dir)?;

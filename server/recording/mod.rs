@@ -13,10 +13,12 @@
 //! - `upload.rs`: `PUT /api/recordings/{recording}/chunks/{seq}`, each recording's own
 //!   upload token as its Bearer credential.
 //! - `frames.rs`: the frames to the kiosk (`record`, `record-stop`, `clock`).
+//! - `recover.rs`: at start-up, recordings a crash left with unacknowledged bytes cut back.
 
 pub mod chunks;
 mod control;
 mod frames;
+mod recover;
 mod upload;
 
 use std::collections::{BTreeMap, HashMap};
@@ -34,6 +36,7 @@ use crate::sync::lock;
 
 pub use chunks::ChunkFile;
 pub use frames::clock_frame;
+pub use recover::{Cut, cut_unacknowledged};
 pub use upload::{MAX_CHUNK_BYTES, put_chunk};
 
 /// The folder of a session's recordings, inside its folder.

@@ -9,13 +9,13 @@
 // logged `session_us`. Every wait is for an event or a page state, with a deadline only.
 
 import assert from 'node:assert/strict';
-import { execFileSync } from 'node:child_process';
+import { execFileSync, spawnSync } from 'node:child_process';
 import fs from 'node:fs';
 import path from 'node:path';
 import { after, before, test } from 'node:test';
 
 import { launchBrowser, newTouchContext, watchExceptions } from './lib/browser.mjs';
-import { corpusEvents, DEADLINE_MS, makeBundle, removeTemp, startDocent } from './lib/docent.mjs';
+import { corpusEvents, DEADLINE_MS, makeBundle, removeTemp, startDocent, tempDir } from './lib/docent.mjs';
 import { openShell, shownContentFrame } from './lib/kiosk.mjs';
 import { newConsoleContext, signIn } from './lib/operator.mjs';
 import { connectOperator } from './lib/ws-client.mjs';
@@ -79,14 +79,17 @@ function sessionDir(server, number) {
   throw new Error(`no folder for session ${number}`);
 }
 
-/** The audio's decoded length in seconds, from the last packet; ffmpeg decodes it without error. */
-function decodedSeconds(file) {
-  const errors = execFileSync('ffmpeg', ['-v', 'error', '-xerror', '-i', file, '-f', 'null', '-'], { encoding: 'utf8', stdio: ['ignore', 'pipe', 'pipe'] });
-  assert.equal(errors, '', `ffmpeg decodes ${file} without errors`);
-  const packets = execFileSync('ffprobe', ['-v', 'error', '-select_streams', 'a:0', '-show_entries', 'packet=pts_time,duration_time', '-of', 'csv=p=0', file], { encoding: 'utf8' })
+/**
+ * Decodes `file` with ffmpeg and returns the audio's length in seconds (from its last packet)
+ * and what ffmpeg said on the way (its errors; none for a whole recording).
+ */
+function decode(file) {
+  const run = spawnSync('ffmpeg', ['-v', 'error', '-i', file, '-f', 'null', '-'], { encoding: 'utf8' });
+  assert.equal(run.status, 0, `ffmpeg decodes ${file}: ${run.stderr}`);
+  const packets = execFileSync('ffprobe', ['-v', 'error', '-select_streams', 'a:0', '-show_entries', 'packet=pts_time,duration_time', '-of', 'csv=p=0', file], { encoding: 'utf8', stdio: ['ignore', 'pipe', 'pipe'] })
     .trim().split('\n').map((line) => line.split(',').map(Number));
   const [pts, duration] = packets.at(-1);
-  return pts + duration;
+  return { seconds: pts + duration, errors: run.stderr.trim() };
 }
 
 test('a session a touch started records the microphone into a playable WebM, whole across cut uploads', async () => {
@@ -134,12 +137,55 @@ test('a session a touch started records the microphone into a playable WebM, who
     const events = corpusEvents(server.corpus);
     const ended = events.find((e) => e.type === 'session.ended');
     const recordedS = (ended.session_us - started.start_us) / 1e6;
-    const seconds = decodedSeconds(file);
+    const { seconds, errors: decodeErrors } = decode(file);
+    assert.equal(decodeErrors, '', 'the whole recording decodes without a word from ffmpeg');
     assert.ok(Math.abs(seconds - recordedS) < 1.2, `decoded ${seconds} s, recorded from start to session end ${recordedS} s`);
     const manifest = JSON.parse(fs.readFileSync(path.join(dir, 'session.json'), 'utf8'));
     assert.deepEqual(manifest.media.map((m) => [m.file, m.track, m.start_us]), [['media/audio-1.webm', 'audio', started.start_us]]);
     console.log(`recording: ${stored.length} bytes in ${seconds.toFixed(2)} s = ${(stored.length / seconds / 1024).toFixed(1)} KiB/s audio`);
   });
+});
+
+test('kill -9 mid-session leaves a playable recording and a readable log; the next start cuts what was not acknowledged', async () => {
+  const files = bundle();
+  const corpus = tempDir('docent-e2e-recording-kill-');
+  const server = await startDocent(files, { corpus });
+  const op = await connectOperator(server.wsUrl);
+  let dir;
+  try {
+    const { context, page } = await openKiosk(browser, server);
+    await tap(page);
+    const started = await op.waitForEvent((e) => e.type === 'recording.started');
+    await page.waitForFunction(() => window.docentRecorder.current?.next >= 4 && window.docentRecorder.current.queued === 0, null, { timeout: DEADLINE_MS });
+    server.process.kill('SIGKILL');
+    await server.stop();
+    await context.close();
+    dir = sessionDir(server, started.session);
+    const file = path.join(dir, 'media/audio-1.webm');
+    const index = fs.readFileSync(`${file}.chunks`, 'utf8').trim().split('\n');
+    const acked = Number(index.at(-1).split(' ')[1]);
+    assert.ok(index.length >= 3 && fs.statSync(file).size >= acked, `${index.length} chunks indexed`);
+    // What a kill in the middle of an append leaves: bytes beyond the index.
+    fs.appendFileSync(file, Buffer.from('a torn half of a chunk'));
+    assert.ok(corpusEvents(server.corpus).some((e) => e.type === 'recording.started'), 'the log reads');
+    const again = await startDocent(files, { corpus });
+    try {
+      assert.match(again.output(), /unacknowledged; cut back to its last acknowledged chunk/);
+      assert.equal(fs.statSync(file).size, acked, 'cut back to the acknowledged length');
+      const { seconds, errors } = decode(file);
+      // A recording cut short ends inside a WebM cluster of unknown size, as a live stream
+      // does: ffmpeg says so, once, and plays every block before it.
+      assert.match(errors, /^(\[matroska,webm @ \w+\] File ended prematurely at pos\. \d+ \(0x[0-9a-f]+\))?$/);
+      assert.ok(seconds >= index.length - 1.5, `${seconds} s decoded from ${index.length} chunks`);
+    } finally {
+      await again.stop();
+    }
+  } finally {
+    await op.close().catch(() => {});
+    await server.stop();
+    removeTemp(files);
+    removeTemp(corpus);
+  }
 });
 
 test('a kiosk whose browser refuses the microphone is shown on a signed-in console at once', async () => {
