@@ -12,6 +12,7 @@ use std::path::PathBuf;
 
 use common::{TempBundle, TestServer, WsClient, session_dirs};
 use docent::corpus::manifest::SessionManifest;
+use docent::corpus::purge::purge;
 use serde_json::{Value, json};
 
 const ACTS: &str = "- Label: WELCOME\n  Text: [Hello!]\n";
@@ -171,6 +172,22 @@ async fn chunks_are_stored_in_order_once_and_the_recording_is_placed_on_the_sess
         std::fs::read(dir.join("media/audio-1.webm")).unwrap(),
         b"HEADBODYTAIL"
     );
+    // Purge removes the media with the rest, and says so file by file.
+    let mut removed = Vec::new();
+    purge(folder.path(), &manifest.session, |f| {
+        removed.push(f.path.to_string_lossy().into_owned())
+    })
+    .unwrap();
+    let media: Vec<&String> = removed.iter().filter(|p| p.contains("/media/")).collect();
+    let name = &manifest.session;
+    assert_eq!(
+        media,
+        [
+            &format!("sessions/{name}/media/audio-1.webm"),
+            &format!("sessions/{name}/media/audio-1.webm.chunks")
+        ]
+    );
+    assert!(!dir.exists());
 }
 
 #[tokio::test]

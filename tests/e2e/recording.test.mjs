@@ -25,7 +25,7 @@ const FAKE_PERMISSION = '--use-fake-ui-for-media-stream';
 
 /** Measured bounds (docs/CORPUS.md, "Recording"): a sound's place in the file against when the
  * page made it, and against its trigger's logged `session_us`. */
-const ALIGNMENT_BOUND_MS = 40;
+const ALIGNMENT_BOUND_MS = 60;
 const END_TO_END_BOUND_MS = 250;
 
 let browser;
@@ -325,11 +325,11 @@ test('alignment: clicks sounded at triggers lie where the recording start_us put
     // Where each click lies in the file, in ms from its first sample; the first onset may be the
     // touch that started the session (HELLO), sounded before the recording began or not.
     const found = onsets(file).map((s) => s * 1e3);
-    // Each click is the onset nearest to when the page sounded it (within 150 ms); one lost to
+    // Each click is the onset near when the page sounded it (100 ms before to 150 ms after); one lost to
     // an audio drop-out of the loaded machine is counted, and at least ten must be found.
     const matched = sends.map((sent, i) => {
       const expected = sent - startTime;
-      const at = found.find((t) => t >= expected - 50 && t <= expected + 150);
+      const at = found.find((t) => t >= expected - 100 && t <= expected + 150);
       return at === undefined ? null : { at, expected, event: events[i] };
     }).filter(Boolean);
     assert.ok(matched.length >= 10, `clicks found at ${found.map((t) => t.toFixed(0)).join(', ')} ms; sounded at ${sends.map((t) => (t - startTime).toFixed(0)).join(', ')} ms`);
