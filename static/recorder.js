@@ -86,7 +86,8 @@ function record(frame, { send, syncClock }) {
   };
   const fail = (code, message) => {
     if (ended) return;
-    console.error(`docent: recording ${id} failed (${code}): ${message}`);
+    // A warning, not an error: the operators are told (recording.failed), the visitor is not.
+    console.warn(`docent: recording ${id} failed (${code}): ${message}`);
     send({ type: "recording-failed", recording: id, code, message });
     end();
   };
