@@ -126,7 +126,7 @@ impl AppState {
             linger: Linger::start(&life),
         });
         let links = ClientLinks(Arc::clone(&clients));
-        let recordings = Arc::new(Recordings::new(hub.clone(), links, folders));
+        let recordings = Arc::new(Recordings::new(hub.clone(), links, folders, life.clone()));
         // Subscribed now, before any client can connect or any session start.
         let live = Arc::clone(&dispatcher);
         let follow = Arc::clone(&recordings).follow(

@@ -217,8 +217,13 @@ impl Recordings {
             self.links.send_to(*client, &Frame::from(frame));
         }
         let this = Arc::clone(self);
-        tokio::spawn(async move {
-            tokio::time::sleep(FINAL_UPLOAD_GRACE).await;
+        let shutdown = self.life.shutdown.clone();
+        // At shutdown the server closes every recording itself (`close_all`).
+        self.life.spawn(async move {
+            tokio::select! {
+                () = tokio::time::sleep(FINAL_UPLOAD_GRACE) => {}
+                () = shutdown.cancelled() => return,
+            }
             for (_, id) in told {
                 this.close(id, StopReason::NoFinalReport);
             }

@@ -31,6 +31,7 @@ use crate::access::Secret;
 use crate::content::config::RecordTracks;
 use crate::corpus::SessionFolders;
 use crate::events::{EventKind, FailureCode, Hub, RecordingEvent, StopReason, Track};
+use crate::lifecycle::Lifecycle;
 use crate::state::ClientLinks;
 use crate::sync::lock;
 
@@ -111,16 +112,19 @@ pub struct Recordings {
     hub: Hub,
     links: ClientLinks,
     folders: SessionFolders,
+    /// Tracks the timers that close recordings whose kiosk never confirmed its last chunk.
+    life: Lifecycle,
     inner: Mutex<Inner>,
 }
 
 impl Recordings {
     /// No recording yet; recordings go into the session folders `folders` names.
-    pub fn new(hub: Hub, links: ClientLinks, folders: SessionFolders) -> Self {
+    pub fn new(hub: Hub, links: ClientLinks, folders: SessionFolders, life: Lifecycle) -> Self {
         Recordings {
             hub,
             links,
             folders,
+            life,
             inner: Mutex::default(),
         }
     }
