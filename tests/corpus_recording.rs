@@ -206,6 +206,14 @@ async fn a_declined_session_records_nothing_until_consent_is_given() {
         .map(|r| (r.status().as_u16(), r))
         .unwrap();
     assert_eq!(status, 410, "no recording to upload to");
+    let bad = reqwest::Client::new()
+        .put(server.url("/api/recordings/x/chunks/0"))
+        .body("x")
+        .send()
+        .await
+        .unwrap();
+    assert_eq!(bad.status().as_u16(), 400);
+    assert_eq!(bad.json::<Value>().await.unwrap()["code"], "bad-request");
     assert_eq!(
         body.json::<Value>().await.unwrap()["code"],
         "recording-gone"

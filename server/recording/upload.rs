@@ -39,10 +39,16 @@ pub(super) fn chunk_path(recording: u64) -> String {
 /// `PUT /api/recordings/{recording}/chunks/{seq}`.
 pub async fn put_chunk(
     State(state): State<AppState>,
-    Path((id, seq)): Path<(u64, u64)>,
+    Path((id, seq)): Path<(String, String)>,
     headers: HeaderMap,
     body: Bytes,
 ) -> Result<Response, AppError> {
+    // Read here, so that a bad number is a JSON `bad-request` like every other error.
+    let (Ok(id), Ok(seq)) = (id.parse::<u64>(), seq.parse::<u64>()) else {
+        return Err(AppError::bad_request(
+            "the recording and the chunk are numbers: /api/recordings/RECORDING/chunks/SEQ",
+        ));
+    };
     let recordings = &state.recordings;
     let token = bearer(&headers).unwrap_or_default();
     let recording = match recordings.authorised(id, token) {
