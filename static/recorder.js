@@ -45,14 +45,22 @@ export function answerRecordRequests({ send, on }) {
     }
     return best;
   };
+  const running = new Map(); // id -> recording not yet ended (one, or a stopping one beside it)
   on("record", (frame) => {
     asked.push({ recording: frame.recording, session: frame.session });
-    current?.abandon();
+    // One being stopped (the session ended, the next began) uploads its last chunk meanwhile;
+    // any other was closed by the server already (this kiosk reconnected).
+    for (const [id, old] of running) {
+      if (old.status().state === "ended") running.delete(id);
+      else if (old.status().state !== "stopping") {
+        old.abandon();
+        running.delete(id);
+      }
+    }
     current = record(frame, { send, syncClock });
+    running.set(frame.recording, current);
   });
-  on("record-stop", (frame) => {
-    if (current?.id === frame.recording) current.stop();
-  });
+  on("record-stop", (frame) => running.get(frame.recording)?.stop());
   window.docentRecorder = {
     get current() {
       return current?.status();

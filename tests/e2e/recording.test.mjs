@@ -146,6 +146,22 @@ test('a session a touch started records the microphone into a playable WebM, who
   });
 });
 
+test('the next session ends the running recording with its last chunk and starts a new file', async () => {
+  await withServer(bundle(), async (server, op) => {
+    const { context, page } = await openKiosk(browser, server);
+    await tap(page);
+    const first = await op.waitForEvent((e) => e.type === 'recording.started');
+    await page.waitForFunction(() => window.docentRecorder.current?.next >= 2, null, { timeout: DEADLINE_MS });
+    op.send({ type: 'mark', mark: 'session_start' });
+    const stopped = await op.waitForEvent((e) => e.type === 'recording.stopped' && e.recording === first.recording);
+    assert.equal(stopped.reason, 'session-ended', 'stopped in order, its last chunk uploaded');
+    const second = await op.waitForEvent((e) => e.type === 'recording.started' && e.recording !== first.recording);
+    assert.notEqual(second.session, first.session);
+    assert.equal(second.file, 'media/audio-1.webm', 'the first file of the new session');
+    await context.close();
+  });
+});
+
 test('with video on, the kiosk records its camera and microphone into one playable WebM', async () => {
   await withServer(bundle('{session_idle: 0s, record: [audio, video]}'), async (server, op) => {
     const { context, page } = await openKiosk(browser, server);
