@@ -136,6 +136,7 @@ pub fn write_session(dir: &Path, seconds: u64, bundle: Option<&str>) -> std::io:
         group: Some("group".to_owned()),
         context: Some("TextGroup".to_owned()),
         consent: "recorded".to_owned(),
+        media: Vec::new(),
     };
     manifest.write_to(dir)?;
     Ok(count)

@@ -4,6 +4,7 @@
 #   chromium           Debian's headless browser for the browser tests in tests/e2e (never a
 #                      browser download of Playwright's own: playwright-core drives /usr/bin/chromium);
 #   fonts-dejavu-core  the font the pages and screenshots are drawn with;
+#   ffmpeg             ffprobe and ffmpeg, which decode the recordings the browser test makes;
 #   tests/e2e npm packages (playwright-core, ws), with `npm ci` from package-lock.json when
 #                      node_modules is missing or older than the lock file;
 #   python3, python3-venv and, from PyPI into tests/readers/.venv (git-ignored), the readers
@@ -21,6 +22,7 @@ command -v espeak-ng >/dev/null 2>&1 || packages+=(espeak-ng)
 [ -x /usr/bin/chromium ] || packages+=(chromium)
 dpkg-query -W -f='${Status}' fonts-dejavu-core 2>/dev/null | grep -q 'ok installed' ||
   packages+=(fonts-dejavu-core)
+command -v ffprobe >/dev/null 2>&1 || packages+=(ffmpeg)
 if ! command -v python3 >/dev/null 2>&1; then
   packages+=(python3 python3-venv)
 elif ! python3 -c 'import ensurepip, venv' >/dev/null 2>&1; then

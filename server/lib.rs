@@ -13,6 +13,7 @@
 //! - [`wire`]: what goes to a client, shared by [`ws`] and [`adapters`]: the bounded outbox,
 //!   the frames adapters send and [`wire::ErrorCode`].
 //! - [`operator`]: pending proposals (mixed initiative) and visitor-session marks.
+//! - [`recording`]: the kiosk's microphone and camera recorded into a session's `media/`.
 //! - [`reload`]: live reload: watching the bundle folder, swapping in a good save, refusing a
 //!   broken one.
 //! - [`serve`]: wiring it together and running with graceful shutdown.
@@ -27,6 +28,7 @@ pub mod events;
 pub mod http;
 pub mod lifecycle;
 pub mod operator;
+pub mod recording;
 pub mod reload;
 pub mod serve;
 pub mod state;

@@ -18,7 +18,7 @@ use crate::content::config::{AdapterKind, SpeechConfig};
 use crate::content::{Bundle, BundleArea, resolve_in_bundle};
 use crate::corpus::CorpusWriter;
 use crate::dispatch::Dispatcher;
-use crate::events::{EventKind, Hub, SessionEnd, Source};
+use crate::events::{EventKind, Hub, SessionEnd, Source, StopReason};
 use crate::http::{ConnectionLimits, app, serve_connections};
 use crate::lifecycle::Lifecycle;
 use crate::reload::ReloadOptions;
@@ -60,6 +60,21 @@ impl Server {
         let (hub, feed) = Hub::new();
         let corpus = CorpusWriter::start(&options.corpus_dir, feed, options.corpus_sync)?;
         let mut warnings = Vec::new();
+        // Before this run records anything: a crash may have left bytes no kiosk was told are
+        // stored.
+        let (cuts, problems) = crate::recording::cut_unacknowledged(corpus.dir());
+        for cut in cuts {
+            warnings.push(format!(
+                "{} held {} bytes a crash left unacknowledged; cut back to its last acknowledged chunk",
+                cut.file.display(),
+                cut.bytes
+            ));
+        }
+        warnings.extend(
+            problems
+                .into_iter()
+                .map(|p| format!("a recording could not be checked: {p}")),
+        );
         let output = match &options.speech_wav {
             Some(dir) => {
                 std::fs::create_dir_all(dir)?;
@@ -82,7 +97,15 @@ impl Server {
         let dispatcher = Dispatcher::new(Arc::new(bundle), router, hub, options.seed, life.clone());
         let access = Access::new(options.access.clone(), proxies);
         let corpus_dir = corpus.dir().to_owned();
-        let state = AppState::new(dispatcher, Arc::new(devices), life, access, corpus_dir);
+        let folders = corpus.session_folders();
+        let state = AppState::new(
+            dispatcher,
+            Arc::new(devices),
+            life,
+            access,
+            corpus_dir,
+            folders,
+        );
         let notices = crate::ws::ClientNotices::new(state.links());
         state.dispatcher.set_notifier(Arc::new(notices));
         Ok(Server {
@@ -195,6 +218,7 @@ pub async fn run(
     };
     let proxies = state.access.proxies().clone();
     let visits = Arc::clone(&state.visits);
+    let recordings = Arc::clone(&state.recordings);
     serve_connections(listener, app(state), limits, proxies, signal).await;
     // axum's graceful shutdown does not wait for websocket tasks (tokio-rs/axum#3003).
     life.shutdown.cancel();
@@ -205,6 +229,8 @@ pub async fn run(
     {
         tracing::warn!("some tasks did not finish within {SHUTDOWN_GRACE:?}");
     }
+    // Kiosks can upload no more: what each recording acknowledged is what it holds.
+    recordings.close_all(StopReason::ServerStopping);
     // After every client left, so that their leaving is in the session's log.
     visits.end(Source::Server, None, SessionEnd::ServerStopping);
     hub.close_corpus();

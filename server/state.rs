@@ -9,11 +9,13 @@ use serde::Serialize;
 
 use crate::access::Access;
 use crate::adapters::Devices;
+use crate::corpus::SessionFolders;
 use crate::dispatch::Dispatcher;
 use crate::events::{ClientRole, Hub};
 use crate::http::{MissingPageReports, Replay};
 use crate::lifecycle::Lifecycle;
 use crate::operator::{Proposals, Visits};
+use crate::recording::Recordings;
 use crate::reload::ReloadStatus;
 use crate::sync::lock;
 use crate::wire::linger::Linger;
@@ -54,6 +56,8 @@ pub struct AppState {
     pub reload: Arc<ReloadStatus>,
     /// The corpus folder as the `/sessions` page reads it, and its media tickets.
     pub replay: Arc<Replay>,
+    /// The kiosks' recordings of visitor sessions.
+    pub recordings: Arc<Recordings>,
     clients: Arc<Clients>,
 }
 
@@ -111,6 +115,7 @@ impl AppState {
         life: Lifecycle,
         access: Access,
         corpus: PathBuf,
+        folders: SessionFolders,
     ) -> Self {
         let hub = dispatcher.hub().clone();
         let display = Arc::clone(&devices.display);
@@ -121,6 +126,20 @@ impl AppState {
         let idle = Arc::clone(&visits)
             .end_idle_sessions(move || live.bundle().config.corpus, life.shutdown.clone());
         life.spawn(idle);
+        let clients = Arc::new(Clients {
+            next: AtomicU64::default(),
+            connected: Mutex::default(),
+            linger: Linger::start(&life),
+        });
+        let links = ClientLinks(Arc::clone(&clients));
+        let recordings = Arc::new(Recordings::new(hub.clone(), links, folders, life.clone()));
+        // Subscribed now, before any client can connect or any session start.
+        let live = Arc::clone(&dispatcher);
+        let follow = Arc::clone(&recordings).follow(
+            move || live.bundle().config.corpus.record,
+            life.shutdown.clone(),
+        );
+        life.spawn(follow);
         AppState {
             dispatcher,
             hub,
@@ -131,11 +150,8 @@ impl AppState {
             missing_pages: Arc::default(),
             reload: Arc::default(),
             replay: Arc::new(Replay::new(corpus)),
-            clients: Arc::new(Clients {
-                next: AtomicU64::default(),
-                connected: Mutex::default(),
-                linger: Linger::start(&life),
-            }),
+            recordings,
+            clients,
             life,
         }
     }

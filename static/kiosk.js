@@ -11,8 +11,11 @@
 // shown page's <html> carry `data-docent-speaking` (who asked: kiosk, operator, dm, http), and
 // a "Stop" button ends speech visitors started, never anyone else's. A tap on an act already
 // speaking is answered with a short notice.
+// Recording (recorder.js): on the server's `record` frame the shell records the microphone (and
+// camera) and uploads the chunks into the session's folder.
 
 import { answerCameraCalls } from "./camera-kiosk.js";
+import { answerRecordRequests } from "./recorder.js";
 import { encodePath, keepConnected } from "./socket.js";
 import { startBrowserSpeech } from "./speech.js";
 import { speechState } from "./speech-state.js";
@@ -312,3 +315,4 @@ if (config.speech === "browser") {
   startBrowserSpeech({ path: config.ws || "/ws", voice: config.voice, wpm: Number(config.rate) });
 }
 if (config.camera === "webrtc") answerCameraCalls({ send: socket.send, on: window.docentShell.on });
+answerRecordRequests({ send: socket.send, on: window.docentShell.on });

@@ -6,7 +6,7 @@ use std::collections::BTreeMap;
 use std::fmt;
 use std::time::Duration;
 
-pub use crate::content::config_corpus::{CorpusSettings, SessionStart};
+pub use crate::content::config_corpus::{CorpusSettings, RecordTracks, SessionStart};
 pub use crate::content::config_file::codebook::{Code, Codebook, CodebookTier};
 pub use crate::content::config_policy::{
     Channel, ChannelPolicies, ChannelPolicy, MAX_PRIORITY, MAX_QUEUE_LIMIT, Priorities, WhenBusy,

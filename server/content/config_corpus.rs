@@ -1,5 +1,6 @@
 //! `docent.yaml`'s `corpus:` settings in validated form: what starts a visitor session, how
-//! long one a touch started lasts without a touch, and the consent each starts with. Read by
+//! long one a touch started lasts without a touch, the consent each starts with and what the
+//! kiosk device records during one. Read by
 //! `config_file/screens.rs`; documented for people in `docs/CONFIG.md`.
 
 use std::time::Duration;
@@ -24,6 +25,39 @@ pub struct CorpusSettings {
     pub session_idle: Duration,
     /// The consent each session starts with.
     pub consent: Consent,
+    /// What the kiosk device records during a session whose consent is `recorded`.
+    pub record: RecordTracks,
+}
+
+/// What the kiosk device records (`corpus: record:`): its microphone, its camera, both or
+/// nothing.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct RecordTracks {
+    /// The microphone.
+    pub audio: bool,
+    /// The camera.
+    pub video: bool,
+}
+
+impl RecordTracks {
+    /// Nothing is recorded.
+    pub const OFF: RecordTracks = RecordTracks {
+        audio: false,
+        video: false,
+    };
+
+    /// Whether anything is recorded.
+    pub fn any(self) -> bool {
+        self.audio || self.video
+    }
+
+    /// The tracks by name, `audio` before `video`, as the `record` frame lists them.
+    pub fn names(self) -> Vec<&'static str> {
+        [("audio", self.audio), ("video", self.video)]
+            .into_iter()
+            .filter_map(|(name, on)| on.then_some(name))
+            .collect()
+    }
 }
 
 impl Default for CorpusSettings {
@@ -32,6 +66,10 @@ impl Default for CorpusSettings {
             session_start: SessionStart::Touch,
             session_idle: Duration::from_secs(120),
             consent: Consent::Recorded,
+            record: RecordTracks {
+                audio: true,
+                video: false,
+            },
         }
     }
 }

@@ -43,6 +43,28 @@ pub struct SessionManifest {
     pub context: Option<String>,
     /// What the visitors agreed to, as last noted: `recorded`, `declined` or `withdrawn`.
     pub consent: String,
+    /// The recordings in the session's `media/` folder, in order of start; emptied when the
+    /// visitors decline or withdraw consent (their files are removed). Missing: none.
+    #[serde(default)]
+    pub media: Vec<MediaFile>,
+}
+
+/// One recording file of a session, placed on the session clock.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+pub struct MediaFile {
+    /// Its path in the session folder (`media/audio-1.webm`).
+    pub file: String,
+    /// `audio`, or `video` (with the microphone too when audio is recorded).
+    pub track: String,
+    /// Its type as recorded (`audio/webm;codecs=opus`).
+    pub mime: String,
+    /// Where its first sample lies on the session clock: µs after `session.started`.
+    pub start_us: u64,
+    /// The bound on `start_us`'s error from the clock exchange (half the best round trip).
+    #[serde(default)]
+    pub clock_error_us: u64,
+    /// The recording's id in its `recording.*` events.
+    pub recording: u64,
 }
 
 /// A session's start or end, as its event was stamped.

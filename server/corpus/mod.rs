@@ -40,12 +40,15 @@ use tokio::sync::oneshot;
 
 use crate::events::CorpusFeed;
 
+pub use route::SessionFolders;
+
 /// How often the log is synced to disk by default (`docent serve --corpus-sync`).
 pub const DEFAULT_SYNC_INTERVAL: Duration = Duration::from_secs(1);
 
 /// Handle to the running writer thread.
 pub struct CorpusWriter {
     dir: PathBuf,
+    folders: SessionFolders,
     closed: Option<oneshot::Receiver<io::Result<u64>>>,
 }
 
@@ -59,16 +62,23 @@ impl CorpusWriter {
         // A folder Docent cannot write is said at start-up, not at the first event.
         tempfile_probe(&dir.join(layout::DAYS_DIR))?;
         let (done_tx, done_rx) = oneshot::channel();
-        let theirs = dir.clone();
+        let folders = SessionFolders::default();
+        let route = route::Route::new(dir.clone()).with_folders(folders.clone());
         std::thread::Builder::new()
             .name("corpus-writer".into())
             .spawn(move || {
-                let _ = done_tx.send(writer::run(theirs, feed, sync_interval));
+                let _ = done_tx.send(writer::run(route, feed, sync_interval));
             })?;
         Ok(CorpusWriter {
             dir,
+            folders,
             closed: Some(done_rx),
         })
+    }
+
+    /// Where the writer put the running session's folder, for the recordings beside its log.
+    pub fn session_folders(&self) -> SessionFolders {
+        self.folders.clone()
     }
 
     /// The corpus folder, absolute.

@@ -5,11 +5,12 @@
 
 use std::collections::HashSet;
 use std::path::PathBuf;
+use std::sync::{Arc, Mutex};
 
 use crate::content::DEFAULT_VARIANT;
 use crate::corpus::layout::{SESSION_EVENTS, new_day_log, new_session_dir, utc_date};
-use crate::corpus::manifest::{MANIFEST_FORMAT, SessionManifest, SessionMark};
-use crate::events::{Event, EventKind};
+use crate::corpus::manifest::{MANIFEST_FORMAT, MediaFile, SessionManifest, SessionMark};
+use crate::events::{Event, EventKind, RecordingEvent};
 
 /// Where one event goes.
 pub(super) struct Place {
@@ -20,6 +21,26 @@ pub(super) struct Place {
     pub session_start_us: Option<u64>,
     /// The session's folder and its manifest as this event left it, when the event changed it.
     pub manifest: Option<(PathBuf, SessionManifest)>,
+}
+
+/// The folder of the session the writer routes to now, by the `seq` of its `session.started`:
+/// set before that line is written, so whoever waited for the line to be logged finds it here
+/// (the recordings, which go into the session's `media/`). Cheap to clone.
+#[derive(Clone, Debug, Default)]
+pub struct SessionFolders(Arc<Mutex<Option<(u64, PathBuf)>>>);
+
+impl SessionFolders {
+    /// The folder of the session that `session.started` number `seq` began, while it runs.
+    pub fn folder(&self, seq: u64) -> Option<PathBuf> {
+        let open = crate::sync::lock(&self.0);
+        open.as_ref()
+            .filter(|(started, _)| *started == seq)
+            .map(|(_, dir)| dir.clone())
+    }
+
+    fn set(&self, open: Option<(u64, PathBuf)>) {
+        *crate::sync::lock(&self.0) = open;
+    }
 }
 
 /// The writer's routing state.
@@ -35,6 +56,7 @@ pub(super) struct Route {
     /// Folders and files handed out in this run: two sessions starting in the same second before the
     /// first one's folder exists must not get the same one.
     given: HashSet<PathBuf>,
+    folders: SessionFolders,
 }
 
 impl Route {
@@ -49,7 +71,13 @@ impl Route {
             open: None,
             day: None,
             given: HashSet::new(),
+            folders: SessionFolders::default(),
         }
+    }
+
+    /// The same route, telling `folders` which session folder it writes to.
+    pub(super) fn with_folders(self, folders: SessionFolders) -> Self {
+        Route { folders, ..self }
     }
 
     /// Where `event` goes; call once per event, in `seq` order.
@@ -93,7 +121,9 @@ impl Route {
                     group: None,
                     context: self.context.clone(),
                     consent: consent.as_str().to_owned(),
+                    media: Vec::new(),
                 };
+                self.folders.set(Some((event.seq, dir.clone())));
                 self.open = Some((dir, manifest));
                 changed = true;
             }
@@ -109,6 +139,7 @@ impl Route {
                     changed = true;
                 }
             }
+            EventKind::Recording(recording) => changed = self.media(recording),
             EventKind::SessionEnded { source, reason, .. } => {
                 if let Some((_, manifest)) = &mut self.open {
                     manifest.ended = Some(mark(event, source.as_str(), Some(reason.as_str())));
@@ -131,8 +162,43 @@ impl Route {
         };
         if matches!(event.kind, EventKind::SessionEnded { .. }) {
             self.open = None;
+            self.folders.set(None);
         }
         place
+    }
+
+    /// The open session's media list as `event` changes it; whether it did.
+    fn media(&mut self, event: &RecordingEvent) -> bool {
+        let Some((_, manifest)) = &mut self.open else {
+            return false;
+        };
+        match event {
+            RecordingEvent::Started {
+                session,
+                recording,
+                track,
+                file,
+                mime,
+                start_us,
+                clock_error_us,
+                ..
+            } if *session == manifest.number => {
+                manifest.media.push(MediaFile {
+                    file: file.clone(),
+                    track: track.as_str().to_owned(),
+                    mime: mime.clone(),
+                    start_us: *start_us,
+                    clock_error_us: *clock_error_us,
+                    recording: *recording,
+                });
+                true
+            }
+            RecordingEvent::Deleted { session, .. } if *session == manifest.number => {
+                manifest.media.clear();
+                true
+            }
+            _ => false,
+        }
     }
 
     /// This run's day log for `event`'s date, made when the date has none yet.

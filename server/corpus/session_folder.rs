@@ -253,6 +253,7 @@ mod tests {
             group: Some("children".into()),
             context: None,
             consent: "recorded".into(),
+            media: Vec::new(),
         }
     }
 

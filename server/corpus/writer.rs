@@ -38,20 +38,16 @@ const QUIET_TICKS: u32 = 16;
 const MAX_UNWRITTEN: usize = 64 * 1024 * 1024;
 
 /// Runs until the hub closes the corpus; returns the number of events written.
-pub(super) fn run(corpus: PathBuf, feed: CorpusFeed, sync_interval: Duration) -> io::Result<u64> {
-    run_into(Files::new(sync_interval), corpus, feed)
+pub(super) fn run(route: Route, feed: CorpusFeed, sync_interval: Duration) -> io::Result<u64> {
+    run_into(Files::new(sync_interval), route, feed)
 }
 
 /// Runs with `files` for the files (a test's failing disk).
-fn run_into<S: Sink + Send + 'static>(
-    files: S,
-    corpus: PathBuf,
-    feed: CorpusFeed,
-) -> io::Result<u64> {
+fn run_into<S: Sink + Send + 'static>(files: S, route: Route, feed: CorpusFeed) -> io::Result<u64> {
     feed.attach_current_thread();
     let shared = Arc::new(Shared {
         log: Mutex::new(Log {
-            route: Route::new(corpus),
+            route,
             files,
             batch: Vec::new(),
             out: Unwritten::default(),
@@ -360,7 +356,7 @@ mod tests {
             .unwrap();
         let (hub, feed) = Hub::new();
         let corpus = tempfile::tempdir().unwrap().path().to_owned();
-        let writer = std::thread::spawn(move || run_into(FullDisk(file), corpus, feed));
+        let writer = std::thread::spawn(move || run_into(FullDisk(file), Route::new(corpus), feed));
         let e = hub.publish(EventKind::ContextChanged {
             source: Source::Http,
             context: "Text".into(),

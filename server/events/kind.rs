@@ -7,6 +7,7 @@ use std::sync::Arc;
 use serde::Serialize;
 
 use super::origin::{ActRef, ClientRole, Source};
+use super::recording::RecordingEvent;
 use super::session::{Consent, SessionEnd};
 use crate::content::Args;
 use crate::wire::ErrorCode;
@@ -426,6 +427,9 @@ pub enum EventKind {
         /// Why it ended.
         reason: String,
     },
+    /// A recording started, stopped, failed or was deleted (`recording.*`, its own tag).
+    #[serde(untagged)]
+    Recording(RecordingEvent),
 }
 
 impl EventKind {
@@ -445,6 +449,7 @@ impl EventKind {
                 | EventKind::VisitorGroup { .. }
                 | EventKind::SituationMarked { .. }
                 | EventKind::NoteWritten { .. }
+                | EventKind::Recording(_)
         )
     }
 }

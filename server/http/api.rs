@@ -208,6 +208,7 @@ pub async fn get_state(State(state): State<AppState>, _: Authorized) -> Json<Val
         "proposals": state.proposals.pending(),
         "session": state.visits.current(),
         "consent": state.visits.consent(),
+        "recording": state.recordings.view(),
     }))
 }
 

@@ -123,7 +123,7 @@ pub fn same_origin(headers: &HeaderMap) -> Result<(), AppError> {
 }
 
 /// The token of an `Authorization: Bearer ...` header, if there is one.
-fn bearer(headers: &HeaderMap) -> Option<&str> {
+pub(crate) fn bearer(headers: &HeaderMap) -> Option<&str> {
     let value = headers.get(header::AUTHORIZATION)?.to_str().ok()?;
     let (scheme, token) = value.split_once(' ')?;
     scheme.eq_ignore_ascii_case("bearer").then(|| token.trim())

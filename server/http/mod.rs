@@ -34,7 +34,7 @@ mod shells;
 mod static_files;
 
 use axum::Router;
-use axum::routing::{get, post};
+use axum::routing::{get, post, put};
 use tower_http::limit::RequestBodyLimitLayer;
 use tower_http::trace::TraceLayer;
 
@@ -88,6 +88,17 @@ pub fn app(state: AppState) -> Router {
         .fallback(api::not_found)
         .method_not_allowed_fallback(api::method_not_allowed)
         .layer(RequestBodyLimitLayer::new(MAX_BODY_BYTES))
+        // After the layer above: recording chunks have their own, larger limit.
+        .merge(
+            Router::new()
+                .route(
+                    "/api/recordings/{recording}/chunks/{seq}",
+                    put(crate::recording::put_chunk),
+                )
+                .layer(RequestBodyLimitLayer::new(
+                    crate::recording::MAX_CHUNK_BYTES,
+                )),
+        )
         .layer(TraceLayer::new_for_http())
         .with_state(state)
 }

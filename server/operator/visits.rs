@@ -222,7 +222,7 @@ mod tests {
         CorpusSettings {
             session_start: SessionStart::Touch,
             session_idle: idle,
-            consent: Consent::Recorded,
+            ..CorpusSettings::default()
         }
     }
 

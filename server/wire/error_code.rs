@@ -100,11 +100,15 @@ pub enum ErrorCode {
     BadTicket,
     /// `session-damaged`: The session's log or manifest is damaged: it cannot be replayed as it is.
     SessionDamaged,
+    /// `chunk-out-of-order`: A recording chunk after a gap (the answer says the `next` one).
+    ChunkOutOfOrder,
+    /// `recording-gone`: A chunk for a recording that is closed or unknown.
+    RecordingGone,
 }
 
 impl ErrorCode {
     /// Every code, for tests and documentation checks.
-    pub const ALL: [ErrorCode; 46] = [
+    pub const ALL: [ErrorCode; 48] = [
         ErrorCode::BadRequest,
         ErrorCode::BodyNotObject,
         ErrorCode::ConflictingLength,
@@ -151,6 +155,8 @@ impl ErrorCode {
         ErrorCode::AnnotationsUnwritable,
         ErrorCode::BadTicket,
         ErrorCode::SessionDamaged,
+        ErrorCode::ChunkOutOfOrder,
+        ErrorCode::RecordingGone,
     ];
 
     /// The code as sent (the same string serde writes), for events and logs.
@@ -202,6 +208,8 @@ impl ErrorCode {
             ErrorCode::AnnotationsUnwritable => "annotations-unwritable",
             ErrorCode::BadTicket => "bad-ticket",
             ErrorCode::SessionDamaged => "session-damaged",
+            ErrorCode::ChunkOutOfOrder => "chunk-out-of-order",
+            ErrorCode::RecordingGone => "recording-gone",
         }
     }
 }
@@ -276,6 +284,8 @@ mod tests {
         );
         assert_eq!(ErrorCode::BadTicket.as_str(), "bad-ticket");
         assert_eq!(ErrorCode::SessionDamaged.as_str(), "session-damaged");
+        assert_eq!(ErrorCode::ChunkOutOfOrder.as_str(), "chunk-out-of-order");
+        assert_eq!(ErrorCode::RecordingGone.as_str(), "recording-gone");
     }
 
     /// The codes in the first column of `docs/PROTOCOL.md`'s HTTP error table (`| status |

@@ -36,7 +36,22 @@ pub fn diagnose(text: &str, error: &serde_json::Error) -> (ErrorCode, String, Op
 }
 
 /// Every frame type a client may send.
-const KNOWN_TYPES: [&str; 13] = [
-    "hello", "trigger", "stop", "context", "page", "propose", "accept", "dismiss", "mark",
-    "signal", "started", "done", "failed",
+const KNOWN_TYPES: [&str; 17] = [
+    "hello",
+    "trigger",
+    "stop",
+    "context",
+    "page",
+    "propose",
+    "accept",
+    "dismiss",
+    "mark",
+    "signal",
+    "started",
+    "done",
+    "failed",
+    "clock",
+    "recording-started",
+    "recording-stopped",
+    "recording-failed",
 ];

@@ -8,8 +8,8 @@
 //! remembers; it routes the frame to a handler, lending it the `client` (id, address, server,
 //! outbox): `hello` (credentials, welcome, feeds), `triggers` (trigger, stop, context, page;
 //! the kiosk rules), `initiative` (proposals and corpus marks), `signal` (WebRTC signalling
-//! relay) and `reports` (devices' reports on their commands). Handlers return what the session
-//! must remember.
+//! relay), `reports` (devices' reports on their commands) and `recording` (a kiosk's clock
+//! and its recordings' reports). Handlers return what the session must remember.
 //! `violation` maps a broken websocket frame to its RFC 6455 close code.
 //! `notices` tells a client what became of its commands and kiosks who is speaking.
 
@@ -20,6 +20,7 @@ mod hello;
 mod initiative;
 mod notices;
 pub mod protocol;
+mod recording;
 mod reports;
 mod session;
 mod signal;

@@ -152,6 +152,41 @@ pub enum ClientFrame {
         #[serde(default)]
         reason: Option<String>,
     },
+    /// A kiosk asks for the hub's clock (answered `clock` at once), to place its recordings.
+    Clock {
+        /// The kiosk's own time when it asked, echoed back.
+        t0: f64,
+    },
+    /// A kiosk's recording began: its first sample on the hub's clock.
+    #[serde(rename = "recording-started")]
+    RecordingStarted {
+        /// The recording, from its `record` frame.
+        recording: u64,
+        /// The type the browser records (`audio/webm;codecs=opus`).
+        mime: String,
+        /// When its first sample was taken, on the hub's clock (µs, as `clock` gave it).
+        mono_us: u64,
+        /// The bound on that time's error (half the best clock round trip), µs.
+        clock_error_us: u64,
+    },
+    /// A kiosk stopped a recording and uploaded its last chunk.
+    #[serde(rename = "recording-stopped")]
+    RecordingStopped {
+        /// The recording.
+        recording: u64,
+    },
+    /// A kiosk could not record (permission, device, recorder, uploads).
+    #[serde(rename = "recording-failed")]
+    RecordingFailed {
+        /// The recording, when one was asked for.
+        #[serde(default)]
+        recording: Option<u64>,
+        /// What failed.
+        code: crate::events::FailureCode,
+        /// The browser's words.
+        #[serde(default)]
+        message: String,
+    },
 }
 
 /// What a `mark` frame marks.

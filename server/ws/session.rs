@@ -20,7 +20,7 @@ use crate::ws::hello::{self, Hello, Refused};
 use crate::ws::protocol::{ClientFrame, MAX_FRAME_BYTES};
 use crate::ws::triggers::{self, RefusedRun, Trigger};
 use crate::ws::writer::Feed;
-use crate::ws::{initiative, reports, signal};
+use crate::ws::{initiative, recording, reports, signal};
 
 /// One connection's state, changed only by its own methods below.
 pub(super) struct Session {
@@ -158,6 +158,21 @@ impl Session {
                 let reason = reason.unwrap_or_else(|| "the adapter reported a failure".into());
                 reports::report(client, role, id, ScreenReport::Failed(reason));
             }
+            ClientFrame::Clock { t0 } => recording::clock(client, role, t0),
+            ClientFrame::RecordingStarted {
+                recording: id,
+                mime,
+                mono_us,
+                clock_error_us,
+            } => recording::started(client, role, id, &mime, mono_us, clock_error_us),
+            ClientFrame::RecordingStopped { recording: id } => {
+                recording::stopped(client, role, id);
+            }
+            ClientFrame::RecordingFailed {
+                recording: id,
+                code,
+                message,
+            } => recording::failed(client, role, id, code, &message),
         }
     }
 

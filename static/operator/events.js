@@ -43,6 +43,7 @@ export function createEvents({ panels, context, camera, operatorName, name, stop
     history.event(e);
     proposals.event(e);
     marks.event(e);
+    panels.recording?.event(e);
     if (e.type === "pose") map.pose(e);
     // The server parsed the waypoint at load: `args` is {x, y, heading}.
     else if (e.type === "command.sent" && e.verb === "SET_WAYPOINT") map.waypoint(e.args ?? null);
@@ -59,6 +60,7 @@ export function createEvents({ panels, context, camera, operatorName, name, stop
     history.welcome(me);
     proposals.welcome();
     clients.welcome(me);
+    panels.recording?.welcome();
     live.reset();
     live.welcome(frame.state);
     map.pose(frame.state?.pose);
@@ -79,6 +81,7 @@ export function createEvents({ panels, context, camera, operatorName, name, stop
     live.apiState(state);
     clients.snapshot(state.clients);
     proposals.snapshot(state.proposals);
+    panels.recording?.snapshot(state.recording);
     // Only what no event told since `welcome`: an event is newer than this answer.
     if (!told.session) marks.setSession(state.session ?? null, state.consent ?? null);
     if (!told.pose) map.pose(state.pose);

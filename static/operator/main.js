@@ -24,6 +24,7 @@ import { createMap } from "./map.js";
 import { createMarks } from "./marks.js";
 import { showPreview } from "./preview.js";
 import { createProposals } from "./proposals.js";
+import { createRecording } from "./recording.js";
 import { createReloadBanner } from "./reloadbanner.js";
 import { createStop } from "./stop.js";
 import * as store from "./store.js";
@@ -101,6 +102,8 @@ const marks = createMarks({
   },
 });
 
+const recording = createRecording({ status: byId("recording-status"), alert: byId("recording-alert") });
+
 const reloadBanner = createReloadBanner({
   element: byId("reload-banner"),
   onReloaded: () => loadActs().catch((error) => notice(`The acts could not be loaded: ${error.message}`)),
@@ -128,7 +131,7 @@ const stopper = createStop({
   notice,
 });
 const events = createEvents({
-  panels: { live: liveView, clients, history, proposals, marks, map },
+  panels: { live: liveView, clients, history, proposals, marks, map, recording },
   context,
   camera,
   operatorName: byId("operator-name"),

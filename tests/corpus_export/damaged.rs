@@ -40,6 +40,7 @@ fn session(log: &str, bundle: &str) -> (tempfile::TempDir, PathBuf) {
         group: None,
         context: Some("Text".to_owned()),
         consent: "recorded".to_owned(),
+        media: Vec::new(),
     };
     manifest.write_to(&dir).unwrap();
     (corpus, dir)

@@ -3,10 +3,11 @@
 //! highlights) and how visitors' touches cut the corpus into sessions. Whether the idle act
 //! exists is checked later, with the acts (`load.rs`).
 
-use crate::content::acts_file::yaml::Node;
-use crate::content::config::{AfterVideo, SessionStart, SiteConfig};
+use crate::content::acts_file::yaml::{Kind, Node};
+use crate::content::config::{AfterVideo, RecordTracks, SessionStart, SiteConfig};
 use crate::content::duration::parse_duration;
 use crate::content::model::Located;
+use crate::content::suggest::did_you_mean;
 use crate::events::Consent;
 
 use super::Reader;
@@ -17,7 +18,10 @@ const IDLE_USAGE: &str = "`idle` is how long the touchscreen waits without a tou
                           returns to the home page: a length of time with its unit, e.g. \
                           `idle: 2m` or `idle: 90s`; `idle: 0s` turns it off.";
 /// The keys of `corpus:`.
-pub(crate) const CORPUS_KEYS: &[&str] = &["session_start", "session_idle", "consent"];
+pub(crate) const CORPUS_KEYS: &[&str] = &["session_start", "session_idle", "consent", "record"];
+const RECORD_USAGE: &str = "`record` lists what the kiosk device records during a visitor \
+                            session whose consent is `recorded`: `[audio]` (the default), \
+                            `[audio, video]`, `[video]`, or `[]` or `none` for nothing.";
 const SESSION_IDLE_USAGE: &str = "`session_idle` is how long a visitor session that a touch \
                                   started goes on without a touch before it ends: a length of \
                                   time with its unit, e.g. `session_idle: 2m`; `0s` keeps it \
@@ -71,6 +75,12 @@ impl Reader {
                 }
                 continue;
             }
+            if key == "record" {
+                if let Some(record) = self.record(value) {
+                    config.corpus.record = record;
+                }
+                continue;
+            }
             if key == "consent" {
                 let options = [
                     ("recorded", Consent::Recorded),
@@ -89,6 +99,37 @@ impl Reader {
                 config.corpus.session_start = start;
             }
         }
+    }
+
+    /// Reads `corpus: record:`: a list of `audio` and `video`, `[]` or `none`.
+    fn record(&mut self, node: &Node) -> Option<RecordTracks> {
+        let items: Vec<&Node> = match &node.kind {
+            Kind::Seq(items) => items.iter().collect(),
+            _ if node.as_text().map(str::trim) == Some("none") => return Some(RecordTracks::OFF),
+            _ => {
+                self.bad(node, RECORD_USAGE);
+                return None;
+            }
+        };
+        let mut tracks = RecordTracks::OFF;
+        for item in items {
+            let word = item.as_text().map(str::trim).unwrap_or_default();
+            let track = match word {
+                "audio" => &mut tracks.audio,
+                "video" => &mut tracks.video,
+                _ => {
+                    let hint = did_you_mean(word, ["audio", "video"]);
+                    self.bad(item, &format!("{RECORD_USAGE}{hint}"));
+                    return None;
+                }
+            };
+            if *track {
+                self.bad(item, "This track is listed twice. Keep one.");
+                return None;
+            }
+            *track = true;
+        }
+        Some(tracks)
     }
 
     /// Reads `projector:` into `config.projector`.
@@ -115,7 +156,7 @@ mod tests {
 
     use std::time::Duration;
 
-    use crate::content::config::AfterVideo;
+    use crate::content::config::{AfterVideo, RecordTracks};
 
     #[test]
     fn kiosk_and_projector_settings_are_read() {
@@ -156,6 +197,39 @@ mod tests {
             );
             assert_eq!(file.config.projector.highlight_edge, 0.02, "default kept");
         }
+    }
+
+    #[test]
+    fn corpus_record_lists_the_tracks_and_a_bad_one_is_located() {
+        let record = |text: &str| parse(text).config.corpus.record;
+        let audio = RecordTracks {
+            audio: true,
+            video: false,
+        };
+        assert_eq!(record("corpus: {}\n"), audio, "audio by default");
+        assert_eq!(record("corpus: { record: [audio] }\n"), audio);
+        let both = record("corpus:\n  record: [audio, video]\n");
+        assert!(both.audio && both.video);
+        assert_eq!(record("corpus: { record: [] }\n"), RecordTracks::OFF);
+        assert_eq!(record("corpus: { record: none }\n"), RecordTracks::OFF);
+        for (text, column) in [
+            ("corpus:\n  record: [audio, vidoe]\n", 19),
+            ("corpus:\n  record: audio\n", 11),
+            ("corpus:\n  record: [audio, audio]\n", 19),
+        ] {
+            let file = parse(text);
+            let located: Vec<_> = (file.diagnostics.iter())
+                .map(|d| (d.code, d.line, d.column))
+                .collect();
+            assert_eq!(located, [("config-bad-value", 2, column)], "{text}");
+            assert_eq!(file.config.corpus.record, audio, "default kept: {text}");
+        }
+        let typo = parse("corpus:\n  record: [vidoe]\n");
+        assert!(
+            typo.diagnostics[0]
+                .message
+                .contains("Did you mean `video`?")
+        );
     }
 
     #[test]

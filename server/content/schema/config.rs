@@ -239,6 +239,20 @@ fn corpus(key: &str) -> Value {
             "How long a session that a touch started goes on without a touch before it ends, \
              e.g. `2m` (the default) or `90s`; `0s`: until it is marked ended.",
         ),
+        "record" => json!({
+            "description": "What the kiosk device records during a session whose consent is \
+                            `recorded`: `[audio]` (the default, its microphone), \
+                            `[audio, video]` (and its camera), `[video]`, or `[]` or `none` \
+                            for nothing.",
+            "anyOf": [
+                { "const": "none" },
+                {
+                    "type": "array",
+                    "uniqueItems": true,
+                    "items": { "enum": ["audio", "video"] },
+                },
+            ],
+        }),
         _ => json!({}),
     }
 }

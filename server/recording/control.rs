@@ -1,0 +1,343 @@
+//! When recordings start and stop, decided from the hub's events in their order, so that
+//! every way a session starts or ends (a mark, a touch, the idle time, a consent, shutdown)
+//! is covered by one place: a session that starts with consent `recorded` (or gets it later)
+//! asks every connected kiosk to record, and a kiosk that connects meanwhile too; its end, or
+//! the server stopping, tells them to stop; a consent declined or withdrawn stops them,
+//! closes the recordings and removes the session's media files (`recording.deleted`). The
+//! `record` frame goes out only once `session.started` is in the log, so the session folder
+//! exists when the first chunk arrives.
+
+use std::path::Path;
+use std::sync::Arc;
+use std::time::Duration;
+
+use tokio::sync::broadcast::error::RecvError;
+use tokio_util::sync::CancellationToken;
+
+use super::frames::{record_frame, record_stop_frame};
+use super::{ChunkFile, Inner, KioskRecording, MEDIA_DIR, Recorded, Recording, Recordings};
+use crate::access::Secret;
+use crate::content::config::RecordTracks;
+use crate::events::{
+    ClientRole, Consent, Event, EventKind, FailureCode, RecordingEvent, StopReason, Track,
+};
+use crate::sync::lock;
+use crate::wire::outbox::Frame;
+
+/// How long a kiosk told to stop has to upload its last chunk and say so.
+pub const FINAL_UPLOAD_GRACE: Duration = Duration::from_secs(30);
+
+impl Recordings {
+    /// Follows the hub until `shutdown`; `tracks()` reads the live bundle's `corpus: record`.
+    pub async fn follow(
+        self: Arc<Self>,
+        tracks: impl Fn() -> RecordTracks,
+        shutdown: CancellationToken,
+    ) {
+        let mut events = self.hub.subscribe();
+        // The running session: its number, the seq and mono_us of its `session.started`.
+        let mut running: Option<(u64, u64, u64)> = None;
+        loop {
+            let event = tokio::select! {
+                event = events.recv() => event,
+                () = shutdown.cancelled() => return,
+            };
+            let event = match event {
+                Ok(event) => event,
+                Err(RecvError::Lagged(missed)) => {
+                    tracing::warn!(missed, "the recording controller fell behind the hub");
+                    continue;
+                }
+                Err(RecvError::Closed) => return,
+            };
+            self.on_event(&event, &mut running, &tracks).await;
+        }
+    }
+
+    async fn on_event(
+        self: &Arc<Self>,
+        event: &Event,
+        running: &mut Option<(u64, u64, u64)>,
+        tracks: &impl Fn() -> RecordTracks,
+    ) {
+        match &event.kind {
+            EventKind::SessionStarted {
+                session, consent, ..
+            } => {
+                *running = Some((*session, event.seq, event.mono_us));
+                if *consent == Consent::Recorded {
+                    self.begin(*session, event.seq, event.mono_us, tracks())
+                        .await;
+                }
+            }
+            EventKind::ConsentChanged {
+                session, consent, ..
+            } => match (consent, *running) {
+                (Consent::Recorded, Some((number, seq, mono))) if number == *session => {
+                    let recording = lock(&self.inner).session.is_some();
+                    if !recording {
+                        self.begin(number, seq, mono, tracks()).await;
+                    }
+                }
+                (Consent::Recorded, _) => {}
+                (refused, _) => self.withdraw(*session, *refused).await,
+            },
+            EventKind::SessionEnded { .. } => {
+                *running = None;
+                self.stop_all(StopReason::SessionEnded);
+            }
+            EventKind::ServerStopping => self.stop_all(StopReason::ServerStopping),
+            EventKind::ClientConnected {
+                client,
+                role: ClientRole::Kiosk,
+                ..
+            } => {
+                lock(&self.inner).kiosks.insert(*client, off(*client));
+                self.start_for(*client).await;
+            }
+            EventKind::ClientLeft {
+                client,
+                role: ClientRole::Kiosk,
+                ..
+            } => {
+                let mine: Vec<u64> = {
+                    let mut inner = lock(&self.inner);
+                    inner.kiosks.remove(client);
+                    (inner.open.values())
+                        .filter(|(r, _)| r.client == *client)
+                        .map(|(r, _)| r.id)
+                        .collect()
+                };
+                for id in mine {
+                    self.close(id, StopReason::KioskLeft);
+                }
+            }
+            _ => {}
+        }
+    }
+
+    /// Session `number` may be recorded: once its first line is logged (its folder made), every
+    /// connected kiosk is asked to record.
+    async fn begin(
+        self: &Arc<Self>,
+        number: u64,
+        seq: u64,
+        start_mono_us: u64,
+        tracks: RecordTracks,
+    ) {
+        if !tracks.any() || self.hub.logged(seq).await.is_err() {
+            return;
+        }
+        let Some(dir) = self.folders.folder(seq) else {
+            return; // It ended already.
+        };
+        let kiosks: Vec<u64> = {
+            let mut inner = lock(&self.inner);
+            inner.session = Some(Recorded {
+                number,
+                start_mono_us,
+                dir,
+                next_file: 1,
+                tracks,
+            });
+            inner.kiosks.keys().copied().collect()
+        };
+        for client in kiosks {
+            self.start_for(client).await;
+        }
+    }
+
+    /// Asks kiosk `client` to record into a new file of the session being recorded, if any.
+    async fn start_for(self: &Arc<Self>, client: u64) {
+        let planned = {
+            let mut inner = lock(&self.inner);
+            plan(&mut inner, client)
+        };
+        let Some((recording, path, tracks)) = planned else {
+            return;
+        };
+        let opened = tokio::task::spawn_blocking(move || {
+            std::fs::create_dir_all(path.parent().unwrap_or(Path::new(".")))?;
+            ChunkFile::open(&path)
+        })
+        .await
+        .unwrap_or_else(|e| Err(std::io::Error::other(e)));
+        let file = match opened {
+            Ok(file) => file,
+            Err(e) => {
+                let message = format!("the server cannot write {}: {e}", recording.file);
+                return self.failed(client, Some(recording.id), FailureCode::DiskError, &message);
+            }
+        };
+        *lock(&recording.chunks) = Some(file);
+        let frame = record_frame(&recording, &tracks);
+        {
+            let mut inner = lock(&self.inner);
+            let Some(kiosk) = inner.kiosks.get_mut(&client) else {
+                return; // It left meanwhile.
+            };
+            *kiosk = KioskRecording {
+                state: "starting",
+                recording: Some(recording.id),
+                file: Some(recording.file.clone()),
+                ..off(client)
+            };
+            inner
+                .open
+                .insert(recording.id, (Arc::clone(&recording), None));
+        }
+        self.links.send_to(client, &Frame::from(frame));
+    }
+
+    /// Tells every kiosk recording to stop for `reason`; what is not closed by their reports
+    /// within [`FINAL_UPLOAD_GRACE`] is closed then.
+    fn stop_all(self: &Arc<Self>, reason: StopReason) {
+        let told: Vec<(u64, u64)> = {
+            let mut inner = lock(&self.inner);
+            inner.session = None;
+            let mut told = Vec::new();
+            for (recording, stop) in inner.open.values_mut() {
+                if stop.is_none() {
+                    *stop = Some(reason);
+                    told.push((recording.client, recording.id));
+                }
+            }
+            for (client, _) in &told {
+                if let Some(kiosk) = inner.kiosks.get_mut(client) {
+                    kiosk.state = "stopping";
+                }
+            }
+            told
+        };
+        if told.is_empty() {
+            return;
+        }
+        for (client, id) in &told {
+            let frame = record_stop_frame(*id, reason);
+            self.links.send_to(*client, &Frame::from(frame));
+        }
+        let this = Arc::clone(self);
+        let shutdown = self.life.shutdown.clone();
+        // At shutdown the server closes every recording itself (`close_all`).
+        self.life.spawn(async move {
+            tokio::select! {
+                () = tokio::time::sleep(FINAL_UPLOAD_GRACE) => {}
+                () = shutdown.cancelled() => return,
+            }
+            for (_, id) in told {
+                this.close(id, StopReason::NoFinalReport);
+            }
+        });
+    }
+
+    /// The visitors of session `number` declined or withdrew consent: recordings stop and
+    /// close at once (later chunks are refused), and the session's media files are removed.
+    async fn withdraw(self: &Arc<Self>, number: u64, consent: Consent) {
+        let dir = {
+            let inner = lock(&self.inner);
+            match &inner.session {
+                Some(s) if s.number == number => s.dir.clone(),
+                _ => return, // Nothing recorded in this session.
+            }
+        };
+        self.stop_all(StopReason::Consent);
+        let ids: Vec<u64> = (lock(&self.inner).open.values())
+            .filter(|(r, _)| r.session == number)
+            .map(|(r, _)| r.id)
+            .collect();
+        for id in ids {
+            self.close(id, StopReason::Consent);
+        }
+        let media = dir.join(MEDIA_DIR);
+        let removed = tokio::task::spawn_blocking(move || remove_media(&media))
+            .await
+            .unwrap_or_else(|e| Err(std::io::Error::other(e)));
+        match removed {
+            Ok(files) => {
+                self.hub
+                    .publish(EventKind::Recording(RecordingEvent::Deleted {
+                        session: number,
+                        files,
+                        consent,
+                    }));
+            }
+            Err(e) => {
+                tracing::error!(error = %e, "could not remove a session's media after consent");
+                self.hub
+                    .publish(EventKind::Recording(RecordingEvent::Failed {
+                        session: Some(number),
+                        recording: None,
+                        client: 0,
+                        code: FailureCode::DiskError,
+                        message: format!(
+                            "the session's recordings could not all be removed after its \
+                             consent was {}: {e}; remove its media folder by hand",
+                            consent.as_str()
+                        ),
+                    }));
+            }
+        }
+    }
+}
+
+/// Registers the next recording of the session being recorded for kiosk `client`: its id,
+/// file and token. `None` when no session is being recorded.
+fn plan(
+    inner: &mut Inner,
+    client: u64,
+) -> Option<(Arc<Recording>, std::path::PathBuf, RecordTracks)> {
+    let session = inner.session.as_mut()?;
+    let track = if session.tracks.video {
+        Track::Video
+    } else {
+        Track::Audio
+    };
+    let file = format!("{MEDIA_DIR}/{}-{}.webm", track.as_str(), session.next_file);
+    session.next_file += 1;
+    let path = session.dir.join(&file);
+    let (number, tracks) = (session.number, session.tracks);
+    inner.next_id += 1;
+    let recording = Arc::new(Recording {
+        id: inner.next_id,
+        session: number,
+        client,
+        track,
+        file,
+        token: Secret::generate(),
+        chunks: std::sync::Mutex::new(None),
+    });
+    Some((recording, path, tracks))
+}
+
+fn off(client: u64) -> KioskRecording {
+    KioskRecording {
+        client,
+        state: "off",
+        recording: None,
+        file: None,
+        code: None,
+        message: None,
+    }
+}
+
+/// Removes every file in a session's `media/` folder (the server made them all), then the
+/// folder; returns the files removed, relative to the session folder, sorted.
+fn remove_media(media: &Path) -> std::io::Result<Vec<String>> {
+    let entries = match std::fs::read_dir(media) {
+        Ok(entries) => entries,
+        Err(e) if e.kind() == std::io::ErrorKind::NotFound => return Ok(Vec::new()),
+        Err(e) => return Err(e),
+    };
+    let mut removed = Vec::new();
+    for entry in entries {
+        let entry = entry?;
+        std::fs::remove_file(entry.path())?;
+        removed.push(format!(
+            "{MEDIA_DIR}/{}",
+            entry.file_name().to_string_lossy()
+        ));
+    }
+    std::fs::remove_dir(media)?;
+    removed.sort();
+    Ok(removed)
+}

@@ -1,0 +1,268 @@
+//! Recording: the kiosk device's microphone (and camera, `corpus: record: [audio, video]`)
+//! recorded in the browser with MediaRecorder during a visitor session whose consent is
+//! `recorded`, uploaded chunk by chunk into the session's `media/` folder, and placed on the
+//! session clock. Format and guarantees: `docs/CORPUS.md`, "Recording".
+//!
+//! - `mod.rs`: [`Recordings`], the open recordings and what each kiosk is doing, changed
+//!   under one lock; the kiosk's reports (`recording-started`, `-stopped`, `-failed`).
+//! - `control.rs`: follows the hub: a session that starts (or gets consent) starts a recording
+//!   on every kiosk, one that ends stops them, a consent declined or withdrawn stops them and
+//!   removes the session's media.
+//! - `chunks.rs`: [`chunks::ChunkFile`], one file grown chunk by chunk, acknowledged only
+//!   once synced, cut back to what was acknowledged after a crash.
+//! - `upload.rs`: `PUT /api/recordings/{recording}/chunks/{seq}`, each recording's own
+//!   upload token as its Bearer credential.
+//! - `frames.rs`: the frames to the kiosk (`record`, `record-stop`, `clock`).
+//! - `recover.rs`: at start-up, recordings a crash left with unacknowledged bytes cut back.
+
+pub mod chunks;
+mod control;
+mod frames;
+mod recover;
+mod upload;
+
+use std::collections::{BTreeMap, HashMap};
+use std::path::PathBuf;
+use std::sync::{Arc, Mutex};
+
+use serde::Serialize;
+
+use crate::access::Secret;
+use crate::content::config::RecordTracks;
+use crate::corpus::SessionFolders;
+use crate::events::{EventKind, FailureCode, Hub, RecordingEvent, StopReason, Track};
+use crate::lifecycle::Lifecycle;
+use crate::state::ClientLinks;
+use crate::sync::lock;
+
+pub use chunks::ChunkFile;
+pub use frames::clock_frame;
+pub use recover::{Cut, cut_unacknowledged};
+pub use upload::{MAX_CHUNK_BYTES, put_chunk};
+
+/// The folder of a session's recordings, inside its folder.
+pub const MEDIA_DIR: &str = "media";
+
+/// What a kiosk's recording is doing, as operators see it (`/api/state`'s `recording`).
+#[derive(Clone, Debug, Serialize)]
+pub struct KioskRecording {
+    /// The kiosk's connection.
+    pub client: u64,
+    /// `off`, `starting` (asked, the browser has not begun), `recording`, `stopping`
+    /// (told to stop, its last chunk on its way) or `failed`.
+    pub state: &'static str,
+    /// The recording, when there is one.
+    pub recording: Option<u64>,
+    /// Its file in the session folder.
+    pub file: Option<String>,
+    /// For `failed`: the code and the words.
+    pub code: Option<FailureCode>,
+    /// For `failed`: what went wrong.
+    pub message: Option<String>,
+}
+
+/// The recording state for `/api/state`.
+#[derive(Debug, Serialize)]
+pub struct RecordingView {
+    /// The session being recorded, if any.
+    pub session: Option<u64>,
+    /// Each connected kiosk.
+    pub kiosks: Vec<KioskRecording>,
+}
+
+/// One recording: a kiosk's file in a session's `media/`.
+#[derive(Debug)]
+pub struct Recording {
+    id: u64,
+    session: u64,
+    client: u64,
+    track: Track,
+    /// Relative to the session folder: `media/audio-1.webm`.
+    file: String,
+    token: Secret,
+    /// The file; `None` once the recording is closed (chunks are refused then).
+    chunks: Mutex<Option<ChunkFile>>,
+}
+
+/// The session being recorded.
+#[derive(Debug)]
+struct Recorded {
+    number: u64,
+    /// `session.started`'s `mono_us`: the session clock's zero.
+    start_mono_us: u64,
+    dir: PathBuf,
+    /// The number of the next file (`audio-N.webm`), from 1 within the session.
+    next_file: u32,
+    tracks: RecordTracks,
+}
+
+#[derive(Debug, Default)]
+struct Inner {
+    next_id: u64,
+    session: Option<Recorded>,
+    /// Recordings that still take chunks, by id; with the reason they were told to stop.
+    open: HashMap<u64, (Arc<Recording>, Option<StopReason>)>,
+    /// Connected kiosks and their recording state.
+    kiosks: BTreeMap<u64, KioskRecording>,
+}
+
+/// Every recording of the run. Shared by the controller, the upload route and the kiosks'
+/// websocket reports.
+pub struct Recordings {
+    hub: Hub,
+    links: ClientLinks,
+    folders: SessionFolders,
+    /// Tracks the timers that close recordings whose kiosk never confirmed its last chunk.
+    life: Lifecycle,
+    inner: Mutex<Inner>,
+}
+
+impl Recordings {
+    /// No recording yet; recordings go into the session folders `folders` names.
+    pub fn new(hub: Hub, links: ClientLinks, folders: SessionFolders, life: Lifecycle) -> Self {
+        Recordings {
+            hub,
+            links,
+            folders,
+            life,
+            inner: Mutex::default(),
+        }
+    }
+
+    /// What each kiosk's recording is doing.
+    pub fn view(&self) -> RecordingView {
+        let inner = lock(&self.inner);
+        RecordingView {
+            session: inner.session.as_ref().map(|s| s.number),
+            kiosks: inner.kiosks.values().cloned().collect(),
+        }
+    }
+
+    /// The kiosk `client` reports that recording `id` began at `mono_us` on the hub's clock
+    /// (within `clock_error_us`): `recording.started` places it on the session clock. False
+    /// when it is not this kiosk's open recording.
+    pub fn started(
+        &self,
+        client: u64,
+        id: u64,
+        mime: &str,
+        mono_us: u64,
+        clock_error_us: u64,
+    ) -> bool {
+        let mut inner = lock(&self.inner);
+        let Some((recording, None)) = inner.open.get(&id).cloned() else {
+            return false;
+        };
+        let start_mono = match &inner.session {
+            Some(s) if s.number == recording.session => s.start_mono_us,
+            _ => return false,
+        };
+        if recording.client != client {
+            return false;
+        }
+        if let Some(kiosk) = inner.kiosks.get_mut(&client) {
+            kiosk.state = "recording";
+        }
+        // Published under the lock: a consent withdrawn meanwhile comes after it in the log.
+        self.hub
+            .publish(EventKind::Recording(RecordingEvent::Started {
+                session: recording.session,
+                recording: id,
+                client,
+                track: recording.track,
+                file: recording.file.clone(),
+                mime: mime.chars().take(100).collect(),
+                start_us: mono_us.saturating_sub(start_mono),
+                clock_error_us,
+            }));
+        true
+    }
+
+    /// The kiosk `client` could not record (`recording` when it was asked for one): logged,
+    /// operators see it at once, and the recording is closed.
+    pub fn failed(&self, client: u64, recording: Option<u64>, code: FailureCode, message: &str) {
+        let mut inner = lock(&self.inner);
+        let session = inner.session.as_ref().map(|s| s.number);
+        if let Some(kiosk) = inner.kiosks.get_mut(&client) {
+            kiosk.state = "failed";
+            kiosk.code = Some(code);
+            kiosk.message = Some(message.chars().take(500).collect());
+        }
+        self.hub
+            .publish(EventKind::Recording(RecordingEvent::Failed {
+                session,
+                recording,
+                client,
+                code,
+                message: message.chars().take(500).collect(),
+            }));
+        let owned = recording.and_then(|id| {
+            inner
+                .open
+                .get(&id)
+                .filter(|(r, _)| r.client == client)
+                .map(|(r, _)| r.id)
+        });
+        drop(inner);
+        if let Some(id) = owned {
+            self.close(id, StopReason::Failed);
+        }
+    }
+
+    /// The kiosk `client` stopped recording `id` and uploaded its last chunk.
+    pub fn kiosk_stopped(&self, client: u64, id: u64) {
+        let reason = {
+            let inner = lock(&self.inner);
+            match inner.open.get(&id) {
+                Some((r, reason)) if r.client == client => reason.unwrap_or(StopReason::Failed),
+                _ => return,
+            }
+        };
+        self.close(id, reason);
+    }
+
+    /// The open recording `id`, if `token` is its upload token.
+    fn authorised(&self, id: u64, token: &str) -> Result<Arc<Recording>, upload::Refusal> {
+        let inner = lock(&self.inner);
+        let (recording, _) = inner.open.get(&id).ok_or(upload::Refusal::Gone)?;
+        if !recording.token.matches(token) {
+            return Err(upload::Refusal::Unauthorized);
+        }
+        Ok(Arc::clone(recording))
+    }
+
+    /// Closes recording `id`: no more chunks; `recording.stopped` with what it holds.
+    pub fn close(&self, id: u64, reason: StopReason) {
+        let mut inner = lock(&self.inner);
+        let Some((recording, _)) = inner.open.remove(&id) else {
+            return;
+        };
+        if let Some(kiosk) = inner.kiosks.get_mut(&recording.client)
+            && kiosk.recording == Some(id)
+            && kiosk.state != "failed"
+        {
+            kiosk.state = "off";
+        }
+        // The file's lock is taken after the registry's, never the other way round.
+        let file = lock(&recording.chunks).take();
+        let (bytes, chunks) = file.as_ref().map_or((0, 0), |f| (f.acked(), f.chunks()));
+        self.hub
+            .publish(EventKind::Recording(RecordingEvent::Stopped {
+                session: recording.session,
+                recording: id,
+                file: recording.file.clone(),
+                bytes,
+                chunks,
+                reason,
+            }));
+    }
+
+    /// Closes every open recording for `reason` (the server stops: the kiosks cannot upload
+    /// any more).
+    pub fn close_all(&self, reason: StopReason) {
+        let ids: Vec<u64> = lock(&self.inner).open.keys().copied().collect();
+        for id in ids {
+            self.close(id, reason);
+        }
+    }
+}

@@ -1,0 +1,233 @@
+// recorder.js: the kiosk's side of recording a visitor session (docs/CORPUS.md, "Recording";
+// frames in docs/PROTOCOL.md). On a `record` frame it opens the microphone (and camera), records
+// WebM with MediaRecorder in one-second chunks and uploads them strictly in order, each with the
+// recording's own token, keeping the chunks not yet acknowledged in a bounded queue: a network
+// error or a 5xx is retried with back-off, a 409 resumes from the chunk the server names, a 410
+// ends the recording (stopped, or consent withdrawn). It places the first sample on the server's
+// clock (a few `clock` round trips, the best kept) and says so in `recording-started`; on
+// `record-stop` it stops, uploads what is left and says `recording-stopped`. Whatever fails
+// (permission, device, recorder, uploads past the retry budget, a full queue) is reported at
+// once in `recording-failed`, which the operators see. A page reload ends the recording: the
+// next one is a new file with its own WebM header.
+
+const CHUNK_MS = 1000;
+const CLOCK_SAMPLES = 5;
+const CLOCK_TIMEOUT_MS = 2000;
+const MAX_QUEUED_CHUNKS = 120; // two minutes of chunks waiting for the network
+const RETRY_FIRST_MS = 250;
+const RETRY_MAX_MS = 4000;
+const RETRY_BUDGET_MS = 60_000; // failing this long without one chunk stored: reported
+
+/**
+ * Starts answering `record` and `record-stop` frames.
+ * @param {{send: (frame: object) => boolean, on: (type: string, fn: Function) => Function}} shell
+ */
+export function answerRecordRequests({ send, on }) {
+  let current = null;
+  const asked = []; // every `record` frame's recording and session, for tests and diagnosis
+  const clockWaiters = new Map(); // t0 -> resolve
+  on("clock", (frame) => {
+    clockWaiters.get(frame.t0)?.({ t1: performance.now(), serverUs: frame.server_us });
+    clockWaiters.delete(frame.t0);
+  });
+  const sampleClock = () => new Promise((resolve) => {
+    const t0 = performance.now();
+    clockWaiters.set(t0, ({ t1, serverUs }) => resolve({ t0, t1, serverUs }));
+    if (!send({ type: "clock", t0 })) resolve(null);
+    setTimeout(() => clockWaiters.delete(t0) && resolve(null), CLOCK_TIMEOUT_MS);
+  });
+  /** The best of a few clock samples: the shortest round trip bounds the error. */
+  const syncClock = async () => {
+    let best = null;
+    for (let i = 0; i < CLOCK_SAMPLES; i++) {
+      const sample = await sampleClock();
+      if (sample && (!best || sample.t1 - sample.t0 < best.t1 - best.t0)) best = sample;
+    }
+    return best;
+  };
+  const running = new Map(); // id -> recording not yet ended (one, or a stopping one beside it)
+  on("record", (frame) => {
+    asked.push({ recording: frame.recording, session: frame.session });
+    // One being stopped (the session ended, the next began) uploads its last chunk meanwhile;
+    // any other was closed by the server already (this kiosk reconnected).
+    for (const [id, old] of running) {
+      if (old.status().state === "ended") running.delete(id);
+      else if (old.status().state !== "stopping") {
+        old.abandon();
+        running.delete(id);
+      }
+    }
+    current = record(frame, { send, syncClock });
+    running.set(frame.recording, current);
+  });
+  on("record-stop", (frame) => running.get(frame.recording)?.stop());
+  window.docentRecorder = {
+    get current() {
+      return current?.status();
+    },
+    asked,
+  };
+}
+
+function record(frame, { send, syncClock }) {
+  const id = frame.recording;
+  const queue = []; // {seq, blob}, oldest first, not yet acknowledged
+  let recorder = null;
+  let stream = null;
+  let nextSeq = 0;
+  let uploading = false;
+  let stopping = false;
+  let ended = false;
+  let failingSince = null;
+  let retryMs = RETRY_FIRST_MS;
+  let startTime = null;
+  let acked = 0;
+
+  const release = () => {
+    for (const track of stream?.getTracks() ?? []) track.stop();
+  };
+  const end = () => {
+    ended = true;
+    queue.length = 0;
+    if (recorder?.state === "recording") recorder.stop();
+    release();
+  };
+  const fail = (code, message) => {
+    if (ended) return;
+    // A warning, not an error: the operators are told (recording.failed), the visitor is not.
+    console.warn(`docent: recording ${id} failed (${code}): ${message}`);
+    send({ type: "recording-failed", recording: id, code, message });
+    end();
+  };
+  const finishIfDone = () => {
+    if (stopping && !ended && recorder?.state === "inactive" && queue.length === 0 && !uploading) {
+      ended = true;
+      release();
+      send({ type: "recording-stopped", recording: id });
+    }
+  };
+
+  const pump = async () => {
+    if (uploading || ended || queue.length === 0) return finishIfDone();
+    uploading = true;
+    const chunk = queue[0];
+    let response = null;
+    try {
+      response = await fetch(frame.upload + chunk.seq, {
+        method: "PUT",
+        headers: { Authorization: `Bearer ${frame.token}`, "Content-Type": "application/octet-stream" },
+        body: chunk.blob,
+      });
+    } catch {
+      response = null; // the network: retried below
+    }
+    uploading = false;
+    if (ended) return;
+    if (response?.ok) {
+      const answer = await response.json().catch(() => ({}));
+      acked = answer.acked ?? acked;
+      queue.shift();
+      failingSince = null;
+      retryMs = RETRY_FIRST_MS;
+      return pump();
+    }
+    if (response?.status === 409) {
+      const { next } = await response.json().catch(() => ({}));
+      while (queue.length && queue[0].seq < next) queue.shift();
+      if (queue.length && queue[0].seq > next) {
+        return fail("upload-failed", `the server expects chunk ${next}, which this kiosk no longer holds`);
+      }
+      return pump();
+    }
+    if (response?.status === 410) {
+      // Closed by the server (stopped, consent declined or withdrawn): nothing more to send.
+      return end();
+    }
+    if (response && response.status < 500) {
+      return fail("upload-failed", `the server refused chunk ${chunk.seq}: HTTP ${response.status}`);
+    }
+    failingSince ??= performance.now();
+    if (performance.now() - failingSince > RETRY_BUDGET_MS) {
+      const why = response ? `HTTP ${response.status}` : "the network failed";
+      return fail("upload-failed", `chunks could not be uploaded for ${RETRY_BUDGET_MS / 1000} s (${why}); later sound is not recorded`);
+    }
+    setTimeout(pump, retryMs);
+    retryMs = Math.min(retryMs * 2, RETRY_MAX_MS);
+  };
+
+  const start = async () => {
+    const tracks = frame.tracks ?? ["audio"];
+    const clock = syncClock();
+    try {
+      stream = await navigator.mediaDevices.getUserMedia({
+        audio: tracks.includes("audio"),
+        video: tracks.includes("video"),
+      });
+    } catch (error) {
+      const code = error?.name === "NotAllowedError" || error?.name === "SecurityError"
+        ? "permission-denied"
+        : ["NotFoundError", "NotReadableError", "OverconstrainedError"].includes(error?.name)
+          ? "no-device"
+          : "recorder-error";
+      return fail(code, `${error?.name ?? "Error"}: ${error?.message ?? error}`);
+    }
+    if (ended) return release();
+    if (stopping) {
+      ended = true;
+      release();
+      send({ type: "recording-stopped", recording: id });
+      return;
+    }
+    if (typeof MediaRecorder === "undefined" || !MediaRecorder.isTypeSupported(frame.mime)) {
+      return fail("unsupported", `this browser cannot record ${frame.mime}`);
+    }
+    try {
+      recorder = new MediaRecorder(stream, { mimeType: frame.mime });
+    } catch (error) {
+      return fail("recorder-error", String(error?.message ?? error));
+    }
+    recorder.ondataavailable = (event) => {
+      if (ended || event.data.size === 0) return;
+      if (queue.length >= MAX_QUEUED_CHUNKS) {
+        return fail("queue-full", `${MAX_QUEUED_CHUNKS} chunks are waiting for upload; later sound is not recorded`);
+      }
+      queue.push({ seq: nextSeq++, blob: event.data });
+      pump();
+    };
+    recorder.onerror = (event) => fail("recorder-error", String(event.error?.message ?? "MediaRecorder failed"));
+    recorder.onstop = () => finishIfDone();
+    recorder.onstart = async () => {
+      const best = await clock;
+      if (!best || ended) return;
+      const offsetMs = best.serverUs / 1000 - (best.t0 + best.t1) / 2;
+      send({
+        type: "recording-started",
+        recording: id,
+        mime: recorder.mimeType || frame.mime,
+        mono_us: Math.max(0, Math.round((startTime + offsetMs) * 1000)),
+        clock_error_us: Math.round(((best.t1 - best.t0) / 2) * 1000),
+      });
+    };
+    for (const track of stream.getTracks()) {
+      track.onended = () => fail("no-device", `the ${track.kind} device stopped (unplugged or taken by another program)`);
+    }
+    // The first sample is the one arriving as `start()` is called: Chromium fires the `start`
+    // event about 50 ms later, and taking that time put every sound 62 ms late (measured by
+    // tests/e2e/recording.test.mjs's alignment test; docs/CORPUS.md, "Recording").
+    startTime = performance.now();
+    recorder.start(CHUNK_MS);
+  };
+
+  start();
+  return {
+    id,
+    stop() {
+      stopping = true;
+      if (recorder?.state === "recording") recorder.stop(); // its last chunk comes first
+      else finishIfDone();
+    },
+    /** A new `record` frame replaced this one (the server closed it already). */
+    abandon: end,
+    status: () => ({ recording: id, state: ended ? "ended" : stopping ? "stopping" : recorder?.state ?? "starting", queued: queue.length, acked, next: nextSeq, startTime }),
+  };
+}
