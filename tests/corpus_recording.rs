@@ -69,12 +69,18 @@ async fn chunk(server: &TestServer, record: &Value, seq: u64, body: &[u8]) -> (u
     put(server, record, seq, body, record["token"].as_str().unwrap()).await
 }
 
-fn media(server: &TestServer, file: &str) -> PathBuf {
-    session_dirs(&server.corpus)[0].join(file)
+/// A server recording a session an operator started: the kiosk has its `record` frame. The
+/// corpus is in `folder`, which outlives the server.
+struct Recording {
+    server: TestServer,
+    kiosk: WsClient,
+    op: WsClient,
+    record: Value,
+    folder: tempfile::TempDir,
+    bundle: TempBundle,
 }
 
-#[tokio::test]
-async fn chunks_are_stored_in_order_once_and_the_recording_is_placed_on_the_session_clock() {
+async fn recording() -> Recording {
     let b = site("");
     let folder = tempfile::tempdir().unwrap();
     let server = TestServer::start_with(b.path(), |o| o.corpus_dir = folder.path().into()).await;
@@ -82,6 +88,30 @@ async fn chunks_are_stored_in_order_once_and_the_recording_is_placed_on_the_sess
     let mut op = server.operator().await;
     mark(&mut op, "session_start", None).await;
     let record = kiosk.recv_type("record").await;
+    Recording {
+        server,
+        kiosk,
+        op,
+        record,
+        folder,
+        bundle: b,
+    }
+}
+
+fn media(server: &TestServer, file: &str) -> PathBuf {
+    session_dirs(&server.corpus)[0].join(file)
+}
+
+#[tokio::test]
+async fn chunks_are_stored_in_order_once_and_the_recording_is_placed_on_the_session_clock() {
+    let Recording {
+        server,
+        mut kiosk,
+        mut op,
+        record,
+        folder,
+        bundle: _bundle,
+    } = recording().await;
     assert_eq!(record["tracks"], json!(["audio"]));
     assert_eq!(record["mime"], "audio/webm;codecs=opus");
     assert_eq!(record["file"], "media/audio-1.webm");
@@ -239,13 +269,14 @@ async fn a_declined_session_records_nothing_until_consent_is_given() {
 
 #[tokio::test]
 async fn withdrawn_consent_stops_the_recording_removes_its_media_and_refuses_later_chunks() {
-    let b = site("");
-    let folder = tempfile::tempdir().unwrap();
-    let server = TestServer::start_with(b.path(), |o| o.corpus_dir = folder.path().into()).await;
-    let mut kiosk = kiosk(&server).await;
-    let mut op = server.operator().await;
-    mark(&mut op, "session_start", None).await;
-    let record = kiosk.recv_type("record").await;
+    let Recording {
+        server,
+        mut kiosk,
+        mut op,
+        record,
+        folder,
+        bundle: _bundle,
+    } = recording().await;
     let id = record["recording"].as_u64().unwrap();
     assert_eq!(chunk(&server, &record, 0, b"HEAD").await.0, 200);
     kiosk
@@ -279,12 +310,14 @@ async fn withdrawn_consent_stops_the_recording_removes_its_media_and_refuses_lat
 
 #[tokio::test]
 async fn bytes_beyond_the_acknowledged_length_are_cut_before_the_next_chunk() {
-    let b = site("");
-    let server = TestServer::start(b.path()).await;
-    let mut kiosk = kiosk(&server).await;
-    let mut op = server.operator().await;
-    mark(&mut op, "session_start", None).await;
-    let record = kiosk.recv_type("record").await;
+    let Recording {
+        server,
+        kiosk: _kiosk,
+        op: _op,
+        record,
+        folder: _folder,
+        bundle: _bundle,
+    } = recording().await;
     assert_eq!(chunk(&server, &record, 0, b"HEAD").await.0, 200);
     let file = media(&server, "media/audio-1.webm");
     // A torn append: bytes in the file that were never acknowledged.
@@ -300,12 +333,14 @@ async fn bytes_beyond_the_acknowledged_length_are_cut_before_the_next_chunk() {
 
 #[tokio::test]
 async fn a_kiosk_that_cannot_record_is_told_to_operators_at_once() {
-    let b = site("");
-    let server = TestServer::start(b.path()).await;
-    let mut kiosk = kiosk(&server).await;
-    let mut op = server.operator().await;
-    mark(&mut op, "session_start", None).await;
-    let record = kiosk.recv_type("record").await;
+    let Recording {
+        server,
+        mut kiosk,
+        mut op,
+        record,
+        folder: _folder,
+        bundle: _bundle,
+    } = recording().await;
     let id = record["recording"].as_u64().unwrap();
     kiosk
         .send(
