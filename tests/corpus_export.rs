@@ -210,7 +210,11 @@ fn assert_mcap_matches(session: &Path, out: &Path, name: &str) -> Value {
     let text = std::fs::read_to_string(session.join(SESSION_EVENTS)).unwrap();
     let manifest: Value =
         serde_json::from_slice(&std::fs::read(session.join("session.json")).unwrap()).unwrap();
-    assert_mcap_reads_back(&log_lines(session), &text, &manifest, &read);
+    let annotations = match session.join(ANNOTATIONS_FILE) {
+        file if file.is_file() => common::json_lines(&file),
+        _ => Vec::new(),
+    };
+    assert_mcap_reads_back(&log_lines(session), &text, &manifest, &annotations, &read);
     read
 }
 
@@ -286,6 +290,12 @@ async fn a_recorded_session_reads_back_the_same_in_elan_praat_and_a_spreadsheet(
         .as_array()
         .unwrap();
     assert!(poses.len() > 2, "the drive moved: {poses:?}");
+    let coded = &read["channels"]["/docent/annotations"]["messages"];
+    assert_eq!(
+        coded.as_array().map(Vec::len),
+        Some(live.len()),
+        "every live annotation on /docent/annotations"
+    );
 }
 
 #[tokio::test]

@@ -70,7 +70,13 @@ struct Run {
 }
 
 /// Compares what the reader read (`read`) with `log` and `manifest`, channel by channel.
-pub fn assert_mcap_reads_back(log: &[Value], log_text: &str, manifest: &Value, read: &Value) {
+pub fn assert_mcap_reads_back(
+    log: &[Value],
+    log_text: &str,
+    manifest: &Value,
+    annotations: &[Value],
+    read: &Value,
+) {
     let zero = zero_ns(manifest);
     let ns = |us: u64| zero + us * 1000;
     assert_eq!(read["compressions"], json!(["lz4"]));
@@ -208,6 +214,31 @@ pub fn assert_mcap_reads_back(log: &[Value], log_text: &str, manifest: &Value, r
         }
     }
     assert_channel(read, "/docent/projection", "docent.Projection", projections);
+
+    // The live annotations (the last line of each id, unless it deletes it), by start.
+    let mut latest: std::collections::BTreeMap<&str, &Value> = Default::default();
+    for line in annotations {
+        latest.insert(line["id"].as_str().unwrap(), line);
+    }
+    let mut live: Vec<&Value> = (latest.into_values())
+        .filter(|l| l["deleted"] != json!(true))
+        .collect();
+    let key = |l: &Value| {
+        (
+            l["start_us"].as_u64(),
+            l["tier"].clone().to_string(),
+            l["id"].to_string(),
+        )
+    };
+    live.sort_by_key(|l| key(l));
+    let coded = (live.iter())
+        .map(|l| {
+            let message = json!({"id": l["id"], "tier": l["tier"], "code": l["code"],
+                "start_us": l["start_us"], "end_us": l["end_us"], "annotator": l["annotator"]});
+            (ns(l["start_us"].as_u64().unwrap()), message)
+        })
+        .collect();
+    assert_channel(read, "/docent/annotations", "docent.Annotation", coded);
 
     // The manifest, every field, with the clock's zero.
     let session = &read["metadata"]["docent.session"];

@@ -24,6 +24,7 @@ use ::mcap::{Compression, McapError, WriteOptions};
 use serde::Serialize;
 use serde_json::Value;
 
+use crate::corpus::annotations::Annotation;
 use crate::corpus::export::timeline::Timeline;
 use events::{LogEvent, Projection};
 
@@ -38,11 +39,12 @@ enum Topic {
     Projection,
     Touches,
     Marks,
+    Annotations,
 }
 
 impl Topic {
     /// Every channel, in the order the file declares them.
-    const ALL: [Topic; 8] = [
+    const ALL: [Topic; 9] = [
         Topic::Log,
         Topic::Pose,
         Topic::Speech,
@@ -51,6 +53,7 @@ impl Topic {
         Topic::Projection,
         Topic::Touches,
         Topic::Marks,
+        Topic::Annotations,
     ];
 
     fn name(self) -> &'static str {
@@ -63,6 +66,7 @@ impl Topic {
             Topic::Projection => "/docent/projection",
             Topic::Touches => "/docent/touches",
             Topic::Marks => "/docent/marks",
+            Topic::Annotations => "/docent/annotations",
         }
     }
 
@@ -76,6 +80,7 @@ impl Topic {
             Topic::Projection => schemas::projection(),
             Topic::Touches => schemas::touch(),
             Topic::Marks => schemas::mark(),
+            Topic::Annotations => schemas::annotation(),
         }
     }
 }
@@ -90,6 +95,8 @@ pub struct Session<'a> {
     pub log: &'a [u8],
     /// The log read once.
     pub timeline: &'a Timeline,
+    /// The researchers' annotations (`annotations.jsonl`), live ones only.
+    pub annotations: &'a [Annotation],
 }
 
 /// Why the MCAP could not be made.
@@ -132,6 +139,10 @@ pub fn write(session: &Session<'_>) -> Result<Written, McapProblem> {
     let events = events::read(session.log).map_err(|(n, p)| McapProblem::DamagedLine(n, p))?;
     let mut messages = Messages::new(zero_ns);
     collect(&mut messages, &events, session.timeline);
+    for a in session.annotations {
+        let message = messages::Annotation::from(a);
+        messages.push(a.start_us, Topic::Annotations, &message);
+    }
     // Stable: messages of one instant keep the order they were collected in.
     messages.list.sort_by_key(|m| m.0);
 

@@ -284,6 +284,7 @@ impl SessionExport {
             manifest: &manifest,
             log: &self.log,
             timeline: &self.timeline,
+            annotations: self.annotations(),
         };
         let written = mcap::write(&session).map_err(|problem| match problem {
             mcap::McapProblem::NoClock(problem) => damaged(problem),

@@ -266,3 +266,27 @@ impl<'a> From<&'a MarkEvent> for Mark<'a> {
         }
     }
 }
+
+/// `docent.Annotation`.
+#[derive(Serialize)]
+pub struct Annotation<'a> {
+    id: &'a str,
+    tier: &'a str,
+    code: &'a str,
+    start_us: u64,
+    end_us: u64,
+    annotator: Option<&'a str>,
+}
+
+impl<'a> From<&'a crate::corpus::annotations::Annotation> for Annotation<'a> {
+    fn from(a: &'a crate::corpus::annotations::Annotation) -> Self {
+        Annotation {
+            id: &a.id,
+            tier: &a.tier,
+            code: &a.code,
+            start_us: a.start_us,
+            end_us: a.end_us,
+            annotator: a.annotator.as_deref(),
+        }
+    }
+}

@@ -221,3 +221,19 @@ pub fn mark() -> Value {
         }),
     )
 }
+
+/// `docent.Annotation`: a researcher's annotation (`annotations.jsonl`), at its start.
+pub fn annotation() -> Value {
+    closed(
+        "docent.Annotation",
+        "A researcher's annotation with a code of the codebook",
+        json!({
+            "id": {"type": "string", "description": "Its id within the session (a1, a2, ...)"},
+            "tier": {"type": "string", "description": "The codebook tier"},
+            "code": {"type": "string", "description": "The tier's code"},
+            "start_us": session_us("Its start, on the session clock"),
+            "end_us": session_us("Its end, on the session clock; its start for a point"),
+            "annotator": optional_string("Who annotated, as they signed in")
+        }),
+    )
+}
