@@ -11,6 +11,7 @@ mod purge_cases;
 #[path = "corpus_cli/recorded.rs"]
 mod recorded;
 
+use docent::corpus::annotations::{Draft, Edit, append};
 use docent::corpus::manifest::SessionManifest;
 use recorded::{
     corpus_cmd, damaged_sessions, events, events_by_type, recorded_run, recording_server,
@@ -195,6 +196,36 @@ async fn show_tells_a_session_in_words_with_its_events_by_type_and_its_files() {
     // The folder's path names the same session.
     let (code, by_path, _) = corpus_cmd(corpus, &["show", dir.to_str().unwrap()]);
     assert_eq!((code, by_path), (0, out));
+
+    // Its recording and researchers' annotations, said after the consent.
+    let mut with_media: Value =
+        serde_json::from_slice(&std::fs::read(dir.join("session.json")).unwrap()).unwrap();
+    with_media["media"] = serde_json::json!([{"file": "media/audio-1.webm", "track": "audio",
+        "mime": "audio/webm;codecs=opus", "start_us": 734_000, "recording": 1}]);
+    std::fs::write(dir.join("session.json"), with_media.to_string()).unwrap();
+    let draft = |code: &str| Draft {
+        tier: "situation".into(),
+        code: code.into(),
+        start_us: 0,
+        end_us: 0,
+        annotator: None,
+    };
+    let time = || "2026-11-24T13:00:00Z".to_owned();
+    append(&dir, Edit::Add(draft("question")), time()).unwrap();
+    append(&dir, Edit::Add(draft("laughter")), time()).unwrap();
+    append(&dir, Edit::Delete("a1".into()), time()).unwrap();
+    let (code, out, err) = corpus_cmd(corpus, &["show", &name]);
+    assert_eq!(code, 0, "{err}");
+    let lines: Vec<&str> = out.lines().collect();
+    let consent = lines.iter().position(|l| l.starts_with("consent")).unwrap();
+    assert_eq!(
+        lines[consent + 1..consent + 3],
+        [
+            "media     media/audio-1.webm (audio, its first sample at 0.734s on the session clock)",
+            "annotations 1 annotation (annotations.jsonl)",
+        ],
+        "{out}"
+    );
 }
 
 #[tokio::test]

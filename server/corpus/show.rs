@@ -5,6 +5,7 @@
 use std::io::Write;
 use std::path::Path;
 
+use crate::corpus::annotations::{ANNOTATIONS_FILE, read_annotations};
 use crate::corpus::catalog::{find_session, folder_contents};
 use crate::corpus::cli::CommandError;
 use crate::corpus::layout::SESSION_EVENTS;
@@ -49,7 +50,17 @@ pub fn show(corpus: &Path, arg: &str, out: &mut dyn Write) -> Result<(), Command
         )?;
         writeln!(out, "context   {}", m.context.as_deref().unwrap_or("none"))?;
         writeln!(out, "consent   {}", m.consent)?;
+        for media in &m.media {
+            writeln!(
+                out,
+                "media     {} ({}, its first sample at {} on the session clock)",
+                media.file,
+                media.track,
+                long_duration(media.start_us)
+            )?;
+        }
     }
+    write_annotations(out, &dir)?;
     let clock = "(on the session clock: session_us of its last line)";
     let length = match session.last_session_us() {
         None => "unknown: no line has a session_us".to_owned(),
@@ -84,6 +95,28 @@ pub fn show(corpus: &Path, arg: &str, out: &mut dyn Write) -> Result<(), Command
             out,
             "note      {SESSION_EVENTS}:{line}, its last line, is incomplete ({why}); it is not counted"
         )?;
+    }
+    Ok(())
+}
+
+/// How many annotations the session has, when researchers made any, and any line left out.
+fn write_annotations(out: &mut dyn Write, dir: &Path) -> std::io::Result<()> {
+    if !dir.join(ANNOTATIONS_FILE).is_file() {
+        return Ok(());
+    }
+    match read_annotations(dir) {
+        Ok(read) => {
+            let n = read.annotations.len();
+            writeln!(
+                out,
+                "annotations {} ({ANNOTATIONS_FILE})",
+                count(n, "annotation")
+            )?;
+            for (line, problem) in &read.problems {
+                writeln!(out, "  {ANNOTATIONS_FILE}:{line} left out: {problem}")?;
+            }
+        }
+        Err(e) => writeln!(out, "annotations unreadable: {ANNOTATIONS_FILE}: {e}")?,
     }
     Ok(())
 }
