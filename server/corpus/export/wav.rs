@@ -55,8 +55,8 @@ pub fn write_copies(
             file: entry.file.clone(),
             problem,
         };
-        let bytes = match acknowledged(&webm) {
-            Ok(bytes) => bytes,
+        let (bytes, unacknowledged) = match acknowledged(&webm) {
+            Ok(read) => read,
             Err(e) => {
                 warnings.push(problem(format!("it cannot be read: {e}")));
                 continue;
@@ -72,7 +72,14 @@ pub fn write_copies(
         let padding =
             u64::try_from(u128::from(entry.start_us) * u128::from(SAMPLE_RATE) / 1_000_000)
                 .unwrap_or(u64::MAX);
-        let left_out = write_wav(out_dir, &wav, track, padding)?;
+        let mut left_out = write_wav(out_dir, &wav, track, padding)?;
+        if unacknowledged > 0 {
+            let beyond = format!(
+                "{unacknowledged} bytes beyond its last acknowledged chunk (never acknowledged \
+                 to the kiosk: a crash cut the upload) were left out"
+            );
+            left_out = Some(left_out.map_or(beyond.clone(), |why| format!("{beyond}; {why}")));
+        }
         if let Some(problem) = left_out {
             let file = entry.file.clone();
             warnings.push(ExportWarning::MediaPartlyCopied { file, problem });
@@ -83,12 +90,12 @@ pub fn write_copies(
 }
 
 /// The recording's bytes that its `.chunks` index acknowledges (all of them when it has no
-/// index: a file written whole).
-fn acknowledged(webm: &Path) -> io::Result<Vec<u8>> {
+/// index: a file written whole), and how many more the file holds.
+fn acknowledged(webm: &Path) -> io::Result<(Vec<u8>, usize)> {
     let mut bytes = std::fs::read(webm)?;
     let index = match std::fs::read_to_string(index_path(webm)) {
         Ok(text) => text,
-        Err(e) if e.kind() == io::ErrorKind::NotFound => return Ok(bytes),
+        Err(e) if e.kind() == io::ErrorKind::NotFound => return Ok((bytes, 0)),
         Err(e) => return Err(e),
     };
     // The last whole line `SEQ END` is the truth; a torn last line was never acknowledged.
@@ -97,8 +104,9 @@ fn acknowledged(webm: &Path) -> io::Result<Vec<u8>> {
         .and_then(|line| line.split(' ').nth(1))
         .and_then(|end| end.parse::<usize>().ok())
         .unwrap_or(0);
+    let beyond = bytes.len().saturating_sub(acked);
     bytes.truncate(acked);
-    Ok(bytes)
+    Ok((bytes, beyond))
 }
 
 /// Whether `file` names a place inside the folder it is relative to.
@@ -178,6 +186,10 @@ fn header(channels: u16, data: u32) -> [u8; 44] {
 
 /// The EAF's links to `copies`, written into `out_dir`.
 pub fn links(copies: &[WavCopy], out_dir: &Path) -> Result<Vec<MediaLink>, ExportError> {
+    if copies.is_empty() {
+        // Nothing written: the folder may not be made yet.
+        return Ok(Vec::new());
+    }
     let absolute = |path: &Path| {
         std::fs::canonicalize(path).map_err(|source| ExportError::Write {
             path: path.to_owned(),
