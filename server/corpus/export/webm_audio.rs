@@ -1,8 +1,8 @@
 //! The Opus track of a recording (`media/audio-N.webm`, or the microphone in
 //! `media/video-N.webm`) decoded to 16-bit PCM at 48 kHz, for the WAV copy (`wav.rs`).
 //! Chromium's MediaRecorder writes a live WebM: a Segment and Clusters of unknown size, with
-//! SimpleBlocks; `matroska-demuxer` reads those, and `opus-decoder` (pure Rust) decodes the
-//! packets. The OpusHead in the track's CodecPrivate gives the channel count and the pre-skip
+//! SimpleBlocks; `matroska-demuxer` reads those, and `opus-rs` (pure Rust, libopus's algorithms) decodes
+//! the packets. The OpusHead in the track's CodecPrivate gives the channel count and the pre-skip
 //! (the encoder's priming samples, dropped before sample 0). Each packet lands at its block's
 //! timestamp: a gap in the timestamps (a dropped packet) becomes silence rather than pulling
 //! later sound earlier.
@@ -14,7 +14,7 @@
 use std::io::Cursor;
 
 use matroska_demuxer::{Frame, MatroskaFile, TrackType};
-use opus_decoder::OpusDecoder;
+use opus_rs::OpusDecoder;
 
 /// Opus always decodes at 48 kHz.
 pub const SAMPLE_RATE: u32 = 48_000;
@@ -74,7 +74,7 @@ impl<'a> OpusTrack<'a> {
         mut sink: impl FnMut(&[i16]) -> Result<(), E>,
     ) -> Result<Decoded, E> {
         let channels = usize::from(self.head.channels);
-        let mut decoder = match OpusDecoder::new(SAMPLE_RATE, channels) {
+        let mut decoder = match OpusDecoder::new(SAMPLE_RATE as i32, channels) {
             Ok(decoder) => decoder,
             Err(e) => {
                 let left_out = Some(format!("no Opus decoder for {channels} channels: {e}"));
@@ -84,7 +84,8 @@ impl<'a> OpusTrack<'a> {
                 });
             }
         };
-        let mut pcm = vec![0i16; OpusDecoder::MAX_FRAME_SIZE_48K * channels];
+        let mut pcm = vec![0f32; MAX_FRAME * channels];
+        let mut pcm16: Vec<i16> = Vec::with_capacity(MAX_FRAME * channels);
         // Frames decoded so far, the pre-skip included; and how much of it is still to drop.
         let mut have: u64 = 0;
         let mut skip = u64::from(self.head.pre_skip);
@@ -123,9 +124,11 @@ impl<'a> OpusTrack<'a> {
                 emit(&silence, &mut skip)?;
                 have = due;
             }
-            match decoder.decode(&frame.data, &mut pcm, false) {
+            match decoder.decode(&frame.data, MAX_FRAME, &mut pcm) {
                 Ok(n) => {
-                    emit(&pcm[..n * channels], &mut skip)?;
+                    pcm16.clear();
+                    pcm16.extend(pcm[..n * channels].iter().map(|&x| to_i16(x)));
+                    emit(&pcm16, &mut skip)?;
                     have += n as u64;
                 }
                 Err(e) => {
@@ -141,6 +144,14 @@ impl<'a> OpusTrack<'a> {
         let frames = have.saturating_sub(u64::from(self.head.pre_skip));
         Ok(Decoded { frames, left_out })
     }
+}
+
+/// The longest Opus packet: 120 ms at 48 kHz, per channel.
+const MAX_FRAME: usize = 5760;
+
+/// A float sample as 16-bit PCM, rounded and clipped as libopus's `opus_decode` does.
+fn to_i16(x: f32) -> i16 {
+    (x * 32768.0).round().clamp(-32768.0, 32767.0) as i16
 }
 
 /// A place in the recording, for people: seconds from its start.
