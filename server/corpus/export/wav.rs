@@ -242,3 +242,37 @@ fn relative(from: &Path, to: &Path) -> String {
     path.extend(&to[common..]);
     path.to_string_lossy().into_owned()
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn the_recording_is_named_relative_to_the_eafs_folder_and_the_wav_by_its_url() {
+        let from = Path::new("/corpus/sessions/S/exports");
+        assert_eq!(
+            relative(from, Path::new("/corpus/sessions/S/media/audio-1.webm")),
+            "../media/audio-1.webm"
+        );
+        assert_eq!(
+            relative(Path::new("/out"), Path::new("/corpus/S/media/a.webm")),
+            "../corpus/S/media/a.webm"
+        );
+        assert_eq!(
+            file_url(Path::new("/museum visits/#1/S.audio-1.wav")),
+            "file:///museum%20visits/%231/S.audio-1.wav"
+        );
+    }
+
+    #[test]
+    fn the_header_is_a_16_bit_pcm_wav_at_48_khz() {
+        let h = header(2, 1000);
+        assert_eq!(&h[..4], b"RIFF");
+        assert_eq!(u32::from_le_bytes(h[4..8].try_into().unwrap()), 1036);
+        assert_eq!(u16::from_le_bytes([h[22], h[23]]), 2);
+        assert_eq!(u32::from_le_bytes(h[24..28].try_into().unwrap()), 48_000);
+        assert_eq!(u32::from_le_bytes(h[28..32].try_into().unwrap()), 192_000);
+        assert_eq!(u16::from_le_bytes([h[32], h[33]]), 4);
+        assert_eq!(u32::from_le_bytes(h[40..44].try_into().unwrap()), 1000);
+    }
+}
