@@ -2,7 +2,8 @@
 //! MediaRecorder made (`tests/fixtures/recordings/`, a live WebM of unknown sizes) and a tone
 //! `ffmpeg` encodes here, each placed at its `start_us` on the session clock, read back with
 //! Python's `wave`, Praat (parselmouth) and pympi-ling; compared with ffmpeg's own decoding; and
-//! recordings torn, damaged or missing, which export with a warning naming the file.
+//! recordings torn (bytes beyond the index, a cut inside a block), damaged or missing, which
+//! export with a warning naming the file.
 
 use std::path::{Path, PathBuf};
 use std::process::Command;
@@ -219,7 +220,7 @@ fn a_torn_recording_is_copied_up_to_what_is_whole_and_the_rest_is_named() {
     let webm = dir.join("media/audio-1.webm");
     chromium_recording(&webm);
     // A crash after the second chunk was acknowledged: the third's bytes are on disk, never
-    // indexed; the second ends in the middle of a cluster.
+    // indexed; the second ends inside a cluster (of unknown size), after a whole block.
     std::fs::write(
         PathBuf::from(format!("{}.chunks", webm.display())),
         "0 8354\n1 24865\n2 4",
@@ -290,4 +291,35 @@ fn a_recording_that_is_no_webm_or_missing_is_named_and_the_export_goes_on() {
     let read = read_back(&out, NAME);
     assert_eq!(read["problems"], json!([]));
     assert_eq!(read["eaf_media"], json!([]));
+}
+
+#[test]
+fn a_recording_cut_in_the_middle_of_a_packet_is_copied_up_to_the_last_whole_one() {
+    let (_corpus, dir) = session(vec![media("media/audio-1.webm", 0, 1)]);
+    let webm = dir.join("media/audio-1.webm");
+    chromium_recording(&webm);
+    // An index whose last end falls inside a SimpleBlock (as a damaged disk or a hand-cut
+    // file can leave it).
+    let index = PathBuf::from(format!("{}.chunks", webm.display()));
+    std::fs::write(index, "0 8354\n1 20000\n").unwrap();
+    let out = dir.join("exports");
+    let (files, warnings) = export(&dir, &out);
+    let told: Vec<String> = warnings.iter().map(ToString::to_string).collect();
+    assert_eq!(
+        told,
+        [
+            "the WAV copy of the recording \"media/audio-1.webm\" stops early: 21362 bytes beyond \
+          its last acknowledged chunk (never acknowledged to the kiosk: a crash cut the upload) \
+          were left out; its end could not be read after 1.620 s (element declared size of \
+          962 bytes but only 949 bytes are available) and was left out"
+        ]
+    );
+    let whole = dir.join("whole.webm");
+    std::fs::write(&whole, &std::fs::read(&webm).unwrap()[..20000]).unwrap();
+    let (samples, _, _) = wav(&files[1]);
+    assert_eq!(
+        samples.len(),
+        ffmpeg_decoded(&whole).len(),
+        "1.62 s, as ffmpeg reads it"
+    );
 }
