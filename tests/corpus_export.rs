@@ -20,6 +20,8 @@ mod generated;
 mod mcap;
 #[path = "corpus_export/mcap_cases.rs"]
 mod mcap_cases;
+#[path = "corpus_export/media.rs"]
+mod media;
 
 use std::collections::BTreeSet;
 use std::path::{Path, PathBuf};

@@ -52,7 +52,8 @@ fn media_the_manifest_lists_are_linked_on_the_session_clock_and_a_missing_one_is
         missing.to_string(),
         "session.json lists the media file \"media/video-1.webm\", which is not a file in the \
          session's folder (deleted, moved, or a path outside it): the MCAP's `docent.media` \
-         names it all the same, but a player will not find it there"
+         names it all the same, but a player will not find it there, and the EAF has no WAV \
+         copy of it"
     );
 
     let read = read_mcap(&exported.files[0]);

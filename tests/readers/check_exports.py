@@ -19,14 +19,21 @@ reads EXPORT_DIR/NAME.eaf, NAME.TextGrid and NAME.csv:
   two must agree. Checked here: UTF-8 without a byte-order mark, every interval tier tiled from
   xmin to xmax, points sorted.
 - CSV: Python's csv module (RFC 4180).
+- Media: the EAF's MEDIA_DESCRIPTORs as pympi reads them (`get_linked_files`), each checked
+  here: MEDIA_URL an absolute file:// URL of a file that is there, RELATIVE_MEDIA_URL `./` and
+  the same file beside the EAF, EXTRACTED_FROM a file relative to the EAF's folder; each WAV
+  read by Python's wave module and by Praat (parselmouth.Sound), which must agree.
 
 Times are given as each format has them: EAF in ms, TextGrid and CSV in seconds.
 """
 
 import csv
 import json
+import os
 import re
 import sys
+import wave
+from urllib.parse import unquote, urlparse
 import xml.etree.ElementTree as ET
 
 import parselmouth
@@ -334,6 +341,38 @@ def read_csv(path):
     return {"header": rows[0], "rows": rows[1:]}
 
 
+def read_media(path):
+    """The EAF's linked media as pympi reads them, each WAV as `wave` and Praat read it."""
+    folder = os.path.dirname(os.path.abspath(path))
+    media = []
+    for linked in pympi.Elan.Eaf(path).get_linked_files():
+        url = urlparse(linked["MEDIA_URL"])
+        absolute = unquote(url.path)
+        relative = linked.get("RELATIVE_MEDIA_URL", "")
+        extracted = linked.get("EXTRACTED_FROM", "")
+        if url.scheme != "file" or not os.path.isabs(absolute) or not os.path.isfile(absolute):
+            problem(f"EAF: MEDIA_URL {linked['MEDIA_URL']!r} is not a file that is there")
+            continue
+        beside = os.path.join(folder, relative)
+        if not relative.startswith("./") or not os.path.samefile(beside, absolute):
+            problem(f"EAF: RELATIVE_MEDIA_URL {relative!r} is not {absolute} beside the EAF")
+        if not os.path.isfile(os.path.join(folder, extracted)):
+            problem(f"EAF: EXTRACTED_FROM {extracted!r} is not a file from the EAF's folder")
+        entry = {"relative": relative, "mime": linked["MIME_TYPE"], "extracted_from": extracted,
+                 "time_origin": linked.get("TIME_ORIGIN")}
+        if linked["MIME_TYPE"] == "audio/x-wav":
+            with wave.open(absolute) as w:
+                entry.update(rate=w.getframerate(), channels=w.getnchannels(),
+                             width=w.getsampwidth(), frames=w.getnframes())
+            sound = parselmouth.Sound(absolute)
+            if (round(sound.sampling_frequency), sound.n_channels, sound.n_samples) != \
+                    (entry["rate"], entry["channels"], entry["frames"]):
+                problem(f"Praat reads {relative} as {sound.sampling_frequency} Hz, "
+                        f"{sound.n_channels} channels, {sound.n_samples} samples; wave otherwise")
+        media.append(entry)
+    return media
+
+
 def attempt(what, read, path):
     """A reader's result; a reader that refuses the file is a problem, not a crash."""
     try:
@@ -348,7 +387,8 @@ def main():
     base = f"{folder}/{name}"
     summary = {"eaf": attempt("pympi", read_eaf, base + ".eaf"),
                "eaf_cve_refs": attempt("the EAF checks", check_eaf_xml, base + ".eaf"),
-               "eaf_coded": attempt("the EAF annotation checks", read_coded, base + ".eaf")}
+               "eaf_coded": attempt("the EAF annotation checks", read_coded, base + ".eaf"),
+               "eaf_media": attempt("the EAF media checks", read_media, base + ".eaf")}
     check_textgrid_bytes(base + ".TextGrid")
     summary["textgrid_praatio"] = attempt("praatio", read_textgrid_praatio, base + ".TextGrid")
     summary["textgrid_praat"] = attempt("Praat", read_textgrid_praat, base + ".TextGrid")

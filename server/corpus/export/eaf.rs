@@ -8,7 +8,10 @@
 //! Points (touches, marks) are 1 ms annotations, since ELAN has no point tiers. Each codebook
 //! tier's annotations (its intervals, then its points) have a linguistic type `coded-TIER`
 //! whose controlled vocabulary `codebook-TIER` is the tier's codes, and each annotation names
-//! its code by `CVE_REF`. No media yet: the `HEADER` has no `MEDIA_DESCRIPTOR`.
+//! its code by `CVE_REF`. The `HEADER` links each recording's WAV copy (`wav.rs`) by a
+//! `MEDIA_DESCRIPTOR`: `MEDIA_URL` absolute, `RELATIVE_MEDIA_URL` beside the EAF, no
+//! `TIME_ORIGIN` (the copy starts at session time 0), `EXTRACTED_FROM` the WebM. The WebMs
+//! themselves are not linked: a video's origin would be negative (`docs/CORPUS.md`).
 
 mod elements;
 
@@ -35,6 +38,18 @@ pub struct Header<'a> {
     pub session: &'a str,
     /// The Docent that recorded it.
     pub docent: &'a str,
+    /// The media ELAN plays with it.
+    pub media: &'a [MediaLink],
+}
+
+/// A `MEDIA_DESCRIPTOR`: a WAV copy of a recording, starting at session time 0.
+pub struct MediaLink {
+    /// `file://` and the WAV's absolute path.
+    pub url: String,
+    /// `./NAME.audio-1.wav`: the WAV beside the EAF.
+    pub relative: String,
+    /// The recording it was made from, relative to the EAF's folder.
+    pub extracted_from: String,
 }
 
 /// An annotation that has its own times, in file order.
@@ -169,6 +184,16 @@ impl Document<'_> {
         w.create_element("HEADER")
             .with_attributes(head)
             .write_inner_content(|w| {
+                for link in self.header.media {
+                    w.create_element("MEDIA_DESCRIPTOR")
+                        .with_attributes([
+                            ("MEDIA_URL", link.url.as_str()),
+                            ("MIME_TYPE", "audio/x-wav"),
+                            ("RELATIVE_MEDIA_URL", link.relative.as_str()),
+                            ("EXTRACTED_FROM", link.extracted_from.as_str()),
+                        ])
+                        .write_empty()?;
+                }
                 for (name, value) in properties {
                     w.create_element("PROPERTY")
                         .with_attribute(("NAME", name))

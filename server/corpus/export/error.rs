@@ -118,11 +118,30 @@ pub enum ExportWarning {
     #[error(
         "session.json lists the media file {file:?}, which is not a file in the session's \
          folder (deleted, moved, or a path outside it): the MCAP's `docent.media` names it all \
-         the same, but a player will not find it there"
+         the same, but a player will not find it there, and the EAF has no WAV copy of it"
     )]
     MediaNotInSession {
         /// The `file` as the manifest gives it.
         file: String,
+    },
+    /// A recording's sound could not be decoded at all: no WAV copy of it was written.
+    #[error(
+        "no WAV copy of the recording {file:?} was written, and the EAF does not link it: \
+         {problem}"
+    )]
+    MediaNotCopied {
+        /// The `file` as the manifest gives it.
+        file: String,
+        /// Why.
+        problem: String,
+    },
+    /// A recording's WAV copy stops before the recording's end.
+    #[error("the WAV copy of the recording {file:?} stops early: {problem}")]
+    MediaPartlyCopied {
+        /// The `file` as the manifest gives it.
+        file: String,
+        /// What was left out, from where.
+        problem: String,
     },
 }
 

@@ -5,7 +5,9 @@
 //! session clock, which `tiers.rs` lays out as the tiers ELAN and Praat both get. The
 //! researchers' annotations (`corpus/annotations.rs`) are their own tiers in each format, with
 //! the codebook of the session's bundle (`docent.yaml`'s `codebook:`) as their vocabulary when
-//! it still loads. Formats, tiers and time base: `docs/CORPUS.md`, "Exports".
+//! it still loads. With the EAF go WAV copies of the recordings' sound on the session clock
+//! (`wav.rs`, decoded by `webm_audio.rs`), which it links. Formats, tiers and time base:
+//! `docs/CORPUS.md`, "Exports".
 //!
 //! An export never writes half a file: each is written beside its place and renamed. A session
 //! still being recorded is refused; one whose server was killed is exported up to its last
@@ -19,6 +21,8 @@ mod mcap;
 mod textgrid;
 mod tiers;
 pub mod timeline;
+mod wav;
+mod webm_audio;
 
 use std::collections::BTreeSet;
 use std::fmt;
@@ -224,12 +228,17 @@ impl SessionExport {
     pub fn write(&self, format: ExportFormat, out_dir: &Path) -> Result<Exported, ExportError> {
         let mut warnings = self.warnings.clone();
         let file = out_dir.join(format!("{}.{}", self.name, format.extension()));
+        let mut copies = Vec::new();
         let bytes = match format {
             ExportFormat::Eaf => {
+                let media = &self.manifest.media;
+                copies = wav::write_copies(&self.dir, &self.name, media, out_dir, &mut warnings)?;
+                let media = wav::links(&copies, out_dir)?;
                 let header = eaf::Header {
                     date: &self.manifest.started.time,
                     session: &self.name,
                     docent: &self.manifest.docent,
+                    media: &media,
                 };
                 let written = eaf::write(&self.tiers, &self.vocabulary, &header);
                 let (bytes, replaced) = written.map_err(|source| ExportError::Write {
@@ -249,6 +258,7 @@ impl SessionExport {
         };
         write_whole(out_dir, &file, &bytes)?;
         let mut files = vec![file];
+        files.extend(copies.into_iter().map(|c| c.wav));
         if format == ExportFormat::Jsonl && !self.annotations.is_empty() {
             let file = out_dir.join(format!("{}.annotations.jsonl", self.name));
             let mut bytes = Vec::new();
