@@ -281,6 +281,9 @@ pub struct SiteConfig {
     pub projector: ProjectorConfig,
     /// Visitor sessions in the corpus.
     pub corpus: CorpusSettings,
+    /// `corpus: session_start_events`: the robot events that start a visitor session when
+    /// none runs (beside `corpus` because that one is `Copy`).
+    pub session_start_events: Vec<String>,
     /// How long a ws adapter may take to answer a command once it is its turn.
     pub adapter_timeout: Duration,
     /// Site-declared verbs, by name (upper case).
@@ -329,6 +332,7 @@ impl Default for SiteConfig {
                 highlight_edge: 0.02,
             },
             corpus: CorpusSettings::default(),
+            session_start_events: Vec::new(),
             adapter_timeout: Duration::from_secs(30),
             verbs: BTreeMap::new(),
             access: AccessSettings::default(),

@@ -271,6 +271,9 @@ pub enum EventKind {
         #[serde(skip_serializing_if = "Option::is_none")]
         link: Option<String>,
     },
+    /// The robot's software noticed something (an adapter process sent it).
+    #[serde(rename = "robot")]
+    Robot(super::RobotEvent),
     /// An operator noted what the session's visitors agreed to.
     #[serde(rename = "consent.changed")]
     ConsentChanged {

@@ -135,6 +135,31 @@ impl Visits {
         }
     }
 
+    /// The robot noticed `event` (adapter process `client`): starts a session when none runs,
+    /// the site starts them by touch and `start_events` names it (source `adapter`); keeps
+    /// one going that started on its own (a touch or such an event), as a touch does. Called
+    /// before the event's own line, so that it is in the session.
+    pub fn robot_noticed(
+        &self,
+        settings: &CorpusSettings,
+        start_events: &[String],
+        client: u64,
+        event: &str,
+    ) {
+        if !start_events.iter().any(|e| e == event) {
+            return;
+        }
+        let mut inner = lock(&self.inner);
+        match &mut inner.current {
+            Some(current) => current.last_touch = Instant::now(),
+            None if settings.session_start == SessionStart::Touch => {
+                self.begin(&mut inner, settings, Source::Adapter, Some(client), true);
+                self.started_by_touch.notify_one();
+            }
+            None => {}
+        }
+    }
+
     /// Ends a session that a touch started once `settings()` idle time passed without a
     /// touch, until `shutdown`. The settings are read anew each time (live reload).
     pub async fn end_idle_sessions(

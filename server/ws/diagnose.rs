@@ -36,12 +36,13 @@ pub fn diagnose(text: &str, error: &serde_json::Error) -> (ErrorCode, String, Op
 }
 
 /// Every frame type a client may send.
-const KNOWN_TYPES: [&str; 17] = [
+const KNOWN_TYPES: [&str; 18] = [
     "hello",
     "trigger",
     "stop",
     "context",
     "page",
+    "robot",
     "propose",
     "accept",
     "dismiss",

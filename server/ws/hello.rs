@@ -9,7 +9,7 @@
 //! the session hands to the writer) and [`join`] (the server learns of the client).
 
 use crate::access::{Needed, Refusal};
-use crate::events::{ClientRole, EventKind};
+use crate::events::{ClientRole, EventKind, robot_event_name_problem};
 use crate::state::ClientInfo;
 use crate::wire::ErrorCode;
 use crate::wire::outbox::Frame;
@@ -21,6 +21,7 @@ use crate::ws::writer::Feed;
 pub(super) struct Hello {
     pub(super) role: ClientRole,
     pub(super) verbs: Vec<String>,
+    pub(super) robot_events: Vec<String>,
     pub(super) name: Option<String>,
     pub(super) token: Option<String>,
     pub(super) events: bool,
@@ -30,6 +31,8 @@ pub(super) struct Hello {
 pub(super) struct Admitted {
     pub(super) role: ClientRole,
     verbs: Vec<String>,
+    /// The robot events an adapter may send.
+    pub(super) robot_events: Vec<String>,
     name: Option<String>,
     /// Whether an operator or dialog manager asked for the event stream.
     events: bool,
@@ -39,7 +42,8 @@ pub(super) struct Admitted {
 pub(super) enum Refused {
     /// The credential was missing or wrong: the connection ends after the `error` frame.
     Credential,
-    /// An adapter listed no verbs: it may say `hello` again.
+    /// An adapter listed no verbs nor robot events, or a bad robot event name: it may say
+    /// `hello` again.
     NoVerbs,
 }
 
@@ -61,6 +65,7 @@ pub(super) fn admit(client: &Client, hello: Hello) -> Result<Admitted, Refused> 
     let Hello {
         role,
         verbs,
+        robot_events,
         name,
         token,
         events,
@@ -72,18 +77,32 @@ pub(super) fn admit(client: &Client, hello: Hello) -> Result<Admitted, Refused> 
         client.reply_error(refusal.code(), &refusal.message(needed), None, None);
         return Err(Refused::Credential);
     }
-    if role == ClientRole::Adapter && verbs.is_empty() {
+    if role == ClientRole::Adapter && verbs.is_empty() && robot_events.is_empty() {
         client.reply_error(
             ErrorCode::NoVerbs,
-            "an adapter must list the verbs it serves in \"verbs\"",
+            "an adapter must list the verbs it serves in \"verbs\" (or, a sensor, the robot \
+             events it sends in \"robot_events\")",
             None,
             None,
         );
         return Err(Refused::NoVerbs);
     }
+    if let Some(problem) = robot_events
+        .iter()
+        .find_map(|e| robot_event_name_problem(e))
+    {
+        client.reply_error(ErrorCode::BadFrame, &problem, None, None);
+        return Err(Refused::NoVerbs);
+    }
+    let robot_events = if role == ClientRole::Adapter {
+        robot_events
+    } else {
+        Vec::new()
+    };
     Ok(Admitted {
         role,
         verbs,
+        robot_events,
         name,
         events,
     })

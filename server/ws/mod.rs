@@ -22,6 +22,7 @@ mod notices;
 pub mod protocol;
 mod recording;
 mod reports;
+mod robot;
 mod session;
 mod signal;
 mod triggers;

@@ -26,6 +26,9 @@ pub enum ClientFrame {
         /// Verbs served (adapters only).
         #[serde(default)]
         verbs: Vec<String>,
+        /// The robot events it may send (adapters only): what its sensors notice.
+        #[serde(default)]
+        robot_events: Vec<String>,
         /// A name for logs and the operator's view.
         #[serde(default)]
         name: Option<String>,
@@ -71,6 +74,14 @@ pub enum ClientFrame {
         /// Echoed back.
         #[serde(default, rename = "ref")]
         reference: Option<String>,
+    },
+    /// An adapter process tells of something the robot noticed (one of its `robot_events`).
+    Robot {
+        /// The event's name.
+        event: String,
+        /// What it says about it, as the adapter likes (logged as sent).
+        #[serde(default)]
+        data: serde_json::Value,
     },
     /// A kiosk shows another page of the bundle on its own (a link, the idle return home).
     Page {

@@ -20,7 +20,7 @@ use crate::ws::hello::{self, Hello, Refused};
 use crate::ws::protocol::{ClientFrame, MAX_FRAME_BYTES};
 use crate::ws::triggers::{self, RefusedRun, Trigger};
 use crate::ws::writer::Feed;
-use crate::ws::{initiative, recording, reports, signal};
+use crate::ws::{initiative, recording, reports, robot, signal};
 
 /// One connection's state, changed only by its own methods below.
 pub(super) struct Session {
@@ -38,6 +38,8 @@ pub(super) struct Session {
     refusals_logged: bool,
     /// This client's allowance for relayed signalling frames.
     signals: TokenBucket,
+    /// The robot events an adapter said in its `hello` it sends.
+    robot_events: Vec<String>,
 }
 
 impl Session {
@@ -50,6 +52,7 @@ impl Session {
             closing: None,
             refusals_logged: false,
             signals: TokenBucket::signalling(Instant::now()),
+            robot_events: Vec::new(),
         }
     }
 
@@ -91,12 +94,14 @@ impl Session {
             ClientFrame::Hello {
                 role,
                 verbs,
+                robot_events,
                 name,
                 token,
                 events,
             } => self.hello(Hello {
                 role,
                 verbs,
+                robot_events,
                 name,
                 token,
                 events,
@@ -158,6 +163,9 @@ impl Session {
                 let reason = reason.unwrap_or_else(|| "the adapter reported a failure".into());
                 reports::report(client, role, id, ScreenReport::Failed(reason));
             }
+            ClientFrame::Robot { event, data } => {
+                robot::noticed(client, role, &self.robot_events, event, data);
+            }
             ClientFrame::Clock { t0 } => recording::clock(client, role, t0),
             ClientFrame::RecordingStarted {
                 recording: id,
@@ -196,6 +204,7 @@ impl Session {
             Err(Refused::NoVerbs) => return,
         };
         self.role = Some(admitted.role);
+        self.robot_events = admitted.robot_events.clone();
         let feed = hello::welcome(&self.client, &admitted);
         if let (Some(feed), Some(tx)) = (feed, self.feed.take()) {
             let _ = tx.send(feed);

@@ -54,6 +54,8 @@ export function createHistory(list) {
         return ["mark", [`situation: ${e.situation}`]];
       case "note.written":
         return ["mark", [`note: ${e.text}`]];
+      case "robot":
+        return ["mark", [`robot noticed: ${e.event}`]];
       default:
         return null;
     }

@@ -8,7 +8,7 @@ use crate::content::config::{AfterVideo, RecordTracks, SessionStart, SiteConfig}
 use crate::content::duration::parse_duration;
 use crate::content::model::Located;
 use crate::content::suggest::did_you_mean;
-use crate::events::Consent;
+use crate::events::{Consent, robot_event_name_problem};
 
 use super::Reader;
 
@@ -18,7 +18,17 @@ const IDLE_USAGE: &str = "`idle` is how long the touchscreen waits without a tou
                           returns to the home page: a length of time with its unit, e.g. \
                           `idle: 2m` or `idle: 90s`; `idle: 0s` turns it off.";
 /// The keys of `corpus:`.
-pub(crate) const CORPUS_KEYS: &[&str] = &["session_start", "session_idle", "consent", "record"];
+pub(crate) const CORPUS_KEYS: &[&str] = &[
+    "session_start",
+    "session_idle",
+    "session_start_events",
+    "consent",
+    "record",
+];
+const START_EVENTS_USAGE: &str = "`session_start_events` lists the robot events (sent by an \
+                                  adapter process, see docs/PROTOCOL.md) that start a visitor \
+                                  session when none runs, e.g. `[person.near]`: names of \
+                                  lower-case letters, digits, '.', '_' and '-'.";
 const RECORD_USAGE: &str = "`record` lists what the kiosk device records during a visitor \
                             session whose consent is `recorded`: `[audio]` (the default), \
                             `[audio, video]`, `[video]`, or `[]` or `none` for nothing.";
@@ -75,6 +85,12 @@ impl Reader {
                 }
                 continue;
             }
+            if key == "session_start_events" {
+                if let Some(names) = self.robot_event_names(value) {
+                    config.session_start_events = names;
+                }
+                continue;
+            }
             if key == "record" {
                 if let Some(record) = self.record(value) {
                     config.corpus.record = record;
@@ -99,6 +115,28 @@ impl Reader {
                 config.corpus.session_start = start;
             }
         }
+    }
+
+    /// Reads `corpus: session_start_events:`: a list of robot event names, each once.
+    fn robot_event_names(&mut self, node: &Node) -> Option<Vec<String>> {
+        let Kind::Seq(items) = &node.kind else {
+            self.bad(node, START_EVENTS_USAGE);
+            return None;
+        };
+        let mut names: Vec<String> = Vec::new();
+        for item in items {
+            let name = item.as_text().map(str::trim).unwrap_or_default();
+            if let Some(problem) = robot_event_name_problem(name) {
+                self.bad(item, &format!("{START_EVENTS_USAGE} Here: {problem}."));
+                return None;
+            }
+            if names.iter().any(|n| n == name) {
+                self.bad(item, "This event is listed twice. Keep one.");
+                return None;
+            }
+            names.push(name.to_owned());
+        }
+        Some(names)
     }
 
     /// Reads `corpus: record:`: a list of `audio` and `video`, `[]` or `none`.
@@ -230,6 +268,41 @@ mod tests {
                 .message
                 .contains("Did you mean `video`?")
         );
+    }
+
+    #[test]
+    fn corpus_session_start_events_are_robot_event_names_each_once() {
+        let events = |text: &str| parse(text).config.session_start_events;
+        assert!(events("corpus: {}\n").is_empty(), "none by default");
+        assert_eq!(
+            events("corpus:\n  session_start_events: [person.near, bumper]\n"),
+            ["person.near", "bumper"]
+        );
+        for (text, column, says) in [
+            (
+                "corpus:\n  session_start_events: [Person Near]\n",
+                26,
+                "lower-case",
+            ),
+            (
+                "corpus:\n  session_start_events: person.near\n",
+                25,
+                "lists the robot events",
+            ),
+            (
+                "corpus:\n  session_start_events: [a, a]\n",
+                29,
+                "listed twice",
+            ),
+        ] {
+            let file = parse(text);
+            let located: Vec<_> = (file.diagnostics.iter())
+                .map(|d| (d.code, d.line, d.column))
+                .collect();
+            assert_eq!(located, [("config-bad-value", 2, column)], "{text}");
+            assert!(file.diagnostics[0].message.contains(says), "{text}");
+            assert!(file.config.session_start_events.is_empty(), "default kept");
+        }
     }
 
     #[test]

@@ -239,6 +239,15 @@ fn corpus(key: &str) -> Value {
             "How long a session that a touch started goes on without a touch before it ends, \
              e.g. `2m` (the default) or `90s`; `0s`: until it is marked ended.",
         ),
+        "session_start_events" => json!({
+            "description": "The robot events (sent by an adapter process on the robot, e.g. a \
+                            people tracker's `person.near`) that start a visitor session when \
+                            none runs and `session_start` is `touch`; such a session ends after \
+                            `session_idle` like one a touch started. None by default.",
+            "type": "array",
+            "uniqueItems": true,
+            "items": { "type": "string", "pattern": "^[a-z][a-z0-9._-]{0,63}$" },
+        }),
         "record" => json!({
             "description": "What the kiosk device records during a session whose consent is \
                             `recorded`: `[audio]` (the default, its microphone), \
