@@ -1,7 +1,7 @@
 //! The MCAP export, `NAME.mcap`, for Foxglove and Lichtblick (and any MCAP reader): every
 //! event of the session's log on `/docent/log` as a `foxglove.Log`, the robot's pose on
 //! `/docent/pose` as a `foxglove.PoseInFrame`, and Docent's own typed channels for speech,
-//! commands, pages, projections, touches and marks; JSON messages with JSON Schemas
+//! commands, pages, projections, touches, marks and annotations; JSON messages with JSON Schemas
 //! (`mcap/schemas.rs`), so no plug-in is needed. The session's manifest and its media files
 //! are metadata records (`mcap/metadata.rs`). Messages are written in time order into lz4
 //! chunks, indexed, with a summary, so readers can seek. The clock: `log_time` and
@@ -14,7 +14,7 @@ mod metadata;
 mod schemas;
 
 use std::collections::BTreeMap;
-use std::io::Cursor;
+use std::io::{self, Cursor};
 use std::ops::Range;
 use std::path::Path;
 use std::time::UNIX_EPOCH;
@@ -26,6 +26,8 @@ use serde_json::Value;
 
 use crate::corpus::annotations::Annotation;
 use crate::corpus::export::timeline::Timeline;
+use crate::corpus::export::{ExportError, ExportWarning, SessionExport};
+use crate::corpus::layout::{SESSION_EVENTS, SESSION_MANIFEST};
 use events::{LogEvent, Projection};
 
 /// A channel of the export: its topic and the schema its messages follow.
@@ -274,5 +276,47 @@ fn collect(out: &mut Messages, events: &[LogEvent<'_>], timeline: &Timeline) {
     }
     for m in &timeline.marks {
         out.push(m.at_us, Topic::Marks, &messages::Mark::from(m));
+    }
+}
+
+impl SessionExport {
+    /// The MCAP file's bytes; the manifest is read again as it is, so that fields this Docent
+    /// does not know (a newer one's) reach the metadata too.
+    pub(super) fn mcap(
+        &self,
+        file: &Path,
+        warnings: &mut Vec<ExportWarning>,
+    ) -> Result<Vec<u8>, ExportError> {
+        let path = self.dir.join(SESSION_MANIFEST);
+        let damaged = |problem: String| ExportError::DamagedManifest {
+            path: path.clone(),
+            problem,
+        };
+        let text = std::fs::read(&path).map_err(|e| damaged(e.to_string()))?;
+        let manifest: serde_json::Value =
+            serde_json::from_slice(&text).map_err(|e| damaged(e.to_string()))?;
+        let session = Session {
+            dir: &self.dir,
+            manifest: &manifest,
+            log: &self.log,
+            timeline: &self.timeline,
+            annotations: self.annotations(),
+        };
+        let written = write(&session).map_err(|problem| match problem {
+            McapProblem::NoClock(problem) => damaged(problem),
+            McapProblem::DamagedLine(line, problem) => ExportError::DamagedLog {
+                path: self.dir.join(SESSION_EVENTS),
+                line,
+                problem,
+            },
+            McapProblem::Writer(e) => ExportError::Write {
+                path: file.to_owned(),
+                source: io::Error::other(e),
+            },
+        })?;
+        for file in written.media_not_found {
+            warnings.push(ExportWarning::MediaNotInSession { file });
+        }
+        Ok(written.bytes)
     }
 }

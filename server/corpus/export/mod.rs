@@ -277,44 +277,6 @@ impl SessionExport {
     }
 }
 
-impl SessionExport {
-    /// The MCAP file's bytes; the manifest is read again as it is, so that fields this Docent
-    /// does not know (a newer one's) reach the metadata too.
-    fn mcap(&self, file: &Path, warnings: &mut Vec<ExportWarning>) -> Result<Vec<u8>, ExportError> {
-        let path = self.dir.join(SESSION_MANIFEST);
-        let damaged = |problem: String| ExportError::DamagedManifest {
-            path: path.clone(),
-            problem,
-        };
-        let text = std::fs::read(&path).map_err(|e| damaged(e.to_string()))?;
-        let manifest: serde_json::Value =
-            serde_json::from_slice(&text).map_err(|e| damaged(e.to_string()))?;
-        let session = mcap::Session {
-            dir: &self.dir,
-            manifest: &manifest,
-            log: &self.log,
-            timeline: &self.timeline,
-            annotations: self.annotations(),
-        };
-        let written = mcap::write(&session).map_err(|problem| match problem {
-            mcap::McapProblem::NoClock(problem) => damaged(problem),
-            mcap::McapProblem::DamagedLine(line, problem) => ExportError::DamagedLog {
-                path: self.dir.join(SESSION_EVENTS),
-                line,
-                problem,
-            },
-            mcap::McapProblem::Writer(e) => ExportError::Write {
-                path: file.to_owned(),
-                source: io::Error::other(e),
-            },
-        })?;
-        for file in written.media_not_found {
-            warnings.push(ExportWarning::MediaNotInSession { file });
-        }
-        Ok(written.bytes)
-    }
-}
-
 /// The log's bytes, and whether a running Docent holds its lock (it locks the file it is
 /// writing; a killed one's lock is gone with it).
 fn read_with_lock(events: &Path) -> Result<(Vec<u8>, bool), ExportError> {
