@@ -14,6 +14,7 @@
 //!   the frames adapters send and [`wire::ErrorCode`].
 //! - [`operator`]: pending proposals (mixed initiative) and visitor-session marks.
 //! - [`recording`]: the kiosk's microphone and camera recorded into a session's `media/`.
+//! - [`robot`]: robot events from adapter processes and ROS topics: logged, sessions, reactions.
 //! - [`reload`]: live reload: watching the bundle folder, swapping in a good save, refusing a
 //!   broken one.
 //! - [`serve`]: wiring it together and running with graceful shutdown.
@@ -30,6 +31,7 @@ pub mod lifecycle;
 pub mod operator;
 pub mod recording;
 pub mod reload;
+pub mod robot;
 pub mod serve;
 pub mod state;
 pub mod sync;

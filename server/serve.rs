@@ -22,6 +22,7 @@ use crate::events::{EventKind, Hub, SessionEnd, Source, StopReason};
 use crate::http::{ConnectionLimits, app, serve_connections};
 use crate::lifecycle::Lifecycle;
 use crate::reload::ReloadOptions;
+use crate::robot::RobotInbox;
 use crate::state::AppState;
 
 /// How long shutdown waits for connections and adapters to finish.
@@ -86,7 +87,15 @@ impl Server {
         // The kiosk starts on the home page only if the bundle has one (`check` warns otherwise).
         let home = Some(bundle.config.home.clone())
             .filter(|h| resolve_in_bundle(&bundle.root, BundleArea::Pages, h).is_ok());
-        let (devices, router) = Devices::start(&bundle.config, home, speech, output, &hub, &life);
+        let (robot_inbox, robot_intake) = RobotInbox::channel();
+        let (devices, router) = Devices::start(
+            &bundle.config,
+            home,
+            speech,
+            output,
+            (&hub, &robot_inbox),
+            &life,
+        );
         hub.publish(EventKind::ServerStarted {
             bundle: bundle.root.display().to_string(),
             bundle_hash: crate::content::corpus_fingerprint(&bundle.root),
@@ -106,6 +115,8 @@ impl Server {
             corpus_dir,
             folders,
         );
+        let intake = crate::robot::run_intake(state.clone(), robot_intake);
+        state.life.spawn(intake);
         let notices = crate::ws::ClientNotices::new(state.links());
         state.dispatcher.set_notifier(Arc::new(notices));
         Ok(Server {

@@ -12,6 +12,7 @@ use crate::content::Verb;
 use crate::content::config::{AdapterKind, SiteConfig};
 use crate::events::Hub;
 use crate::lifecycle::Lifecycle;
+use crate::robot::RobotInbox;
 
 /// The adapters a server runs, as handles other parts read state from; the [`Router`] that
 /// reaches them goes to the dispatcher alone.
@@ -26,6 +27,8 @@ pub struct Devices {
     pub speech: AdapterKind,
     /// The name of the adapter that carries out `SAY` (`browser` speech runs as `ws`).
     pub speech_adapter: &'static str,
+    /// Where adapters that hear the robot's own sensors hand in robot events.
+    pub robot_inbox: RobotInbox,
 }
 
 impl Devices {
@@ -37,7 +40,7 @@ impl Devices {
         home: Option<String>,
         speech: AdapterKind,
         speech_output: SpeechOutput,
-        hub: &Hub,
+        (hub, robot_inbox): (&Hub, &RobotInbox),
         life: &Lifecycle,
     ) -> (Devices, Router) {
         let display = DisplayState::start(home, config.adapter_timeout, hub.clone(), life);
@@ -87,6 +90,7 @@ impl Devices {
                 external,
                 speech,
                 speech_adapter,
+                robot_inbox: robot_inbox.clone(),
             },
             Router::new(routes),
         )
@@ -143,7 +147,7 @@ mod tests {
             None,
             AdapterKind::Log,
             SpeechOutput::Audio,
-            &hub,
+            (&hub, &RobotInbox::channel().0),
             &Lifecycle::new(),
         );
         let verbs = [
@@ -185,7 +189,7 @@ mod tests {
             None,
             AdapterKind::Ws,
             SpeechOutput::Audio,
-            &hub,
+            (&hub, &RobotInbox::channel().0),
             &Lifecycle::new(),
         );
         let verbs = [

@@ -14,6 +14,7 @@ use crate::content::{Bundle, load_bundle, speaking_time};
 use crate::dispatch::{Dispatcher, TriggerError, TriggerRequest};
 use crate::events::{Event, EventKind, Hub, Source};
 use crate::lifecycle::Lifecycle;
+use crate::robot::RobotInbox;
 
 const LONG: &str = "one two three four five six seven eight nine ten eleven twelve thirteen \
                     fourteen fifteen sixteen seventeen eighteen nineteen twenty";
@@ -59,7 +60,7 @@ fn rig(config: &str) -> Rig {
         None,
         AdapterKind::Log,
         SpeechOutput::Audio,
-        &hub,
+        (&hub, &RobotInbox::channel().0),
         &life,
     );
     let events = hub.subscribe();

@@ -12,8 +12,12 @@ pub const ROBOT_EVENT_NAME_CHARS: usize = 64;
 /// A robot event, as logged (`type` `robot`).
 #[derive(Clone, Debug, PartialEq, Serialize)]
 pub struct RobotEvent {
-    /// The adapter process that sent it.
-    pub client: u64,
+    /// The adapter process that sent it (absent for a ROS topic's).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub client: Option<u64>,
+    /// The ROS topic it came from, through rosbridge (absent for an adapter process's).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub topic: Option<String>,
     /// Its name (`person.near`).
     pub event: String,
     /// What the adapter said about it, as sent (`null` when nothing).

@@ -143,7 +143,7 @@ impl Visits {
         &self,
         settings: &CorpusSettings,
         start_events: &[String],
-        client: u64,
+        client: Option<u64>,
         event: &str,
     ) {
         if !start_events.iter().any(|e| e == event) {
@@ -153,7 +153,7 @@ impl Visits {
         match &mut inner.current {
             Some(current) => current.last_touch = Instant::now(),
             None if settings.session_start == SessionStart::Touch => {
-                self.begin(&mut inner, settings, Source::Adapter, Some(client), true);
+                self.begin(&mut inner, settings, Source::Adapter, client, true);
                 self.started_by_touch.notify_one();
             }
             None => {}

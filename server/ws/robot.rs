@@ -4,7 +4,8 @@
 //! `corpus: session_start_events` first starts a visitor session when none runs, so that a
 //! robot that notices its visitors before they touch anything records them from the start.
 
-use crate::events::{ClientRole, EventKind, RobotEvent};
+use crate::events::ClientRole;
+use crate::robot::{RobotNotice, RobotOrigin};
 use crate::wire::ErrorCode;
 use crate::ws::client::Client;
 
@@ -47,18 +48,10 @@ pub(super) fn noticed(
     if !client.log_writable(None) {
         return;
     }
-    let bundle = client.state.dispatcher.bundle();
-    let config = &bundle.config;
-    let visits = &client.state.visits;
-    visits.robot_noticed(
-        &config.corpus,
-        &config.session_start_events,
-        client.id,
-        &event,
-    );
-    client.state.hub.publish(EventKind::Robot(RobotEvent {
-        client: client.id,
+    let notice = RobotNotice {
         event,
         data,
-    }));
+        origin: RobotOrigin::Adapter { client: client.id },
+    };
+    crate::robot::notice(&client.state, notice);
 }
