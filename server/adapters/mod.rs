@@ -7,13 +7,15 @@
 //! - `command`: a dispatched command and its [`Reply`] (the only way outcomes are reported).
 //! - `worker`: a queue that runs one command at a time and can be cancelled.
 //! - `speech_log`, `speech_espeak`: speech adapters (each a `Worker` with its own task); `display`: kiosk and projector state;
-//!   `drive_sim`: the simulated drive base; `external`: external adapter processes over the websocket (adapter name `ws`).
+//!   `drive_sim`: the simulated drive base; `external`: external adapter processes over the websocket (adapter name `ws`);
+//!   `rosbridge`: a ROS 2 robot through a rosbridge v2 server.
 //! - `router`: verb → adapter, built from the site configuration.
 
 mod command;
 mod display;
 mod drive_sim;
 pub mod external;
+pub mod rosbridge;
 mod router;
 mod speech_espeak;
 mod speech_log;
@@ -23,6 +25,7 @@ pub use command::{Command, Outcome, Reply};
 pub use display::{Display, DisplayAdapter, DisplayState, ProjectorState, Screen, ScreenReport};
 pub use drive_sim::{DriveSim, Pose};
 pub use external::ExternalAdapters;
+pub use rosbridge::RosbridgeDrive;
 pub use router::{Devices, Router};
 pub use speech_espeak::{
     SpeechOutput, espeak_adapter, espeak_available, espeak_can_play, espeak_voices,

@@ -5,8 +5,8 @@ use std::collections::HashMap;
 use std::sync::Arc;
 
 use crate::adapters::{
-    Adapter, DisplayAdapter, DisplayState, DriveSim, ExternalAdapters, SpeechOutput,
-    espeak_adapter, log_adapter,
+    Adapter, DisplayAdapter, DisplayState, DriveSim, ExternalAdapters, RosbridgeDrive,
+    SpeechOutput, espeak_adapter, log_adapter,
 };
 use crate::content::Verb;
 use crate::content::config::{AdapterKind, SiteConfig};
@@ -21,6 +21,8 @@ pub struct Devices {
     pub display: Arc<DisplayState>,
     /// The simulated base, when the drive is simulated.
     pub drive: Option<Arc<DriveSim>>,
+    /// The ROS 2 robot's link and drive, when `rosbridge:` has a `url`.
+    pub rosbridge: Option<Arc<RosbridgeDrive>>,
     /// External adapter connections.
     pub external: Arc<ExternalAdapters>,
     /// The speech adapter actually used (`espeak`, `log`, `ws` or `browser`).
@@ -48,6 +50,11 @@ impl Devices {
         let log = Arc::new(log_adapter(config.speech.rate_wpm, life));
         let drive = (config.drive.adapter == AdapterKind::DriveSim)
             .then(|| Arc::new(DriveSim::new(&config.drive, hub.clone(), life)));
+        let ros = &config.rosbridge;
+        let rosbridge = ros.url.clone().map(|url| {
+            let inbox = robot_inbox.clone();
+            Arc::new(RosbridgeDrive::start(ros, url, hub.clone(), inbox, life))
+        });
         let display_adapter: Arc<dyn Adapter> = Arc::new(DisplayAdapter::new(Arc::clone(&display)));
         let espeak: Option<Arc<dyn Adapter>> = (speech == AdapterKind::Espeak).then(|| {
             let s = &config.speech;
@@ -69,6 +76,11 @@ impl Devices {
                     Some(d) => d.clone(),
                     None => log.clone(),
                 },
+                // The config check refuses a rosbridge drive without a `url`.
+                AdapterKind::Rosbridge => match &rosbridge {
+                    Some(r) => r.clone(),
+                    None => log.clone(),
+                },
             }
         };
         let mut routes: HashMap<Verb, Arc<dyn Adapter>> = HashMap::new();
@@ -87,6 +99,7 @@ impl Devices {
             Devices {
                 display,
                 drive,
+                rosbridge,
                 external,
                 speech,
                 speech_adapter,

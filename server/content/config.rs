@@ -8,6 +8,7 @@ use std::time::Duration;
 
 pub use crate::content::config_corpus::{CorpusSettings, RecordTracks, SessionStart};
 pub use crate::content::config_file::codebook::{Code, Codebook, CodebookTier};
+pub use crate::content::config_file::rosbridge::{PoseMessage, RosbridgeConfig, TopicEvent};
 pub use crate::content::config_policy::{
     Channel, ChannelPolicies, ChannelPolicy, MAX_PRIORITY, MAX_QUEUE_LIMIT, Priorities, WhenBusy,
 };
@@ -29,6 +30,8 @@ pub enum AdapterKind {
     Display,
     /// `sim`: the built-in simulated drive base.
     DriveSim,
+    /// `rosbridge`: a ROS 2 robot through a rosbridge v2 server (`rosbridge:` settings).
+    Rosbridge,
 }
 
 impl AdapterKind {
@@ -41,6 +44,7 @@ impl AdapterKind {
             AdapterKind::Browser => "browser",
             AdapterKind::Display => "display",
             AdapterKind::DriveSim => "sim",
+            AdapterKind::Rosbridge => "rosbridge",
         }
     }
 }
@@ -104,7 +108,7 @@ impl Bounds {
 /// How the robot drives.
 #[derive(Clone, Debug, PartialEq)]
 pub struct DriveConfig {
-    /// `sim` (default) or `ws`.
+    /// `sim` (default), `ws` or `rosbridge`.
     pub adapter: AdapterKind,
     /// Simulated speed in metres per second.
     pub speed: f64,
@@ -300,6 +304,8 @@ pub struct SiteConfig {
     pub priorities: Priorities,
     /// The annotation tiers and codes of the `/sessions` page (`codebook:`).
     pub codebook: Codebook,
+    /// The link to a ROS 2 robot (`rosbridge:`).
+    pub rosbridge: RosbridgeConfig,
 }
 
 impl Default for SiteConfig {
@@ -341,6 +347,7 @@ impl Default for SiteConfig {
             channels: ChannelPolicies::default(),
             priorities: Priorities::default(),
             codebook: Codebook::default(),
+            rosbridge: RosbridgeConfig::default(),
         }
     }
 }

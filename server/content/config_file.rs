@@ -17,6 +17,7 @@ mod devices;
 pub(crate) mod operator;
 pub(crate) mod policy;
 mod reader;
+pub(crate) mod rosbridge;
 pub(crate) mod screens;
 pub(crate) mod server;
 mod verbs;
@@ -59,6 +60,7 @@ pub(crate) const TOP_KEYS: &[&str] = &[
     "channels",
     "priorities",
     "codebook",
+    "rosbridge",
 ];
 const HOME_USAGE: &str = "`home` names the page under pages/ the kiosk starts on, e.g. \
                           `home: index.html`.";
@@ -86,6 +88,7 @@ impl Reader {
         // Read after the loop: a site command's channel needs `verbs:`, wherever it is written.
         let mut channels = None;
         let mut codebook = None;
+        let mut drive = None;
         for (key, value) in self.entries(root, TOP_KEYS, "docent.yaml") {
             let config = &mut out.config;
             match key {
@@ -108,7 +111,11 @@ impl Reader {
                         }
                     }
                 }
-                "drive" => self.drive(value, config),
+                "drive" => {
+                    drive = Some(value);
+                    self.drive(value, config);
+                }
+                "rosbridge" => self.rosbridge(value, config),
                 "kiosk" => out.idle_act = self.kiosk(value, config),
                 "projector" => self.projector(value, config),
                 "corpus" => self.corpus(value, config),
@@ -129,6 +136,7 @@ impl Reader {
                 _ => self.verbs(value, config),
             }
         }
+        self.rosbridge_drive_needs_url(drive, &out.config);
         if let Some(channels) = channels {
             self.channels(channels, &mut out.config);
         }

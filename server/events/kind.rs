@@ -430,6 +430,9 @@ pub enum EventKind {
         /// Why it ended.
         reason: String,
     },
+    /// The link to the robot's rosbridge server went up or down.
+    #[serde(rename = "robot.link")]
+    RobotLink(super::RobotLinkEvent),
     /// A recording started, stopped, failed or was deleted (`recording.*`, its own tag).
     #[serde(untagged)]
     Recording(RecordingEvent),
@@ -453,6 +456,7 @@ impl EventKind {
                 | EventKind::SituationMarked { .. }
                 | EventKind::NoteWritten { .. }
                 | EventKind::Recording(_)
+                | EventKind::RobotLink(_)
         )
     }
 }

@@ -198,8 +198,11 @@ pub async fn get_state(State(state): State<AppState>, _: Authorized) -> Json<Val
     });
     Json(json!({
         "display": state.devices.display.snapshot(),
-        "pose": state.devices.drive.as_ref().map(|d| d.pose()),
-        "waypoint": state.devices.drive.as_ref().and_then(|d| d.waypoint()),
+        "pose": (state.devices.drive.as_ref().map(|d| d.pose()))
+            .or_else(|| state.devices.rosbridge.as_ref().and_then(|r| r.pose())),
+        "waypoint": (state.devices.drive.as_ref().and_then(|d| d.waypoint()))
+            .or_else(|| state.devices.rosbridge.as_ref().and_then(|r| r.waypoint())),
+        "robot_link": state.devices.rosbridge.as_ref().map(|r| r.link_status()),
         "speaking": speaking,
         "queues": adapters,
         "channels": state.dispatcher.channel_status(),

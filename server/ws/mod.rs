@@ -31,3 +31,4 @@ mod writer;
 
 pub use connection::ws_upgrade;
 pub use notices::ClientNotices;
+pub use robot::ROBOT_DATA_BYTES;

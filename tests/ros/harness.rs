@@ -70,9 +70,13 @@ pub struct RosSide {
 /// Starts rosbridge on `port`.
 fn spawn_rosbridge(domain: u32, port: u16) -> Child {
     let bind = format!("127.0.0.1:{port}");
-    ros_command(domain, "rosbridge-server-rs", &["--bind", &bind, "--no-rosapi"])
-        .spawn()
-        .expect("rosbridge-server-rs starts")
+    ros_command(
+        domain,
+        "rosbridge-server-rs",
+        &["--bind", &bind, "--no-rosapi"],
+    )
+    .spawn()
+    .expect("rosbridge-server-rs starts")
 }
 
 impl RosSide {
@@ -108,7 +112,10 @@ impl RosSide {
         self.rosbridge = Some(spawn_rosbridge(self.domain, self.port));
         let start = Instant::now();
         while TcpStream::connect(("127.0.0.1", self.port)).await.is_err() {
-            assert!(start.elapsed() < ROS_DEADLINE, "rosbridge did not come back");
+            assert!(
+                start.elapsed() < ROS_DEADLINE,
+                "rosbridge did not come back"
+            );
             tokio::task::yield_now().await;
             tokio::time::sleep(Duration::from_millis(5)).await;
         }
@@ -142,7 +149,10 @@ impl RosSide {
 
 impl Drop for RosSide {
     fn drop(&mut self) {
-        for child in [self.rosbridge.take(), self.base.take()].into_iter().flatten() {
+        for child in [self.rosbridge.take(), self.base.take()]
+            .into_iter()
+            .flatten()
+        {
             let mut child = child;
             let _ = child.kill();
             let _ = child.wait();
@@ -210,7 +220,10 @@ impl RosClient {
     ) -> Value {
         tokio::time::timeout(deadline, async {
             loop {
-                let msg = self.next_on(topic).await.expect("rosbridge connection open");
+                let msg = self
+                    .next_on(topic)
+                    .await
+                    .expect("rosbridge connection open");
                 if pred(&msg) {
                     return msg;
                 }

@@ -81,7 +81,11 @@ impl Reader {
         {
             match key {
                 "adapter" => {
-                    let kinds = [("sim", AdapterKind::DriveSim), ("ws", AdapterKind::Ws)];
+                    let kinds = [
+                        ("sim", AdapterKind::DriveSim),
+                        ("ws", AdapterKind::Ws),
+                        ("rosbridge", AdapterKind::Rosbridge),
+                    ];
                     if let Some(kind) = self.choice(value, "drive adapter", &kinds) {
                         drive.adapter = kind;
                     }

@@ -1,0 +1,101 @@
+//! What each message from rosbridge becomes: the pose topic's messages the robot's pose (every
+//! one judged for arrival, `pose` events thinned to one per [`POSE_EVENT_GAP`] unless moving
+//! changes), a listed topic's messages robot events handed to the [`RobotInbox`] (refused, and
+//! told once per topic, when larger than a robot event may be), an action's result the drive's.
+
+use std::sync::Arc;
+use std::time::{Duration, Instant};
+
+use serde_json::Value;
+
+use super::link::Inbound;
+use super::{Robot, messages};
+use crate::adapters::drive_sim::Pose;
+use crate::robot::{RobotNotice, RobotOrigin};
+use crate::sync::lock;
+use crate::ws::ROBOT_DATA_BYTES;
+
+/// The shortest time between two `pose` events: a 50 Hz `/odom` would flood the log.
+pub(super) const POSE_EVENT_GAP: Duration = Duration::from_millis(100);
+
+/// The link's handler for everything arriving.
+pub(super) fn handler(robot: Arc<Robot>) -> impl Fn(Inbound) + Send + Sync + 'static {
+    move |inbound| match inbound {
+        Inbound::Message { topic, msg } => {
+            if topic == robot.config.pose_topic {
+                pose(&robot, &msg);
+            }
+            let event = robot.config.events.iter().find(|e| e.topic == topic);
+            if let Some(event) = event {
+                robot_event(&robot, &topic, &event.event, msg);
+            }
+        }
+        Inbound::ActionResult { id, status } => {
+            robot.results.send_replace(Some((id, status)));
+        }
+    }
+}
+
+fn pose(robot: &Robot, msg: &Value) {
+    let Some((x, y, heading)) = messages::pose_of(robot.config.pose_type, msg) else {
+        let topic = &robot.config.pose_topic;
+        if lock(&robot.state).oversize_told.insert(topic.clone()) {
+            tracing::warn!(
+                topic,
+                kind = robot.config.pose_type.type_name(),
+                "a pose message without a position: check `rosbridge: pose_type`"
+            );
+        }
+        return;
+    };
+    let event = {
+        let mut state = lock(&robot.state);
+        let moving = state.moving;
+        let pose = Pose {
+            x,
+            y,
+            heading,
+            moving,
+        };
+        let changed = state.pose.is_none_or(|p| p.moving != moving);
+        let due = state
+            .last_pose_event
+            .is_none_or(|t| t.elapsed() >= POSE_EVENT_GAP);
+        state.pose = Some(pose);
+        (changed || due).then(|| {
+            state.last_pose_event = Some(Instant::now());
+            pose
+        })
+    };
+    robot.poses.send_modify(|n| *n += 1);
+    if let Some(pose) = event {
+        robot.publish_pose(pose);
+    }
+}
+
+fn robot_event(robot: &Robot, topic: &str, event: &str, data: Value) {
+    let size = serde_json::to_vec(&data).map_or(usize::MAX, |v| v.len());
+    if size > ROBOT_DATA_BYTES {
+        if lock(&robot.state).oversize_told.insert(topic.to_owned()) {
+            tracing::warn!(
+                topic,
+                event,
+                size,
+                "a message on this topic is {size} bytes of JSON, over the {ROBOT_DATA_BYTES} a \
+                 robot event may carry; it is not logged (and later ones are refused without \
+                 a word): map a smaller topic, or republish a summary of it on the robot"
+            );
+        }
+        return;
+    }
+    let notice = RobotNotice {
+        event: event.to_owned(),
+        data,
+        origin: RobotOrigin::Topic {
+            topic: topic.to_owned(),
+        },
+    };
+    if let Err(full) = robot.inbox.send(notice) {
+        tracing::warn!(topic, "{full}");
+    }
+}
