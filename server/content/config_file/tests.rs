@@ -153,3 +153,105 @@ fn syntax_errors_and_duplicates_are_reported() {
         ("duplicate-key", 2, 1)
     );
 }
+
+#[test]
+fn a_rosbridge_section_is_read_with_its_events() {
+    use crate::content::config::{PoseMessage, TopicEvent};
+    let text = "drive: {adapter: rosbridge}\nrosbridge:\n  url: ws://robot.local:9090\n  \
+        goal_topic: /goal_pose\n  frame: map\n  action: /navigate_to_pose\n  \
+        pose_topic: /odom\n  pose_type: nav_msgs/msg/Odometry\n  stop_topic: /docent/stop\n  \
+        cmd_vel: none\n  tolerance: 0.5\n  events:\n    - {topic: /humans/bodies/tracked, \
+        type: hri_msgs/msg/IdsList, event: person.near}\n";
+    let file = parse(text);
+    assert!(file.diagnostics.is_empty(), "{:?}", file.diagnostics);
+    let ros = file.config.rosbridge;
+    assert_eq!(file.config.drive.adapter, AdapterKind::Rosbridge);
+    assert_eq!(ros.url.as_deref(), Some("ws://robot.local:9090"));
+    assert_eq!(ros.action.as_deref(), Some("/navigate_to_pose"));
+    assert_eq!(
+        (ros.pose_topic.as_str(), ros.pose_type),
+        ("/odom", PoseMessage::Odometry)
+    );
+    assert_eq!(
+        (ros.stop_topic.as_deref(), ros.cmd_vel),
+        (Some("/docent/stop"), None)
+    );
+    assert_eq!(ros.tolerance, 0.5);
+    assert_eq!(
+        ros.events,
+        [TopicEvent {
+            topic: "/humans/bodies/tracked".into(),
+            message_type: "hri_msgs/msg/IdsList".into(),
+            event: "person.near".into(),
+        }]
+    );
+    let defaults = parse("rosbridge: {url: ws://10.0.0.2:9090}\n")
+        .config
+        .rosbridge;
+    assert_eq!(
+        (
+            defaults.goal_topic.as_str(),
+            defaults.frame.as_str(),
+            defaults.pose_topic.as_str()
+        ),
+        ("/goal_pose", "map", "/amcl_pose")
+    );
+    assert_eq!(defaults.cmd_vel.as_deref(), Some("/cmd_vel"));
+}
+
+#[test]
+fn a_rosbridge_drive_without_a_url_is_told_where_it_is_set() {
+    let found = problems("speech: {adapter: log}\ndrive:\n  adapter: rosbridge\n");
+    assert_eq!(found.len(), 1, "{found:?}");
+    let (code, line, column, message) = &found[0];
+    assert_eq!((*code, *line, *column), ("rosbridge-url-missing", 3, 12));
+    assert!(message.contains("url: ws://"), "{message}");
+    let found = problems("rosbridge:\n  frame: map\n");
+    assert_eq!(
+        found.iter().map(|p| (p.0, p.1, p.2)).collect::<Vec<_>>(),
+        [("rosbridge-url-missing", 2, 3)]
+    );
+}
+
+#[test]
+fn rosbridge_mistakes_are_told_at_their_place() {
+    let cases: [(&str, (&str, u32, u32), &str); 6] = [
+        (
+            "rosbridge:\n  url: http://robot:9090\n",
+            ("config-bad-value", 2, 8),
+            "ws://",
+        ),
+        (
+            "rosbridge:\n  url: ws://r:9090\n  goal_topc: /g\n",
+            ("config-unknown-key", 3, 3),
+            "goal_topic",
+        ),
+        (
+            "rosbridge:\n  url: ws://r:9090\n  tolerance: 0\n",
+            ("config-bad-value", 3, 14),
+            "metres",
+        ),
+        (
+            "rosbridge:\n  url: ws://r:9090\n  pose_type: Odometry\n",
+            ("config-bad-value", 3, 14),
+            "nav_msgs/msg/Odometry",
+        ),
+        (
+            "rosbridge:\n  url: ws://r:9090\n  events:\n    - {topic: /b, type: std_msgs/msg/String, event: Bumper}\n",
+            ("config-bad-value", 4, 53),
+            "lower-case",
+        ),
+        (
+            "rosbridge:\n  url: ws://r:9090\n  events:\n    - {topic: /b, event: bump}\n",
+            ("config-bad-value", 4, 7),
+            "lacks `type`",
+        ),
+    ];
+    for (text, (code, line, column), says) in cases {
+        let found = problems(text);
+        assert_eq!(found.len(), 1, "{text}: {found:?}");
+        let (c, l, col, message) = &found[0];
+        assert_eq!((*c, *l, *col), (code, line, column), "{text}: {message}");
+        assert!(message.contains(says), "{text}: {message}");
+    }
+}

@@ -11,6 +11,7 @@ use crate::content::config_file::policy::{CHANNEL_KEYS, PRIORITY_KEYS};
 use crate::content::config_file::screens::CORPUS_KEYS;
 use crate::content::config_file::server::KEYS as SERVER_KEYS;
 
+mod rosbridge;
 mod site;
 
 use site::{access, operator, server, verbs};
@@ -116,6 +117,7 @@ fn top_level(key: &str) -> Value {
              operator 3, http 3, dm 2, kiosk 1).",
         ),
         "codebook" => codebook(),
+        "rosbridge" => rosbridge::rosbridge(),
         // A key added to the loader without a schema here fails the tests (no description).
         _ => json!({}),
     }
@@ -190,9 +192,10 @@ fn drive(key: &str) -> Value {
     let number = |description: &str| json!({ "type": "number", "description": description });
     match key {
         "adapter" => choice(
-            &["sim", "ws"],
-            "Who drives: `sim` (a simulated robot, for trying things out) or `ws` (the real \
-             robot's program, connected over the websocket).",
+            &["sim", "ws", "rosbridge"],
+            "Who drives: `sim` (a simulated robot, for trying things out), `ws` (the real \
+             robot's program, connected over the websocket) or `rosbridge` (a ROS 2 robot \
+             through a rosbridge server, see `rosbridge:`).",
         ),
         "speed" => json!({
             "type": "number",

@@ -70,6 +70,7 @@ fn section_keys_are_the_loaders() {
         (&["verbs", "LIGHTS"], &["verbs", "*"]),
         (&["channels", "speech"], &["channels", "*"]),
         (&["priorities"], &["priorities"]),
+        (&["rosbridge"], &["rosbridge"]),
     ] {
         assert_eq!(
             schema_keys(&schema, path),
