@@ -17,6 +17,9 @@ pub fn not_applied(started: &SiteConfig, new: &SiteConfig) -> Vec<String> {
     if started.drive != new.drive {
         out.push(restart("drive settings (drive:)"));
     }
+    if started.rosbridge != new.rosbridge {
+        out.push(restart("link to the robot (rosbridge:)"));
+    }
     if started.display != new.display {
         out.push(restart("display adapter (display: adapter)"));
     }

@@ -7,7 +7,7 @@
 
 /**
  * @param {{panels: {live: object, clients: object, history: object, proposals: object,
- *          marks: object, map: object}, context: object, camera: object,
+ *          marks: object, map: object, robotLink?: object}, context: object, camera: object,
  *          operatorName: HTMLElement, name: () => string|null, stopped: (ref: string) => void,
  *          notice: (message: string) => void,
  *          getJson: (path: string, wanted: () => boolean) => Promise<object|null>,
@@ -24,7 +24,7 @@ export function createEvents({ panels, context, camera, operatorName, name, stop
   let welcomes = 0; // connections welcomed so far: a fetch for an older one is dropped
   let streaming = false; // the live stream began (this console's own client.connected arrived)
   let clockOffset = null; // this computer's clock minus the server's, from live events
-  const told = { pose: false, waypoint: false, session: false }; // newer than the snapshot
+  const told = { pose: false, waypoint: false, session: false, robotLink: false }; // newer than the snapshot
 
   function handleEvent(e) {
     if (typeof e?.seq === "number") {
@@ -36,6 +36,7 @@ export function createEvents({ panels, context, camera, operatorName, name, stop
     // The smallest (local - server) time of live events: the clocks' offset plus the least delay.
     if (streaming && Number.isFinite(at)) clockOffset = Math.min(clockOffset ?? Infinity, Date.now() - at);
     if (e.type === "pose") told.pose = true;
+    else if (e.type === "robot.link") told.robotLink = true;
     else if (e.type === "command.sent" && e.verb === "SET_WAYPOINT") told.waypoint = true;
     else if (e.type === "session.started" || e.type === "session.ended") told.session = true;
     live.event(e);
@@ -48,6 +49,7 @@ export function createEvents({ panels, context, camera, operatorName, name, stop
     // The server parsed the waypoint at load: `args` is {x, y, heading}.
     else if (e.type === "command.sent" && e.verb === "SET_WAYPOINT") map.waypoint(e.args ?? null);
     else if (e.type === "context.changed") context.changed(e);
+    else if (e.type === "robot.link") panels.robotLink?.set(e);
   }
 
   function welcome(frame) {
@@ -56,7 +58,7 @@ export function createEvents({ panels, context, camera, operatorName, name, stop
     lastSeq = -Infinity; // a new connection replays its history (a new server run restarts seq)
     camera.clientsUnknown();
     streaming = false;
-    told.pose = told.waypoint = told.session = false;
+    told.pose = told.waypoint = told.session = told.robotLink = false;
     history.welcome(me);
     proposals.welcome();
     clients.welcome(me);
@@ -85,6 +87,7 @@ export function createEvents({ panels, context, camera, operatorName, name, stop
     // Only what no event told since `welcome`: an event is newer than this answer.
     if (!told.session) marks.setSession(state.session ?? null, state.consent ?? null);
     if (!told.pose) map.pose(state.pose);
+    if (!told.robotLink) panels.robotLink?.set(state.robot_link ?? null);
     if (!told.waypoint) map.waypoint(state.waypoint);
     document.body.dataset.snapshots = String(Number(document.body.dataset.snapshots ?? 0) + 1);
   }

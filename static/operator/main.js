@@ -26,6 +26,7 @@ import { showPreview } from "./preview.js";
 import { createProposals } from "./proposals.js";
 import { createRecording } from "./recording.js";
 import { createReloadBanner } from "./reloadbanner.js";
+import { createRobotLink } from "./robotlink.js";
 import { createStop } from "./stop.js";
 import * as store from "./store.js";
 
@@ -102,6 +103,7 @@ const marks = createMarks({
   },
 });
 
+const robotLink = createRobotLink(byId("robot-link"));
 const recording = createRecording({ status: byId("recording-status"), alert: byId("recording-alert") });
 
 const reloadBanner = createReloadBanner({
@@ -131,7 +133,7 @@ const stopper = createStop({
   notice,
 });
 const events = createEvents({
-  panels: { live: liveView, clients, history, proposals, marks, map, recording },
+  panels: { live: liveView, clients, history, proposals, marks, map, recording, robotLink },
   context,
   camera,
   operatorName: byId("operator-name"),
