@@ -264,10 +264,11 @@ async fn a_lost_link_fails_the_drive_and_comes_back_with_its_subscriptions() {
         "rosbridge back on its port to live subscriptions (a pose reached the console): {}",
         percentiles(back.clone())
     );
-    assert!(
-        back.iter().all(|ms| *ms < 5000.0),
-        "the link was back within 5 s each time"
-    );
+    // Docent's part: the link is back within the aim of 5 s. The first message through the
+    // new subscriptions also waits for the restarted rosbridge's ROS side (type support, DDS
+    // discovery), 2.5 to 3.4 s here: bounded loosely, so that a loaded machine does not fail it.
+    assert!(linked.iter().all(|ms| *ms < 5000.0), "{linked:?}");
+    assert!(back.iter().all(|ms| *ms < 10_000.0), "{back:?}");
 }
 
 #[tokio::test]
