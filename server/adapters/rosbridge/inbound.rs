@@ -73,29 +73,70 @@ fn pose(robot: &Robot, msg: &Value) {
     }
 }
 
-fn robot_event(robot: &Robot, topic: &str, event: &str, data: Value) {
+/// The notice a message on `topic` becomes, or its size in bytes when it is too large to be a
+/// robot event's `data`.
+fn notice_for(topic: &str, event: &str, data: Value) -> Result<RobotNotice, usize> {
     let size = serde_json::to_vec(&data).map_or(usize::MAX, |v| v.len());
     if size > ROBOT_DATA_BYTES {
-        if lock(&robot.state).oversize_told.insert(topic.to_owned()) {
-            tracing::warn!(
-                topic,
-                event,
-                size,
-                "a message on this topic is {size} bytes of JSON, over the {ROBOT_DATA_BYTES} a \
-                 robot event may carry; it is not logged (and later ones are refused without \
-                 a word): map a smaller topic, or republish a summary of it on the robot"
-            );
-        }
-        return;
+        return Err(size);
     }
-    let notice = RobotNotice {
+    Ok(RobotNotice {
         event: event.to_owned(),
         data,
         origin: RobotOrigin::Topic {
             topic: topic.to_owned(),
         },
+    })
+}
+
+fn robot_event(robot: &Robot, topic: &str, event: &str, data: Value) {
+    let notice = match notice_for(topic, event, data) {
+        Ok(notice) => notice,
+        Err(size) => {
+            if lock(&robot.state).oversize_told.insert(topic.to_owned()) {
+                tracing::warn!(
+                    topic,
+                    event,
+                    size,
+                    "a message on this topic is {size} bytes of JSON, over the \
+                     {ROBOT_DATA_BYTES} a robot event may carry; it is not logged (nor are \
+                     later ones, without another word): map a smaller topic, or republish a \
+                     summary of it on the robot"
+                );
+            }
+            return;
+        }
     };
     if let Err(full) = robot.inbox.send(notice) {
         tracing::warn!(topic, "{full}");
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use serde_json::json;
+
+    use super::*;
+
+    #[test]
+    fn a_message_becomes_a_notice_from_its_topic_unless_it_is_too_large() {
+        let small = json!({"data": "where is the exit"});
+        let notice = notice_for("/asr/text", "asr.text", small.clone()).expect("small enough");
+        assert_eq!(notice.event, "asr.text");
+        assert_eq!(notice.data, small);
+        assert_eq!(
+            notice.origin,
+            RobotOrigin::Topic {
+                topic: "/asr/text".into()
+            }
+        );
+        // `{"data":"…"}` is 11 bytes around the text.
+        let fits = json!({"data": "x".repeat(ROBOT_DATA_BYTES - 11)});
+        assert!(notice_for("/t", "e", fits).is_ok());
+        let over = json!({"data": "x".repeat(ROBOT_DATA_BYTES - 10)});
+        assert_eq!(
+            notice_for("/t", "e", over).err(),
+            Some(ROBOT_DATA_BYTES + 1)
+        );
     }
 }

@@ -54,7 +54,7 @@ struct RobotState {
     last_pose_event: Option<Instant>,
     /// The running `NavigateToPose` goal's id, to cancel it.
     goal_id: Option<String>,
-    /// Topics whose oversize messages were already told about.
+    /// Topics whose problem (a message too large, a pose without a position) was told already.
     oversize_told: HashSet<String>,
 }
 
