@@ -241,7 +241,8 @@ impl AppState {
     pub fn state_view(&self) -> StateView {
         StateView {
             display: self.devices.display.snapshot(),
-            pose: self.devices.drive.as_ref().map(|d| d.pose()),
+            pose: (self.devices.drive.as_ref().map(|d| d.pose()))
+                .or_else(|| self.devices.rosbridge.as_ref().and_then(|r| r.pose())),
             context: self.dispatcher.context(),
             reload: self.reload.view(),
         }

@@ -103,7 +103,8 @@ async fn all_of<const N: usize>(
     found.map(|f| f.expect("found"))
 }
 
-fn percentiles(mut ms: Vec<f64>) -> String {
+fn percentiles(ms: &[f64]) -> String {
+    let mut ms = ms.to_vec();
     ms.sort_by(f64::total_cmp);
     format!(
         "p50 {:.1} ms, max {:.1} ms over {} runs",
@@ -160,7 +161,7 @@ async fn a_tour_act_drives_the_base_to_its_waypoint_and_goes_on_when_it_arrives(
     assert_eq!(state["pose"]["moving"], false);
     eprintln!(
         "SET_WAYPOINT + DRIVE_START to the goal on /goal_pose: {}",
-        percentiles(latencies)
+        percentiles(&latencies)
     );
 }
 
@@ -258,11 +259,11 @@ async fn a_lost_link_fails_the_drive_and_comes_back_with_its_subscriptions() {
     }
     eprintln!(
         "rosbridge back on its port to the link up again: {}",
-        percentiles(linked)
+        percentiles(&linked)
     );
     eprintln!(
         "rosbridge back on its port to live subscriptions (a pose reached the console): {}",
-        percentiles(back.clone())
+        percentiles(&back)
     );
     // Docent's part: the link is back within the aim of 5 s. The first message through the
     // new subscriptions also waits for the restarted rosbridge's ROS side (type support, DDS

@@ -228,7 +228,7 @@ fn yes() -> bool {
 pub struct StateView {
     /// What the touchscreen and projector show.
     pub display: Display,
-    /// The drive's pose, when simulated.
+    /// The drive's pose: the simulated base's, or the ROS robot's last reported one.
     pub pose: Option<Pose>,
     /// The current context.
     pub context: String,
