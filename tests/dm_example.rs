@@ -84,7 +84,9 @@ async fn autonomous_it_greets_moves_the_tour_on_and_offers_help() {
     let mut op = server.operator().await;
     let _dm = start_dm(&server, &mut op, "autonomous").await;
     let mut tracker = sensor(&server).await;
-    let mut kiosk = server.client(json!({"type": "hello", "role": "kiosk"})).await;
+    let mut kiosk = server
+        .client(json!({"type": "hello", "role": "kiosk"}))
+        .await;
     let mut projector = server
         .client(json!({"type": "hello", "role": "projector"}))
         .await;
@@ -100,8 +102,12 @@ async fn autonomous_it_greets_moves_the_tour_on_and_offers_help() {
     op.send(json!({"type": "trigger", "label": "FILM"})).await;
     let command = projector.recv_type("command").await;
     assert_eq!(command["verb"], "PROJECT");
-    projector.send(json!({"type": "started", "id": command["id"]})).await;
-    projector.send(json!({"type": "done", "id": command["id"]})).await;
+    projector
+        .send(json!({"type": "started", "id": command["id"]}))
+        .await;
+    projector
+        .send(json!({"type": "done", "id": command["id"]}))
+        .await;
     let seen = op.events_until(by_dm("NEXT")).await;
     assert!(
         seen.iter()
@@ -109,10 +115,13 @@ async fn autonomous_it_greets_moves_the_tour_on_and_offers_help() {
         "{seen:?}"
     );
     // A page other than home, then a second without anything: help is offered.
-    op.send(json!({"type": "trigger", "label": "OTHER_PAGE"})).await;
+    op.send(json!({"type": "trigger", "label": "OTHER_PAGE"}))
+        .await;
     let command = kiosk.recv_type("command").await;
     assert_eq!(command["args"]["page"], "other.html", "{command}");
-    kiosk.send(json!({"type": "done", "id": command["id"]})).await;
+    kiosk
+        .send(json!({"type": "done", "id": command["id"]}))
+        .await;
     let seen = op.events_until(by_dm("HELP")).await;
     assert!(seen.iter().all(|e| e["type"] != "touch"), "{seen:?}");
     // A second close person in the same session is not greeted again.
@@ -159,7 +168,10 @@ async fn a_wrong_credential_or_a_missing_act_stops_it_saying_why() {
     let run = async |extra: &[&str]| {
         let command = tokio::process::Command::from(dm_command(&server, extra));
         let out = { command }.output().await.expect("run.sh");
-        (out.status.code(), String::from_utf8_lossy(&out.stderr).into_owned())
+        (
+            out.status.code(),
+            String::from_utf8_lossy(&out.stderr).into_owned(),
+        )
     };
     let (code, said) = run(&["--token", "not-the-dialog-manager-credential"]).await;
     assert_eq!(code, Some(1), "{said}");

@@ -7,13 +7,9 @@ use std::time::Duration;
 use serde_json::json;
 
 use super::{Reacted, Reactions};
-use crate::adapters::{Devices, SpeechOutput};
-use crate::content::config::AdapterKind;
 use crate::content::load_bundle;
 use crate::dispatch::Dispatcher;
 use crate::events::{EventKind, Hub};
-use crate::lifecycle::Lifecycle;
-use crate::robot::RobotInbox;
 
 const CONFIG: &str = "speech: {adapter: log}\nreactions:\n  - {event: person.near, if: distance < 2, act: HELLO, cooldown: 30s}\n";
 
@@ -36,16 +32,7 @@ fn dispatcher() -> (tempfile::TempDir, Arc<Dispatcher>, Hub) {
         .bundle
         .unwrap_or_else(|| panic!("{:#?}", report.diagnostics));
     let (hub, _corpus) = Hub::new();
-    let life = Lifecycle::new();
-    let (_, router) = Devices::start(
-        &bundle.config,
-        None,
-        AdapterKind::Log,
-        SpeechOutput::Audio,
-        (&hub, &RobotInbox::channel().0),
-        &life,
-    );
-    let dispatcher = Dispatcher::new(Arc::new(bundle), router, hub.clone(), Some(1), life);
+    let dispatcher = crate::dispatch::log_dispatcher(bundle, &hub);
     (dir, dispatcher, hub)
 }
 
