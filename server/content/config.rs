@@ -12,6 +12,7 @@ pub use crate::content::config_file::rosbridge::{PoseMessage, RosbridgeConfig, T
 pub use crate::content::config_policy::{
     Channel, ChannelPolicies, ChannelPolicy, MAX_PRIORITY, MAX_QUEUE_LIMIT, Priorities, WhenBusy,
 };
+pub use crate::content::reaction::Reaction;
 
 /// Which adapter serves a verb. The route table is built from these, never from `match` arms
 /// spread over the code.
@@ -306,6 +307,8 @@ pub struct SiteConfig {
     pub codebook: Codebook,
     /// The link to a ROS 2 robot (`rosbridge:`).
     pub rosbridge: RosbridgeConfig,
+    /// Robot events mapped to acts (`reactions:`), in written order.
+    pub reactions: Vec<Reaction>,
 }
 
 impl Default for SiteConfig {
@@ -348,6 +351,7 @@ impl Default for SiteConfig {
             priorities: Priorities::default(),
             codebook: Codebook::default(),
             rosbridge: RosbridgeConfig::default(),
+            reactions: Vec::new(),
         }
     }
 }
