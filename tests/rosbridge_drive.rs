@@ -306,3 +306,45 @@ async fn a_ros_topic_message_becomes_a_robot_event_in_the_corpus() {
     assert_eq!(logged["data"], json!({"data": "where is the exit"}));
     assert!(logged.get("client").is_none());
 }
+
+#[tokio::test]
+async fn a_drive_while_rosbridge_is_unreachable_fails_at_once_with_the_reason() {
+    // Nothing listens on this port: the link is down from the start, and says why.
+    let url = format!("ws://127.0.0.1:{}", ros::free_port());
+    let yaml = format!(
+        "speech: {{adapter: log}}\ndrive: {{adapter: rosbridge}}\nrosbridge: {{url: \"{url}\"}}\n"
+    );
+    let b = TempBundle::new(ACTS).with_file("docent.yaml", &yaml);
+    let server = TestServer::start(b.path()).await;
+    let mut op = server.operator().await;
+    let down = op.event("robot.link").await;
+    assert_eq!(
+        (&down["state"], &down["url"]),
+        (&json!("down"), &json!(url))
+    );
+    assert!(
+        down["reason"]
+            .as_str()
+            .unwrap()
+            .starts_with("cannot connect: "),
+        "{down}"
+    );
+    server.trigger("FAR", json!({})).await;
+    let failed = op
+        .event_where(|e| e["type"] == "command.failed" && e["verb"] == "DRIVE_START")
+        .await;
+    let reason = failed["reason"].as_str().unwrap();
+    assert!(
+        reason.starts_with(&format!(
+            "the link to rosbridge at {url} is down: cannot connect: "
+        )) && reason.ends_with("; the robot was not sent anywhere"),
+        "{reason}"
+    );
+    let (_, state) = server.get("/api/state").await;
+    assert_eq!(state["robot_link"]["state"], "down");
+    assert_eq!(
+        state["pose"],
+        Value::Null,
+        "no pose before the robot's first"
+    );
+}

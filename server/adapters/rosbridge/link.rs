@@ -163,8 +163,9 @@ impl Link {
         lock(&self.held).clear();
     }
 
+    /// Sets the state and tells it: the caller sets `Up` on every connection and `Down` once
+    /// per loss (the first failed attempt included), not on every failed retry.
     fn set(&self, state: LinkState, reason: Option<String>, hub: &Hub) {
-        let changed = self.status.borrow().state != state;
         self.status.send_modify(|s| {
             s.state = state;
             s.reason.clone_from(&reason);
@@ -172,13 +173,11 @@ impl Link {
                 s.connection += 1;
             }
         });
-        if changed || state == LinkState::Up {
-            hub.publish(EventKind::RobotLink(RobotLinkEvent {
-                state,
-                url: self.url.clone(),
-                reason,
-            }));
-        }
+        hub.publish(EventKind::RobotLink(RobotLinkEvent {
+            state,
+            url: self.url.clone(),
+            reason,
+        }));
     }
 }
 
