@@ -198,6 +198,29 @@ async fn drive_stop_and_stop_halt_the_base() {
 }
 
 #[tokio::test]
+async fn a_drive_replaced_by_another_acts_drive_goes_to_the_new_waypoint() {
+    let ros = RosSide::start(5, 2.0).await;
+    let b = bundle(&ros, "");
+    let (server, mut op) = docent(&b).await;
+    let mut log = sim_log(&ros).await;
+    server.trigger("FAR", json!({})).await;
+    log_entry(&mut log, "goal").await;
+    // The drive channel replaces: FAR's drive ends, and TOUR's goal preempts it without a stop
+    // that could overtake the new goal on its way to the robot.
+    server.trigger("TOUR", json!({})).await;
+    let cancelled = op
+        .event_where(|e| e["type"] == "command.cancelled" && e["verb"] == "DRIVE_START")
+        .await;
+    assert_eq!(cancelled["label"], "FAR");
+    let goal = log_entry(&mut log, "goal").await;
+    assert_eq!(goal["goal"], json!([2.0, 1.0]));
+    let done = op
+        .event_where(|e| e["type"] == "command.done" && e["verb"] == "DRIVE_START")
+        .await;
+    assert_eq!(done["label"], "TOUR");
+}
+
+#[tokio::test]
 async fn a_lost_link_fails_the_drive_and_comes_back_with_its_subscriptions() {
     let mut ros = RosSide::start(3, 1.0).await;
     let b = bundle(

@@ -59,6 +59,8 @@ impl DriveTask {
                 "no waypoint is set: use SET_WAYPOINT before DRIVE_START".into(),
             );
         };
+        // A replacement announced before this drive began concerned an earlier one.
+        self.shared.replaced.store(false, Ordering::SeqCst);
         let mut link_watch = link.watch();
         let connection = link_watch.borrow_and_update().connection;
         // Without a heading, face the way there (Nav2 needs an orientation).
@@ -138,7 +140,8 @@ impl DriveTask {
     }
 }
 
-/// Whatever ends a drive leaves it not moving; one cut short also publishes the stop.
+/// Whatever ends a drive leaves it not moving; one cut short (a stop, shutdown, a lost link)
+/// also publishes the stop, unless the drive channel's next command replaces it.
 struct Halt<'a> {
     shared: &'a Shared,
     armed: bool,
@@ -162,7 +165,8 @@ impl Drop for Halt<'_> {
         if let Some(pose) = pose {
             robot.publish_pose(pose);
         }
-        if self.armed {
+        let replaced = self.shared.replaced.swap(false, Ordering::SeqCst);
+        if self.armed && !replaced {
             self.shared.stop();
         }
     }

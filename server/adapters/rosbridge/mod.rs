@@ -22,6 +22,7 @@ mod link;
 mod messages;
 
 use std::collections::HashSet;
+use std::sync::atomic::{AtomicBool, Ordering};
 use std::sync::{Arc, Mutex};
 use std::time::Instant;
 
@@ -91,6 +92,10 @@ impl Robot {
 struct Shared {
     robot: Arc<Robot>,
     link: Arc<Link>,
+    /// The running drive is being replaced by the drive channel's next command (its policy or
+    /// a higher priority): the next goal preempts it, and a stop published now could reach the
+    /// robot after that goal (another topic) and halt it there.
+    replaced: AtomicBool,
 }
 
 impl Shared {
@@ -149,7 +154,11 @@ impl RosbridgeDrive {
             hub,
             life,
         );
-        let shared = Arc::new(Shared { robot, link });
+        let shared = Arc::new(Shared {
+            robot,
+            link,
+            replaced: AtomicBool::new(false),
+        });
         let task = drive::DriveTask {
             shared: Arc::clone(&shared),
         };
@@ -214,17 +223,22 @@ impl Adapter for RosbridgeDrive {
         self.worker.submit(command, reply);
     }
 
-    /// Cancels, and on a stop or a drive cancelled publishes the stop whether or not a drive
-    /// was running: the robot may be moving on a goal Docent no longer knows about.
+    /// Cancels. A stop (everything cancelled: Stop, `DRIVE_STOP`) publishes the stop whether
+    /// or not a drive was running, as the robot may be moving on a goal Docent no longer knows
+    /// about; a drive cancelled alone is being replaced by the drive channel's next command,
+    /// whose goal preempts it.
     fn cancel(&self, scope: CancelScope<'_>, reason: &str) {
-        self.worker.cancel(scope, reason);
-        let drive_verbs = [Verb::DriveStart, Verb::DriveStop, Verb::SetWaypoint];
-        let concerns_drive = match scope {
-            CancelScope::All => true,
-            CancelScope::Verb(verb) => drive_verbs.contains(verb),
-        };
-        if concerns_drive {
-            self.shared.stop();
+        match scope {
+            CancelScope::All => {
+                self.worker.cancel(scope, reason);
+                self.shared.stop();
+            }
+            CancelScope::Verb(verb) => {
+                if *verb == Verb::DriveStart {
+                    self.shared.replaced.store(true, Ordering::SeqCst);
+                }
+                self.worker.cancel(scope, reason);
+            }
         }
     }
 
