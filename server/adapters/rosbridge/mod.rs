@@ -20,6 +20,8 @@ mod drive;
 mod inbound;
 mod link;
 mod messages;
+#[cfg(test)]
+mod tests;
 
 use std::collections::HashSet;
 use std::sync::atomic::{AtomicBool, Ordering};
