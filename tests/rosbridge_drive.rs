@@ -371,3 +371,38 @@ async fn a_drive_while_rosbridge_is_unreachable_fails_at_once_with_the_reason() 
         "no pose before the robot's first"
     );
 }
+
+#[tokio::test]
+async fn a_ros_topic_message_triggers_the_act_the_site_maps_it_to() {
+    // A speech recogniser's std_msgs/String, through `rosbridge: events` and `reactions:`.
+    let ros = RosSide::start(6, 1.0).await;
+    let yaml = format!(
+        "speech: {{adapter: log}}\nrosbridge:\n  url: {}\n  events:\n    - {{topic: /asr/text, \
+         type: std_msgs/msg/String, event: asr.text}}\nreactions:\n  - {{event: asr.text, if: \
+         data == \"goodbye\", act: HALT, cooldown: 1m}}\n",
+        ros.url
+    );
+    let b = TempBundle::new(ACTS).with_file("docent.yaml", &yaml);
+    let (_server, mut op) = docent(&b).await;
+    let mut asr = RosClient::connect(&ros.url).await.expect("connects");
+    let triggered = tokio::time::timeout(ROS_DEADLINE, async {
+        loop {
+            let msg = json!({"data": "goodbye"});
+            asr.publish("/asr/text", "std_msgs/msg/String", msg).await;
+            let seen = tokio::time::timeout(
+                Duration::from_millis(500),
+                op.event_where(|e| e["type"] == "act.triggered"),
+            )
+            .await;
+            if let Ok(event) = seen {
+                return event;
+            }
+        }
+    })
+    .await
+    .expect("the reaction triggers its act");
+    assert_eq!(
+        (&triggered["label"], &triggered["source"]),
+        (&json!("HALT"), &json!("robot"))
+    );
+}
