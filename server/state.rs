@@ -58,6 +58,8 @@ pub struct AppState {
     pub replay: Arc<Replay>,
     /// The kiosks' recordings of visitor sessions.
     pub recordings: Arc<Recordings>,
+    /// The fleet over MQTT: this robot's bridge and the fleet view, when started with a broker.
+    pub fleet: Arc<crate::fleet::FleetHandles>,
     clients: Arc<Clients>,
 }
 
@@ -151,6 +153,7 @@ impl AppState {
             reload: Arc::default(),
             replay: Arc::new(Replay::new(corpus)),
             recordings,
+            fleet: Arc::default(),
             clients,
             life,
         }

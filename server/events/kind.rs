@@ -430,6 +430,9 @@ pub enum EventKind {
         /// Why it ended.
         reason: String,
     },
+    /// The robot's link to the fleet's MQTT broker came up or went down (`docs/FLEET.md`).
+    #[serde(rename = "fleet.link")]
+    FleetLink(crate::fleet::LinkView),
     /// A recording started, stopped, failed or was deleted (`recording.*`, its own tag).
     #[serde(untagged)]
     Recording(RecordingEvent),
