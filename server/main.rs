@@ -55,6 +55,25 @@ enum Cmd {
     /// Exit status 0 when done, 1 when refused or failed, 2 for a command line clap cannot
     /// read (docs/CORPUS.md, "Command line").
     Corpus(corpus_cli::CorpusArgs),
+    /// Serve only the fleet view: every robot on an MQTT broker, with Stop (docs/FLEET.md).
+    Fleet(FleetArgs),
+}
+
+/// What `docent fleet` takes.
+#[derive(clap::Args)]
+struct FleetArgs {
+    /// The fleet's broker, mqtt://HOST[:PORT] (password in DOCENT_MQTT_PASSWORD).
+    #[arg(long, value_name = "URL")]
+    mqtt: String,
+    /// The broker's user name for the fleet view.
+    #[arg(long, value_name = "NAME")]
+    mqtt_username: Option<String>,
+    /// Address to listen on. Stays on loopback unless told otherwise.
+    #[arg(long, default_value = "127.0.0.1:8090")]
+    listen: SocketAddr,
+    /// Development only: no operator credential. Allowed only with a loopback --listen address.
+    #[arg(long)]
+    open: bool,
 }
 
 /// The schemas `docent schema` knows.
@@ -116,6 +135,13 @@ struct ServeArgs {
     /// only with a loopback --listen address.
     #[arg(long)]
     open: bool,
+    /// Join a fleet: publish state and events to this MQTT broker and take commands from it,
+    /// mqtt://HOST[:PORT] (docs/FLEET.md; overrides docent.yaml's mqtt: url).
+    #[arg(long, value_name = "URL", requires = "robot_id")]
+    mqtt: Option<String>,
+    /// This robot's id in the fleet's topics, docent/ID/... (overrides mqtt: robot_id).
+    #[arg(long, value_name = "ID")]
+    robot_id: Option<String>,
 }
 
 /// How `serve` presents the bundle.
@@ -146,6 +172,7 @@ fn main() -> ExitCode {
         Cmd::Serve(args) => serve(&args),
         Cmd::Schema { which, out } => write_schema(which, out.as_deref()),
         Cmd::Corpus(args) => return corpus_cli::run(&args),
+        Cmd::Fleet(args) => fleet(&args),
     };
     match result {
         Ok(code) => code,
@@ -254,6 +281,11 @@ fn serve(args: &ServeArgs) -> anyhow::Result<ExitCode> {
         access: setup.mode.clone(),
         limits: ConnectionLimits::default(),
     };
+    let fleet_flags = docent::fleet::FleetFlags {
+        url: args.mqtt.clone(),
+        robot_id: args.robot_id.clone(),
+    };
+    let mqtt_file = bundle.config.mqtt.clone();
     let home = bundle.config.home.clone();
     let runtime = tokio::runtime::Runtime::new().context("starting the async runtime")?;
     runtime.block_on(async move {
@@ -261,9 +293,25 @@ fn serve(args: &ServeArgs) -> anyhow::Result<ExitCode> {
             .await
             .with_context(|| format!("listening on {listen}"))?;
         let addr = listener.local_addr()?;
+        let password = std::env::var(docent::fleet::MQTT_PASSWORD_ENV).ok();
+        let bridge = docent::fleet::decide_bridge(&fleet_flags, &mqtt_file, password, addr)
+            .map_err(anyhow::Error::msg)?;
         let server = Server::start(bundle, &options).context("starting the server")?;
         for warning in &server.warnings {
             tracing::warn!("{warning}");
+        }
+        if let Some(bridge) = bridge {
+            let _ = writeln!(
+                std::io::stdout(),
+                "  fleet:       {} as robot {} (docs/FLEET.md)",
+                bridge.broker.url,
+                bridge.identity.robot
+            );
+            let token = match &setup.mode {
+                AccessMode::Guarded(credentials) => Some(credentials.operator.clone()),
+                AccessMode::Open => None,
+            };
+            docent::fleet::join_fleet(server.state(), bridge, token);
         }
         if !args.no_watch {
             server.watch(ReloadOptions {
@@ -283,6 +331,75 @@ fn serve(args: &ServeArgs) -> anyhow::Result<ExitCode> {
             open_preview(&format!("http://{addr}/preview"));
         }
         run(listener, server, shutdown_signal())
+            .await
+            .context("serving")?;
+        anyhow::Ok(ExitCode::SUCCESS)
+    })
+}
+
+/// `docent fleet`: the fleet view alone, behind the operator credential.
+fn fleet(args: &FleetArgs) -> anyhow::Result<ExitCode> {
+    tracing_subscriber::fmt()
+        .with_env_filter(
+            tracing_subscriber::EnvFilter::try_from_default_env()
+                .unwrap_or_else(|_| "docent=info,tower_http=warn".into()),
+        )
+        .with_writer(std::io::stderr)
+        .init();
+    let url = docent::fleet::BrokerUrl::parse(&args.mqtt)
+        .map_err(|why| anyhow::anyhow!("--mqtt: {why}"))?;
+    let password = std::env::var(docent::fleet::MQTT_PASSWORD_ENV)
+        .ok()
+        .filter(|p| !p.is_empty())
+        .map(docent::access::Secret::new);
+    let broker = docent::fleet::Broker {
+        url,
+        username: args.mqtt_username.clone(),
+        password,
+    };
+    let listen = args.listen;
+    let setup = decide_access(
+        args.open,
+        listen.ip().is_loopback(),
+        &Default::default(),
+        |var| std::env::var(var).ok(),
+    )?;
+    let runtime = tokio::runtime::Runtime::new().context("starting the async runtime")?;
+    runtime.block_on(async move {
+        let listener = TcpListener::bind(listen)
+            .await
+            .with_context(|| format!("listening on {listen}"))?;
+        let addr = listener.local_addr()?;
+        let _ = writeln!(
+            std::io::stdout(),
+            "Docent fleet view of {}\n  fleet:       http://{addr}/fleet",
+            broker.url
+        );
+        if let AccessMode::Guarded(credentials) = &setup.mode {
+            let line = match setup.operator {
+                Some(Origin::Generated) => format!(
+                    "operator credential (generated for this run): {}",
+                    credentials.operator.expose()
+                ),
+                Some(Origin::Environment) => "operator credential: from DOCENT_OPERATOR_TOKEN".into(),
+                _ => String::new(),
+            };
+            let _ = writeln!(std::io::stdout(), "  {line}");
+        } else {
+            let _ = writeln!(std::io::stdout(), "  access:      open (--open): for development only");
+        }
+        if setup.operator == Some(Origin::Generated) {
+            let _ = writeln!(
+                std::io::stdout(),
+                "  note:        the robots will refuse a Stop with a generated credential: set \
+                 DOCENT_OPERATOR_TOKEN to the fleet's operator credential (docs/FLEET.md)"
+            );
+        }
+        let options = docent::fleet::FleetOptions {
+            broker,
+            access: setup.mode.clone(),
+        };
+        docent::fleet::serve_fleet(listener, options, shutdown_signal())
             .await
             .context("serving")?;
         anyhow::Ok(ExitCode::SUCCESS)

@@ -8,6 +8,7 @@ use std::time::Duration;
 
 pub use crate::content::config_corpus::{CorpusSettings, RecordTracks, SessionStart};
 pub use crate::content::config_file::codebook::{Code, Codebook, CodebookTier};
+pub use crate::content::config_file::mqtt::{MqttPassword, MqttSettings};
 pub use crate::content::config_policy::{
     Channel, ChannelPolicies, ChannelPolicy, MAX_PRIORITY, MAX_QUEUE_LIMIT, Priorities, WhenBusy,
 };
@@ -300,6 +301,8 @@ pub struct SiteConfig {
     pub priorities: Priorities,
     /// The annotation tiers and codes of the `/sessions` page (`codebook:`).
     pub codebook: Codebook,
+    /// The fleet's MQTT broker and this robot's id in it (`mqtt:`, docs/FLEET.md).
+    pub mqtt: MqttSettings,
 }
 
 impl Default for SiteConfig {
@@ -341,6 +344,7 @@ impl Default for SiteConfig {
             channels: ChannelPolicies::default(),
             priorities: Priorities::default(),
             codebook: Codebook::default(),
+            mqtt: MqttSettings::default(),
         }
     }
 }

@@ -14,6 +14,7 @@ use crate::content::model::Located;
 mod access;
 pub(crate) mod codebook;
 mod devices;
+pub(crate) mod mqtt;
 pub(crate) mod operator;
 pub(crate) mod policy;
 mod reader;
@@ -59,6 +60,7 @@ pub(crate) const TOP_KEYS: &[&str] = &[
     "channels",
     "priorities",
     "codebook",
+    "mqtt",
 ];
 const HOME_USAGE: &str = "`home` names the page under pages/ the kiosk starts on, e.g. \
                           `home: index.html`.";
@@ -126,6 +128,7 @@ impl Reader {
                 "channels" => channels = Some(value),
                 "priorities" => self.priorities(value, config),
                 "codebook" => codebook = Some(self.codebook(value)),
+                "mqtt" => self.mqtt(value, &mut config.mqtt),
                 _ => self.verbs(value, config),
             }
         }

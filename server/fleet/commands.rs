@@ -116,7 +116,7 @@ fn with_reference(frame: String, reference: Option<&str>) -> String {
         return frame;
     };
     match serde_json::from_str::<Value>(&frame) {
-        Ok(Value::Object(mut fields)) if !fields.contains_key("ref") => {
+        Ok(Value::Object(mut fields)) if fields.get("ref").is_none_or(Value::is_null) => {
             fields.insert("ref".into(), Value::String(reference.to_owned()));
             Value::Object(fields).to_string()
         }

@@ -10,6 +10,7 @@
 //! - `commands`: a command handed to the websocket's own session code (`ws::embedded`).
 //! - `view`: the fleet view's model: every robot's state heard, and Stop.
 //! - `http`: `/fleet`, `/api/fleet...`, on a Docent and on `docent fleet`.
+//! - `setup`: flags over `docent.yaml`'s `mqtt:`; starting the bridge and the view.
 //! - `standalone`: `docent fleet --mqtt URL`, a server of the fleet view only.
 
 mod bridge;
@@ -18,6 +19,7 @@ mod commands;
 mod http;
 mod link;
 mod robot_state;
+mod setup;
 mod standalone;
 mod view;
 
@@ -27,6 +29,7 @@ pub use bridge::{BridgeSettings, STATE_INTERVAL, start_bridge};
 pub use broker::{Broker, BrokerUrl, LinkState, LinkStatus, LinkView, robot_id_problem};
 pub use http::{FleetHttp, FleetPage, routes};
 pub use robot_state::{Battery, Identity};
+pub use setup::{FleetFlags, MQTT_PASSWORD_ENV, decide_bridge, join_fleet};
 pub use standalone::{FleetOptions, serve_fleet};
 pub use view::{FleetView, StopFailed};
 
