@@ -381,12 +381,17 @@ fn fleet(args: &FleetArgs) -> anyhow::Result<ExitCode> {
                     "operator credential (generated for this run): {}",
                     credentials.operator.expose()
                 ),
-                Some(Origin::Environment) => "operator credential: from DOCENT_OPERATOR_TOKEN".into(),
+                Some(Origin::Environment) => {
+                    "operator credential: from DOCENT_OPERATOR_TOKEN".into()
+                }
                 _ => String::new(),
             };
             let _ = writeln!(std::io::stdout(), "  {line}");
         } else {
-            let _ = writeln!(std::io::stdout(), "  access:      open (--open): for development only");
+            let _ = writeln!(
+                std::io::stdout(),
+                "  access:      open (--open): for development only"
+            );
         }
         if setup.operator == Some(Origin::Generated) {
             let _ = writeln!(

@@ -18,11 +18,16 @@ async fn a_broker_restart_is_survived() {
     let robot = Robot::start(&bundle("dialogs/info-terminal"), &broker, "gate-1");
     let mut operator = WsClient::operator_at(&robot.addr).await;
     let mut mqtt = TestClient::connect(&broker, "restart-test", &["docent/gate-1/#"]);
-    mqtt.next("docent/gate-1/state", |s| s["online"] == true).await;
+    mqtt.next("docent/gate-1/state", |s| s["online"] == true)
+        .await;
 
     broker.kill();
     let down = operator
-        .recv_where(|f| f["type"] == "event" && f["event"]["type"] == "fleet.link" && f["event"]["state"] == "down")
+        .recv_where(|f| {
+            f["type"] == "event"
+                && f["event"]["type"] == "fleet.link"
+                && f["event"]["state"] == "down"
+        })
         .await;
     assert!(down["event"]["reason"].is_string(), "{down}");
     let state: Value = reqwest::Client::new()
@@ -40,17 +45,28 @@ async fn a_broker_restart_is_survived() {
     let restarted = Instant::now();
     let broker = Mosquitto::start_on(broker.port);
     operator
-        .recv_where(|f| f["type"] == "event" && f["event"]["type"] == "fleet.link" && f["event"]["state"] == "up")
+        .recv_where(|f| {
+            f["type"] == "event"
+                && f["event"]["type"] == "fleet.link"
+                && f["event"]["state"] == "up"
+        })
         .await;
     let back = restarted.elapsed();
     // The broker forgot everything (no persistence): the robot published both again, its
     // status first.
-    mqtt.next("docent/gate-1/status", |s| s["online"] == true).await;
-    let again = mqtt.next("docent/gate-1/state", |s| s["online"] == true).await;
+    mqtt.next("docent/gate-1/status", |s| s["online"] == true)
+        .await;
+    let again = mqtt
+        .next("docent/gate-1/state", |s| s["online"] == true)
+        .await;
     assert_eq!(again["link"]["state"], "up");
-    let command = json!({"type": "trigger", "label": "WELCOME", "ref": "after", "token": OPERATOR_TOKEN});
+    let command =
+        json!({"type": "trigger", "label": "WELCOME", "ref": "after", "token": OPERATOR_TOKEN});
     let answer = mqtt.ask("gate-1", "after", command).await;
     assert_eq!(answer["type"], "triggered", "{answer}");
-    println!("link up again {back:?} after the broker restarted; commands answered after {:?}", restarted.elapsed());
+    println!(
+        "link up again {back:?} after the broker restarted; commands answered after {:?}",
+        restarted.elapsed()
+    );
     drop(broker);
 }

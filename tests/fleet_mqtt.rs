@@ -26,7 +26,11 @@ async fn fleet_until(robot: &Robot, done: impl Fn(&[Value]) -> bool) -> Vec<Valu
     let mut buffer = String::new();
     let read = async {
         loop {
-            let chunk = response.chunk().await.expect("stream readable").expect("stream open");
+            let chunk = response
+                .chunk()
+                .await
+                .expect("stream readable")
+                .expect("stream open");
             buffer.push_str(std::str::from_utf8(&chunk).expect("UTF-8"));
             while let Some(end) = buffer.find("\n\n") {
                 let message: String = buffer.drain(..end + 2).collect();
@@ -35,10 +39,21 @@ async fn fleet_until(robot: &Robot, done: impl Fn(&[Value]) -> bool) -> Vec<Valu
                 };
                 let data: Value = serde_json::from_str(data).expect("JSON update");
                 if let Some(all) = data["robots"].as_array() {
-                    robots = all.iter().map(|r| (r["robot"].as_str().unwrap_or_default().to_owned(), r.clone())).collect();
+                    robots = all
+                        .iter()
+                        .map(|r| {
+                            (
+                                r["robot"].as_str().unwrap_or_default().to_owned(),
+                                r.clone(),
+                            )
+                        })
+                        .collect();
                 } else if data["robot"].is_object() {
                     let entry = data["robot"].clone();
-                    robots.insert(entry["robot"].as_str().unwrap_or_default().to_owned(), entry);
+                    robots.insert(
+                        entry["robot"].as_str().unwrap_or_default().to_owned(),
+                        entry,
+                    );
                 }
                 let listed: Vec<Value> = robots.values().cloned().collect();
                 if done(&listed) {
@@ -67,7 +82,10 @@ async fn two_robots_on_one_broker_are_one_fleet_and_commands_reach_the_right_one
 
     // Either robot's /fleet shows both, with their state.
     let robots = fleet_until(&first, |r| online(r, "hall-1") && online(r, "hall-2")).await;
-    let hall2 = robots.iter().find(|r| r["robot"] == "hall-2").expect("listed");
+    let hall2 = robots
+        .iter()
+        .find(|r| r["robot"] == "hall-2")
+        .expect("listed");
     assert_eq!(hall2["state"]["bundle"], "info-terminal");
     assert_eq!(hall2["state"]["page"], "index.html");
     assert_eq!(hall2["state"]["console"], second.url("/operator"));
@@ -83,15 +101,19 @@ async fn two_robots_on_one_broker_are_one_fleet_and_commands_reach_the_right_one
         .await
         .expect("JSON");
     assert_eq!(snapshot["link"]["state"], "up");
-    let unsigned = reqwest::get(first.url("/api/fleet")).await.expect("answers");
+    let unsigned = reqwest::get(first.url("/api/fleet"))
+        .await
+        .expect("answers");
     assert_eq!(unsigned.status(), 401);
 
     // A trigger over MQTT reaches hall-1 only.
     let mut mqtt = TestClient::connect(&broker, "fleet-test", &["docent/+/reply"]);
-    let command = json!({"type": "trigger", "label": "WELCOME", "ref": "t1", "token": OPERATOR_TOKEN});
+    let command =
+        json!({"type": "trigger", "label": "WELCOME", "ref": "t1", "token": OPERATOR_TOKEN});
     let answer = mqtt.ask("hall-1", "t1", command).await;
     assert_eq!(answer["type"], "triggered", "{answer}");
-    let context = json!({"type": "context", "context": "Text", "ref": "c2", "token": OPERATOR_TOKEN});
+    let context =
+        json!({"type": "context", "context": "Text", "ref": "c2", "token": OPERATOR_TOKEN});
     let answer = mqtt.ask("hall-2", "c2", context).await;
     assert_eq!(answer["type"], "context", "{answer}");
     let triggered = |robot: &Robot| logged(&robot.corpus, "act.triggered");
@@ -99,20 +121,31 @@ async fn two_robots_on_one_broker_are_one_fleet_and_commands_reach_the_right_one
     assert_eq!(triggered(&first)[0]["label"], "WELCOME");
     assert!(triggered(&second).is_empty(), "{:?}", triggered(&second));
     let joined = logged(&first.corpus, "client.connected");
-    assert!(joined.iter().any(|e| e["name"] == "mqtt" && e["role"] == "operator"));
+    assert!(
+        joined
+            .iter()
+            .any(|e| e["name"] == "mqtt" && e["role"] == "operator")
+    );
 
     // A wrong credential: the websocket's code and wording, the command's ref, logged.
-    let wrong = json!({"type": "trigger", "label": "WELCOME", "ref": "w1", "token": "not-the-credential"});
+    let wrong =
+        json!({"type": "trigger", "label": "WELCOME", "ref": "w1", "token": "not-the-credential"});
     let answer = mqtt.ask("hall-1", "w1", wrong).await;
     assert_eq!(answer["type"], "error");
     assert_eq!(answer["code"], "unauthorized");
-    assert_eq!(answer["message"], "that is not the operator credential (DOCENT_OPERATOR_TOKEN)");
+    assert_eq!(
+        answer["message"],
+        "that is not the operator credential (DOCENT_OPERATOR_TOKEN)"
+    );
     assert!(!answer.to_string().contains("not-the-credential"));
     assert_eq!(logged(&first.corpus, "client.refused").len(), 1);
     // A kiosk needs no credential on the websocket; over a broker it is refused.
     let kiosk = json!({"type": "trigger", "label": "WELCOME", "ref": "k1", "role": "kiosk"});
     let answer = mqtt.ask("hall-1", "k1", kiosk).await;
-    assert_eq!((answer["type"].as_str(), answer["code"].as_str()), (Some("error"), Some("forbidden")));
+    assert_eq!(
+        (answer["type"].as_str(), answer["code"].as_str()),
+        (Some("error"), Some("forbidden"))
+    );
     // Not JSON, an unknown frame: the websocket's reading of it.
     mqtt.command("hall-1", json!("{oops")).await;
     let bad = json!({"type": "dance", "ref": "u1", "token": OPERATOR_TOKEN});
@@ -147,12 +180,19 @@ async fn the_last_will_says_offline_after_kill_9() {
     let broker = Mosquitto::start();
     let mut mqtt = TestClient::connect(&broker, "will-test", &["docent/+/status"]);
     let mut robot = Robot::start(&bundle("dialogs/info-terminal"), &broker, "dock-1");
-    let status = mqtt.next("docent/dock-1/status", |s| s["online"] == true).await;
+    let status = mqtt
+        .next("docent/dock-1/status", |s| s["online"] == true)
+        .await;
     assert_eq!(status["robot"], "dock-1");
     robot.kill_9();
     let started = std::time::Instant::now();
-    let will = mqtt.next("docent/dock-1/status", |s| s["online"] == false).await;
+    let will = mqtt
+        .next("docent/dock-1/status", |s| s["online"] == false)
+        .await;
     assert_eq!(will["robot"], "dock-1");
     println!("last will seen {:?} after kill -9", started.elapsed());
-    assert!(started.elapsed() < Duration::from_secs(16), "within 1.5 keep-alives");
+    assert!(
+        started.elapsed() < Duration::from_secs(16),
+        "within 1.5 keep-alives"
+    );
 }

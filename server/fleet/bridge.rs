@@ -48,7 +48,12 @@ pub fn start_bridge(state: &AppState, settings: BridgeSettings) -> Arc<LinkStatu
     let robot = identity.robot.clone();
     let link = Arc::new(LinkStatus::new(&broker.url));
     let offline = robot_state::offline(&robot, "the robot's Docent is gone (last will)");
-    let will = LastWill::new(topic(&robot, "status"), offline.to_string(), QoS::AtLeastOnce, true);
+    let will = LastWill::new(
+        topic(&robot, "status"),
+        offline.to_string(),
+        QoS::AtLeastOnce,
+        true,
+    );
     let options = broker.options(&format!("docent-{robot}"), Some(will));
     let (client, events) = AsyncClient::new(options, REQUEST_CAPACITY);
     let (notes_tx, notes) = mpsc::channel(COMMAND_QUEUE);
@@ -62,7 +67,13 @@ pub fn start_bridge(state: &AppState, settings: BridgeSettings) -> Arc<LinkStatu
     ));
     let (commands_tx, commands_rx) = mpsc::channel(COMMAND_QUEUE);
     let host = broker.url.host.clone();
-    life.spawn(run_commands(state.clone(), client.clone(), host, robot.clone(), commands_rx));
+    life.spawn(run_commands(
+        state.clone(),
+        client.clone(),
+        host,
+        robot.clone(),
+        commands_rx,
+    ));
     let bridge = Bridge {
         state: state.clone(),
         client,
@@ -162,7 +173,8 @@ impl Bridge {
             return;
         }
         let link = self.link.view();
-        let state = robot_state::snapshot(&self.state, &self.identity, self.battery.as_ref(), &link);
+        let state =
+            robot_state::snapshot(&self.state, &self.identity, self.battery.as_ref(), &link);
         let text = state.to_string();
         if self.published.as_deref() == Some(text.as_str()) {
             return;
@@ -174,16 +186,19 @@ impl Bridge {
     fn publish_retained(&self, leaf: &str, payload: &Value) {
         let topic = topic(&self.identity.robot, leaf);
         let bytes = payload.to_string().into_bytes();
-        if let Err(e) = self.client.try_publish(&topic, QoS::AtLeastOnce, true, bytes) {
+        if let Err(e) = self
+            .client
+            .try_publish(&topic, QoS::AtLeastOnce, true, bytes)
+        {
             tracing::warn!("could not publish {topic}: {e}");
         }
     }
 
     fn publish_event(&mut self, line: &str) {
         let topic = topic(&self.identity.robot, "events");
-        let sent = self
-            .client
-            .try_publish(topic, QoS::AtLeastOnce, false, line.as_bytes().to_vec());
+        let sent =
+            self.client
+                .try_publish(topic, QoS::AtLeastOnce, false, line.as_bytes().to_vec());
         match sent {
             Ok(()) if self.dropped > 0 => {
                 tracing::warn!(

@@ -43,13 +43,17 @@ impl BrokerUrl {
                     .into(),
             );
         } else {
-            return Err("a broker address starts with mqtt://, e.g. mqtt://broker.local:1883".into());
+            return Err(
+                "a broker address starts with mqtt://, e.g. mqtt://broker.local:1883".into(),
+            );
         };
         let rest = rest.strip_suffix('/').unwrap_or(rest);
         if rest.contains('@') {
-            return Err("put the broker's user name and password in docent.yaml's mqtt: section \
+            return Err(
+                "put the broker's user name and password in docent.yaml's mqtt: section \
                  (or DOCENT_MQTT_PASSWORD), not in its address"
-                .into());
+                    .into(),
+            );
         }
         if rest.contains(['/', '?', '#']) {
             return Err("a broker address is mqtt://host[:port], with no path".into());
@@ -211,9 +215,21 @@ mod tests {
         assert_eq!(url.to_string(), "mqtt://[::1]:1884");
         let login = BrokerUrl::parse("mqtt://user:hunter2@broker").unwrap_err();
         assert!(login.contains("not in its address") && !login.contains("hunter2"));
-        assert!(BrokerUrl::parse("http://broker").unwrap_err().contains("mqtt://"));
-        assert!(BrokerUrl::parse("mqtts://broker").unwrap_err().contains("TLS"));
-        assert!(BrokerUrl::parse("mqtt://broker:0").unwrap_err().contains("port"));
+        assert!(
+            BrokerUrl::parse("http://broker")
+                .unwrap_err()
+                .contains("mqtt://")
+        );
+        assert!(
+            BrokerUrl::parse("mqtts://broker")
+                .unwrap_err()
+                .contains("TLS")
+        );
+        assert!(
+            BrokerUrl::parse("mqtt://broker:0")
+                .unwrap_err()
+                .contains("port")
+        );
         assert!(BrokerUrl::parse("mqtt://").unwrap_err().contains("no host"));
     }
 

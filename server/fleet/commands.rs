@@ -161,7 +161,10 @@ mod tests {
     fn answers_carry_the_commands_ref() {
         let frame = r#"{"type":"error","code":"unauthorized","message":"m"}"#.to_owned();
         let with = with_reference(frame, Some("r1"));
-        assert_eq!(serde_json::from_str::<Value>(&with).expect("json")["ref"], "r1");
+        assert_eq!(
+            serde_json::from_str::<Value>(&with).expect("json")["ref"],
+            "r1"
+        );
         let own = r#"{"type":"stopped","ref":"mine"}"#.to_owned();
         assert_eq!(with_reference(own.clone(), Some("r1")), own);
     }

@@ -84,7 +84,12 @@ async fn page(State(http): State<FleetHttp>) -> Response {
         Ok(html) => axum::response::Html(html).into_response(),
         Err(e) => {
             tracing::error!("the fleet page did not render: {e}");
-            AppError::new(StatusCode::INTERNAL_SERVER_ERROR, ErrorCode::Internal, "the page did not render").into_response()
+            AppError::new(
+                StatusCode::INTERNAL_SERVER_ERROR,
+                ErrorCode::Internal,
+                "the page did not render",
+            )
+            .into_response()
         }
     }
 }
@@ -102,12 +107,16 @@ where
     async fn from_request_parts(parts: &mut Parts, state: &S) -> Result<Self, AppError> {
         same_origin(&parts.headers)?;
         let http = FleetHttp::from_ref(state);
-        let direct = (parts.extensions.get::<ConnectInfo<SocketAddr>>()).map(|ConnectInfo(a)| a.ip());
+        let direct =
+            (parts.extensions.get::<ConnectInfo<SocketAddr>>()).map(|ConnectInfo(a)| a.ip());
         let forwarded: Vec<Option<&str>> = (parts.headers.get_all("x-forwarded-for").iter())
             .map(|v| v.to_str().ok())
             .collect();
         let client = http.access.proxies().client(direct, &forwarded);
-        match http.access.check(client, Needed::Operator, bearer(&parts.headers)) {
+        match http
+            .access
+            .check(client, Needed::Operator, bearer(&parts.headers))
+        {
             Ok(()) => Ok(FleetOperator),
             Err(refusal) => {
                 if !matches!(refusal, crate::access::Refusal::Locked(_))
@@ -115,10 +124,26 @@ where
                 {
                     let address = client.ip.map(|p| p.to_string());
                     let code = refusal.code();
-                    let (method, path) = (parts.method.as_str().to_owned(), parts.uri.path().to_owned());
-                    tracing::warn!(method, path, address, code = code.as_str(), unlogged, "HTTP credential refused");
+                    let (method, path) = (
+                        parts.method.as_str().to_owned(),
+                        parts.uri.path().to_owned(),
+                    );
+                    tracing::warn!(
+                        method,
+                        path,
+                        address,
+                        code = code.as_str(),
+                        unlogged,
+                        "HTTP credential refused"
+                    );
                     if let Some(hub) = &http.hub {
-                        hub.publish(EventKind::RequestRefused { method, path, code, address, unlogged });
+                        hub.publish(EventKind::RequestRefused {
+                            method,
+                            path,
+                            code,
+                            address,
+                            unlogged,
+                        });
                     }
                 }
                 Err(refusal_error(refusal, Needed::Operator))
@@ -145,11 +170,16 @@ async fn fleet(_: FleetOperator, State(http): State<FleetHttp>) -> Result<Json<V
 async fn updates(_: FleetOperator, State(http): State<FleetHttp>) -> Result<Response, AppError> {
     let view = Arc::clone(view_of(&http)?);
     let stream = update_stream(view, http.shutdown.clone());
-    Ok(axum::response::Sse::new(stream).keep_alive(KeepAlive::default()).into_response())
+    Ok(axum::response::Sse::new(stream)
+        .keep_alive(KeepAlive::default())
+        .into_response())
 }
 
 /// A snapshot, then each change; a fresh snapshot after falling behind; ends at shutdown.
-fn update_stream(view: Arc<FleetView>, shutdown: CancellationToken) -> impl Stream<Item = Result<Sse, Infallible>> {
+fn update_stream(
+    view: Arc<FleetView>,
+    shutdown: CancellationToken,
+) -> impl Stream<Item = Result<Sse, Infallible>> {
     let (snapshot, updates) = view.watch();
     let first = Sse::default().event("snapshot").data(snapshot.to_string());
     futures_util::stream::unfold(
@@ -164,7 +194,9 @@ fn update_stream(view: Arc<FleetView>, shutdown: CancellationToken) -> impl Stre
             };
             let event = match next {
                 Ok(update) => Sse::default().event("update").data(update),
-                Err(RecvError::Lagged(_)) => Sse::default().event("snapshot").data(view.snapshot().to_string()),
+                Err(RecvError::Lagged(_)) => Sse::default()
+                    .event("snapshot")
+                    .data(view.snapshot().to_string()),
                 Err(RecvError::Closed) => return None,
             };
             Some((Ok(event), (None, updates, view, shutdown)))

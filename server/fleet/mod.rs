@@ -67,6 +67,8 @@ impl FleetHandles {
 
 impl std::fmt::Debug for FleetView {
     fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
-        f.debug_struct("FleetView").field("link", &self.link()).finish()
+        f.debug_struct("FleetView")
+            .field("link", &self.link())
+            .finish()
     }
 }

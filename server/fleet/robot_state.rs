@@ -113,9 +113,15 @@ mod tests {
         assert_eq!((b.percent, b.event.as_str()), (80.0, "battery"));
         let ros = battery_of(&robot("battery.state", json!({"percentage": 0.5}))).expect("ros");
         assert_eq!(ros.percent, 50.0);
-        assert_eq!(battery_of(&robot("batterylow", json!({"percent": 5}))), None);
+        assert_eq!(
+            battery_of(&robot("batterylow", json!({"percent": 5}))),
+            None
+        );
         assert_eq!(battery_of(&robot("battery", json!({"volts": 24}))), None);
         assert_eq!(battery_of(&robot("battery", json!({"percent": 180}))), None);
-        assert_eq!(battery_of(&robot("battery", json!({"percent": "full"}))), None);
+        assert_eq!(
+            battery_of(&robot("battery", json!({"percent": "full"}))),
+            None
+        );
     }
 }

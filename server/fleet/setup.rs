@@ -41,14 +41,18 @@ pub fn decide_bridge(
         (None, None) => return Ok(None),
         (Some(url), Some(robot)) => (url, robot),
         (Some(_), None) => {
-            return Err("a fleet needs this robot's id: add --robot-id ID (or mqtt: robot_id: \
+            return Err(
+                "a fleet needs this robot's id: add --robot-id ID (or mqtt: robot_id: \
                         in docent.yaml)"
-                .into());
+                    .into(),
+            );
         }
         (None, Some(_)) => {
-            return Err("a robot id was given but no broker: add --mqtt mqtt://HOST[:PORT] (or \
+            return Err(
+                "a robot id was given but no broker: add --mqtt mqtt://HOST[:PORT] (or \
                         mqtt: url: in docent.yaml)"
-                .into());
+                    .into(),
+            );
         }
     };
     if let Some(problem) = robot_id_problem(&robot) {
@@ -58,7 +62,10 @@ pub fn decide_bridge(
         .filter(|p| !p.is_empty())
         .or_else(|| file.password.as_ref().map(|p| p.expose().to_owned()))
         .map(Secret::new);
-    let console = file.console_url.clone().unwrap_or_else(|| console_url(listen));
+    let console = file
+        .console_url
+        .clone()
+        .unwrap_or_else(|| console_url(listen));
     Ok(Some(BridgeSettings {
         broker: Broker {
             url,
@@ -92,7 +99,12 @@ pub fn join_fleet(state: &AppState, settings: BridgeSettings, operator_token: Op
     let broker = settings.broker.clone();
     let link = start_bridge(state, settings);
     state.fleet.set_bridge(robot.clone(), link);
-    let view = FleetView::start(&broker, &format!("docent-{robot}-view"), operator_token, &state.life);
+    let view = FleetView::start(
+        &broker,
+        &format!("docent-{robot}-view"),
+        operator_token,
+        &state.life,
+    );
     state.fleet.set_view(view);
 }
 
@@ -111,7 +123,12 @@ mod tests {
             robot_id: Some("from-file".into()),
             ..MqttSettings::default()
         };
-        let none = decide_bridge(&FleetFlags::default(), &MqttSettings::default(), None, listen());
+        let none = decide_bridge(
+            &FleetFlags::default(),
+            &MqttSettings::default(),
+            None,
+            listen(),
+        );
         assert!(none.expect("no fleet").is_none());
         let from_file = decide_bridge(&FleetFlags::default(), &file, None, listen())
             .expect("valid")
@@ -127,7 +144,10 @@ mod tests {
             .expect("a bridge");
         assert_eq!(both.broker.url.host, "flag-broker");
         assert_eq!(both.identity.robot, "from-flag");
-        assert_eq!(both.broker.password.as_ref().map(Secret::expose), Some("pw"));
+        assert_eq!(
+            both.broker.password.as_ref().map(Secret::expose),
+            Some("pw")
+        );
         let half = FleetFlags {
             url: Some("mqtt://b".into()),
             robot_id: None,

@@ -49,7 +49,10 @@ pub async fn serve_fleet(
         shutdown: life.shutdown.clone(),
     };
     let router = routes::<FleetHttp>()
-        .route("/", get(|| async { axum::response::Redirect::to("/fleet") }))
+        .route(
+            "/",
+            get(|| async { axum::response::Redirect::to("/fleet") }),
+        )
         .route(
             "/static/{*path}",
             get(crate::http::static_files::serve_static),
@@ -63,7 +66,14 @@ pub async fn serve_fleet(
         }
         stop.cancel();
     };
-    serve_connections(listener, router, ConnectionLimits::default(), TrustedProxies::default(), signal).await;
+    serve_connections(
+        listener,
+        router,
+        ConnectionLimits::default(),
+        TrustedProxies::default(),
+        signal,
+    )
+    .await;
     life.shutdown.cancel();
     life.tracker.close();
     let _ = tokio::time::timeout(SHUTDOWN_GRACE, life.tracker.wait()).await;

@@ -46,7 +46,9 @@ pub enum StopFailed {
     #[error("the fleet view's broker link is down, so the stop was not sent: {0}")]
     LinkDown(String),
     /// The robot did not answer within [`STOP_DEADLINE`].
-    #[error("{0} did not confirm the stop within 5 s: it may be offline or not reachable; stop it at its console or on the robot")]
+    #[error(
+        "{0} did not confirm the stop within 5 s: it may be offline or not reachable; stop it at its console or on the robot"
+    )]
     NoAnswer(String),
     /// The robot answered with an `error` frame.
     #[error("{robot} refused the stop: {message} ({code})")]
@@ -78,7 +80,12 @@ pub struct FleetView {
 
 impl FleetView {
     /// Connects to `broker` as `client_id` and follows the fleet until `life` shuts down.
-    pub fn start(broker: &Broker, client_id: &str, token: Option<Secret>, life: &Lifecycle) -> Arc<Self> {
+    pub fn start(
+        broker: &Broker,
+        client_id: &str,
+        token: Option<Secret>,
+        life: &Lifecycle,
+    ) -> Arc<Self> {
         let options = broker.options(client_id, None);
         let (client, events) = AsyncClient::new(options, 64);
         let link = Arc::new(LinkStatus::new(&broker.url));
@@ -121,7 +128,11 @@ impl FleetView {
         self.link.view()
     }
 
-    async fn follow(self: Arc<Self>, mut notes: mpsc::Receiver<LinkNote>, stop: tokio_util::sync::CancellationToken) {
+    async fn follow(
+        self: Arc<Self>,
+        mut notes: mpsc::Receiver<LinkNote>,
+        stop: tokio_util::sync::CancellationToken,
+    ) {
         loop {
             let note = tokio::select! {
                 () = stop.cancelled() => break,
@@ -182,11 +193,16 @@ impl FleetView {
                 tracing::warn!(robot, "more than {MAX_ROBOTS} robots: not listed");
                 return;
             } else {
-                let entry = robots.entry(robot.to_owned()).or_insert_with(|| RobotEntry {
-                    robot: robot.to_owned(),
-                    ..RobotEntry::default()
-                });
-                let online = value.get("online").and_then(Value::as_bool).unwrap_or(false);
+                let entry = robots
+                    .entry(robot.to_owned())
+                    .or_insert_with(|| RobotEntry {
+                        robot: robot.to_owned(),
+                        ..RobotEntry::default()
+                    });
+                let online = value
+                    .get("online")
+                    .and_then(Value::as_bool)
+                    .unwrap_or(false);
                 match leaf {
                     "status" => entry.online = online,
                     "state" => {
@@ -218,7 +234,10 @@ impl FleetView {
             let reason = link.reason.unwrap_or_else(|| "not connected yet".into());
             return Err(StopFailed::LinkDown(reason));
         }
-        let reference = format!("fleet-stop-{}", self.next_ref.fetch_add(1, Ordering::Relaxed));
+        let reference = format!(
+            "fleet-stop-{}",
+            self.next_ref.fetch_add(1, Ordering::Relaxed)
+        );
         let (tx, rx) = oneshot::channel();
         lock(&self.waiting).insert(reference.clone(), tx);
         let mut command = json!({ "type": "stop", "role": "operator", "ref": reference });
@@ -227,7 +246,12 @@ impl FleetView {
         }
         let sent = self
             .client
-            .publish(topic(robot, "cmd"), QoS::AtLeastOnce, false, command.to_string())
+            .publish(
+                topic(robot, "cmd"),
+                QoS::AtLeastOnce,
+                false,
+                command.to_string(),
+            )
             .await;
         if let Err(e) = sent {
             lock(&self.waiting).remove(&reference);
@@ -239,7 +263,13 @@ impl FleetView {
             return Err(StopFailed::NoAnswer(robot.to_owned()));
         };
         if answer.get("type").and_then(Value::as_str) == Some("error") {
-            let text = |key: &str| answer.get(key).and_then(Value::as_str).unwrap_or_default().to_owned();
+            let text = |key: &str| {
+                answer
+                    .get(key)
+                    .and_then(Value::as_str)
+                    .unwrap_or_default()
+                    .to_owned()
+            };
             return Err(StopFailed::Refused {
                 robot: robot.to_owned(),
                 code: text("code"),

@@ -110,7 +110,13 @@ impl Robot {
         command
             .arg("serve")
             .arg(bundle)
-            .args(["--listen", "127.0.0.1:0", "--no-watch", "--corpus-sync", "10ms"])
+            .args([
+                "--listen",
+                "127.0.0.1:0",
+                "--no-watch",
+                "--corpus-sync",
+                "10ms",
+            ])
             .arg("--corpus")
             .arg(&corpus)
             .args(["--mqtt", &broker.url(), "--robot-id", id])
@@ -179,7 +185,13 @@ impl TestClient {
                     }
                     Ok(Event::Incoming(Incoming::Publish(p))) => {
                         let json = serde_json::from_slice(&p.payload).unwrap_or(Value::Null);
-                        if tx.send(Message { topic: p.topic, json }).is_err() {
+                        if tx
+                            .send(Message {
+                                topic: p.topic,
+                                json,
+                            })
+                            .is_err()
+                        {
                             return;
                         }
                     }
@@ -209,7 +221,12 @@ impl TestClient {
     /// Publishes `command` on robot `robot`'s `cmd` topic.
     pub async fn command(&self, robot: &str, command: Value) {
         (self.client)
-            .publish(format!("docent/{robot}/cmd"), QoS::AtLeastOnce, false, command.to_string())
+            .publish(
+                format!("docent/{robot}/cmd"),
+                QoS::AtLeastOnce,
+                false,
+                command.to_string(),
+            )
             .await
             .expect("published");
     }

@@ -132,7 +132,10 @@ mod tests {
         let url = mqtt.url.as_ref().expect("a url");
         assert_eq!((url.host.as_str(), url.port), ("broker.local", 1884));
         assert_eq!(mqtt.robot_id.as_deref(), Some("robot-1"));
-        assert_eq!(mqtt.password.as_ref().map(|p| p.expose()), Some("s3cret-pass"));
+        assert_eq!(
+            mqtt.password.as_ref().map(|p| p.expose()),
+            Some("s3cret-pass")
+        );
         assert!(!format!("{:?}", file.config).contains("s3cret"));
     }
 
@@ -159,7 +162,10 @@ mod tests {
     fn a_password_that_is_not_text_is_refused_without_repeating_it() {
         let found = problems("mqtt:\n  password: [a, b]\n  console_url: robot-1:8080\n");
         let codes: Vec<_> = found.iter().map(|(c, l, col, _)| (*c, *l, *col)).collect();
-        assert_eq!(codes, [("config-bad-value", 2, 13), ("config-bad-value", 3, 16)]);
+        assert_eq!(
+            codes,
+            [("config-bad-value", 2, 13), ("config-bad-value", 3, 16)]
+        );
         assert!(found[0].3.contains("DOCENT_MQTT_PASSWORD"));
     }
 }
