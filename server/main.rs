@@ -68,6 +68,10 @@ struct FleetArgs {
     /// The broker's user name for the fleet view.
     #[arg(long, value_name = "NAME")]
     mqtt_username: Option<String>,
+    /// For an mqtts:// broker: the PEM file of the CA it is checked against (the system's CAs
+    /// without it).
+    #[arg(long, value_name = "FILE")]
+    mqtt_ca: Option<PathBuf>,
     /// Address to listen on. Stays on loopback unless told otherwise.
     #[arg(long, default_value = "127.0.0.1:8090")]
     listen: SocketAddr,
@@ -137,11 +141,15 @@ struct ServeArgs {
     open: bool,
     /// Join a fleet: publish state and events to this MQTT broker and take commands from it,
     /// mqtt://HOST[:PORT] (docs/FLEET.md; overrides docent.yaml's mqtt: url).
-    #[arg(long, value_name = "URL", requires = "robot_id")]
+    #[arg(long, value_name = "URL")]
     mqtt: Option<String>,
     /// This robot's id in the fleet's topics, docent/ID/... (overrides mqtt: robot_id).
     #[arg(long, value_name = "ID")]
     robot_id: Option<String>,
+    /// For an mqtts:// broker: the PEM file of the CA it is checked against (the system's CAs
+    /// without it; overrides mqtt: ca_file).
+    #[arg(long, value_name = "FILE")]
+    mqtt_ca: Option<PathBuf>,
 }
 
 /// How `serve` presents the bundle.
@@ -284,6 +292,7 @@ fn serve(args: &ServeArgs) -> anyhow::Result<ExitCode> {
     let fleet_flags = docent::fleet::FleetFlags {
         url: args.mqtt.clone(),
         robot_id: args.robot_id.clone(),
+        ca_file: args.mqtt_ca.clone(),
     };
     let mqtt_file = bundle.config.mqtt.clone();
     let home = bundle.config.home.clone();
@@ -352,7 +361,9 @@ fn fleet(args: &FleetArgs) -> anyhow::Result<ExitCode> {
         .ok()
         .filter(|p| !p.is_empty())
         .map(docent::access::Secret::new);
+    let tls = docent::fleet::tls_for(&url, args.mqtt_ca.as_deref()).map_err(anyhow::Error::msg)?;
     let broker = docent::fleet::Broker {
+        tls,
         url,
         username: args.mqtt_username.clone(),
         password,

@@ -138,6 +138,11 @@ async fn two_robots_on_one_broker_are_one_fleet_and_commands_reach_the_right_one
         "that is not the operator credential (DOCENT_OPERATOR_TOKEN)"
     );
     assert!(!answer.to_string().contains("not-the-credential"));
+    // A refusal is answered at once; an acknowledged command after it is answered once the
+    // log holds everything before it, the refusal's `client.refused` too.
+    let context =
+        json!({"type": "context", "context": "Text", "ref": "c3", "token": OPERATOR_TOKEN});
+    assert_eq!(mqtt.ask("hall-1", "c3", context).await["type"], "context");
     assert_eq!(logged(&first.corpus, "client.refused").len(), 1);
     // A kiosk needs no credential on the websocket; over a broker it is refused.
     let kiosk = json!({"type": "trigger", "label": "WELCOME", "ref": "k1", "role": "kiosk"});

@@ -1,11 +1,11 @@
-//! Reaching the broker: its address (`mqtt://host[:port]`), the login, the MQTT options both
-//! the robot's bridge and the fleet view connect with, the topic names under `docent/ID/`, and
-//! the state of the link (up, down and why), which operators are shown.
+//! Reaching the broker: its address (`mqtt://host[:port]`, `mqtts://` for TLS), the login,
+//! the MQTT options both the robot's bridge and the fleet view connect with, the topic names
+//! under `docent/ID/`, and the state of the link (up, down and why), which operators are shown.
 
-use std::sync::Mutex;
+use std::sync::{Arc, Mutex};
 use std::time::Duration;
 
-use rumqttc::{LastWill, MqttOptions};
+use rumqttc::{LastWill, MqttOptions, TlsConfiguration, Transport};
 use serde::Serialize;
 
 use crate::access::Secret;
@@ -13,6 +13,8 @@ use crate::sync::lock;
 
 /// The MQTT port when the address names none.
 pub const DEFAULT_PORT: u16 = 1883;
+/// The MQTT-over-TLS port when an `mqtts://` address names none.
+pub const DEFAULT_TLS_PORT: u16 = 8883;
 /// How often an idle link is pinged; the broker gives up on a silent client after 1.5 times
 /// this and publishes its last will.
 pub const KEEP_ALIVE: Duration = Duration::from_secs(10);
@@ -21,30 +23,31 @@ pub const MAX_RETRY: Duration = Duration::from_secs(2);
 /// Topics are `docent/ROBOT/...`.
 pub const TOPIC_ROOT: &str = "docent";
 
-/// A broker's address, from `mqtt://host[:port]`.
+/// A broker's address, from `mqtt://host[:port]` or `mqtts://host[:port]`.
 #[derive(Clone, Debug, PartialEq, Eq)]
 pub struct BrokerUrl {
     /// Host name or address.
     pub host: String,
     /// TCP port.
     pub port: u16,
+    /// Whether the link is TLS (`mqtts://`).
+    pub tls: bool,
 }
 
 impl BrokerUrl {
-    /// Parses `mqtt://host[:port]`; the reason, in words an operator can act on, otherwise.
-    /// A login in the address is refused: it would be printed and logged with it.
+    /// Parses `mqtt://host[:port]` or `mqtts://host[:port]`; the reason, in words an operator
+    /// can act on, otherwise. A login in the address is refused: it would be printed and
+    /// logged with it.
     pub fn parse(text: &str) -> Result<BrokerUrl, String> {
-        let rest = if let Some(rest) = text.strip_prefix("mqtt://") {
-            rest
-        } else if text.starts_with("mqtts://") {
-            return Err(
-                "this Docent is built without TLS for MQTT (mqtts://): reach the broker over \
-                 mqtt:// on a trusted network or through a TLS tunnel (docs/FLEET.md, \"TLS\")"
-                    .into(),
-            );
+        let (rest, tls) = if let Some(rest) = text.strip_prefix("mqtt://") {
+            (rest, false)
+        } else if let Some(rest) = text.strip_prefix("mqtts://") {
+            (rest, true)
         } else {
             return Err(
-                "a broker address starts with mqtt://, e.g. mqtt://broker.local:1883".into(),
+                "a broker address starts with mqtt:// (or mqtts:// for TLS), e.g. \
+                        mqtt://broker.local:1883"
+                    .into(),
             );
         };
         let rest = rest.strip_suffix('/').unwrap_or(rest);
@@ -56,7 +59,9 @@ impl BrokerUrl {
             );
         }
         if rest.contains(['/', '?', '#']) {
-            return Err("a broker address is mqtt://host[:port], with no path".into());
+            return Err(
+                "a broker address is mqtt://host[:port] (or mqtts://), with no path".into(),
+            );
         }
         let (host, port) = match rest.rsplit_once(':') {
             // An IPv6 address is written in brackets: [::1]:1883.
@@ -68,6 +73,7 @@ impl BrokerUrl {
                     .ok_or_else(|| format!("`{port}` is not a port number (1 to 65535)"))?;
                 (host, port)
             }
+            _ if tls => (rest, DEFAULT_TLS_PORT),
             _ => (rest, DEFAULT_PORT),
         };
         let host = host.trim_start_matches('[').trim_end_matches(']');
@@ -77,16 +83,18 @@ impl BrokerUrl {
         Ok(BrokerUrl {
             host: host.to_owned(),
             port,
+            tls,
         })
     }
 }
 
 impl std::fmt::Display for BrokerUrl {
     fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        let scheme = if self.tls { "mqtts" } else { "mqtt" };
         if self.host.contains(':') {
-            write!(f, "mqtt://[{}]:{}", self.host, self.port)
+            write!(f, "{scheme}://[{}]:{}", self.host, self.port)
         } else {
-            write!(f, "mqtt://{}:{}", self.host, self.port)
+            write!(f, "{scheme}://{}:{}", self.host, self.port)
         }
     }
 }
@@ -100,6 +108,8 @@ pub struct Broker {
     pub username: Option<String>,
     /// Its password: never printed, logged or published.
     pub password: Option<Secret>,
+    /// For `mqtts://`: whom to trust (see `tls.rs`).
+    pub tls: Option<Arc<rustls::ClientConfig>>,
 }
 
 impl Broker {
@@ -116,6 +126,10 @@ impl Broker {
         }
         if let Some(will) = will {
             options.set_last_will(will);
+        }
+        if let Some(config) = &self.tls {
+            let tls = TlsConfiguration::Rustls(Arc::clone(config));
+            options.set_transport(Transport::tls_with_config(tls));
         }
         options
     }
@@ -220,11 +234,9 @@ mod tests {
                 .unwrap_err()
                 .contains("mqtt://")
         );
-        assert!(
-            BrokerUrl::parse("mqtts://broker")
-                .unwrap_err()
-                .contains("TLS")
-        );
+        let tls = BrokerUrl::parse("mqtts://broker").expect("TLS");
+        assert_eq!((tls.port, tls.tls), (8883, true));
+        assert_eq!(tls.to_string(), "mqtts://broker:8883");
         assert!(
             BrokerUrl::parse("mqtt://broker:0")
                 .unwrap_err()

@@ -11,6 +11,7 @@
 //! - `view`: the fleet view's model: every robot's state heard, and Stop.
 //! - `http`: `/fleet`, `/api/fleet...`, on a Docent and on `docent fleet`.
 //! - `setup`: flags over `docent.yaml`'s `mqtt:`; starting the bridge and the view.
+//! - `tls`: `mqtts://` with rustls (ring), trusting a site's CA file or the system's.
 //! - `standalone`: `docent fleet --mqtt URL`, a server of the fleet view only.
 
 mod bridge;
@@ -21,6 +22,7 @@ mod link;
 mod robot_state;
 mod setup;
 mod standalone;
+mod tls;
 mod view;
 
 use std::sync::{Arc, OnceLock};
@@ -29,7 +31,7 @@ pub use bridge::{BridgeSettings, STATE_INTERVAL, start_bridge};
 pub use broker::{Broker, BrokerUrl, LinkState, LinkStatus, LinkView, robot_id_problem};
 pub use http::{FleetHttp, FleetPage, routes};
 pub use robot_state::{Battery, Identity};
-pub use setup::{FleetFlags, MQTT_PASSWORD_ENV, decide_bridge, join_fleet};
+pub use setup::{FleetFlags, MQTT_PASSWORD_ENV, decide_bridge, join_fleet, tls_for};
 pub use standalone::{FleetOptions, serve_fleet};
 pub use view::{FleetView, StopFailed};
 

@@ -4,6 +4,7 @@
 //! its `/fleet` page shows.
 
 use std::net::SocketAddr;
+use std::path::PathBuf;
 
 use super::bridge::{BridgeSettings, start_bridge};
 use super::broker::{Broker, BrokerUrl, robot_id_problem};
@@ -23,6 +24,8 @@ pub struct FleetFlags {
     pub url: Option<String>,
     /// `--robot-id ID`.
     pub robot_id: Option<String>,
+    /// `--mqtt-ca FILE`: the CA certificates an `mqtts://` broker is checked against.
+    pub ca_file: Option<PathBuf>,
 }
 
 /// The bridge to start, if the flags or the file name a broker; a reason otherwise.
@@ -66,14 +69,32 @@ pub fn decide_bridge(
         .console_url
         .clone()
         .unwrap_or_else(|| console_url(listen));
+    let ca_file = flags.ca_file.clone().or_else(|| file.ca_file.clone());
+    let tls = tls_for(&url, ca_file.as_deref())?;
     Ok(Some(BridgeSettings {
         broker: Broker {
             url,
             username: file.username.clone(),
             password,
+            tls,
         },
         identity: Identity { robot, console },
     }))
+}
+
+/// The TLS set-up an `mqtts://` broker needs (`ca_file`'s CA, or the system's); none for
+/// `mqtt://`, where a CA file is a mistake worth saying.
+pub fn tls_for(
+    url: &BrokerUrl,
+    ca_file: Option<&std::path::Path>,
+) -> Result<Option<std::sync::Arc<rustls::ClientConfig>>, String> {
+    match (url.tls, ca_file) {
+        (true, ca_file) => super::tls::client_config(ca_file).map(Some),
+        (false, None) => Ok(None),
+        (false, Some(_)) => Err(format!(
+            "a CA file was given for {url}, which is not TLS: use mqtts:// (or leave the CA out)"
+        )),
+    }
 }
 
 /// This robot's console at the address it listens on; the machine's name for a wildcard one.
@@ -138,6 +159,7 @@ mod tests {
         let flags = FleetFlags {
             url: Some("mqtt://flag-broker:1884".into()),
             robot_id: Some("from-flag".into()),
+            ca_file: None,
         };
         let both = decide_bridge(&flags, &file, Some("pw".into()), listen())
             .expect("valid")
@@ -150,14 +172,21 @@ mod tests {
         );
         let half = FleetFlags {
             url: Some("mqtt://b".into()),
-            robot_id: None,
+            ..FleetFlags::default()
         };
         let err = decide_bridge(&half, &MqttSettings::default(), None, listen()).unwrap_err();
         assert!(err.contains("--robot-id"), "{err}");
         let bad = FleetFlags {
             url: Some("mqtt://b".into()),
             robot_id: Some("a/b".into()),
+            ca_file: None,
         };
         assert!(decide_bridge(&bad, &file, None, listen()).is_err());
+        let plain_with_ca = FleetFlags {
+            ca_file: Some("/etc/ca.pem".into()),
+            ..flags
+        };
+        let err = decide_bridge(&plain_with_ca, &file, None, listen()).unwrap_err();
+        assert!(err.contains("use mqtts://"), "{err}");
     }
 }

@@ -21,26 +21,117 @@ pub struct Mosquitto {
     /// Its port.
     pub port: u16,
     _dir: tempfile::TempDir,
+    /// The test CA and the TLS listener's certificate, if it has one.
+    certs: Option<tempfile::TempDir>,
+}
+
+/// A loopback port that was free a moment ago.
+fn free_port() -> u16 {
+    std::net::TcpListener::bind("127.0.0.1:0")
+        .and_then(|l| l.local_addr())
+        .expect("a free port")
+        .port()
 }
 
 impl Mosquitto {
     /// A broker on a free port.
     pub fn start() -> Self {
-        let port = std::net::TcpListener::bind("127.0.0.1:0")
-            .and_then(|l| l.local_addr())
-            .expect("a free port")
-            .port();
-        Mosquitto::start_on(port)
+        Mosquitto::start_on(free_port())
     }
 
     /// A broker on `port` (again, after [`Mosquitto::kill`]), once it listens: mosquitto
     /// says so on stderr, which is awaited (with the deadline) rather than slept for.
     pub fn start_on(port: u16) -> Self {
+        Mosquitto::start_with(port, "", 1)
+    }
+
+    /// A broker on a free port and, on a second one, a TLS listener whose certificate (for
+    /// `localhost` and 127.0.0.1) a fresh CA signed: the port and the CA's PEM file.
+    pub fn start_with_tls() -> (Self, u16, PathBuf) {
+        let certs = tempfile::tempdir().expect("a temporary folder");
+        let dir = certs.path();
+        let openssl = |args: &[&str]| {
+            let status = Command::new("openssl")
+                .args(args)
+                .current_dir(dir)
+                .stderr(Stdio::null())
+                .status()
+                .expect("openssl runs");
+            assert!(status.success(), "openssl {args:?}");
+        };
+        openssl(&[
+            "req",
+            "-x509",
+            "-newkey",
+            "rsa:2048",
+            "-nodes",
+            "-days",
+            "2",
+            "-subj",
+            "/CN=Docent test CA",
+            "-keyout",
+            "ca.key",
+            "-out",
+            "ca.pem",
+        ]);
+        openssl(&[
+            "req",
+            "-newkey",
+            "rsa:2048",
+            "-nodes",
+            "-subj",
+            "/CN=localhost",
+            "-keyout",
+            "server.key",
+            "-out",
+            "server.csr",
+        ]);
+        std::fs::write(
+            dir.join("san.ext"),
+            "subjectAltName=DNS:localhost,IP:127.0.0.1\n",
+        )
+        .expect("written");
+        openssl(&[
+            "x509",
+            "-req",
+            "-in",
+            "server.csr",
+            "-CA",
+            "ca.pem",
+            "-CAkey",
+            "ca.key",
+            "-CAcreateserial",
+            "-days",
+            "2",
+            "-extfile",
+            "san.ext",
+            "-out",
+            "server.pem",
+        ]);
+        // mosquitto started as root reads its certificates as the `mosquitto` user.
+        use std::os::unix::fs::PermissionsExt;
+        let readable = std::fs::Permissions::from_mode(0o755);
+        std::fs::set_permissions(dir, readable.clone()).expect("folder readable");
+        std::fs::set_permissions(dir.join("server.key"), readable).expect("key readable");
+        let tls_port = free_port();
+        let tls = format!(
+            "listener {tls_port} 127.0.0.1\ncafile {0}/ca.pem\ncertfile {0}/server.pem\nkeyfile {0}/server.key\n",
+            dir.display()
+        );
+        let mut broker = Mosquitto::start_with(free_port(), &tls, 2);
+        let ca = dir.join("ca.pem");
+        broker.certs = Some(certs);
+        (broker, tls_port, ca)
+    }
+
+    /// mosquitto with a plain listener on `port` and `more` configuration, once it has opened
+    /// `listeners` listeners.
+    fn start_with(port: u16, more: &str, listeners: usize) -> Self {
         let dir = tempfile::tempdir().expect("a temporary folder");
         let conf = dir.path().join("mosquitto.conf");
         let text = format!(
-            "listener {port} 127.0.0.1\nallow_anonymous true\npersistence false\n\
-             log_dest stderr\nlog_type all\n"
+            "allow_anonymous true\npersistence false\nlog_dest stderr\nlog_type all\n\
+             listener {port} 127.0.0.1\n{more}"
         );
         std::fs::write(&conf, text).expect("config written");
         let binary = ["/usr/sbin/mosquitto", "/usr/bin/mosquitto"]
@@ -57,10 +148,13 @@ impl Mosquitto {
         let stderr = child.stderr.take().expect("stderr");
         let (tx, rx) = std::sync::mpsc::channel();
         std::thread::spawn(move || {
-            let mut told = false;
+            let mut opened = 0;
             for line in BufReader::new(stderr).lines().map_while(Result::ok) {
-                if !told && line.contains("Opening ipv4 listen socket") {
-                    told = tx.send(()).is_ok();
+                if line.contains("Opening ipv4 listen socket") {
+                    opened += 1;
+                    if opened == listeners {
+                        let _ = tx.send(());
+                    }
                 }
             }
         });
@@ -70,6 +164,7 @@ impl Mosquitto {
             child,
             port,
             _dir: dir,
+            certs: None,
         }
     }
 
@@ -104,6 +199,11 @@ pub struct Robot {
 impl Robot {
     /// `docent serve BUNDLE --mqtt URL --robot-id ID`, guarded by the test credentials.
     pub fn start(bundle: &Path, broker: &Mosquitto, id: &str) -> Self {
+        Robot::start_at(bundle, &broker.url(), id, &[])
+    }
+
+    /// As [`Robot::start`], with the broker at `url` and `more` arguments.
+    pub fn start_at(bundle: &Path, url: &str, id: &str, more: &[&str]) -> Self {
         let dir = tempfile::tempdir().expect("a temporary folder");
         let corpus = dir.path().join("corpus");
         let mut command = Command::new(env!("CARGO_BIN_EXE_docent"));
@@ -119,7 +219,8 @@ impl Robot {
             ])
             .arg("--corpus")
             .arg(&corpus)
-            .args(["--mqtt", &broker.url(), "--robot-id", id])
+            .args(["--mqtt", url, "--robot-id", id])
+            .args(more)
             .env("DOCENT_OPERATOR_TOKEN", OPERATOR_TOKEN)
             .env("DOCENT_DM_TOKEN", DM_TOKEN)
             .env("RUST_LOG", "docent=warn");

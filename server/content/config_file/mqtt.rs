@@ -13,7 +13,14 @@ use crate::fleet::{BrokerUrl, robot_id_problem};
 use super::Reader;
 
 /// The section's keys, also the JSON Schema's.
-pub(crate) const KEYS: &[&str] = &["url", "robot_id", "username", "password", "console_url"];
+pub(crate) const KEYS: &[&str] = &[
+    "url",
+    "robot_id",
+    "username",
+    "password",
+    "ca_file",
+    "console_url",
+];
 
 /// What `mqtt:` says (all optional: the command line may give the rest).
 #[derive(Clone, Debug, Default, PartialEq)]
@@ -28,6 +35,9 @@ pub struct MqttSettings {
     pub password: Option<MqttPassword>,
     /// This robot's console as the fleet view links to it (`http://robot-1.local:8080/operator`).
     pub console_url: Option<String>,
+    /// For `mqtts://`: the CA certificates (PEM) the broker is checked against, an absolute
+    /// path on the robot (read when serving, never by `docent check`); the system's otherwise.
+    pub ca_file: Option<std::path::PathBuf>,
 }
 
 /// The broker password: never printed by `Debug`.
@@ -66,6 +76,15 @@ impl Reader {
                     mqtt.username = self.setting(value, usage, |t| Some(t.to_owned()));
                 }
                 "password" => mqtt.password = self.mqtt_password(value),
+                "ca_file" => {
+                    let usage = "`ca_file` is the absolute path of the PEM file with the CA \
+                                 certificates an mqtts:// broker is checked against, e.g. \
+                                 `ca_file: /etc/docent/fleet-ca.pem`.";
+                    mqtt.ca_file = self.setting(value, usage, |t| {
+                        let path = std::path::Path::new(t);
+                        path.is_absolute().then(|| path.to_path_buf())
+                    });
+                }
                 _ => {
                     let usage = "`console_url` is this robot's console as the fleet view links \
                                  to it, e.g. `console_url: http://robot-1.local:8080/operator`.";
@@ -156,6 +175,16 @@ mod tests {
         let (code, line, column, message) = &found[0];
         assert_eq!((*code, *line, *column), ("config-bad-value", 2, 13));
         assert!(message.contains("letters, digits"), "{message}");
+    }
+
+    #[test]
+    fn a_ca_file_must_be_an_absolute_path() {
+        let file = parse("mqtt:\n  ca_file: /etc/docent/ca.pem\n");
+        assert!(file.diagnostics.is_empty(), "{:?}", file.diagnostics);
+        let found = problems("mqtt:\n  ca_file: certs/ca.pem\n");
+        let codes: Vec<_> = found.iter().map(|(c, l, col, _)| (*c, *l, *col)).collect();
+        assert_eq!(codes, [("config-bad-value", 2, 12)]);
+        assert!(found[0].3.contains("absolute path"), "{}", found[0].3);
     }
 
     #[test]

@@ -80,6 +80,12 @@ pub(super) fn mqtt(key: &str) -> Value {
             "type": "string",
             "description": "The broker's user name for this robot.",
         }),
+        "ca_file" => json!({
+            "type": "string",
+            "pattern": "^/",
+            "description": "For an mqtts:// broker: the absolute path of the PEM file with the \
+                            CA certificates it is checked against (the system's without one).",
+        }),
         "password" => json!({
             "type": "string",
             "description": "The broker's password for `username`. Better kept out of the \
