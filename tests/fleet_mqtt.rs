@@ -2,7 +2,7 @@
 //! one fleet view; a command over MQTT reaches the right robot only and is answered on its
 //! reply topic with the websocket's own error codes; a kiosk role and a wrong credential are
 //! refused; the fleet view's Stop stops the right robot; the last will says offline after
-//! `kill -9`.
+//! `kill -9`, and a robot that stops says so itself; a Docent without a broker says so.
 
 mod common;
 mod fleet_support;
@@ -181,6 +181,21 @@ async fn two_robots_on_one_broker_are_one_fleet_and_commands_reach_the_right_one
 }
 
 #[tokio::test]
+async fn a_docent_without_a_broker_says_so_at_api_fleet() {
+    let server = common::TestServer::start(&bundle("dialogs/info-terminal")).await;
+    let (status, body) = server.get("/api/fleet").await;
+    assert_eq!(status, 404, "{body}");
+    assert_eq!(body["code"], "not-found");
+    let error = body["error"].as_str().expect("a message");
+    assert!(error.contains("--mqtt URL --robot-id ID"), "{error}");
+    let (_, state) = server.get("/api/state").await;
+    assert!(state["fleet"].is_null(), "{state}");
+    let page = reqwest::get(server.url("/fleet")).await.expect("answers");
+    assert_eq!(page.status(), 200);
+    server.stop().await;
+}
+
+#[tokio::test]
 async fn the_last_will_says_offline_after_kill_9() {
     let broker = Mosquitto::start();
     let mut mqtt = TestClient::connect(&broker, "will-test", &["docent/+/status"]);
@@ -200,4 +215,18 @@ async fn the_last_will_says_offline_after_kill_9() {
         started.elapsed() < Duration::from_secs(16),
         "within 1.5 keep-alives"
     );
+}
+
+#[tokio::test]
+async fn a_robot_that_stops_says_offline_itself() {
+    let broker = Mosquitto::start();
+    let mut mqtt = TestClient::connect(&broker, "goodbye-test", &["docent/+/state"]);
+    let mut robot = Robot::start(&bundle("dialogs/info-terminal"), &broker, "dock-2");
+    mqtt.next("docent/dock-2/state", |s| s["online"] == true)
+        .await;
+    robot.terminate();
+    let goodbye = mqtt
+        .next("docent/dock-2/state", |s| s["online"] == false)
+        .await;
+    assert_eq!(goodbye["reason"], "the robot's Docent stopped", "{goodbye}");
 }

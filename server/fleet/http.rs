@@ -224,3 +224,29 @@ async fn stop(
         }
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn the_fleet_page_carries_its_contract_and_no_robot() {
+        let page = FleetPage {
+            needs_credential: true,
+        }
+        .render()
+        .expect("renders");
+        assert!(page.starts_with("<!doctype html>"), "{page}");
+        assert!(page.contains(r#"data-credential="required""#), "{page}");
+        assert!(page.contains(r#"src="/static/fleet/main.js""#), "{page}");
+        assert!(page.contains(r#"<dialog id="signin""#), "{page}");
+        assert!(page.contains(r#"<label for="signin-token">"#), "{page}");
+        assert!(page.contains(r#"id="robots""#) && page.contains(r#"id="link""#));
+        let open = FleetPage {
+            needs_credential: false,
+        }
+        .render()
+        .expect("renders");
+        assert!(open.contains(r#"data-credential="open""#));
+    }
+}

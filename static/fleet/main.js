@@ -174,6 +174,8 @@ async function follow() {
     const json = await res.json().catch(() => null);
     if (res.status === 401) return { refused: true };
     if (res.status === 429) return { locked: retryAfter(res) };
+    // This Docent follows no fleet: trying again would not change that.
+    if (res.status === 404) return { final: json?.error ?? "this server has no fleet view" };
     return json?.error ?? `the fleet server answered ${res.status}`;
   }
   if (token) signin.remember(token, null);
@@ -216,6 +218,11 @@ async function start(credential) {
       body.dataset.state = "signed-out";
       showLink(null, "Not signed in.");
       dialog.ask("That credential was refused. Check it and try again.");
+      return;
+    }
+    if (ended?.final) {
+      body.dataset.state = "lost";
+      showLink(null, ended.final);
       return;
     }
     if (ended?.locked) {

@@ -233,6 +233,16 @@ impl Robot {
         }
     }
 
+    /// Asks it to stop (SIGTERM) and waits until it has: a graceful goodbye.
+    pub fn terminate(&mut self) {
+        let status = Command::new("kill")
+            .args(["-TERM", &self.child.id().to_string()])
+            .status()
+            .expect("kill runs");
+        assert!(status.success());
+        let _ = self.child.wait();
+    }
+
     /// Kills it with SIGKILL: no goodbye, only the broker's last will.
     pub fn kill_9(&mut self) {
         let _ = self.child.kill();
