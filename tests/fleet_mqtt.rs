@@ -230,3 +230,25 @@ async fn a_robot_that_stops_says_offline_itself() {
         .await;
     assert_eq!(goodbye["reason"], "the robot's Docent stopped", "{goodbye}");
 }
+
+#[tokio::test]
+async fn a_battery_robot_event_shows_in_the_state() {
+    let broker = Mosquitto::start();
+    let mut mqtt = TestClient::connect(&broker, "battery-test", &["docent/+/state"]);
+    let robot = Robot::start(&bundle("dialogs/info-terminal"), &broker, "dock-3");
+    mqtt.next("docent/dock-3/state", |s| {
+        s["battery"].is_null() && s["online"] == true
+    })
+    .await;
+    let mut sensor = common::WsClient::connect(&format!("ws://{}/ws", robot.addr)).await;
+    let hello = json!({"type": "hello", "role": "adapter", "name": "power", "robot_events": ["battery.state"]});
+    sensor.send(hello).await;
+    sensor.recv_type("welcome").await;
+    let reading = json!({"type": "robot", "event": "battery.state", "data": {"percentage": 0.42}});
+    sensor.send(reading).await;
+    let state = mqtt
+        .next("docent/dock-3/state", |s| s["battery"].is_object())
+        .await;
+    assert_eq!(state["battery"]["percent"], 42.0, "{state}");
+    assert_eq!(state["battery"]["event"], "battery.state");
+}

@@ -5,6 +5,7 @@
 //! down and why, a message arrived. The owner publishes through the `AsyncClient`; keeping the
 //! polling in its own task means a publish waiting for room never stops the link.
 
+use std::pin::pin;
 use std::sync::Arc;
 use std::time::Duration;
 
@@ -45,15 +46,21 @@ pub async fn run_link(
 ) {
     let mut retry = FIRST_RETRY;
     let mut deadline = None;
+    let mut stopping = pin!(stop.cancelled());
     loop {
-        let polled = tokio::select! {
-            polled = events.poll() => polled,
-            () = stop.cancelled(), if deadline.is_none() => {
-                // Keep polling a little so the owner's last publishes and disconnect go out.
-                deadline = Some(tokio::time::Instant::now() + grace);
-                continue;
+        // A poll is never dropped half-way for the stop (it may be writing a packet, and a
+        // packet cut short breaks the connection before the owner's goodbye): the same poll is
+        // awaited on after the stop, until the goodbye's deadline.
+        let mut poll = pin!(events.poll());
+        let polled = loop {
+            tokio::select! {
+                polled = &mut poll => break polled,
+                () = &mut stopping, if deadline.is_none() => {
+                    // Keep polling a little so the owner's last publishes and disconnect go out.
+                    deadline = Some(tokio::time::Instant::now() + grace);
+                }
+                () = sleep_until(deadline) => return,
             }
-            () = sleep_until(deadline) => return,
         };
         match polled {
             Ok(Event::Incoming(Incoming::ConnAck(_))) => {
@@ -70,7 +77,12 @@ pub async fn run_link(
                     tracing::warn!("an MQTT message was dropped: its handler is behind");
                 }
             }
-            Ok(Event::Outgoing(Outgoing::Disconnect)) => return,
+            // Not gone yet: closing a socket that holds unread data (the broker's last acks)
+            // resets it, and the broker may drop the goodbye it has not read. The broker closes
+            // the connection after the disconnect; that error ends the task below.
+            Ok(Event::Outgoing(Outgoing::Disconnect)) => {
+                deadline.get_or_insert_with(|| tokio::time::Instant::now() + grace);
+            }
             Ok(_) => {}
             Err(error) => {
                 if deadline.is_some() {

@@ -40,7 +40,8 @@ pub async fn serve_fleet(
         AccessMode::Guarded(credentials) => Some(credentials.operator.clone()),
         AccessMode::Open => None,
     };
-    let client_id = format!("docent-fleet-{}", std::process::id());
+    // Unique: a broker disconnects a client whose id another one takes.
+    let client_id = format!("docent-fleet-{:08x}", rand::random::<u32>());
     let view = FleetView::start(&options.broker, &client_id, token, &life);
     let http = FleetHttp {
         view: Some(view),
