@@ -9,6 +9,8 @@
 #                      mosquitto-clients, mosquitto_sub/pub, for trying the topics by hand);
 #   tests/e2e npm packages (playwright-core, ws), with `npm ci` from package-lock.json when
 #                      node_modules is missing or older than the lock file;
+#   examples/dialog-manager/.venv  the example dialog manager's websockets package (PyPI),
+#                      made by its run.sh, again only when its requirements.txt changed;
 #   python3, python3-venv and, from PyPI into tests/readers/.venv (git-ignored), the readers
 #                      the corpus export test reads exports back with (pympi-ling, praatio,
 #                      praat-parselmouth, mcap and jsonschema, pinned in
@@ -70,3 +72,6 @@ if ! cmp -s "$readers/requirements.txt" "$readers/.venv/requirements.installed" 
     --no-input -r "$readers/requirements.txt"
   cp "$readers/requirements.txt" "$readers/.venv/requirements.installed"
 fi
+
+# The example dialog manager (tests/dm_example.rs runs it as a site would, through run.sh).
+examples/dialog-manager/run.sh --install-only

@@ -17,6 +17,7 @@ use crate::lifecycle::Lifecycle;
 use crate::operator::{Proposals, Visits};
 use crate::recording::Recordings;
 use crate::reload::ReloadStatus;
+use crate::robot::Reactions;
 use crate::sync::lock;
 use crate::wire::linger::Linger;
 use crate::wire::outbox::{Frame, Outbox};
@@ -58,6 +59,8 @@ pub struct AppState {
     pub replay: Arc<Replay>,
     /// The kiosks' recordings of visitor sessions.
     pub recordings: Arc<Recordings>,
+    /// The site's reactions to robot events: when each last fired.
+    pub reactions: Arc<Reactions>,
     /// The fleet over MQTT: this robot's bridge and the fleet view, when started with a broker.
     pub fleet: Arc<crate::fleet::FleetHandles>,
     clients: Arc<Clients>,
@@ -153,6 +156,7 @@ impl AppState {
             reload: Arc::default(),
             replay: Arc::new(Replay::new(corpus)),
             recordings,
+            reactions: Arc::default(),
             fleet: Arc::default(),
             clients,
             life,

@@ -12,6 +12,7 @@ pub use crate::content::config_file::mqtt::{MqttPassword, MqttSettings};
 pub use crate::content::config_policy::{
     Channel, ChannelPolicies, ChannelPolicy, MAX_PRIORITY, MAX_QUEUE_LIMIT, Priorities, WhenBusy,
 };
+pub use crate::content::reaction::Reaction;
 
 /// Which adapter serves a verb. The route table is built from these, never from `match` arms
 /// spread over the code.
@@ -301,6 +302,8 @@ pub struct SiteConfig {
     pub priorities: Priorities,
     /// The annotation tiers and codes of the `/sessions` page (`codebook:`).
     pub codebook: Codebook,
+    /// Robot events mapped to acts (`reactions:`), in written order.
+    pub reactions: Vec<Reaction>,
     /// The fleet's MQTT broker and this robot's id in it (`mqtt:`, docs/FLEET.md).
     pub mqtt: MqttSettings,
 }
@@ -344,6 +347,7 @@ impl Default for SiteConfig {
             channels: ChannelPolicies::default(),
             priorities: Priorities::default(),
             codebook: Codebook::default(),
+            reactions: Vec::new(),
             mqtt: MqttSettings::default(),
         }
     }

@@ -17,6 +17,7 @@ mod devices;
 pub(crate) mod mqtt;
 pub(crate) mod operator;
 pub(crate) mod policy;
+pub(crate) mod reactions;
 mod reader;
 pub(crate) mod screens;
 pub(crate) mod server;
@@ -39,6 +40,8 @@ pub(crate) struct ConfigFile {
     /// Visitor groups given a context explicitly, with the context's place (checked later
     /// against the bundle's contexts, which also decide the defaults).
     pub visitor_groups: Vec<(&'static str, Located<String>)>,
+    /// The acts `reactions:` trigger, with their places (checked later).
+    pub reaction_acts: Vec<Located<String>>,
     /// Problems found.
     pub diagnostics: Vec<Diagnostic>,
 }
@@ -60,6 +63,7 @@ pub(crate) const TOP_KEYS: &[&str] = &[
     "channels",
     "priorities",
     "codebook",
+    "reactions",
     "mqtt",
 ];
 const HOME_USAGE: &str = "`home` names the page under pages/ the kiosk starts on, e.g. \
@@ -128,6 +132,7 @@ impl Reader {
                 "channels" => channels = Some(value),
                 "priorities" => self.priorities(value, config),
                 "codebook" => codebook = Some(self.codebook(value)),
+                "reactions" => (config.reactions, out.reaction_acts) = self.reactions(value),
                 "mqtt" => self.mqtt(value, &mut config.mqtt),
                 _ => self.verbs(value, config),
             }

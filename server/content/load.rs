@@ -72,11 +72,15 @@ fn load(root: &Path) -> LoadReport {
     check_page_labels(gathered.pages, &config, &mut merged, &mut diagnostics);
     check_home(&checker, &config, settings.home.as_ref(), &mut diagnostics);
     check_idle_act(&merged, settings.idle_act.as_ref(), &mut diagnostics);
+    check_reaction_acts(&merged, &settings.reaction_acts, &mut diagnostics);
     check_map(&checker, &config, settings.map.as_ref(), &mut diagnostics);
     if !settings_unread {
         check_undeclared(&config, &merged.acts, &mut diagnostics);
         let idle = settings.idle_act.as_ref().map(|a| a.value.as_str());
-        let referenced = merged.page_acts.iter().map(String::as_str).chain(idle);
+        let reacting = settings.reaction_acts.iter().map(|a| a.value.as_str());
+        let referenced = (merged.page_acts.iter().map(String::as_str))
+            .chain(idle)
+            .chain(reacting);
         check_unused(&merged.acts, referenced, &mut diagnostics);
     }
     let contexts = contexts(&config, &merged.acts);
@@ -294,6 +298,18 @@ fn check_idle_act(merged: &Merged, idle_act: Option<&Located<String>>, out: &mut
          {hint} Fix `idle_act` in docent.yaml or add the act."
     );
     out.push(Diagnostic::error("unknown-act", pos, message));
+}
+
+/// The acts `reactions:` trigger must exist.
+fn check_reaction_acts(merged: &Merged, acts: &[Located<String>], out: &mut Vec<Diagnostic>) {
+    for Located { value, pos } in acts.iter().filter(|a| !merged.knows(&a.value)) {
+        let hint = did_you_mean(value, merged.index.keys().map(String::as_str));
+        let message = format!(
+            "This reaction triggers the act `{value}` when the robot notices its event, but \
+             no act has that label.{hint} Fix `act:` in the reaction or add the act."
+        );
+        out.push(Diagnostic::error("unknown-act", pos, message));
+    }
 }
 
 /// A home page set in docent.yaml must exist; the default one only earns a warning.

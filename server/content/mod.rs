@@ -34,6 +34,7 @@ pub mod args;
 pub mod config;
 pub mod diagnostic;
 pub mod model;
+pub mod reaction;
 pub mod report;
 pub mod schema;
 

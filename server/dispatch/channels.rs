@@ -271,6 +271,7 @@ pub(crate) fn who(source: Source) -> &'static str {
         Source::Http => "the HTTP API",
         Source::Projector => "the projector",
         Source::Adapter => "an adapter",
+        Source::Robot => "a reaction to a robot event",
         Source::Server => "Docent",
     }
 }

@@ -79,7 +79,8 @@ impl Dispatcher {
         let priorities = self.bundle.load().config.priorities;
         match source {
             Source::Kiosk => priorities.kiosk,
-            Source::Dm => priorities.dm,
+            // A reaction acts on its own, as a dialog manager does.
+            Source::Dm | Source::Robot => priorities.dm,
             Source::Http => priorities.http,
             Source::Operator | Source::Projector | Source::Adapter | Source::Server => {
                 priorities.operator

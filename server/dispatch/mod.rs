@@ -16,6 +16,22 @@ mod choose;
 mod gate;
 #[cfg(test)]
 mod policy_tests;
+
+/// A dispatcher over `bundle` with the `log` speech adapter and no hardware, for unit tests
+/// elsewhere in the crate (`robot::reactions`, the policy tests).
+#[cfg(test)]
+pub(crate) fn log_dispatcher(bundle: crate::content::Bundle, hub: &Hub) -> Arc<Dispatcher> {
+    let life = Lifecycle::new();
+    let (_, router) = crate::adapters::Devices::start(
+        &bundle.config,
+        None,
+        crate::content::config::AdapterKind::Log,
+        crate::adapters::SpeechOutput::Audio,
+        (hub, &crate::robot::RobotInbox::channel().0),
+        &life,
+    );
+    Dispatcher::new(Arc::new(bundle), router, hub.clone(), Some(1), life)
+}
 mod request;
 mod sequence;
 mod visitors;

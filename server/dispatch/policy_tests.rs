@@ -8,13 +8,9 @@ use std::time::Duration;
 use tokio::sync::broadcast;
 use tokio::time::Instant;
 
-use crate::adapters::{Devices, SpeechOutput};
-use crate::content::config::AdapterKind;
 use crate::content::{Bundle, load_bundle, speaking_time};
 use crate::dispatch::{Dispatcher, TriggerError, TriggerRequest};
 use crate::events::{Event, EventKind, Hub, Source};
-use crate::lifecycle::Lifecycle;
-use crate::robot::RobotInbox;
 
 const LONG: &str = "one two three four five six seven eight nine ten eleven twelve thirteen \
                     fourteen fifteen sixteen seventeen eighteen nineteen twenty";
@@ -54,17 +50,8 @@ struct Rig {
 fn rig(config: &str) -> Rig {
     let (dir, bundle) = bundle(config);
     let (hub, _corpus) = Hub::new();
-    let life = Lifecycle::new();
-    let (_, router) = Devices::start(
-        &bundle.config,
-        None,
-        AdapterKind::Log,
-        SpeechOutput::Audio,
-        (&hub, &RobotInbox::channel().0),
-        &life,
-    );
     let events = hub.subscribe();
-    let dispatcher = Dispatcher::new(Arc::new(bundle), router, hub, Some(1), life);
+    let dispatcher = super::log_dispatcher(bundle, &hub);
     Rig {
         dispatcher,
         events,

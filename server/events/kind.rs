@@ -274,6 +274,18 @@ pub enum EventKind {
     /// The robot's software noticed something (an adapter process sent it).
     #[serde(rename = "robot")]
     Robot(super::RobotEvent),
+    /// A reaction's condition could not be decided on a robot event's data.
+    #[serde(rename = "reaction.failed")]
+    ReactionFailed {
+        /// The reaction's place in `reactions:`, from 1.
+        reaction: usize,
+        /// The robot event.
+        event: String,
+        /// The act it would have triggered.
+        act: String,
+        /// Why, and what to fix.
+        reason: String,
+    },
     /// An operator noted what the session's visitors agreed to.
     #[serde(rename = "consent.changed")]
     ConsentChanged {

@@ -22,6 +22,8 @@ pub enum Source {
     Dm,
     /// An external adapter process.
     Adapter,
+    /// The site's reaction to a robot event (`reactions:` in `docent.yaml`).
+    Robot,
     /// Docent itself (start-up, shutdown, a drive arriving).
     Server,
 }
@@ -36,6 +38,7 @@ impl Source {
             Source::Operator => "operator",
             Source::Dm => "dm",
             Source::Adapter => "adapter",
+            Source::Robot => "robot",
             Source::Server => "server",
         }
     }
@@ -96,7 +99,7 @@ mod tests {
     #[test]
     fn a_source_is_named_as_it_is_serialized() {
         use Source::*;
-        for source in [Http, Kiosk, Projector, Operator, Dm, Adapter, Server] {
+        for source in [Http, Kiosk, Projector, Operator, Dm, Adapter, Robot, Server] {
             let serialized = serde_json::to_value(source).unwrap();
             assert_eq!(serialized, source.as_str());
         }

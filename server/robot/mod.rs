@@ -6,6 +6,11 @@
 //! Map:
 //! - `mod.rs`: [`RobotNotice`], [`RobotInbox`] (how an adapter without the server's state
 //!   hands its notices in) and [`notice`], the one intake.
+//! - `reactions`: [`Reactions`], the site's `reactions:` carried out (condition, cool-down).
+
+mod reactions;
+
+pub use reactions::{Reacted, Reactions};
 
 use serde_json::Value;
 use tokio::sync::mpsc;
@@ -125,7 +130,10 @@ pub fn notice(state: &AppState, notice: RobotNotice) {
     state.hub.publish(EventKind::Robot(RobotEvent {
         client,
         topic,
-        event: notice.event,
-        data: notice.data,
+        event: notice.event.clone(),
+        data: notice.data.clone(),
     }));
+    // After the event's own line, so that the log reads cause before effect.
+    let on = (notice.event.as_str(), &notice.data);
+    (state.reactions).react(&config.reactions, on, &state.dispatcher, &state.hub);
 }

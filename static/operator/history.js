@@ -1,6 +1,7 @@
 // history.js: what happened, newest first: every act triggered by anyone (time, source, act,
 // variant and the exact text chosen), stops, refused triggers, proposals accepted, dismissed or
-// withdrawn (their dialog manager left), context changes and corpus marks. An act whose
+// withdrawn (their dialog manager left), context changes, corpus marks, robot events and
+// reactions to them that could not run. An act whose
 // command was cancelled or failed says so on its line, with the reason: a text that was never
 // said must not read as said. Several consoles see each other's acts here live.
 
@@ -55,7 +56,9 @@ export function createHistory(list) {
       case "note.written":
         return ["mark", [`note: ${e.text}`]];
       case "robot":
-        return ["mark", [`robot noticed: ${e.event}`]];
+        return ["mark", [`robot noticed: ${e.event}`, e.topic ? h("span", { class: "muted small" }, ` (${e.topic})`) : null]];
+      case "reaction.failed":
+        return ["refused", [`reaction ${e.reaction} (${e.event} → ${e.act}) did not run: `, e.reason]];
       default:
         return null;
     }

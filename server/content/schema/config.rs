@@ -9,6 +9,7 @@ use crate::content::config_file::TOP_KEYS;
 use crate::content::config_file::mqtt::KEYS as MQTT_KEYS;
 use crate::content::config_file::operator::KEYS as OPERATOR_KEYS;
 use crate::content::config_file::policy::{CHANNEL_KEYS, PRIORITY_KEYS};
+use crate::content::config_file::reactions::REACTION_KEYS;
 use crate::content::config_file::screens::CORPUS_KEYS;
 use crate::content::config_file::server::KEYS as SERVER_KEYS;
 
@@ -117,6 +118,7 @@ fn top_level(key: &str) -> Value {
              operator 3, http 3, dm 2, kiosk 1).",
         ),
         "codebook" => codebook(),
+        "reactions" => reactions(),
         "mqtt" => section(
             MQTT_KEYS,
             mqtt,
@@ -126,6 +128,39 @@ fn top_level(key: &str) -> Value {
         // A key added to the loader without a schema here fails the tests (no description).
         _ => json!({}),
     }
+}
+
+/// `reactions:`: a list of robot events mapped to acts.
+fn reactions() -> Value {
+    let mut reaction = section(
+        REACTION_KEYS,
+        |key| match key {
+            "event" => json!({
+                "type": "string",
+                "pattern": "^[a-z][a-z0-9._-]{0,63}$",
+                "description": "The robot event that sets it off, e.g. `person.near`.",
+            }),
+            "if" => words(
+                "A condition on the event's data: comparisons (<, <=, >, >=, ==, !=) of a \
+                 field with a number, \"quoted text\", true or false, joined by `and`, e.g. \
+                 `distance < 1.5`.",
+            ),
+            "act" => words("The label of the act it triggers."),
+            _ => duration("The least time between two of its triggers (default 30s)."),
+        },
+        "A reaction: when the robot notices `event` and its data passes `if`, trigger `act`.",
+    );
+    let fields = reaction
+        .as_object_mut()
+        .expect("section() builds an object");
+    fields.insert("type".into(), json!("object"));
+    fields.insert("required".into(), json!(["event", "act"]));
+    json!({
+        "description": "Robot events mapped to acts, each with an optional condition and a \
+                        cool-down, e.g. `- {event: person.near, if: distance < 1.5, act: \
+                        GREETING, cooldown: 2m}`.",
+        "anyOf": [{ "type": "null" }, { "type": "array", "items": reaction }],
+    })
 }
 
 /// `codebook:`: tier name to codes, each code with a one-key shortcut or none; or a list of
