@@ -2,8 +2,8 @@
 // `docent serve --mqtt` robots on it and `docent fleet --mqtt` serving the view alone. Signed
 // in, the page lists both robots online with their page and a console link; Stop (by keyboard)
 // stops the right robot, whose corpus logs it while the other's does not; its targets are at
-// least 44 px; and when the broker dies the page says the link is down at once. Every wait is
-// for a message or an element, with a deadline; nothing sleeps.
+// least 44 px; and when the broker dies the page, and a robot's console, say the link is down
+// at once. Every wait is for a message or an element, with a deadline; nothing sleeps.
 
 import assert from 'node:assert/strict';
 import { spawn } from 'node:child_process';
@@ -12,6 +12,7 @@ import path from 'node:path';
 import { after, before, test } from 'node:test';
 
 import { launchBrowser, watchExceptions } from './lib/browser.mjs';
+import { newConsoleContext, signIn } from './lib/operator.mjs';
 import { corpusEvents, DEADLINE_MS, docentBin, freePort, OPERATOR_TOKEN, REPO, removeTemp, startDocent, tempDir } from './lib/docent.mjs';
 
 let browser;
@@ -102,10 +103,15 @@ test('the fleet view lists two robots on one broker, stops the right one and sho
     assert.equal(stops(robots[1]).length, 1);
     assert.equal(stops(robots[0]).length, 0);
 
-    // The broker dies: the page says so at once.
+    // The broker dies: the fleet page says so at once, and so does each robot's console.
+    const consoleContext = await newConsoleContext(browser);
+    const consolePage = await consoleContext.newPage();
+    await signIn(consolePage, robots[0]);
     broker.kill('SIGKILL');
     await page.locator('#link[data-link="down"]').waitFor({ timeout: DEADLINE_MS });
     assert.match(await page.locator('#link').textContent(), /link down/);
+    await consolePage.locator('#history li', { hasText: `fleet broker ${mqtt}: link down` }).waitFor({ timeout: DEADLINE_MS });
+    await consoleContext.close();
     assert.deepEqual(errors, []);
   } finally {
     broker.kill('SIGKILL');
