@@ -309,13 +309,13 @@ fn serve(args: &ServeArgs) -> anyhow::Result<ExitCode> {
         for warning in &server.warnings {
             tracing::warn!("{warning}");
         }
+        let fleet_line = bridge.as_ref().map(|b| {
+            format!(
+                "  fleet:       {} as robot {}; fleet view http://{addr}/fleet (docs/FLEET.md)",
+                b.broker.url, b.identity.robot
+            )
+        });
         if let Some(bridge) = bridge {
-            let _ = writeln!(
-                std::io::stdout(),
-                "  fleet:       {} as robot {} (docs/FLEET.md)",
-                bridge.broker.url,
-                bridge.identity.robot
-            );
             let token = match &setup.mode {
                 AccessMode::Guarded(credentials) => Some(credentials.operator.clone()),
                 AccessMode::Open => None,
@@ -336,6 +336,9 @@ fn serve(args: &ServeArgs) -> anyhow::Result<ExitCode> {
             server.corpus_path().display()
         );
         print_access(&setup, addr);
+        if let Some(line) = fleet_line {
+            let _ = writeln!(std::io::stdout(), "{line}");
+        }
         if mode == Mode::Preview {
             open_preview(&format!("http://{addr}/preview"));
         }
