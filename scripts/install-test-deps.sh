@@ -5,6 +5,8 @@
 #                      browser download of Playwright's own: playwright-core drives /usr/bin/chromium);
 #   fonts-dejavu-core  the font the pages and screenshots are drawn with;
 #   ffmpeg             ffprobe and ffmpeg, which decode the recordings the browser test makes;
+#   mosquitto          the MQTT broker the fleet tests start on a loopback port (and
+#                      mosquitto-clients, mosquitto_sub/pub, for trying the topics by hand);
 #   tests/e2e npm packages (playwright-core, ws), with `npm ci` from package-lock.json when
 #                      node_modules is missing or older than the lock file;
 #   examples/dialog-manager/.venv  the example dialog manager's websockets package (PyPI),
@@ -25,6 +27,8 @@ command -v espeak-ng >/dev/null 2>&1 || packages+=(espeak-ng)
 dpkg-query -W -f='${Status}' fonts-dejavu-core 2>/dev/null | grep -q 'ok installed' ||
   packages+=(fonts-dejavu-core)
 command -v ffprobe >/dev/null 2>&1 || packages+=(ffmpeg)
+command -v mosquitto >/dev/null 2>&1 || [ -x /usr/sbin/mosquitto ] || packages+=(mosquitto)
+command -v mosquitto_sub >/dev/null 2>&1 || packages+=(mosquitto-clients)
 if ! command -v python3 >/dev/null 2>&1; then
   packages+=(python3 python3-venv)
 elif ! python3 -c 'import ensurepip, venv' >/dev/null 2>&1; then

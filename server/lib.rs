@@ -14,6 +14,7 @@
 //!   the frames adapters send and [`wire::ErrorCode`].
 //! - [`operator`]: pending proposals (mixed initiative) and visitor-session marks.
 //! - [`recording`]: the kiosk's microphone and camera recorded into a session's `media/`.
+//! - [`fleet`]: many robots over one MQTT broker: each robot's bridge, the fleet view.
 //! - [`robot`]: robot events from adapter processes and ROS topics: logged, sessions, reactions.
 //! - [`reload`]: live reload: watching the bundle folder, swapping in a good save, refusing a
 //!   broken one.
@@ -26,6 +27,7 @@ pub mod content;
 pub mod corpus;
 pub mod dispatch;
 pub mod events;
+pub mod fleet;
 pub mod http;
 pub mod lifecycle;
 pub mod operator;

@@ -55,6 +55,29 @@ enum Cmd {
     /// Exit status 0 when done, 1 when refused or failed, 2 for a command line clap cannot
     /// read (docs/CORPUS.md, "Command line").
     Corpus(corpus_cli::CorpusArgs),
+    /// Serve only the fleet view: every robot on an MQTT broker, with Stop (docs/FLEET.md).
+    Fleet(FleetArgs),
+}
+
+/// What `docent fleet` takes.
+#[derive(clap::Args)]
+struct FleetArgs {
+    /// The fleet's broker, mqtt://HOST[:PORT] (password in DOCENT_MQTT_PASSWORD).
+    #[arg(long, value_name = "URL")]
+    mqtt: String,
+    /// The broker's user name for the fleet view.
+    #[arg(long, value_name = "NAME")]
+    mqtt_username: Option<String>,
+    /// For an mqtts:// broker: the PEM file of the CA it is checked against (the system's CAs
+    /// without it).
+    #[arg(long, value_name = "FILE")]
+    mqtt_ca: Option<PathBuf>,
+    /// Address to listen on. Stays on loopback unless told otherwise.
+    #[arg(long, default_value = "127.0.0.1:8090")]
+    listen: SocketAddr,
+    /// Development only: no operator credential. Allowed only with a loopback --listen address.
+    #[arg(long)]
+    open: bool,
 }
 
 /// The schemas `docent schema` knows.
@@ -116,6 +139,17 @@ struct ServeArgs {
     /// only with a loopback --listen address.
     #[arg(long)]
     open: bool,
+    /// Join a fleet: publish state and events to this MQTT broker and take commands from it,
+    /// mqtt://HOST[:PORT] (docs/FLEET.md; overrides docent.yaml's mqtt: url).
+    #[arg(long, value_name = "URL")]
+    mqtt: Option<String>,
+    /// This robot's id in the fleet's topics, docent/ID/... (overrides mqtt: robot_id).
+    #[arg(long, value_name = "ID")]
+    robot_id: Option<String>,
+    /// For an mqtts:// broker: the PEM file of the CA it is checked against (the system's CAs
+    /// without it; overrides mqtt: ca_file).
+    #[arg(long, value_name = "FILE")]
+    mqtt_ca: Option<PathBuf>,
 }
 
 /// How `serve` presents the bundle.
@@ -146,6 +180,7 @@ fn main() -> ExitCode {
         Cmd::Serve(args) => serve(&args),
         Cmd::Schema { which, out } => write_schema(which, out.as_deref()),
         Cmd::Corpus(args) => return corpus_cli::run(&args),
+        Cmd::Fleet(args) => fleet(&args),
     };
     match result {
         Ok(code) => code,
@@ -254,6 +289,12 @@ fn serve(args: &ServeArgs) -> anyhow::Result<ExitCode> {
         access: setup.mode.clone(),
         limits: ConnectionLimits::default(),
     };
+    let fleet_flags = docent::fleet::FleetFlags {
+        url: args.mqtt.clone(),
+        robot_id: args.robot_id.clone(),
+        ca_file: args.mqtt_ca.clone(),
+    };
+    let mqtt_file = bundle.config.mqtt.clone();
     let home = bundle.config.home.clone();
     let runtime = tokio::runtime::Runtime::new().context("starting the async runtime")?;
     runtime.block_on(async move {
@@ -261,9 +302,25 @@ fn serve(args: &ServeArgs) -> anyhow::Result<ExitCode> {
             .await
             .with_context(|| format!("listening on {listen}"))?;
         let addr = listener.local_addr()?;
+        let password = std::env::var(docent::fleet::MQTT_PASSWORD_ENV).ok();
+        let bridge = docent::fleet::decide_bridge(&fleet_flags, &mqtt_file, password, addr)
+            .map_err(anyhow::Error::msg)?;
         let server = Server::start(bundle, &options).context("starting the server")?;
         for warning in &server.warnings {
             tracing::warn!("{warning}");
+        }
+        let fleet_line = bridge.as_ref().map(|b| {
+            format!(
+                "  fleet:       {} as robot {}; fleet view http://{addr}/fleet (docs/FLEET.md)",
+                b.broker.url, b.identity.robot
+            )
+        });
+        if let Some(bridge) = bridge {
+            let token = match &setup.mode {
+                AccessMode::Guarded(credentials) => Some(credentials.operator.clone()),
+                AccessMode::Open => None,
+            };
+            docent::fleet::join_fleet(server.state(), bridge, token);
         }
         if !args.no_watch {
             server.watch(ReloadOptions {
@@ -279,10 +336,89 @@ fn serve(args: &ServeArgs) -> anyhow::Result<ExitCode> {
             server.corpus_path().display()
         );
         print_access(&setup, addr);
+        if let Some(line) = fleet_line {
+            let _ = writeln!(std::io::stdout(), "{line}");
+        }
         if mode == Mode::Preview {
             open_preview(&format!("http://{addr}/preview"));
         }
         run(listener, server, shutdown_signal())
+            .await
+            .context("serving")?;
+        anyhow::Ok(ExitCode::SUCCESS)
+    })
+}
+
+/// `docent fleet`: the fleet view alone, behind the operator credential.
+fn fleet(args: &FleetArgs) -> anyhow::Result<ExitCode> {
+    tracing_subscriber::fmt()
+        .with_env_filter(
+            tracing_subscriber::EnvFilter::try_from_default_env()
+                .unwrap_or_else(|_| "docent=info,tower_http=warn".into()),
+        )
+        .with_writer(std::io::stderr)
+        .init();
+    let url = docent::fleet::BrokerUrl::parse(&args.mqtt)
+        .map_err(|why| anyhow::anyhow!("--mqtt: {why}"))?;
+    let password = std::env::var(docent::fleet::MQTT_PASSWORD_ENV)
+        .ok()
+        .filter(|p| !p.is_empty())
+        .map(docent::access::Secret::new);
+    let tls = docent::fleet::tls_for(&url, args.mqtt_ca.as_deref()).map_err(anyhow::Error::msg)?;
+    let broker = docent::fleet::Broker {
+        tls,
+        url,
+        username: args.mqtt_username.clone(),
+        password,
+    };
+    let listen = args.listen;
+    let setup = decide_access(
+        args.open,
+        listen.ip().is_loopback(),
+        &Default::default(),
+        |var| std::env::var(var).ok(),
+    )?;
+    let runtime = tokio::runtime::Runtime::new().context("starting the async runtime")?;
+    runtime.block_on(async move {
+        let listener = TcpListener::bind(listen)
+            .await
+            .with_context(|| format!("listening on {listen}"))?;
+        let addr = listener.local_addr()?;
+        let _ = writeln!(
+            std::io::stdout(),
+            "Docent fleet view of {}\n  fleet:       http://{addr}/fleet",
+            broker.url
+        );
+        if let AccessMode::Guarded(credentials) = &setup.mode {
+            let line = match setup.operator {
+                Some(Origin::Generated) => format!(
+                    "operator credential (generated for this run): {}",
+                    credentials.operator.expose()
+                ),
+                Some(Origin::Environment) => {
+                    "operator credential: from DOCENT_OPERATOR_TOKEN".into()
+                }
+                _ => String::new(),
+            };
+            let _ = writeln!(std::io::stdout(), "  {line}");
+        } else {
+            let _ = writeln!(
+                std::io::stdout(),
+                "  access:      open (--open): for development only"
+            );
+        }
+        if setup.operator == Some(Origin::Generated) {
+            let _ = writeln!(
+                std::io::stdout(),
+                "  note:        the robots will refuse a Stop with a generated credential: set \
+                 DOCENT_OPERATOR_TOKEN to the fleet's operator credential (docs/FLEET.md)"
+            );
+        }
+        let options = docent::fleet::FleetOptions {
+            broker,
+            access: setup.mode.clone(),
+        };
+        docent::fleet::serve_fleet(listener, options, shutdown_signal())
             .await
             .context("serving")?;
         anyhow::Ok(ExitCode::SUCCESS)

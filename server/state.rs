@@ -61,6 +61,8 @@ pub struct AppState {
     pub recordings: Arc<Recordings>,
     /// The site's reactions to robot events: when each last fired.
     pub reactions: Arc<Reactions>,
+    /// The fleet over MQTT: this robot's bridge and the fleet view, when started with a broker.
+    pub fleet: Arc<crate::fleet::FleetHandles>,
     clients: Arc<Clients>,
 }
 
@@ -155,6 +157,7 @@ impl AppState {
             replay: Arc::new(Replay::new(corpus)),
             recordings,
             reactions: Arc::default(),
+            fleet: Arc::default(),
             clients,
             life,
         }

@@ -8,6 +8,7 @@ use std::time::Duration;
 
 pub use crate::content::config_corpus::{CorpusSettings, RecordTracks, SessionStart};
 pub use crate::content::config_file::codebook::{Code, Codebook, CodebookTier};
+pub use crate::content::config_file::mqtt::{MqttPassword, MqttSettings};
 pub use crate::content::config_file::rosbridge::{PoseMessage, RosbridgeConfig, TopicEvent};
 pub use crate::content::config_policy::{
     Channel, ChannelPolicies, ChannelPolicy, MAX_PRIORITY, MAX_QUEUE_LIMIT, Priorities, WhenBusy,
@@ -309,6 +310,8 @@ pub struct SiteConfig {
     pub rosbridge: RosbridgeConfig,
     /// Robot events mapped to acts (`reactions:`), in written order.
     pub reactions: Vec<Reaction>,
+    /// The fleet's MQTT broker and this robot's id in it (`mqtt:`, docs/FLEET.md).
+    pub mqtt: MqttSettings,
 }
 
 impl Default for SiteConfig {
@@ -352,6 +355,7 @@ impl Default for SiteConfig {
             codebook: Codebook::default(),
             rosbridge: RosbridgeConfig::default(),
             reactions: Vec::new(),
+            mqtt: MqttSettings::default(),
         }
     }
 }

@@ -14,6 +14,7 @@ use crate::content::model::Located;
 mod access;
 pub(crate) mod codebook;
 mod devices;
+pub(crate) mod mqtt;
 pub(crate) mod operator;
 pub(crate) mod policy;
 pub(crate) mod reactions;
@@ -64,6 +65,7 @@ pub(crate) const TOP_KEYS: &[&str] = &[
     "priorities",
     "codebook",
     "reactions",
+    "mqtt",
     "rosbridge",
 ];
 const HOME_USAGE: &str = "`home` names the page under pages/ the kiosk starts on, e.g. \
@@ -138,6 +140,7 @@ impl Reader {
                 "priorities" => self.priorities(value, config),
                 "codebook" => codebook = Some(self.codebook(value)),
                 "reactions" => (config.reactions, out.reaction_acts) = self.reactions(value),
+                "mqtt" => self.mqtt(value, &mut config.mqtt),
                 _ => self.verbs(value, config),
             }
         }

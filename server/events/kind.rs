@@ -442,6 +442,9 @@ pub enum EventKind {
         /// Why it ended.
         reason: String,
     },
+    /// The robot's link to the fleet's MQTT broker came up or went down (`docs/FLEET.md`).
+    #[serde(rename = "fleet.link")]
+    FleetLink(crate::fleet::LinkView),
     /// The link to the robot's rosbridge server went up or down.
     #[serde(rename = "robot.link")]
     RobotLink(super::RobotLinkEvent),

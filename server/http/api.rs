@@ -212,6 +212,7 @@ pub async fn get_state(State(state): State<AppState>, _: Authorized) -> Json<Val
         "session": state.visits.current(),
         "consent": state.visits.consent(),
         "recording": state.recordings.view(),
+        "fleet": state.fleet.state_json(),
     }))
 }
 

@@ -130,7 +130,7 @@ pub(crate) fn bearer(headers: &HeaderMap) -> Option<&str> {
 }
 
 /// 401 with `WWW-Authenticate: Bearer`, or 429 with `Retry-After`.
-fn refusal_error(refusal: Refusal, needed: Needed) -> AppError {
+pub(crate) fn refusal_error(refusal: Refusal, needed: Needed) -> AppError {
     let message = refusal.message(needed);
     match refusal {
         Refusal::TooManyAttempts(wait) | Refusal::Locked(wait) => {

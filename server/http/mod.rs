@@ -31,7 +31,7 @@ mod sessions;
 mod sessions_annotate;
 mod sessions_media;
 mod shells;
-mod static_files;
+pub(crate) mod static_files;
 
 use axum::Router;
 use axum::routing::{get, post, put};
@@ -85,6 +85,7 @@ pub fn app(state: AppState) -> Router {
         .route("/pages/{*path}", get(files::serve_page))
         .route("/media/{*path}", get(files::serve_media))
         .route("/ws", get(ws_upgrade))
+        .merge(crate::fleet::routes::<AppState>())
         .fallback(api::not_found)
         .method_not_allowed_fallback(api::method_not_allowed)
         .layer(RequestBodyLimitLayer::new(MAX_BODY_BYTES))

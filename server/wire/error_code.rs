@@ -104,11 +104,17 @@ pub enum ErrorCode {
     ChunkOutOfOrder,
     /// `recording-gone`: A chunk for a recording that is closed or unknown.
     RecordingGone,
+    /// `broker-down`: The fleet view's link to the MQTT broker is down: nothing was sent.
+    BrokerDown,
+    /// `robot-silent`: A robot did not answer a fleet command in time.
+    RobotSilent,
+    /// `robot-refused`: A robot answered a fleet command with an error (its code in the message).
+    RobotRefused,
 }
 
 impl ErrorCode {
     /// Every code, for tests and documentation checks.
-    pub const ALL: [ErrorCode; 48] = [
+    pub const ALL: [ErrorCode; 51] = [
         ErrorCode::BadRequest,
         ErrorCode::BodyNotObject,
         ErrorCode::ConflictingLength,
@@ -157,6 +163,9 @@ impl ErrorCode {
         ErrorCode::SessionDamaged,
         ErrorCode::ChunkOutOfOrder,
         ErrorCode::RecordingGone,
+        ErrorCode::BrokerDown,
+        ErrorCode::RobotSilent,
+        ErrorCode::RobotRefused,
     ];
 
     /// The code as sent (the same string serde writes), for events and logs.
@@ -210,6 +219,9 @@ impl ErrorCode {
             ErrorCode::SessionDamaged => "session-damaged",
             ErrorCode::ChunkOutOfOrder => "chunk-out-of-order",
             ErrorCode::RecordingGone => "recording-gone",
+            ErrorCode::BrokerDown => "broker-down",
+            ErrorCode::RobotSilent => "robot-silent",
+            ErrorCode::RobotRefused => "robot-refused",
         }
     }
 }

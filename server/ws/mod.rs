@@ -12,10 +12,12 @@
 //! and its recordings' reports). Handlers return what the session must remember.
 //! `violation` maps a broken websocket frame to its RFC 6455 close code.
 //! `notices` tells a client what became of its commands and kiosks who is speaking.
+//! `embedded` is the same session without a websocket, for other transports (MQTT).
 
 mod client;
 mod connection;
 mod diagnose;
+mod embedded;
 mod hello;
 mod initiative;
 mod notices;
@@ -30,5 +32,6 @@ mod violation;
 mod writer;
 
 pub use connection::ws_upgrade;
+pub use embedded::EmbeddedSession;
 pub use notices::ClientNotices;
 pub use robot::ROBOT_DATA_BYTES;

@@ -68,18 +68,37 @@ impl Session {
 
     /// A text frame: parsed and handled, or answered with what is wrong with it.
     pub(super) fn on_text(&mut self, text: &str) {
+        if let Some(frame) = self.parse(text) {
+            self.on_frame(frame);
+        }
+    }
+
+    /// A text frame parsed, or `None` after answering with what is wrong with it.
+    pub(super) fn parse(&self, text: &str) -> Option<ClientFrame> {
         if text.len() > MAX_FRAME_BYTES {
             let message = format!("frames are limited to {MAX_FRAME_BYTES} bytes");
             let code = ErrorCode::FrameTooLarge;
-            return self.client.reply_error(code, &message, None, None);
+            self.client.reply_error(code, &message, None, None);
+            return None;
         }
         match serde_json::from_str::<ClientFrame>(text) {
-            Ok(frame) => self.on_frame(frame),
+            Ok(frame) => Some(frame),
             Err(e) => {
                 let (code, message, reference) = diagnose(text, &e);
                 (self.client).reply_error(code, &message, reference.as_deref(), None);
+                None
             }
         }
+    }
+
+    /// The role, once `hello` was accepted.
+    pub(super) fn role(&self) -> Option<ClientRole> {
+        self.role
+    }
+
+    /// The way back to the client, for a transport that answers it itself.
+    pub(super) fn client(&self) -> &Client {
+        &self.client
     }
 
     /// A binary frame: the protocol is JSON text, so it is answered and otherwise ignored.
@@ -88,7 +107,8 @@ impl Session {
         (self.client).reply_error(ErrorCode::BinaryFrame, message, None, None);
     }
 
-    fn on_frame(&mut self, frame: ClientFrame) {
+    /// A parsed frame, routed to its handler.
+    pub(super) fn on_frame(&mut self, frame: ClientFrame) {
         let (client, role) = (&self.client, self.role);
         match frame {
             ClientFrame::Hello {
@@ -186,7 +206,7 @@ impl Session {
 
     /// `hello`: admitted, the client gets its role, then its welcome, then the writer its
     /// feed, then the server learns of it, in that order (see `hello`).
-    fn hello(&mut self, hello: Hello) {
+    pub(super) fn hello(&mut self, hello: Hello) {
         if self.role.is_some() {
             return self.client.reply_error(
                 ErrorCode::AlreadyIntroduced,

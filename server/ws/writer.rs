@@ -136,7 +136,7 @@ pub async fn run_writer(
 /// The frame to send for `queued`: an acknowledgement once the corpus log holds what it
 /// acknowledges, or an `error` frame saying it could not be logged. `None` when the connection
 /// stops meanwhile.
-async fn release(queued: Queued, hub: &Hub, stop: &CancellationToken) -> Option<Frame> {
+pub(super) async fn release(queued: Queued, hub: &Hub, stop: &CancellationToken) -> Option<Frame> {
     let Some(ack) = queued.ack else {
         return Some(queued.frame);
     };

@@ -1,7 +1,7 @@
 // history.js: what happened, newest first: every act triggered by anyone (time, source, act,
 // variant and the exact text chosen), stops, refused triggers, proposals accepted, dismissed or
 // withdrawn (their dialog manager left), context changes, corpus marks, robot events and
-// reactions to them that could not run. An act whose
+// reactions to them that could not run, the fleet broker's link going down and up. An act whose
 // command was cancelled or failed says so on its line, with the reason: a text that was never
 // said must not read as said. Several consoles see each other's acts here live.
 
@@ -59,6 +59,10 @@ export function createHistory(list) {
         return ["mark", [`robot noticed: ${e.event}`, e.topic ? h("span", { class: "muted small" }, ` (${e.topic})`) : null]];
       case "reaction.failed":
         return ["refused", [`reaction ${e.reaction} (${e.event} → ${e.act}) did not run: `, e.reason]];
+      case "fleet.link":
+        return e.state === "up"
+          ? ["mark", [`fleet broker ${e.broker}: connected`]]
+          : ["refused", [`fleet broker ${e.broker}: link down (the fleet view cannot see or stop this robot): `, e.reason ?? ""]];
       default:
         return null;
     }

@@ -6,6 +6,7 @@ use serde_json::{Value, json};
 use super::{DRAFT, choice, duration, section, words};
 use crate::content::config::{Channel, MAX_PRIORITY, MAX_QUEUE_LIMIT};
 use crate::content::config_file::TOP_KEYS;
+use crate::content::config_file::mqtt::KEYS as MQTT_KEYS;
 use crate::content::config_file::operator::KEYS as OPERATOR_KEYS;
 use crate::content::config_file::policy::{CHANNEL_KEYS, PRIORITY_KEYS};
 use crate::content::config_file::reactions::REACTION_KEYS;
@@ -15,7 +16,7 @@ use crate::content::config_file::server::KEYS as SERVER_KEYS;
 mod rosbridge;
 mod site;
 
-use site::{access, operator, server, verbs};
+use site::{access, mqtt, operator, server, verbs};
 
 /// The keys of the sections whose lists live inline in the loader's functions; the test
 /// `section_keys_are_the_loaders` asks the loader for each list and compares.
@@ -119,6 +120,12 @@ fn top_level(key: &str) -> Value {
         ),
         "codebook" => codebook(),
         "reactions" => reactions(),
+        "mqtt" => section(
+            MQTT_KEYS,
+            mqtt,
+            "The fleet's MQTT broker and this robot's id in it (docs/FLEET.md); `docent serve \
+             --mqtt URL --robot-id ID` overrides both.",
+        ),
         "rosbridge" => rosbridge::rosbridge(),
         // A key added to the loader without a schema here fails the tests (no description).
         _ => json!({}),

@@ -62,6 +62,45 @@ pub(super) fn access(key: &str) -> Value {
     })
 }
 
+pub(super) fn mqtt(key: &str) -> Value {
+    match key {
+        "url" => json!({
+            "type": "string",
+            "pattern": "^mqtt://[^@/?#]+/?$",
+            "description": "The fleet's MQTT broker, e.g. `mqtt://broker.local:1883` (port 1883 \
+                            when left out). No user name or password in it.",
+        }),
+        "robot_id" => json!({
+            "type": "string",
+            "pattern": "^[A-Za-z0-9_-]{1,64}$",
+            "description": "This robot's id in the topics (`docent/ID/state`): 1 to 64 letters, \
+                            digits, - and _, e.g. `robot-1`.",
+        }),
+        "username" => json!({
+            "type": "string",
+            "description": "The broker's user name for this robot.",
+        }),
+        "ca_file" => json!({
+            "type": "string",
+            "pattern": "^/",
+            "description": "For an mqtts:// broker: the absolute path of the PEM file with the \
+                            CA certificates it is checked against (the system's without one).",
+        }),
+        "password" => json!({
+            "type": "string",
+            "description": "The broker's password for `username`. Better kept out of the \
+                            bundle: set DOCENT_MQTT_PASSWORD instead.",
+        }),
+        _ => json!({
+            "type": "string",
+            "pattern": "^https?://",
+            "description": "This robot's console as the fleet view links to it, e.g. \
+                            `http://robot-1.local:8080/operator` (by default the --listen \
+                            address's).",
+        }),
+    }
+}
+
 pub(super) fn server(_key: &str) -> Value {
     let address = json!({
         "type": "string",

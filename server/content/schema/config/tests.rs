@@ -63,6 +63,7 @@ fn section_keys_are_the_loaders() {
         (&["access"], &["access"]),
         (&["operator"], &["operator"]),
         (&["server"], &["server"]),
+        (&["mqtt"], &["mqtt"]),
         (
             &["operator", "visitor_groups"],
             &["operator", "visitor_groups"],

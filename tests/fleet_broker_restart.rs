@@ -1,0 +1,72 @@
+//! A broker restart is survived: mosquitto is killed and started again on the same port; the
+//! robot tells its operators the link went down (`fleet.link`, `/api/state`'s `fleet`), comes
+//! back by itself, re-publishes its retained state (the broker kept nothing) and takes
+//! commands again.
+
+mod common;
+mod fleet_support;
+
+use std::time::Instant;
+
+use common::{OPERATOR_TOKEN, WsClient, bundle};
+use fleet_support::{Mosquitto, Robot, TestClient};
+use serde_json::{Value, json};
+
+#[tokio::test]
+async fn a_broker_restart_is_survived() {
+    let mut broker = Mosquitto::start();
+    let robot = Robot::start(&bundle("dialogs/info-terminal"), &broker, "gate-1");
+    let mut operator = WsClient::operator_at(&robot.addr).await;
+    let mut mqtt = TestClient::connect(&broker, "restart-test", &["docent/gate-1/#"]);
+    mqtt.next("docent/gate-1/state", |s| s["online"] == true)
+        .await;
+
+    broker.kill();
+    let down = operator
+        .recv_where(|f| {
+            f["type"] == "event"
+                && f["event"]["type"] == "fleet.link"
+                && f["event"]["state"] == "down"
+        })
+        .await;
+    assert!(down["event"]["reason"].is_string(), "{down}");
+    let state: Value = reqwest::Client::new()
+        .get(robot.url("/api/state"))
+        .bearer_auth(OPERATOR_TOKEN)
+        .send()
+        .await
+        .expect("answers")
+        .json()
+        .await
+        .expect("JSON");
+    assert_eq!(state["fleet"]["robot"], "gate-1");
+    assert_eq!(state["fleet"]["link"]["state"], "down", "{state}");
+
+    let restarted = Instant::now();
+    let broker = Mosquitto::start_on(broker.port);
+    operator
+        .recv_where(|f| {
+            f["type"] == "event"
+                && f["event"]["type"] == "fleet.link"
+                && f["event"]["state"] == "up"
+        })
+        .await;
+    let back = restarted.elapsed();
+    // The broker forgot everything (no persistence): the robot published both again, its
+    // status first.
+    mqtt.next("docent/gate-1/status", |s| s["online"] == true)
+        .await;
+    let again = mqtt
+        .next("docent/gate-1/state", |s| s["online"] == true)
+        .await;
+    assert_eq!(again["link"]["state"], "up");
+    let command =
+        json!({"type": "trigger", "label": "WELCOME", "ref": "after", "token": OPERATOR_TOKEN});
+    let answer = mqtt.ask("gate-1", "after", command).await;
+    assert_eq!(answer["type"], "triggered", "{answer}");
+    println!(
+        "link up again {back:?} after the broker restarted; commands answered after {:?}",
+        restarted.elapsed()
+    );
+    drop(broker);
+}

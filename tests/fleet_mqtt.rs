@@ -1,0 +1,254 @@
+//! A fleet over a real mosquitto: two `docent serve --mqtt` processes on one broker appear in
+//! one fleet view; a command over MQTT reaches the right robot only and is answered on its
+//! reply topic with the websocket's own error codes; a kiosk role and a wrong credential are
+//! refused; the fleet view's Stop stops the right robot; the last will says offline after
+//! `kill -9`, and a robot that stops says so itself; a Docent without a broker says so.
+
+mod common;
+mod fleet_support;
+
+use std::time::Duration;
+
+use common::{DEADLINE, OPERATOR_TOKEN, bundle};
+use fleet_support::{Mosquitto, Robot, TestClient, logged};
+use serde_json::{Value, json};
+
+/// Reads the fleet view's live stream on `robot` until `done` accepts the robots it lists.
+async fn fleet_until(robot: &Robot, done: impl Fn(&[Value]) -> bool) -> Vec<Value> {
+    let mut response = reqwest::Client::new()
+        .get(robot.url("/api/fleet/updates"))
+        .bearer_auth(OPERATOR_TOKEN)
+        .send()
+        .await
+        .expect("the fleet stream answers");
+    assert_eq!(response.status(), 200);
+    let mut robots: std::collections::BTreeMap<String, Value> = Default::default();
+    let mut buffer = String::new();
+    let read = async {
+        loop {
+            let chunk = response
+                .chunk()
+                .await
+                .expect("stream readable")
+                .expect("stream open");
+            buffer.push_str(std::str::from_utf8(&chunk).expect("UTF-8"));
+            while let Some(end) = buffer.find("\n\n") {
+                let message: String = buffer.drain(..end + 2).collect();
+                let Some(data) = message.lines().find_map(|l| l.strip_prefix("data: ")) else {
+                    continue;
+                };
+                let data: Value = serde_json::from_str(data).expect("JSON update");
+                if let Some(all) = data["robots"].as_array() {
+                    robots = all
+                        .iter()
+                        .map(|r| {
+                            (
+                                r["robot"].as_str().unwrap_or_default().to_owned(),
+                                r.clone(),
+                            )
+                        })
+                        .collect();
+                } else if data["robot"].is_object() {
+                    let entry = data["robot"].clone();
+                    robots.insert(
+                        entry["robot"].as_str().unwrap_or_default().to_owned(),
+                        entry,
+                    );
+                }
+                let listed: Vec<Value> = robots.values().cloned().collect();
+                if done(&listed) {
+                    return listed;
+                }
+            }
+        }
+    };
+    tokio::time::timeout(DEADLINE, read)
+        .await
+        .expect("the fleet view shows it within the deadline")
+}
+
+fn online(robots: &[Value], id: &str) -> bool {
+    robots
+        .iter()
+        .any(|r| r["robot"] == id && r["online"] == true && r["state"]["page"].is_string())
+}
+
+#[tokio::test]
+async fn two_robots_on_one_broker_are_one_fleet_and_commands_reach_the_right_one_only() {
+    let broker = Mosquitto::start();
+    let bundle = bundle("dialogs/info-terminal");
+    let first = Robot::start(&bundle, &broker, "hall-1");
+    let second = Robot::start(&bundle, &broker, "hall-2");
+
+    // Either robot's /fleet shows both, with their state.
+    let robots = fleet_until(&first, |r| online(r, "hall-1") && online(r, "hall-2")).await;
+    let hall2 = robots
+        .iter()
+        .find(|r| r["robot"] == "hall-2")
+        .expect("listed");
+    assert_eq!(hall2["state"]["bundle"], "info-terminal");
+    assert_eq!(hall2["state"]["page"], "index.html");
+    assert_eq!(hall2["state"]["console"], second.url("/operator"));
+    assert_eq!(hall2["state"]["link"]["state"], "up");
+    assert!(hall2["state"]["pose"].is_object(), "{hall2}");
+    let snapshot: Value = reqwest::Client::new()
+        .get(second.url("/api/fleet"))
+        .bearer_auth(OPERATOR_TOKEN)
+        .send()
+        .await
+        .expect("answers")
+        .json()
+        .await
+        .expect("JSON");
+    assert_eq!(snapshot["link"]["state"], "up");
+    let unsigned = reqwest::get(first.url("/api/fleet"))
+        .await
+        .expect("answers");
+    assert_eq!(unsigned.status(), 401);
+
+    // A trigger over MQTT reaches hall-1 only.
+    let mut mqtt = TestClient::connect(&broker, "fleet-test", &["docent/+/reply"]);
+    let command =
+        json!({"type": "trigger", "label": "WELCOME", "ref": "t1", "token": OPERATOR_TOKEN});
+    let answer = mqtt.ask("hall-1", "t1", command).await;
+    assert_eq!(answer["type"], "triggered", "{answer}");
+    let context =
+        json!({"type": "context", "context": "Text", "ref": "c2", "token": OPERATOR_TOKEN});
+    let answer = mqtt.ask("hall-2", "c2", context).await;
+    assert_eq!(answer["type"], "context", "{answer}");
+    let triggered = |robot: &Robot| logged(&robot.corpus, "act.triggered");
+    assert_eq!(triggered(&first).len(), 1);
+    assert_eq!(triggered(&first)[0]["label"], "WELCOME");
+    assert!(triggered(&second).is_empty(), "{:?}", triggered(&second));
+    let joined = logged(&first.corpus, "client.connected");
+    assert!(
+        joined
+            .iter()
+            .any(|e| e["name"] == "mqtt" && e["role"] == "operator")
+    );
+
+    // A wrong credential: the websocket's code and wording, the command's ref, logged.
+    let wrong =
+        json!({"type": "trigger", "label": "WELCOME", "ref": "w1", "token": "not-the-credential"});
+    let answer = mqtt.ask("hall-1", "w1", wrong).await;
+    assert_eq!(answer["type"], "error");
+    assert_eq!(answer["code"], "unauthorized");
+    assert_eq!(
+        answer["message"],
+        "that is not the operator credential (DOCENT_OPERATOR_TOKEN)"
+    );
+    assert!(!answer.to_string().contains("not-the-credential"));
+    // A refusal is answered at once; an acknowledged command after it is answered once the
+    // log holds everything before it, the refusal's `client.refused` too.
+    let context =
+        json!({"type": "context", "context": "Text", "ref": "c3", "token": OPERATOR_TOKEN});
+    assert_eq!(mqtt.ask("hall-1", "c3", context).await["type"], "context");
+    assert_eq!(logged(&first.corpus, "client.refused").len(), 1);
+    // A kiosk needs no credential on the websocket; over a broker it is refused.
+    let kiosk = json!({"type": "trigger", "label": "WELCOME", "ref": "k1", "role": "kiosk"});
+    let answer = mqtt.ask("hall-1", "k1", kiosk).await;
+    assert_eq!(
+        (answer["type"].as_str(), answer["code"].as_str()),
+        (Some("error"), Some("forbidden"))
+    );
+    // Not JSON, an unknown frame: the websocket's reading of it.
+    mqtt.command("hall-1", json!("{oops")).await;
+    let bad = json!({"type": "dance", "ref": "u1", "token": OPERATOR_TOKEN});
+    let answer = mqtt.ask("hall-1", "u1", bad).await;
+    assert_eq!(answer["code"], "unknown-type", "{answer}");
+    assert_eq!(triggered(&first).len(), 1, "nothing refused was triggered");
+
+    // Stop from hall-1's fleet view stops hall-2, and only it.
+    let stopped = reqwest::Client::new()
+        .post(first.url("/api/fleet/robots/hall-2/stop"))
+        .bearer_auth(OPERATOR_TOKEN)
+        .send()
+        .await
+        .expect("answers");
+    assert_eq!(stopped.status(), 200);
+    let stopped: Value = stopped.json().await.expect("JSON");
+    assert_eq!(stopped["answer"]["type"], "stopped", "{stopped}");
+    assert_eq!(logged(&second.corpus, "stop").len(), 1);
+    assert_eq!(logged(&second.corpus, "stop")[0]["source"], "operator");
+    assert!(logged(&first.corpus, "stop").is_empty());
+    let unknown = reqwest::Client::new()
+        .post(first.url("/api/fleet/robots/hall-9/stop"))
+        .bearer_auth(OPERATOR_TOKEN)
+        .send()
+        .await
+        .expect("answers");
+    assert_eq!(unknown.status(), 404);
+}
+
+#[tokio::test]
+async fn a_docent_without_a_broker_says_so_at_api_fleet() {
+    let server = common::TestServer::start(&bundle("dialogs/info-terminal")).await;
+    let (status, body) = server.get("/api/fleet").await;
+    assert_eq!(status, 404, "{body}");
+    assert_eq!(body["code"], "not-found");
+    let error = body["error"].as_str().expect("a message");
+    assert!(error.contains("--mqtt URL --robot-id ID"), "{error}");
+    let (_, state) = server.get("/api/state").await;
+    assert!(state["fleet"].is_null(), "{state}");
+    let page = reqwest::get(server.url("/fleet")).await.expect("answers");
+    assert_eq!(page.status(), 200);
+    server.stop().await;
+}
+
+#[tokio::test]
+async fn the_last_will_says_offline_after_kill_9() {
+    let broker = Mosquitto::start();
+    let mut mqtt = TestClient::connect(&broker, "will-test", &["docent/+/status"]);
+    let mut robot = Robot::start(&bundle("dialogs/info-terminal"), &broker, "dock-1");
+    let status = mqtt
+        .next("docent/dock-1/status", |s| s["online"] == true)
+        .await;
+    assert_eq!(status["robot"], "dock-1");
+    robot.kill_9();
+    let started = std::time::Instant::now();
+    let will = mqtt
+        .next("docent/dock-1/status", |s| s["online"] == false)
+        .await;
+    assert_eq!(will["robot"], "dock-1");
+    println!("last will seen {:?} after kill -9", started.elapsed());
+    assert!(
+        started.elapsed() < Duration::from_secs(16),
+        "within 1.5 keep-alives"
+    );
+}
+
+#[tokio::test]
+async fn a_robot_that_stops_says_offline_itself() {
+    let broker = Mosquitto::start();
+    let mut mqtt = TestClient::connect(&broker, "goodbye-test", &["docent/+/state"]);
+    let mut robot = Robot::start(&bundle("dialogs/info-terminal"), &broker, "dock-2");
+    mqtt.next("docent/dock-2/state", |s| s["online"] == true)
+        .await;
+    robot.terminate();
+    let goodbye = mqtt
+        .next("docent/dock-2/state", |s| s["online"] == false)
+        .await;
+    assert_eq!(goodbye["reason"], "the robot's Docent stopped", "{goodbye}");
+}
+
+#[tokio::test]
+async fn a_battery_robot_event_shows_in_the_state() {
+    let broker = Mosquitto::start();
+    let mut mqtt = TestClient::connect(&broker, "battery-test", &["docent/+/state"]);
+    let robot = Robot::start(&bundle("dialogs/info-terminal"), &broker, "dock-3");
+    mqtt.next("docent/dock-3/state", |s| {
+        s["battery"].is_null() && s["online"] == true
+    })
+    .await;
+    let mut sensor = common::WsClient::connect(&format!("ws://{}/ws", robot.addr)).await;
+    let hello = json!({"type": "hello", "role": "adapter", "name": "power", "robot_events": ["battery.state"]});
+    sensor.send(hello).await;
+    sensor.recv_type("welcome").await;
+    let reading = json!({"type": "robot", "event": "battery.state", "data": {"percentage": 0.42}});
+    sensor.send(reading).await;
+    let state = mqtt
+        .next("docent/dock-3/state", |s| s["battery"].is_object())
+        .await;
+    assert_eq!(state["battery"]["percent"], 42.0, "{state}");
+    assert_eq!(state["battery"]["event"], "battery.state");
+}

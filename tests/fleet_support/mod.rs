@@ -1,0 +1,359 @@
+//! What the fleet tests share: a real mosquitto on a free loopback port (killed on drop), a
+//! `docent serve --mqtt` child process per robot (killed on drop), and an MQTT test client
+//! whose messages are awaited with a deadline, never slept for.
+
+#![allow(dead_code)] // Each test binary uses a different part.
+
+use std::io::{BufRead, BufReader};
+use std::path::{Path, PathBuf};
+use std::process::{Child, Command, Stdio};
+use std::time::Duration;
+
+use rumqttc::{AsyncClient, Event, Incoming, MqttOptions, QoS};
+use serde_json::Value;
+use tokio::sync::mpsc;
+
+use crate::common::{DEADLINE, DM_TOKEN, OPERATOR_TOKEN, process};
+
+/// A mosquitto broker on 127.0.0.1, killed when dropped.
+pub struct Mosquitto {
+    child: Child,
+    /// Its port.
+    pub port: u16,
+    _dir: tempfile::TempDir,
+    /// The test CA and the TLS listener's certificate, if it has one.
+    certs: Option<tempfile::TempDir>,
+}
+
+/// A loopback port that was free a moment ago.
+fn free_port() -> u16 {
+    std::net::TcpListener::bind("127.0.0.1:0")
+        .and_then(|l| l.local_addr())
+        .expect("a free port")
+        .port()
+}
+
+impl Mosquitto {
+    /// A broker on a free port.
+    pub fn start() -> Self {
+        Mosquitto::start_on(free_port())
+    }
+
+    /// A broker on `port` (again, after [`Mosquitto::kill`]), once it listens: mosquitto
+    /// says so on stderr, which is awaited (with the deadline) rather than slept for.
+    pub fn start_on(port: u16) -> Self {
+        Mosquitto::start_with(port, "", 1)
+    }
+
+    /// A broker on a free port and, on a second one, a TLS listener whose certificate (for
+    /// `localhost` and 127.0.0.1) a fresh CA signed: the port and the CA's PEM file.
+    pub fn start_with_tls() -> (Self, u16, PathBuf) {
+        let certs = tempfile::tempdir().expect("a temporary folder");
+        let dir = certs.path();
+        let openssl = |args: &[&str]| {
+            let status = Command::new("openssl")
+                .args(args)
+                .current_dir(dir)
+                .stderr(Stdio::null())
+                .status()
+                .expect("openssl runs");
+            assert!(status.success(), "openssl {args:?}");
+        };
+        openssl(&[
+            "req",
+            "-x509",
+            "-newkey",
+            "rsa:2048",
+            "-nodes",
+            "-days",
+            "2",
+            "-subj",
+            "/CN=Docent test CA",
+            "-keyout",
+            "ca.key",
+            "-out",
+            "ca.pem",
+        ]);
+        openssl(&[
+            "req",
+            "-newkey",
+            "rsa:2048",
+            "-nodes",
+            "-subj",
+            "/CN=localhost",
+            "-keyout",
+            "server.key",
+            "-out",
+            "server.csr",
+        ]);
+        std::fs::write(
+            dir.join("san.ext"),
+            "subjectAltName=DNS:localhost,IP:127.0.0.1\n",
+        )
+        .expect("written");
+        openssl(&[
+            "x509",
+            "-req",
+            "-in",
+            "server.csr",
+            "-CA",
+            "ca.pem",
+            "-CAkey",
+            "ca.key",
+            "-CAcreateserial",
+            "-days",
+            "2",
+            "-extfile",
+            "san.ext",
+            "-out",
+            "server.pem",
+        ]);
+        // mosquitto started as root reads its certificates as the `mosquitto` user.
+        use std::os::unix::fs::PermissionsExt;
+        let readable = std::fs::Permissions::from_mode(0o755);
+        std::fs::set_permissions(dir, readable.clone()).expect("folder readable");
+        std::fs::set_permissions(dir.join("server.key"), readable).expect("key readable");
+        let tls_port = free_port();
+        let tls = format!(
+            "listener {tls_port} 127.0.0.1\ncafile {0}/ca.pem\ncertfile {0}/server.pem\nkeyfile {0}/server.key\n",
+            dir.display()
+        );
+        let mut broker = Mosquitto::start_with(free_port(), &tls, 2);
+        let ca = dir.join("ca.pem");
+        broker.certs = Some(certs);
+        (broker, tls_port, ca)
+    }
+
+    /// mosquitto with a plain listener on `port` and `more` configuration, once it has opened
+    /// `listeners` listeners.
+    fn start_with(port: u16, more: &str, listeners: usize) -> Self {
+        let dir = tempfile::tempdir().expect("a temporary folder");
+        let conf = dir.path().join("mosquitto.conf");
+        let text = format!(
+            "allow_anonymous true\npersistence false\nlog_dest stderr\nlog_type all\n\
+             listener {port} 127.0.0.1\n{more}"
+        );
+        std::fs::write(&conf, text).expect("config written");
+        let binary = ["/usr/sbin/mosquitto", "/usr/bin/mosquitto"]
+            .into_iter()
+            .find(|p| Path::new(p).exists())
+            .expect("mosquitto is installed (scripts/install-test-deps.sh)");
+        let mut child = Command::new(binary)
+            .arg("-c")
+            .arg(&conf)
+            .stdout(Stdio::null())
+            .stderr(Stdio::piped())
+            .spawn()
+            .expect("mosquitto starts");
+        let stderr = child.stderr.take().expect("stderr");
+        let (tx, rx) = std::sync::mpsc::channel();
+        std::thread::spawn(move || {
+            let mut opened = 0;
+            for line in BufReader::new(stderr).lines().map_while(Result::ok) {
+                if line.contains("Opening ipv4 listen socket") {
+                    opened += 1;
+                    if opened == listeners {
+                        let _ = tx.send(());
+                    }
+                }
+            }
+        });
+        rx.recv_timeout(DEADLINE)
+            .expect("mosquitto opens its listener within the deadline");
+        Mosquitto {
+            child,
+            port,
+            _dir: dir,
+            certs: None,
+        }
+    }
+
+    /// The broker's address for `--mqtt`.
+    pub fn url(&self) -> String {
+        format!("mqtt://127.0.0.1:{}", self.port)
+    }
+
+    /// Kills it (SIGKILL) and waits for it to be gone.
+    pub fn kill(&mut self) {
+        let _ = self.child.kill();
+        let _ = self.child.wait();
+    }
+}
+
+impl Drop for Mosquitto {
+    fn drop(&mut self) {
+        self.kill();
+    }
+}
+
+/// A `docent serve --mqtt` process, killed when dropped.
+pub struct Robot {
+    child: Child,
+    /// Its `host:port`.
+    pub addr: String,
+    /// Its corpus folder.
+    pub corpus: PathBuf,
+    _dir: tempfile::TempDir,
+}
+
+impl Robot {
+    /// `docent serve BUNDLE --mqtt URL --robot-id ID`, guarded by the test credentials.
+    pub fn start(bundle: &Path, broker: &Mosquitto, id: &str) -> Self {
+        Robot::start_at(bundle, &broker.url(), id, &[])
+    }
+
+    /// As [`Robot::start`], with the broker at `url` and `more` arguments.
+    pub fn start_at(bundle: &Path, url: &str, id: &str, more: &[&str]) -> Self {
+        let dir = tempfile::tempdir().expect("a temporary folder");
+        let corpus = dir.path().join("corpus");
+        let mut command = Command::new(env!("CARGO_BIN_EXE_docent"));
+        command
+            .arg("serve")
+            .arg(bundle)
+            .args([
+                "--listen",
+                "127.0.0.1:0",
+                "--no-watch",
+                "--corpus-sync",
+                "10ms",
+            ])
+            .arg("--corpus")
+            .arg(&corpus)
+            .args(["--mqtt", url, "--robot-id", id])
+            .args(more)
+            .env("DOCENT_OPERATOR_TOKEN", OPERATOR_TOKEN)
+            .env("DOCENT_DM_TOKEN", DM_TOKEN)
+            .env("RUST_LOG", "docent=warn");
+        let (child, addr) = process::start(command);
+        Robot {
+            child,
+            addr,
+            corpus,
+            _dir: dir,
+        }
+    }
+
+    /// Asks it to stop (SIGTERM) and waits until it has: a graceful goodbye.
+    pub fn terminate(&mut self) {
+        let status = Command::new("kill")
+            .args(["-TERM", &self.child.id().to_string()])
+            .status()
+            .expect("kill runs");
+        assert!(status.success());
+        let _ = self.child.wait();
+    }
+
+    /// Kills it with SIGKILL: no goodbye, only the broker's last will.
+    pub fn kill_9(&mut self) {
+        let _ = self.child.kill();
+        let _ = self.child.wait();
+    }
+
+    /// A URL on this robot's server.
+    pub fn url(&self, path: &str) -> String {
+        format!("http://{}{path}", self.addr)
+    }
+}
+
+impl Drop for Robot {
+    fn drop(&mut self) {
+        self.kill_9();
+    }
+}
+
+/// A message a test client received.
+#[derive(Debug)]
+pub struct Message {
+    /// Its topic.
+    pub topic: String,
+    /// Its payload as JSON.
+    pub json: Value,
+}
+
+/// An MQTT client of the test: subscribes to `filters` (again after each reconnection).
+pub struct TestClient {
+    /// Publishes.
+    pub client: AsyncClient,
+    messages: mpsc::UnboundedReceiver<Message>,
+}
+
+impl TestClient {
+    /// Connects to `broker` as `id` and subscribes to `filters`.
+    pub fn connect(broker: &Mosquitto, id: &str, filters: &[&str]) -> Self {
+        let mut options = MqttOptions::new(id, "127.0.0.1", broker.port);
+        options.set_keep_alive(Duration::from_secs(5));
+        let (client, mut events) = AsyncClient::new(options, 64);
+        let (tx, messages) = mpsc::unbounded_channel();
+        let filters: Vec<String> = filters.iter().map(|f| (*f).to_owned()).collect();
+        let subscriber = client.clone();
+        tokio::spawn(async move {
+            loop {
+                match events.poll().await {
+                    Ok(Event::Incoming(Incoming::ConnAck(_))) => {
+                        for filter in &filters {
+                            let _ = subscriber.subscribe(filter, QoS::AtLeastOnce).await;
+                        }
+                    }
+                    Ok(Event::Incoming(Incoming::Publish(p))) => {
+                        let json = serde_json::from_slice(&p.payload).unwrap_or(Value::Null);
+                        if tx
+                            .send(Message {
+                                topic: p.topic,
+                                json,
+                            })
+                            .is_err()
+                        {
+                            return;
+                        }
+                    }
+                    Ok(_) => {}
+                    // The broker is down: rumqttc reconnects at the next poll; a breath first.
+                    Err(_) => tokio::time::sleep(Duration::from_millis(50)).await,
+                }
+            }
+        });
+        TestClient { client, messages }
+    }
+
+    /// The next message on `topic` that `wanted` accepts, within the deadline.
+    pub async fn next(&mut self, topic: &str, wanted: impl Fn(&Value) -> bool) -> Value {
+        let found = tokio::time::timeout(DEADLINE, async {
+            loop {
+                let message = self.messages.recv().await.expect("the client runs");
+                if message.topic == topic && wanted(&message.json) {
+                    return message.json;
+                }
+            }
+        })
+        .await;
+        found.unwrap_or_else(|_| panic!("no wanted message on {topic} within the deadline"))
+    }
+
+    /// Publishes `command` on robot `robot`'s `cmd` topic.
+    pub async fn command(&self, robot: &str, command: Value) {
+        (self.client)
+            .publish(
+                format!("docent/{robot}/cmd"),
+                QoS::AtLeastOnce,
+                false,
+                command.to_string(),
+            )
+            .await
+            .expect("published");
+    }
+
+    /// Publishes `command` on `robot`'s `cmd` and returns its answer with `reference`.
+    pub async fn ask(&mut self, robot: &str, reference: &str, command: Value) -> Value {
+        self.command(robot, command).await;
+        let topic = format!("docent/{robot}/reply");
+        self.next(&topic, |answer| answer["ref"] == reference).await
+    }
+}
+
+/// The corpus lines of `corpus` (every day log and session log) of `type`.
+pub fn logged(corpus: &Path, kind: &str) -> Vec<Value> {
+    crate::common::read_corpus(corpus)
+        .into_iter()
+        .filter(|e| e["type"] == kind)
+        .collect()
+}
