@@ -30,6 +30,7 @@ const SILENCE_LIMIT: Duration = Duration::from_secs(6);
 /// How many times a stop held while the link was down goes out once it is back, and how often:
 /// for 5 s, as the robot's subscribers may take that long to discover the new publishers.
 const HELD_REPEATS: u32 = 20;
+/// The wait between two sendings of a held stop.
 const HELD_REPEAT_EVERY: Duration = Duration::from_millis(250);
 /// Frames waiting to go out; more means the link is stuck.
 const OUTBOX_CAPACITY: usize = 256;

@@ -53,7 +53,7 @@ struct RobotState {
     waypoint: Option<Waypoint>,
     /// Whether a drive command runs.
     moving: bool,
-    /// When the last `pose` event went out (they are thinned to [`POSE_EVENT_GAP`]).
+    /// When the last `pose` event went out (thinned to `inbound::POSE_EVENT_GAP`).
     last_pose_event: Option<Instant>,
     /// The running `NavigateToPose` goal's id, to cancel it.
     goal_id: Option<String>,
