@@ -406,3 +406,29 @@ async fn a_ros_topic_message_triggers_the_act_the_site_maps_it_to() {
         (&json!("HALT"), &json!("robot"))
     );
 }
+
+#[tokio::test]
+async fn a_drive_that_gets_nowhere_fails_after_the_stall_time_and_stops_the_robot() {
+    // The goal goes to a topic no base listens to, as when Nav2 drops a goal without a word:
+    // the robot never comes closer, and the drive must not wait for ever.
+    let ros = RosSide::start(7, 1.0).await;
+    let b = bundle(&ros, "  goal_topic: /nobody_listens\n  stall: 1s\n");
+    let (server, mut op) = docent(&b).await;
+    let mut log = sim_log(&ros).await;
+    let started = Instant::now();
+    server.trigger("FAR", json!({})).await;
+    let failed = op
+        .event_where(|e| e["type"] == "command.failed" && e["verb"] == "DRIVE_START")
+        .await;
+    let waited = started.elapsed();
+    let reason = failed["reason"].as_str().unwrap();
+    assert!(
+        reason.starts_with("the robot came no closer to (40, 0) for 1 s and is still 40.00 m away")
+            && reason.contains("it was told to stop"),
+        "{reason}"
+    );
+    assert!(waited >= Duration::from_secs(1), "{waited:?}");
+    let stop = log_entry(&mut log, "stop").await;
+    assert!(["stop", "cmd_vel"].contains(&stop["stop"].as_str().unwrap()));
+    server.stop().await;
+}

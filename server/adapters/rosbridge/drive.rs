@@ -95,15 +95,19 @@ impl DriveTask {
             state.moving = true;
             state.goal_id.clone_from(&goal_id);
         }
+        let mut progress = Progress::new(config.stall);
         loop {
             let pose = lock(&robot.state).pose;
-            if let Some(p) = pose
-                && (target.x - p.x).hypot(target.y - p.y) <= config.tolerance
-            {
-                break;
+            if let Some(p) = pose {
+                let distance = (target.x - p.x).hypot(target.y - p.y);
+                if distance <= config.tolerance {
+                    break;
+                }
+                progress.at(distance);
             }
             tokio::select! {
                 _ = poses.changed() => {}
+                () = progress.stalled() => return Outcome::Failed(progress.reason(target)),
                 _ = link_watch.changed() => {
                     let status = link_watch.borrow_and_update().clone();
                     if status.state == LinkState::Down || status.connection != connection {
@@ -137,6 +141,61 @@ impl DriveTask {
             .hub
             .publish(EventKind::DriveArrived { x: at.x, y: at.y });
         Outcome::Done
+    }
+}
+
+/// Whether a drive is getting anywhere: a drive that does not come [`PROGRESS_M`] closer to its
+/// waypoint within `rosbridge: stall` fails (and its [`Halt`] publishes the stop), rather than
+/// waiting for ever on a goal Nav2 refused or dropped without a word.
+struct Progress {
+    stall: Option<std::time::Duration>,
+    closest: Option<f64>,
+    deadline: Option<tokio::time::Instant>,
+}
+
+/// Metres closer that count as progress: less is a robot standing still with a noisy pose.
+const PROGRESS_M: f64 = 0.05;
+
+impl Progress {
+    fn new(stall: Option<std::time::Duration>) -> Self {
+        let deadline = stall.map(|s| tokio::time::Instant::now() + s);
+        Progress {
+            stall,
+            closest: None,
+            deadline,
+        }
+    }
+
+    /// The robot is `distance` metres from its waypoint now.
+    fn at(&mut self, distance: f64) {
+        if self.closest.is_none_or(|c| distance < c - PROGRESS_M) {
+            self.closest = Some(distance);
+            self.deadline = self.stall.map(|s| tokio::time::Instant::now() + s);
+        }
+    }
+
+    async fn stalled(&self) {
+        match self.deadline {
+            Some(deadline) => tokio::time::sleep_until(deadline).await,
+            None => std::future::pending().await,
+        }
+    }
+
+    fn reason(&self, target: Waypoint) -> String {
+        let stall = self.stall.unwrap_or_default().as_secs_f64();
+        let (x, y) = (target.x, target.y);
+        match self.closest {
+            Some(distance) => format!(
+                "the robot came no closer to ({x}, {y}) for {stall:.0} s and is still \
+                 {distance:.2} m away: Nav2 may have refused or dropped the goal, or the way \
+                 is blocked; it was told to stop (`rosbridge: stall` sets how long to wait)"
+            ),
+            None => format!(
+                "no pose arrived for {stall:.0} s while driving to ({x}, {y}): check that the \
+                 robot publishes its pose topic; it was told to stop (`rosbridge: stall` sets \
+                 how long to wait)"
+            ),
+        }
     }
 }
 

@@ -23,6 +23,7 @@ pub(crate) const KEYS: &[&str] = &[
     "stop_topic",
     "cmd_vel",
     "tolerance",
+    "stall",
     "events",
 ];
 /// The keys of one entry of `rosbridge: events:`.
@@ -38,6 +39,9 @@ const FRAME_USAGE: &str = "`frame` is the ROS frame the goals are in: letters, d
 const TOLERANCE_USAGE: &str = "`tolerance` is how close to its waypoint the robot counts as \
                                arrived, in metres: above 0 and at most 10, e.g. \
                                `tolerance: 0.3`.";
+const STALL_USAGE: &str = "`stall` is how long a drive may go without coming closer to its \
+                           waypoint before it fails and the robot is told to stop, with its \
+                           unit: at least 1s, e.g. `stall: 30s`, or `0s` to wait for ever.";
 const TYPE_USAGE: &str = "A ROS message type, `package/msg/Name`, e.g. `std_msgs/msg/String`.";
 const EVENTS_USAGE: &str = "`events` is a list of topics, each `{topic: /battery_state, type: \
                             sensor_msgs/msg/BatteryState, event: battery.state}`.";
@@ -98,6 +102,8 @@ pub struct RosbridgeConfig {
     pub cmd_vel: Option<String>,
     /// Metres from the waypoint that count as arrived.
     pub tolerance: f64,
+    /// How long a drive may go without coming closer before it fails; `None`: for ever.
+    pub stall: Option<std::time::Duration>,
     /// Topics that become robot events.
     pub events: Vec<TopicEvent>,
 }
@@ -114,6 +120,7 @@ impl Default for RosbridgeConfig {
             stop_topic: None,
             cmd_vel: Some("/cmd_vel".to_owned()),
             tolerance: 0.3,
+            stall: Some(std::time::Duration::from_secs(30)),
             events: Vec::new(),
         }
     }
@@ -202,6 +209,16 @@ impl Reader {
                     };
                     if let Some(tolerance) = self.setting(value, TOLERANCE_USAGE, parse) {
                         ros.tolerance = tolerance;
+                    }
+                }
+                "stall" => {
+                    let parse = |t: &str| match crate::content::parse_duration(t) {
+                        Some(d) if d.is_zero() => Some(None),
+                        Some(d) if d.as_secs_f64() >= 1.0 => Some(Some(d)),
+                        _ => None,
+                    };
+                    if let Some(stall) = self.setting(value, STALL_USAGE, parse) {
+                        ros.stall = stall;
                     }
                 }
                 _ => ros.events = self.topic_events(value),

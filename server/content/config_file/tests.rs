@@ -197,6 +197,9 @@ fn a_rosbridge_section_is_read_with_its_events() {
         ("/goal_pose", "map", "/amcl_pose")
     );
     assert_eq!(defaults.cmd_vel.as_deref(), Some("/cmd_vel"));
+    assert_eq!(defaults.stall, Some(std::time::Duration::from_secs(30)));
+    let never = parse("rosbridge: {url: ws://10.0.0.2:9090, stall: 0s}\n");
+    assert_eq!(never.config.rosbridge.stall, None);
 }
 
 #[test]
@@ -215,7 +218,12 @@ fn a_rosbridge_drive_without_a_url_is_told_where_it_is_set() {
 
 #[test]
 fn rosbridge_mistakes_are_told_at_their_place() {
-    let cases: [(&str, (&str, u32, u32), &str); 6] = [
+    let cases: [(&str, (&str, u32, u32), &str); 7] = [
+        (
+            "rosbridge:\n  url: ws://r:9090\n  stall: 500ms\n",
+            ("config-bad-value", 3, 10),
+            "at least 1s",
+        ),
         (
             "rosbridge:\n  url: http://robot:9090\n",
             ("config-bad-value", 2, 8),

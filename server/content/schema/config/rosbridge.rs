@@ -6,7 +6,7 @@ use serde_json::{Value, json};
 
 use crate::content::config::PoseMessage;
 use crate::content::config_file::rosbridge::{EVENT_KEYS, KEYS};
-use crate::content::schema::{choice, section};
+use crate::content::schema::{choice, duration, section};
 
 const ROS_NAME: &str = r"^/?[A-Za-z][A-Za-z0-9_]*(/[A-Za-z][A-Za-z0-9_]*)*$";
 
@@ -67,6 +67,10 @@ fn key(key: &str) -> Value {
             "description": "How close to its waypoint the robot counts as arrived, in metres \
                             (default 0.3).",
         }),
+        "stall" => duration(
+            "How long a drive may go without coming closer to its waypoint before it fails and \
+             the robot is told to stop (default 30s; at least 1s, or 0s: wait for ever).",
+        ),
         "events" => {
             let mut event = section(
                 EVENT_KEYS,
