@@ -96,6 +96,15 @@ impl Condition {
             if rest.done() {
                 break;
             }
+            if let Some(decimals) = rest.remaining().strip_prefix(',')
+                && decimals.starts_with(|c: char| c.is_ascii_digit())
+            {
+                return Err(rest.error_at(
+                    rest.at,
+                    "numbers are written with a decimal point, not a comma: `1.5`, not `1,5`"
+                        .to_owned(),
+                ));
+            }
             let word = rest.word();
             if word != "and" {
                 return Err(rest.error_at(
@@ -251,11 +260,17 @@ impl<'t> Scanner<'t> {
         self.skip_spaces();
         let op_at = self.at;
         let Some((symbol, op)) = OPS.iter().find(|(s, _)| self.remaining().starts_with(s)) else {
+            let found = self.remaining();
+            let advice = if found.starts_with('=') {
+                "; to compare, write two equals signs: `==`"
+            } else {
+                ""
+            };
             return Err(self.error_at(
                 op_at,
                 format!(
-                    "after `{field}` comes a comparison: <, <=, >, >=, == or != (found `{}`)",
-                    self.remaining()
+                    "after `{field}` comes a comparison: <, <=, >, >=, == or != (found \
+                     `{found}`){advice}"
                 ),
             ));
         };
@@ -350,6 +365,8 @@ mod tests {
             ("distance 1.5", 9, "after `distance` comes a comparison"),
             ("distance < near", 11, "\"quoted text\""),
             ("distance < 1.5 or x > 2", 15, "expected `and`"),
+            ("distance < 1,5", 12, "decimal point, not a comma"),
+            ("name = \"Ada\"", 5, "two equals signs: `==`"),
             ("< 2", 0, "expected the name of a field"),
             ("name == \"Ada", 8, "no closing"),
             ("distance < 1e3", 11, "expected a number"),

@@ -46,18 +46,17 @@ impl Reader {
         let mut reactions = Vec::new();
         let mut acts = Vec::new();
         for item in items {
-            if let Some((reaction, act)) = self.reaction(item) {
-                reactions.push(reaction);
-                acts.push(act);
-            }
+            let (reaction, act) = self.reaction(item);
+            reactions.extend(reaction);
+            acts.extend(act);
         }
         (reactions, acts)
     }
 
-    fn reaction(&mut self, item: &Node) -> Option<(Reaction, Located<String>)> {
+    fn reaction(&mut self, item: &Node) -> (Option<Reaction>, Option<Located<String>>) {
         if !matches!(item.kind, Kind::Map(_)) {
             self.bad(item, REACTIONS_USAGE);
-            return None;
+            return (None, None);
         }
         let (mut event, mut condition, mut act) = (None, None, None);
         let mut cooldown = Some(DEFAULT_COOLDOWN);
@@ -93,12 +92,12 @@ impl Reader {
                 }
             }
         }
-        let (Some(event), Some(act), Some(cooldown)) = (event, act, cooldown) else {
+        let (Some(event), Some(act), Some(cooldown)) = (event, act.clone(), cooldown) else {
             if complete {
                 // Nothing was wrong in what is there: a key is missing.
                 self.bad(item, REACTIONS_USAGE);
             }
-            return None;
+            return (None, act);
         };
         let reaction = Reaction {
             event,
@@ -107,7 +106,8 @@ impl Reader {
             cooldown,
         };
         // A reaction with a wrong part is left out whole: a half-read one would fire wrongly.
-        complete.then_some((reaction, act))
+        // Its act is still checked, so that every mistake is told in one go.
+        (complete.then_some(reaction), Some(act))
     }
 
     /// Reads `if:`, placing a mistake at the character it concerns when the text stands in
@@ -202,7 +202,14 @@ mod tests {
         assert_eq!(located(plain), [("reaction-bad-condition", 2, 41)]);
         let quoted = "reactions:\n  - {event: person.near, if: \"distance 1\", act: HI}\n";
         assert_eq!(located(quoted), [("reaction-bad-condition", 2, 40)]);
-        assert!(parse(plain).config.reactions.is_empty(), "left out whole");
+        let file = parse(plain);
+        assert!(file.config.reactions.is_empty(), "left out whole");
+        let acts: Vec<&str> = file
+            .reaction_acts
+            .iter()
+            .map(|a| a.value.as_str())
+            .collect();
+        assert_eq!(acts, ["HI"], "its act is checked all the same");
     }
 
     #[test]
