@@ -3,7 +3,7 @@
 // in, the page lists both robots online with their page and a console link; Stop (by keyboard)
 // stops the right robot, whose corpus logs it while the other's does not; its targets are at
 // least 44 px; and when the broker dies the page, and a robot's console, say the link is down
-// at once. Every wait is for a message or an element, with a deadline; nothing sleeps.
+// at once. It writes docs/screenshots/fleet.png. Every wait is for a message or an element, with a deadline; nothing sleeps.
 
 import assert from 'node:assert/strict';
 import { spawn } from 'node:child_process';
@@ -99,6 +99,8 @@ test('the fleet view lists two robots on one broker, stops the right one and sho
     await stop.focus();
     await page.keyboard.press('Enter');
     await row('e2e-2').locator('.outcome', { hasText: 'Stopped (e2e-2 confirmed).' }).waitFor({ timeout: DEADLINE_MS });
+    await page.setViewportSize({ width: 1280, height: 560 });
+    await page.screenshot({ path: path.join(REPO, 'docs/screenshots/fleet.png') });
     const stops = (robot) => corpusEvents(robot.corpus).filter((e) => e.type === 'stop');
     assert.equal(stops(robots[1]).length, 1);
     assert.equal(stops(robots[0]).length, 0);
