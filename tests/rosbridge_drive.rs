@@ -319,7 +319,29 @@ async fn a_ros_topic_message_becomes_a_robot_event_in_the_corpus() {
     .await
     .expect("the recogniser's message arrives");
     assert_eq!(event["event"], "asr.text");
+    // A message too large for a robot event is told to operators, once for the topic.
+    let huge = json!({"data": "x".repeat(5000)});
+    for _ in 0..2 {
+        asr.publish("/asr/text", "std_msgs/msg/String", huge.clone())
+            .await;
+    }
+    let refused = op.event("topic.refused").await;
+    assert_eq!(
+        (&refused["topic"], &refused["event"]),
+        (&json!("/asr/text"), &json!("asr.text"))
+    );
+    let reason = refused["reason"].as_str().unwrap();
+    assert!(
+        reason.contains("5011 bytes of JSON, over the 4096"),
+        "{reason}"
+    );
+    let after = json!({"data": "thank you"});
+    asr.publish("/asr/text", "std_msgs/msg/String", after).await;
+    op.event_where(|e| e["type"] == "robot" && e["data"]["data"] == "thank you")
+        .await;
     let all = server.stop().await;
+    let told = all.iter().filter(|e| e["type"] == "topic.refused").count();
+    assert_eq!(told, 1, "once per topic, not per message");
     let logged = all
         .iter()
         .find(|e| e["type"] == "robot")

@@ -274,6 +274,17 @@ pub enum EventKind {
     /// The robot's software noticed something (an adapter process sent it).
     #[serde(rename = "robot")]
     Robot(super::RobotEvent),
+    /// A message on a ROS topic could not be used (told once per topic and problem).
+    #[serde(rename = "topic.refused")]
+    TopicRefused {
+        /// The topic.
+        topic: String,
+        /// The robot event it would have been, if any (not for the pose topic).
+        #[serde(skip_serializing_if = "Option::is_none")]
+        event: Option<String>,
+        /// Why, and what to change.
+        reason: String,
+    },
     /// A reaction's condition could not be decided on a robot event's data.
     #[serde(rename = "reaction.failed")]
     ReactionFailed {

@@ -57,6 +57,8 @@ export function createHistory(list) {
         return ["mark", [`note: ${e.text}`]];
       case "robot":
         return ["mark", [`robot noticed: ${e.event}`, e.topic ? h("span", { class: "muted small" }, ` (${e.topic})`) : null]];
+      case "topic.refused":
+        return ["refused", [`robot message on ${e.topic} not used: `, e.reason]];
       case "reaction.failed":
         return ["refused", [`reaction ${e.reaction} (${e.event} → ${e.act}) did not run: `, e.reason]];
       case "fleet.link":

@@ -1,7 +1,9 @@
 //! What each message from rosbridge becomes: the pose topic's messages the robot's pose (every
 //! one judged for arrival, `pose` events thinned to one per [`POSE_EVENT_GAP`] unless moving
-//! changes), a listed topic's messages robot events handed to the [`RobotInbox`] (refused, and
-//! told once per topic, when larger than a robot event may be), an action's result the drive's.
+//! changes), a listed topic's messages robot events handed to the [`RobotInbox`], an action's
+//! result the drive's. A message that cannot be used (larger than a robot event may be, a
+//! pose without a position, an inbox full) is told to operators once per topic as
+//! `topic.refused`.
 
 use std::sync::Arc;
 use std::time::{Duration, Instant};
@@ -11,6 +13,7 @@ use serde_json::Value;
 use super::link::Inbound;
 use super::{Robot, messages};
 use crate::adapters::drive_sim::Pose;
+use crate::events::EventKind;
 use crate::robot::{RobotNotice, RobotOrigin};
 use crate::sync::lock;
 use crate::ws::ROBOT_DATA_BYTES;
@@ -39,13 +42,13 @@ pub(super) fn handler(robot: Arc<Robot>) -> impl Fn(Inbound) + Send + Sync + 'st
 fn pose(robot: &Robot, msg: &Value) {
     let Some((x, y, heading)) = messages::pose_of(robot.config.pose_type, msg) else {
         let topic = &robot.config.pose_topic;
-        if lock(&robot.state).oversize_told.insert(topic.clone()) {
-            tracing::warn!(
-                topic,
-                kind = robot.config.pose_type.type_name(),
-                "a pose message without a position: check `rosbridge: pose_type`"
-            );
-        }
+        let kind = robot.config.pose_type.type_name();
+        let reason = format!(
+            "a message on the pose topic has no position where a {kind} has it, so the \
+             robot's pose is unknown and drives cannot arrive: check `rosbridge: pose_type` \
+             against the topic's type (`ros2 topic info {topic}`)"
+        );
+        refused(robot, topic, None, reason);
         return;
     };
     let event = {
@@ -93,23 +96,33 @@ fn robot_event(robot: &Robot, topic: &str, event: &str, data: Value) {
     let notice = match notice_for(topic, event, data) {
         Ok(notice) => notice,
         Err(size) => {
-            if lock(&robot.state).oversize_told.insert(topic.to_owned()) {
-                tracing::warn!(
-                    topic,
-                    event,
-                    size,
-                    "a message on this topic is {size} bytes of JSON, over the \
-                     {ROBOT_DATA_BYTES} a robot event may carry; it is not logged (nor are \
-                     later ones, without another word): map a smaller topic, or republish a \
-                     summary of it on the robot"
-                );
-            }
-            return;
+            let reason = format!(
+                "a message on this topic is {size} bytes of JSON, over the {ROBOT_DATA_BYTES} a \
+                 robot event may carry; it is not logged (nor are later ones, without another \
+                 word): map a smaller topic, or republish a summary of it on the robot"
+            );
+            return refused(robot, topic, Some(event), reason);
         }
     };
     if let Err(full) = robot.inbox.send(notice) {
-        tracing::warn!(topic, "{full}");
+        refused(robot, topic, Some(event), full.to_string());
     }
+}
+
+/// Tells operators (a `topic.refused` event, in the corpus and the console's history) and the
+/// server log that messages on `topic` cannot be used, once per topic and event: a sensor
+/// mapped wrongly must not go quiet without a word, nor flood the log at its own rate.
+fn refused(robot: &Robot, topic: &str, event: Option<&str>, reason: String) {
+    let key = format!("{topic} {}", event.unwrap_or("pose"));
+    if !lock(&robot.state).refusals_told.insert(key) {
+        return;
+    }
+    tracing::warn!(topic, event, "{reason}");
+    robot.hub.publish(EventKind::TopicRefused {
+        topic: topic.to_owned(),
+        event: event.map(str::to_owned),
+        reason,
+    });
 }
 
 #[cfg(test)]

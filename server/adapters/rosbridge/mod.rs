@@ -58,7 +58,7 @@ struct RobotState {
     /// The running `NavigateToPose` goal's id, to cancel it.
     goal_id: Option<String>,
     /// Topics whose problem (a message too large, a pose without a position) was told already.
-    oversize_told: HashSet<String>,
+    refusals_told: HashSet<String>,
 }
 
 /// What the link's inbound handler and the drive share.
