@@ -12,6 +12,7 @@ use docent::access::{AccessMode, AccessSetup, Origin, decide_access};
 use docent::content::config::AdapterKind;
 use docent::content::{Colour, Diagnostic, load_bundle, render_diagnostics, schema};
 use docent::corpus::cli as corpus_cli;
+use docent::fleet::cli as fleet_cli;
 use docent::http::ConnectionLimits;
 use docent::reload::ReloadOptions;
 use docent::serve::{ServeOptions, Server, run};
@@ -56,28 +57,7 @@ enum Cmd {
     /// read (docs/CORPUS.md, "Command line").
     Corpus(corpus_cli::CorpusArgs),
     /// Serve only the fleet view: every robot on an MQTT broker, with Stop (docs/FLEET.md).
-    Fleet(FleetArgs),
-}
-
-/// What `docent fleet` takes.
-#[derive(clap::Args)]
-struct FleetArgs {
-    /// The fleet's broker, mqtt://HOST[:PORT] (password in DOCENT_MQTT_PASSWORD).
-    #[arg(long, value_name = "URL")]
-    mqtt: String,
-    /// The broker's user name for the fleet view.
-    #[arg(long, value_name = "NAME")]
-    mqtt_username: Option<String>,
-    /// For an mqtts:// broker: the PEM file of the CA it is checked against (the system's CAs
-    /// without it).
-    #[arg(long, value_name = "FILE")]
-    mqtt_ca: Option<PathBuf>,
-    /// Address to listen on. Stays on loopback unless told otherwise.
-    #[arg(long, default_value = "127.0.0.1:8090")]
-    listen: SocketAddr,
-    /// Development only: no operator credential. Allowed only with a loopback --listen address.
-    #[arg(long)]
-    open: bool,
+    Fleet(fleet_cli::FleetArgs),
 }
 
 /// The schemas `docent schema` knows.
@@ -253,13 +233,7 @@ fn serve(args: &ServeArgs) -> anyhow::Result<ExitCode> {
     } else {
         Mode::Robot
     };
-    tracing_subscriber::fmt()
-        .with_env_filter(
-            tracing_subscriber::EnvFilter::try_from_default_env()
-                .unwrap_or_else(|_| "docent=info,tower_http=warn".into()),
-        )
-        .with_writer(std::io::stderr)
-        .init();
+    init_logging();
     let report = load_bundle(bundle_dir);
     print!("{}", render(bundle_dir, &report.diagnostics));
     let Some(mut bundle) = report.bundle else {
@@ -350,79 +324,9 @@ fn serve(args: &ServeArgs) -> anyhow::Result<ExitCode> {
 }
 
 /// `docent fleet`: the fleet view alone, behind the operator credential.
-fn fleet(args: &FleetArgs) -> anyhow::Result<ExitCode> {
-    tracing_subscriber::fmt()
-        .with_env_filter(
-            tracing_subscriber::EnvFilter::try_from_default_env()
-                .unwrap_or_else(|_| "docent=info,tower_http=warn".into()),
-        )
-        .with_writer(std::io::stderr)
-        .init();
-    let url = docent::fleet::BrokerUrl::parse(&args.mqtt)
-        .map_err(|why| anyhow::anyhow!("--mqtt: {why}"))?;
-    let password = std::env::var(docent::fleet::MQTT_PASSWORD_ENV)
-        .ok()
-        .filter(|p| !p.is_empty())
-        .map(docent::access::Secret::new);
-    let tls = docent::fleet::tls_for(&url, args.mqtt_ca.as_deref()).map_err(anyhow::Error::msg)?;
-    let broker = docent::fleet::Broker {
-        tls,
-        url,
-        username: args.mqtt_username.clone(),
-        password,
-    };
-    let listen = args.listen;
-    let setup = decide_access(
-        args.open,
-        listen.ip().is_loopback(),
-        &Default::default(),
-        |var| std::env::var(var).ok(),
-    )?;
-    let runtime = tokio::runtime::Runtime::new().context("starting the async runtime")?;
-    runtime.block_on(async move {
-        let listener = TcpListener::bind(listen)
-            .await
-            .with_context(|| format!("listening on {listen}"))?;
-        let addr = listener.local_addr()?;
-        let _ = writeln!(
-            std::io::stdout(),
-            "Docent fleet view of {}\n  fleet:       http://{addr}/fleet",
-            broker.url
-        );
-        if let AccessMode::Guarded(credentials) = &setup.mode {
-            let line = match setup.operator {
-                Some(Origin::Generated) => format!(
-                    "operator credential (generated for this run): {}",
-                    credentials.operator.expose()
-                ),
-                Some(Origin::Environment) => {
-                    "operator credential: from DOCENT_OPERATOR_TOKEN".into()
-                }
-                _ => String::new(),
-            };
-            let _ = writeln!(std::io::stdout(), "  {line}");
-        } else {
-            let _ = writeln!(
-                std::io::stdout(),
-                "  access:      open (--open): for development only"
-            );
-        }
-        if setup.operator == Some(Origin::Generated) {
-            let _ = writeln!(
-                std::io::stdout(),
-                "  note:        the robots will refuse a Stop with a generated credential: set \
-                 DOCENT_OPERATOR_TOKEN to the fleet's operator credential (docs/FLEET.md)"
-            );
-        }
-        let options = docent::fleet::FleetOptions {
-            broker,
-            access: setup.mode.clone(),
-        };
-        docent::fleet::serve_fleet(listener, options, shutdown_signal())
-            .await
-            .context("serving")?;
-        anyhow::Ok(ExitCode::SUCCESS)
-    })
+fn fleet(args: &fleet_cli::FleetArgs) -> anyhow::Result<ExitCode> {
+    init_logging();
+    fleet_cli::run(args, shutdown_signal())
 }
 
 /// Says how operators and dialog managers get in. A generated credential is printed here,
@@ -482,6 +386,17 @@ fn open_preview(url: &str) {
             "  open it in a browser to preview the bundle"
         );
     }
+}
+
+/// Logs to standard error, Docent's own at `info` unless `RUST_LOG` says otherwise.
+fn init_logging() {
+    tracing_subscriber::fmt()
+        .with_env_filter(
+            tracing_subscriber::EnvFilter::try_from_default_env()
+                .unwrap_or_else(|_| "docent=info,tower_http=warn".into()),
+        )
+        .with_writer(std::io::stderr)
+        .init();
 }
 
 /// Completes on Ctrl-C or SIGTERM.
