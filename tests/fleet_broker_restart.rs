@@ -30,15 +30,7 @@ async fn a_broker_restart_is_survived() {
         })
         .await;
     assert!(down["event"]["reason"].is_string(), "{down}");
-    let state: Value = reqwest::Client::new()
-        .get(robot.url("/api/state"))
-        .bearer_auth(OPERATOR_TOKEN)
-        .send()
-        .await
-        .expect("answers")
-        .json()
-        .await
-        .expect("JSON");
+    let state: Value = fleet_support::operator_get(&robot.url("/api/state")).await;
     assert_eq!(state["fleet"]["robot"], "gate-1");
     assert_eq!(state["fleet"]["link"]["state"], "down", "{state}");
 

@@ -91,15 +91,7 @@ async fn two_robots_on_one_broker_are_one_fleet_and_commands_reach_the_right_one
     assert_eq!(hall2["state"]["console"], second.url("/operator"));
     assert_eq!(hall2["state"]["link"]["state"], "up");
     assert!(hall2["state"]["pose"].is_object(), "{hall2}");
-    let snapshot: Value = reqwest::Client::new()
-        .get(second.url("/api/fleet"))
-        .bearer_auth(OPERATOR_TOKEN)
-        .send()
-        .await
-        .expect("answers")
-        .json()
-        .await
-        .expect("JSON");
+    let snapshot: Value = fleet_support::operator_get(&second.url("/api/fleet")).await;
     assert_eq!(snapshot["link"]["state"], "up");
     let unsigned = reqwest::get(first.url("/api/fleet"))
         .await

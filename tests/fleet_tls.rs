@@ -5,7 +5,7 @@
 mod common;
 mod fleet_support;
 
-use common::{OPERATOR_TOKEN, WsClient, bundle};
+use common::{WsClient, bundle};
 use fleet_support::{Mosquitto, Robot, TestClient};
 use serde_json::Value;
 
@@ -37,15 +37,7 @@ async fn a_tls_broker_no_trusted_ca_vouches_for_is_refused_and_said() {
     let url = format!("mqtts://127.0.0.1:{tls_port}");
     let robot = Robot::start_at(&bundle("dialogs/info-terminal"), &url, "tls-2", &[]);
     let mut operator = WsClient::operator_at(&robot.addr).await;
-    let state: Value = reqwest::Client::new()
-        .get(robot.url("/api/state"))
-        .bearer_auth(OPERATOR_TOKEN)
-        .send()
-        .await
-        .expect("answers")
-        .json()
-        .await
-        .expect("JSON");
+    let state: Value = fleet_support::operator_get(&robot.url("/api/state")).await;
     let link = &state["fleet"]["link"];
     let reason = if link["state"] == "down" {
         link["reason"].clone()

@@ -357,3 +357,16 @@ pub fn logged(corpus: &Path, kind: &str) -> Vec<Value> {
         .filter(|e| e["type"] == kind)
         .collect()
 }
+
+/// `GET url` with the operator credential, as JSON.
+pub async fn operator_get(url: &str) -> Value {
+    reqwest::Client::new()
+        .get(url)
+        .bearer_auth(OPERATOR_TOKEN)
+        .send()
+        .await
+        .expect("answers")
+        .json()
+        .await
+        .expect("JSON")
+}
