@@ -25,9 +25,9 @@ use tokio_util::sync::CancellationToken;
 
 use super::view::{FleetView, StopFailed};
 use crate::access::{Access, Needed};
-use crate::events::{EventKind, Hub};
+use crate::events::Hub;
 use crate::http::AppError;
-use crate::http::auth::{bearer, refusal_error, same_origin};
+use crate::http::auth::{bearer, log_refusal, refusal_error, same_origin};
 use crate::state::AppState;
 use crate::wire::ErrorCode;
 
@@ -119,33 +119,8 @@ where
         {
             Ok(()) => Ok(FleetOperator),
             Err(refusal) => {
-                if !matches!(refusal, crate::access::Refusal::Locked(_))
-                    && let Some(unlogged) = http.access.admit_refusal_log()
-                {
-                    let address = client.ip.map(|p| p.to_string());
-                    let code = refusal.code();
-                    let (method, path) = (
-                        parts.method.as_str().to_owned(),
-                        parts.uri.path().to_owned(),
-                    );
-                    tracing::warn!(
-                        method,
-                        path,
-                        address,
-                        code = code.as_str(),
-                        unlogged,
-                        "HTTP credential refused"
-                    );
-                    if let Some(hub) = &http.hub {
-                        hub.publish(EventKind::RequestRefused {
-                            method,
-                            path,
-                            code,
-                            address,
-                            unlogged,
-                        });
-                    }
-                }
+                let log = (&*http.access, http.hub.as_ref());
+                log_refusal(log, parts, client.ip, refusal);
                 Err(refusal_error(refusal, Needed::Operator))
             }
         }

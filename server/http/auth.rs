@@ -12,8 +12,8 @@ use axum::extract::{ConnectInfo, FromRequestParts};
 use axum::http::request::Parts;
 use axum::http::{HeaderMap, HeaderValue, StatusCode, header};
 
-use crate::access::{ClientAddress, Needed, Refusal, whole_seconds};
-use crate::events::EventKind;
+use crate::access::{Access, ClientAddress, Needed, Refusal, whole_seconds};
+use crate::events::{EventKind, Hub};
 use crate::http::AppError;
 use crate::state::AppState;
 use crate::wire::ErrorCode;
@@ -52,7 +52,7 @@ impl FromRequestParts<AppState> for Authorized {
         match state.access.check(client, Needed::Either, token) {
             Ok(()) => Ok(Authorized),
             Err(refusal) => {
-                log_refusal(state, parts, client.ip, refusal);
+                log_refusal((&state.access, Some(&state.hub)), parts, client.ip, refusal);
                 Err(refusal_error(refusal, Needed::Either))
             }
         }
@@ -64,11 +64,17 @@ const MAX_LOGGED_PATH: usize = 256;
 
 /// Writes a counted refusal to the server log and the corpus, within the shared allowance
 /// (an address already waiting is not logged again; see [`crate::access::RefusalLog`]).
-fn log_refusal(state: &AppState, parts: &Parts, peer: Option<IpAddr>, refusal: Refusal) {
+/// `hub` is the corpus's, when the server has one (`docent fleet` has none).
+pub(crate) fn log_refusal(
+    (access, hub): (&Access, Option<&Hub>),
+    parts: &Parts,
+    peer: Option<IpAddr>,
+    refusal: Refusal,
+) {
     if matches!(refusal, Refusal::Locked(_)) {
         return;
     }
-    let Some(unlogged) = state.access.admit_refusal_log() else {
+    let Some(unlogged) = access.admit_refusal_log() else {
         return;
     };
     let mut path = parts.uri.path().to_owned();
@@ -89,13 +95,15 @@ fn log_refusal(state: &AppState, parts: &Parts, peer: Option<IpAddr>, refusal: R
         unlogged,
         "HTTP credential refused"
     );
-    state.hub.publish(EventKind::RequestRefused {
-        method,
-        path,
-        code,
-        address,
-        unlogged,
-    });
+    if let Some(hub) = hub {
+        hub.publish(EventKind::RequestRefused {
+            method,
+            path,
+            code,
+            address,
+            unlogged,
+        });
+    }
 }
 
 /// Refuses a request a browser sent from a page of another site (its `Origin` names another
