@@ -7,7 +7,7 @@
 #   ffmpeg             ffprobe and ffmpeg, which decode the recordings the browser test makes;
 #   mosquitto          the MQTT broker the fleet tests start on a loopback port (and
 #                      mosquitto-clients, mosquitto_sub/pub, for trying the topics by hand);
-#   tests/e2e npm packages (playwright-core, ws), with `npm ci` from package-lock.json when
+#   tests/e2e npm packages (playwright-core, ws, axe-core), with `npm ci` from package-lock.json when
 #                      node_modules is missing or older than the lock file;
 #   examples/dialog-manager/.venv  the example dialog manager's websockets package (PyPI),
 #                      made by its run.sh, again only when its requirements.txt changed;
