@@ -47,7 +47,10 @@ for (const name of bundles) {
     try {
       const page = await context.newPage();
       const dir = path.join(REPO, 'dialogs', name, 'pages');
-      const pages = fs.existsSync(dir) ? fs.readdirSync(dir).filter((f) => f.endsWith('.html')).sort() : [];
+      const pages = fs.existsSync(dir)
+        ? fs.readdirSync(dir, { recursive: true }).filter((f) => f.endsWith('.html')).map((f) => f.split(path.sep).join('/')).sort()
+        : [];
+      assert.ok(pages.length > 0, `${name} has no pages`);
       const found = {};
       for (const file of pages) {
         const res = await page.goto(`${server.base}/pages/${file}`, { waitUntil: 'load' });
