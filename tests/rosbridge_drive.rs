@@ -2,7 +2,8 @@
 //! simulated base (`tests/ros/`), each test in its own ROS domain and on its own ports. A tour
 //! act drives the base to its waypoint and goes on when it arrives; `DRIVE_STOP` and Stop halt
 //! it; killing rosbridge fails the drive with the reason, and the link comes back by itself
-//! with its subscriptions. Run with `--nocapture` to see the measured times.
+//! with its subscriptions; a drive that gets nowhere fails (`rosbridge_events.rs` has the topics).
+//! Run with `--nocapture` to see the measured times.
 
 mod common;
 #[path = "ros/harness.rs"]
@@ -11,7 +12,7 @@ mod ros;
 use std::time::{Duration, Instant};
 
 use common::{TempBundle, TestServer, WsClient};
-use ros::{ROS_DEADLINE, RosClient, RosSide};
+use ros::{ROS_DEADLINE, RosClient, RosSide, docent};
 use serde_json::{Value, json};
 
 const ACTS: &str = "\
@@ -36,15 +37,6 @@ fn bundle(ros: &RosSide, extra: &str) -> TempBundle {
         ros.url
     );
     TempBundle::new(ACTS).with_file("docent.yaml", &yaml)
-}
-
-/// Docent serving `b` and an operator that saw the link come up.
-async fn docent(b: &TempBundle) -> (TestServer, WsClient) {
-    let server = TestServer::start(b.path()).await;
-    let mut op = server.operator().await;
-    let up = op.event_where(|e| e["type"] == "robot.link").await;
-    assert_eq!(up["state"], "up", "{up}");
-    (server, op)
 }
 
 /// A client of the test's own on `/sim/log`, where the base tells each goal and stop.
@@ -296,63 +288,6 @@ async fn a_lost_link_fails_the_drive_and_comes_back_with_its_subscriptions() {
 }
 
 #[tokio::test]
-async fn a_ros_topic_message_becomes_a_robot_event_in_the_corpus() {
-    let ros = RosSide::start(4, 1.0).await;
-    let yaml = format!(
-        "speech: {{adapter: log}}\nrosbridge:\n  url: {}\n  events:\n    - {{topic: \
-         /asr/text, type: std_msgs/msg/String, event: asr.text}}\n",
-        ros.url
-    );
-    let b = TempBundle::new(ACTS).with_file("docent.yaml", &yaml);
-    let (server, mut op) = docent(&b).await;
-    let mut asr = RosClient::connect(&ros.url).await.expect("connects");
-    let event = tokio::time::timeout(ROS_DEADLINE, async {
-        loop {
-            let msg = json!({"data": "where is the exit"});
-            asr.publish("/asr/text", "std_msgs/msg/String", msg).await;
-            let seen = tokio::time::timeout(Duration::from_millis(500), op.event("robot")).await;
-            if let Ok(event) = seen {
-                return event;
-            }
-        }
-    })
-    .await
-    .expect("the recogniser's message arrives");
-    assert_eq!(event["event"], "asr.text");
-    // A message too large for a robot event is told to operators, once for the topic.
-    let huge = json!({"data": "x".repeat(5000)});
-    for _ in 0..2 {
-        asr.publish("/asr/text", "std_msgs/msg/String", huge.clone())
-            .await;
-    }
-    let refused = op.event("topic.refused").await;
-    assert_eq!(
-        (&refused["topic"], &refused["event"]),
-        (&json!("/asr/text"), &json!("asr.text"))
-    );
-    let reason = refused["reason"].as_str().unwrap();
-    assert!(
-        reason.contains("5011 bytes of JSON, over the 4096"),
-        "{reason}"
-    );
-    let after = json!({"data": "thank you"});
-    asr.publish("/asr/text", "std_msgs/msg/String", after).await;
-    op.event_where(|e| e["type"] == "robot" && e["data"]["data"] == "thank you")
-        .await;
-    let all = server.stop().await;
-    let told = all.iter().filter(|e| e["type"] == "topic.refused").count();
-    assert_eq!(told, 1, "once per topic, not per message");
-    let logged = all
-        .iter()
-        .find(|e| e["type"] == "robot")
-        .expect("a robot event in the corpus");
-    assert_eq!(logged["topic"], "/asr/text");
-    assert_eq!(logged["event"], "asr.text");
-    assert_eq!(logged["data"], json!({"data": "where is the exit"}));
-    assert!(logged.get("client").is_none());
-}
-
-#[tokio::test]
 async fn a_drive_while_rosbridge_is_unreachable_fails_at_once_with_the_reason() {
     // Nothing listens on this port: the link is down from the start, and says why.
     let url = format!("ws://127.0.0.1:{}", ros::free_port());
@@ -391,41 +326,6 @@ async fn a_drive_while_rosbridge_is_unreachable_fails_at_once_with_the_reason() 
         state["pose"],
         Value::Null,
         "no pose before the robot's first"
-    );
-}
-
-#[tokio::test]
-async fn a_ros_topic_message_triggers_the_act_the_site_maps_it_to() {
-    // A speech recogniser's std_msgs/String, through `rosbridge: events` and `reactions:`.
-    let ros = RosSide::start(6, 1.0).await;
-    let yaml = format!(
-        "speech: {{adapter: log}}\nrosbridge:\n  url: {}\n  events:\n    - {{topic: /asr/text, \
-         type: std_msgs/msg/String, event: asr.text}}\nreactions:\n  - {{event: asr.text, if: \
-         data == \"goodbye\", act: HALT, cooldown: 1m}}\n",
-        ros.url
-    );
-    let b = TempBundle::new(ACTS).with_file("docent.yaml", &yaml);
-    let (_server, mut op) = docent(&b).await;
-    let mut asr = RosClient::connect(&ros.url).await.expect("connects");
-    let triggered = tokio::time::timeout(ROS_DEADLINE, async {
-        loop {
-            let msg = json!({"data": "goodbye"});
-            asr.publish("/asr/text", "std_msgs/msg/String", msg).await;
-            let seen = tokio::time::timeout(
-                Duration::from_millis(500),
-                op.event_where(|e| e["type"] == "act.triggered"),
-            )
-            .await;
-            if let Ok(event) = seen {
-                return event;
-            }
-        }
-    })
-    .await
-    .expect("the reaction triggers its act");
-    assert_eq!(
-        (&triggered["label"], &triggered["source"]),
-        (&json!("HALT"), &json!("robot"))
     );
 }
 

@@ -233,3 +233,14 @@ impl RosClient {
         .unwrap_or_else(|_| panic!("no matching message on {topic} within {deadline:?}"))
     }
 }
+
+/// Docent serving `b` and an operator that saw the link come up.
+pub async fn docent(
+    b: &crate::common::TempBundle,
+) -> (crate::common::TestServer, crate::common::WsClient) {
+    let server = crate::common::TestServer::start(b.path()).await;
+    let mut op = server.operator().await;
+    let up = op.event_where(|e| e["type"] == "robot.link").await;
+    assert_eq!(up["state"], "up", "{up}");
+    (server, op)
+}
