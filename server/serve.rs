@@ -117,6 +117,8 @@ impl Server {
         );
         let intake = crate::robot::run_intake(state.clone(), robot_intake);
         state.life.spawn(intake);
+        let languages = Arc::clone(&state.dispatcher).reset_language_after_sessions();
+        state.life.spawn(languages);
         let notices = crate::ws::ClientNotices::new(state.links());
         state.dispatcher.set_notifier(Arc::new(notices));
         Ok(Server {
