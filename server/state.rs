@@ -251,6 +251,7 @@ impl AppState {
             pose: (self.devices.drive.as_ref().map(|d| d.pose()))
                 .or_else(|| self.devices.rosbridge.as_ref().and_then(|r| r.pose())),
             context: self.dispatcher.context(),
+            language: self.dispatcher.language(),
             reload: self.reload.view(),
         }
     }

@@ -60,6 +60,7 @@ impl Devices {
             let s = &config.speech;
             Arc::new(espeak_adapter(
                 s.voice.clone(),
+                s.voices.clone(),
                 s.rate_wpm,
                 speech_output,
                 life,

@@ -6,6 +6,7 @@
 //! process exited 0 *and* said nothing alarming on stderr; with WAV output, also only when the
 //! file holds audio. Text goes in on stdin so it is never mistaken for an option.
 
+use std::collections::BTreeMap;
 use std::path::PathBuf;
 use std::process::Stdio;
 use std::time::Duration;
@@ -15,6 +16,7 @@ use tokio::process::Command as Process;
 
 use crate::adapters::worker::{Task, Worker};
 use crate::adapters::{Command, Outcome};
+use crate::content::Language;
 use crate::lifecycle::Lifecycle;
 
 /// espeak-ng's WAV format: 16-bit mono at 22,050 Hz after a 44-byte header.
@@ -86,9 +88,11 @@ pub fn espeak_voices() -> Vec<String> {
     names
 }
 
-/// The `espeak` adapter: speech through espeak-ng with this voice, rate and output.
+/// The `espeak` adapter: speech through espeak-ng with each language's voice (`voice` for a
+/// `SAY` in no language the map has), this rate and output.
 pub fn espeak_adapter(
     voice: String,
+    voices: BTreeMap<Language, String>,
     rate_wpm: u32,
     output: SpeechOutput,
     life: &Lifecycle,
@@ -97,6 +101,7 @@ pub fn espeak_adapter(
         "espeak",
         Espeak {
             voice,
+            voices,
             rate_wpm,
             output,
         },
@@ -106,11 +111,18 @@ pub fn espeak_adapter(
 
 struct Espeak {
     voice: String,
+    voices: BTreeMap<Language, String>,
     rate_wpm: u32,
     output: SpeechOutput,
 }
 
 impl Espeak {
+    /// The voice of the language the `SAY` was resolved in.
+    fn voice_for(&self, command: &Command) -> &str {
+        let language = command.args.say_language();
+        (language.and_then(|l| self.voices.get(l))).map_or(&self.voice, String::as_str)
+    }
+
     async fn speak(&self, command: &Command) -> Result<(), String> {
         let text = command.arg.as_deref().unwrap_or_default();
         let mut process = Process::new("espeak-ng");
@@ -118,7 +130,7 @@ impl Espeak {
             .args([
                 "--stdin",
                 "-v",
-                &self.voice,
+                self.voice_for(command),
                 "-s",
                 &self.rate_wpm.to_string(),
             ])

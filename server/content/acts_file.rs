@@ -9,12 +9,13 @@
 use std::sync::Arc;
 
 use crate::content::commands::WrittenCommand;
-use crate::content::config::SpeechConfig;
+use crate::content::config::{Languages, SpeechConfig};
 use crate::content::diagnostic::Diagnostic;
 use crate::content::model::{DEFAULT_VARIANT, Located, Pos, Variant};
 use crate::content::suggest::closest;
 
 mod texts;
+mod translations;
 mod values;
 pub(in crate::content) mod yaml;
 
@@ -58,17 +59,25 @@ pub(crate) struct Reading<'a> {
     pub source: texts::Source<'a>,
     /// The speech settings, for the length of spoken texts.
     pub speech: &'a SpeechConfig,
+    /// The bundle's languages, for the `@de` of translated texts.
+    pub languages: &'a Languages,
 }
 
 /// Reads the acts file `file` (named relative to the bundle root) from its bytes; spoken
-/// texts are checked against `speech`.
-pub(crate) fn read_acts_file(file: &Arc<str>, bytes: &[u8], speech: &SpeechConfig) -> ActsFile {
+/// texts are checked against `speech`, translations against `languages`.
+pub(crate) fn read_acts_file(
+    file: &Arc<str>,
+    bytes: &[u8],
+    speech: &SpeechConfig,
+    languages: &Languages,
+) -> ActsFile {
     let parsed = yaml::parse(file, bytes, "yaml-syntax", Recovery::SkipBrokenItems);
     let reading = Reading {
         source: texts::Source {
             text: std::str::from_utf8(bytes).unwrap_or_default(),
         },
         speech,
+        languages,
     };
     let mut out = ActsFile {
         acts: Vec::new(),
@@ -153,6 +162,7 @@ fn read_act(node: &Node, reading: &Reading<'_>, out: &mut Vec<Diagnostic>) -> Op
     };
     let mut seen: Vec<(&str, &Pos)> = Vec::new();
     let mut wrote_content = false;
+    let mut pending = translations::Pending::default();
     for (key, value) in entries {
         let Some(name) = key.as_text() else {
             out.push(Diagnostic::error(
@@ -165,16 +175,39 @@ fn read_act(node: &Node, reading: &Reading<'_>, out: &mut Vec<Diagnostic>) -> Op
             ));
             continue;
         };
+        // `Text@de`: a translation; `Text@en` in an English bundle: the original itself.
+        let mut translated = None;
+        let written = name;
+        let name = match name.split_once('@') {
+            Some((base, tag)) if is_variant_key(base) => {
+                match translations::suffix(name, tag, &key.pos, reading.languages, out) {
+                    translations::Suffix::Default => base,
+                    translations::Suffix::Other(language) => {
+                        translated = Some(language);
+                        name
+                    }
+                    translations::Suffix::Refused => continue,
+                }
+            }
+            _ => name,
+        };
         if let Some((_, first)) = seen.iter().find(|(k, _)| *k == name) {
             let message = format!(
-                "`{name}` appears twice in this act (first at line {}). Keep one: put all its \
-                 entries in a single list.",
-                first.line
+                "`{written}` appears twice in this act (first at line {}; `{name}` and \
+                 `{name}@{}` are the same key). Keep one: put all its entries in a single list.",
+                first.line,
+                reading.languages.default_language()
             );
             out.push(Diagnostic::error("duplicate-key", &key.pos, message));
             continue;
         }
         seen.push((name, &key.pos));
+        if let Some(language) = translated {
+            let (base, _) = name.split_once('@').unwrap_or((name, ""));
+            let alternatives = read_alternatives(name, value, reading, out);
+            pending.add(base, language, name, key.pos.clone(), alternatives);
+            continue;
+        }
         match name {
             "Label" => act.label = read_label(value, out),
             "Group" => act.group = read_group(value, out),
@@ -195,6 +228,7 @@ fn read_act(node: &Node, reading: &Reading<'_>, out: &mut Vec<Diagnostic>) -> Op
                         name: name.to_owned(),
                         pos: key.pos.clone(),
                         alternatives,
+                        translations: std::collections::BTreeMap::new(),
                     });
                 }
             }
@@ -204,6 +238,9 @@ fn read_act(node: &Node, reading: &Reading<'_>, out: &mut Vec<Diagnostic>) -> Op
                 unknown_key_message(name),
             )),
         }
+    }
+    if let Some(label) = &act.label {
+        pending.settle(&label.value, &mut act.variants, reading.languages, out);
     }
     let Some(label) = &act.label else {
         if !seen.iter().any(|(k, _)| *k == "Label") {
@@ -300,8 +337,13 @@ mod tests {
     use super::*;
 
     fn read(text: &str) -> ActsFile {
-        let speech = crate::content::config::SiteConfig::default().speech;
-        read_acts_file(&Arc::from("acts.yaml"), text.as_bytes(), &speech)
+        let config = crate::content::config::SiteConfig::default();
+        read_acts_file(
+            &Arc::from("acts.yaml"),
+            text.as_bytes(),
+            &config.speech,
+            &config.languages,
+        )
     }
 
     #[test]

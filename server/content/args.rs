@@ -9,6 +9,7 @@ use serde::{Serialize, Serializer};
 
 use crate::content::duration::parse_duration;
 use crate::content::highlight::{Area, parse_highlight};
+use crate::content::language::Language;
 use crate::content::model::Verb;
 
 /// What the projector does with a `PROJECT` file, decided by its name's ending (the media
@@ -51,6 +52,10 @@ pub enum Args {
     Say {
         /// What to say.
         text: String,
+        /// The language it is in (the dispatcher sets it: the visitor's language when the
+        /// text was translated, else the bundle's default); the voice speaks in it.
+        #[serde(skip_serializing_if = "Option::is_none")]
+        language: Option<Language>,
     },
     /// `DISPLAY_PAGE page`.
     Page {
@@ -97,7 +102,10 @@ impl Args {
     pub(crate) fn parse(verb: &Verb, arg: Option<&str>) -> Option<Args> {
         let text = || arg.map(str::to_owned);
         Some(match verb {
-            Verb::Say => Args::Say { text: text()? },
+            Verb::Say => Args::Say {
+                text: text()?,
+                language: None,
+            },
             Verb::DisplayPage => Args::Page { page: text()? },
             Verb::Project => {
                 let file = text()?;
@@ -138,10 +146,18 @@ impl Args {
         })
     }
 
+    /// The language a `SAY` is in, when the dispatcher said.
+    pub fn say_language(&self) -> Option<&Language> {
+        match self {
+            Args::Say { language, .. } => language.as_ref(),
+            _ => None,
+        }
+    }
+
     /// The text to speak, for a `SAY`.
     pub fn say_text(&self) -> Option<&str> {
         match self {
-            Args::Say { text } => Some(text),
+            Args::Say { text, .. } => Some(text),
             _ => None,
         }
     }

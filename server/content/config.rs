@@ -6,6 +6,8 @@ use std::collections::BTreeMap;
 use std::fmt;
 use std::time::Duration;
 
+use crate::content::model::Located;
+
 pub use crate::content::config_corpus::{CorpusSettings, RecordTracks, SessionStart};
 pub use crate::content::config_file::codebook::{Code, Codebook, CodebookTier};
 pub use crate::content::config_file::mqtt::{MqttPassword, MqttSettings};
@@ -13,6 +15,7 @@ pub use crate::content::config_file::rosbridge::{PoseMessage, RosbridgeConfig, T
 pub use crate::content::config_policy::{
     Channel, ChannelPolicies, ChannelPolicy, MAX_PRIORITY, MAX_QUEUE_LIMIT, Priorities, WhenBusy,
 };
+pub use crate::content::language::{Language, Languages};
 pub use crate::content::reaction::Reaction;
 
 /// Which adapter serves a verb. The route table is built from these, never from `match` arms
@@ -80,6 +83,10 @@ pub struct SpeechConfig {
     pub adapter: Option<AdapterKind>,
     /// espeak-ng voice name (`en`, `en-us`, `de`, ...).
     pub voice: String,
+    /// The espeak-ng voice of each of the bundle's languages (`speech: voices:`), filled in
+    /// for every language when `docent.yaml` is read: the one written, else `voice` for the
+    /// default language when it was written, else the language tag itself.
+    pub voices: BTreeMap<Language, String>,
     /// Words per minute.
     pub rate_wpm: u32,
     /// The longest a text may take to say (estimated from `rate_wpm`) before `docent check`
@@ -98,6 +105,15 @@ pub struct Bounds {
     pub max_x: f64,
     /// Largest y.
     pub max_y: f64,
+}
+
+impl SpeechConfig {
+    /// The espeak-ng voice that speaks `language` (`voice` for one the map lacks).
+    pub fn voice_for(&self, language: &Language) -> &str {
+        self.voices
+            .get(language)
+            .map_or(&self.voice, String::as_str)
+    }
 }
 
 impl Bounds {
@@ -275,6 +291,11 @@ pub struct SiteConfig {
     pub home: String,
     /// Declared context variants (`TextGroup`, ...). Empty: any `Text...` key is accepted.
     pub contexts: Vec<String>,
+    /// The bundle's languages (`languages:`), the default first; one when not written.
+    pub languages: Languages,
+    /// Where each language of `languages:` was written (empty when it was not), for
+    /// problems found later (a language no voice speaks).
+    pub language_places: Vec<Located<Language>>,
     /// Speech settings.
     pub speech: SpeechConfig,
     /// Drive settings.
@@ -319,9 +340,12 @@ impl Default for SiteConfig {
         SiteConfig {
             home: "index.html".to_owned(),
             contexts: Vec::new(),
+            languages: Languages::default(),
+            language_places: Vec::new(),
             speech: SpeechConfig {
                 adapter: None,
                 voice: "en".to_owned(),
+                voices: BTreeMap::from([(Language::english(), "en".to_owned())]),
                 rate_wpm: 160,
                 max_seconds: 30,
             },

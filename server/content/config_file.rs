@@ -14,6 +14,7 @@ use crate::content::model::Located;
 mod access;
 pub(crate) mod codebook;
 mod devices;
+mod languages;
 pub(crate) mod mqtt;
 pub(crate) mod operator;
 pub(crate) mod policy;
@@ -50,6 +51,7 @@ pub(crate) struct ConfigFile {
 pub(crate) const TOP_KEYS: &[&str] = &[
     "home",
     "contexts",
+    "languages",
     "speech",
     "display",
     "drive",
@@ -95,6 +97,9 @@ impl Reader {
         let mut channels = None;
         let mut codebook = None;
         let mut drive = None;
+        let mut languages = Vec::new();
+        let mut voices = Vec::new();
+        let mut voice_written = false;
         for (key, value) in self.entries(root, TOP_KEYS, "docent.yaml") {
             let config = &mut out.config;
             match key {
@@ -108,7 +113,12 @@ impl Reader {
                     }
                 }
                 "contexts" => config.contexts = self.contexts(value),
-                "speech" => self.speech(value, config),
+                "languages" => languages = self.languages(value),
+                "speech" => {
+                    voice_written = matches!(&value.kind, Kind::Map(entries)
+                        if entries.iter().any(|(k, _)| k.as_text() == Some("voice")));
+                    voices = self.speech(value, config);
+                }
                 "display" => {
                     for (_, value) in self.entries(value, &["adapter"], "display") {
                         let kinds = [("display", AdapterKind::Display), ("ws", AdapterKind::Ws)];
@@ -144,6 +154,7 @@ impl Reader {
                 _ => self.verbs(value, config),
             }
         }
+        self.settle_languages(languages, voices, voice_written, &mut out.config);
         self.rosbridge_drive_needs_url(drive, &out.config);
         if let Some(channels) = channels {
             self.channels(channels, &mut out.config);

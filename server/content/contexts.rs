@@ -101,6 +101,7 @@ mod tests {
                 name: (*name).to_owned(),
                 pos: pos.clone(),
                 alternatives: Vec::new(),
+                translations: std::collections::BTreeMap::new(),
             })
             .collect();
         Act {

@@ -187,7 +187,7 @@ fn read_checked(
         return None;
     }
     let bytes = read_limited(&path, &file).map_err(|p| out.push(p)).ok()?;
-    let mut read = read_acts_file(&file, &bytes, &config.speech);
+    let mut read = read_acts_file(&file, &bytes, &config.speech, &config.languages);
     out.append(&mut read.diagnostics);
     let acts = read
         .acts

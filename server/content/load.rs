@@ -7,7 +7,7 @@ use std::path::Path;
 use std::sync::Arc;
 
 use crate::content::commands::{CommandChecker, path_error_code};
-use crate::content::config::SiteConfig;
+use crate::content::config::{Language, SiteConfig};
 use crate::content::config_file::{ConfigFile, parse_config};
 use crate::content::contexts::{check_undeclared, contexts};
 use crate::content::diagnostic::Diagnostic;
@@ -98,6 +98,7 @@ fn load(root: &Path) -> LoadReport {
     let bundle = (errors == 0).then(|| Bundle {
         page_acts: std::mem::take(&mut merged.page_acts),
         page_offers: std::mem::take(&mut merged.page_offers),
+        page_languages: std::mem::take(&mut merged.page_languages),
         root: root.clone(),
         acts: merged.acts,
         index: merged.index,
@@ -168,6 +169,7 @@ struct Merged {
     incomplete: bool,
     page_acts: Vec<String>,
     page_offers: Vec<Located<String>>,
+    page_languages: Vec<(String, Language)>,
 }
 
 impl Merged {
@@ -247,7 +249,12 @@ fn check_page_labels(
     merged: &mut Merged,
     out: &mut Vec<Diagnostic>,
 ) {
-    let PageLabels { offered, triggered } = labels;
+    let PageLabels {
+        offered,
+        triggered,
+        languages,
+    } = labels;
+    merged.page_languages = languages;
     let known = |label: &str| merged.knows(label);
     for Located { value, pos } in &offered {
         if known(value) {

@@ -9,6 +9,7 @@
 //! - `model`: the loaded data (acts, variants, commands, positions).
 //! - `config`: validated site settings; `config_file`: parsing `docent.yaml`; `config_policy`:
 //!   channel policies and source priorities.
+//! - `language`: a language tag (`en`, `de`, `pt-br`) and a bundle's languages.
 //! - `contexts`: the context names a bundle uses, and misspelt variant keys.
 //! - `acts_file`: parsing one acts file, keeping every position.
 //! - `commands`: parsing and checking `VERB argument` strings, and the files they name.
@@ -33,6 +34,7 @@
 pub mod args;
 pub mod config;
 pub mod diagnostic;
+pub mod language;
 pub mod model;
 pub mod reaction;
 pub mod report;
@@ -64,8 +66,11 @@ pub use diagnostic::{Diagnostic, Severity};
 pub use duration::parse_duration;
 pub use fingerprint::{bundle_fingerprint, corpus_fingerprint};
 pub use highlight::{Area, Shape};
+pub use language::{Language, Languages};
 pub use load::{LoadReport, load_bundle};
-pub use model::{Act, Bundle, CommandSpec, DEFAULT_VARIANT, Located, Pos, Variant, Verb};
+pub use model::{
+    Act, Bundle, CommandSpec, DEFAULT_VARIANT, Located, Pos, Translation, Variant, Verb,
+};
 pub use pages::act_delay;
 pub use paths::{BundleArea, PathError, resolve_in_bundle};
 pub use render::{Colour, render_diagnostics};

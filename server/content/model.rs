@@ -2,7 +2,7 @@
 //! place it was written. Everything here is plain data, built by the loader and read by the
 //! dispatcher, the HTTP API and the checker; nothing here touches the file system.
 
-use std::collections::HashMap;
+use std::collections::{BTreeMap, HashMap};
 use std::fmt;
 use std::path::PathBuf;
 use std::sync::Arc;
@@ -10,6 +10,7 @@ use std::sync::Arc;
 use crate::content::args::Args;
 use crate::content::config::SiteConfig;
 use crate::content::diagnostic::Diagnostic;
+use crate::content::language::Language;
 
 /// Where something was written: a file relative to the bundle root, 1-based line and column.
 #[derive(Clone, Debug, PartialEq, Eq, Hash, PartialOrd, Ord, serde::Serialize)]
@@ -106,6 +107,30 @@ pub struct Variant {
     /// The key as written (`Text`, `TextGroup`, `TextChild`, ...).
     pub name: String,
     /// Where the key was written.
+    pub pos: Pos,
+    /// The alternatives, at least one, in the bundle's default language.
+    pub alternatives: Vec<Located<String>>,
+    /// The same texts in the bundle's other languages (`TextChild@de:` beside `TextChild:`),
+    /// by language; a language missing here speaks the default language's texts.
+    pub translations: BTreeMap<Language, Translation>,
+}
+
+impl Variant {
+    /// The alternatives in `language` and the language they are in: the translation when
+    /// there is one, else the default language's texts (`None` for `default` then).
+    pub fn in_language(&self, language: &Language) -> (&[Located<String>], Option<&Language>) {
+        match self.translations.get_key_value(language) {
+            Some((language, translation)) => (&translation.alternatives, Some(language)),
+            None => (&self.alternatives, None),
+        }
+    }
+}
+
+/// A variant's texts in one of the bundle's other languages (`TextChild@de:`). Translators
+/// name each text by its stable key `LABEL/Variant/N` (N from 1, in written order).
+#[derive(Clone, Debug)]
+pub struct Translation {
+    /// Where the key (`TextChild@de`) was written.
     pub pos: Pos,
     /// The alternatives, at least one.
     pub alternatives: Vec<Located<String>>,
@@ -205,6 +230,9 @@ pub struct Bundle {
     pub page_acts: Vec<String>,
     /// Every `data-act` value of the pages, in file order, with its place in the page.
     pub page_offers: Vec<Located<String>>,
+    /// The languages pages offer through `data-language` buttons: (page inside `pages/`,
+    /// language). A kiosk may switch only to a language its page offers.
+    pub page_languages: Vec<(String, Language)>,
     /// The warnings found while loading (a bundle has no errors), for the content report.
     pub diagnostics: Vec<Diagnostic>,
 }
@@ -213,6 +241,15 @@ impl Bundle {
     /// The act labelled `label`.
     pub fn act(&self, label: &str) -> Option<&Act> {
         self.index.get(label).map(|&i| &self.acts[i])
+    }
+
+    /// Whether the page `page` (as the kiosk names it, in the default language) offers
+    /// `language` in any of its language versions (`pages/de/page` too).
+    pub fn page_offers_language(&self, page: &str, language: &Language) -> bool {
+        let languages = &self.config.languages;
+        let logical = |rel: &str| languages.page_fallback(rel).unwrap_or(rel).to_owned();
+        (self.page_languages.iter())
+            .any(|(rel, offered)| offered == language && logical(rel) == logical(page))
     }
 
     /// Every label, in loaded order.

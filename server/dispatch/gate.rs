@@ -34,6 +34,9 @@ pub trait Notifier: Send + Sync {
     /// Speech started (`Some`) or stopped (`None`). Called under the dispatcher's lock: it
     /// must only queue (never wait, never call back into the dispatcher).
     fn speaking(&self, now: Option<Speaking>);
+    /// The visitor's language changed: the kiosks show their page in it. Called under the
+    /// dispatcher's language lock: it must only queue.
+    fn language(&self, language: &crate::content::Language);
 }
 
 impl Dispatcher {

@@ -32,6 +32,7 @@ pub(crate) fn log_dispatcher(bundle: crate::content::Bundle, hub: &Hub) -> Arc<D
     );
     Dispatcher::new(Arc::new(bundle), router, hub.clone(), Some(1), life)
 }
+mod language;
 mod request;
 mod sequence;
 mod visitors;
@@ -64,6 +65,8 @@ pub struct Dispatcher {
     life: Lifecycle,
     chooser: Mutex<Chooser>,
     context: Mutex<String>,
+    /// The visitor's language (`language.rs`).
+    language: Mutex<crate::content::Language>,
     next_id: AtomicU64,
     /// Cancelled and replaced by every stop: sequences started before a stop end with it.
     epoch: Mutex<CancellationToken>,
@@ -94,6 +97,7 @@ impl Dispatcher {
         life: Lifecycle,
     ) -> Arc<Self> {
         let epoch = life.shutdown.child_token();
+        let language = bundle.config.languages.default_language().clone();
         Arc::new(Dispatcher {
             bundle: ArcSwap::new(bundle),
             router,
@@ -101,6 +105,7 @@ impl Dispatcher {
             life,
             chooser: Mutex::new(Chooser::new(seed)),
             context: Mutex::new(DEFAULT_VARIANT.to_owned()),
+            language: Mutex::new(language),
             next_id: AtomicU64::new(1),
             epoch: Mutex::new(epoch),
             speech_epochs: Mutex::default(),
@@ -133,6 +138,7 @@ impl Dispatcher {
             });
         }
         drop(context);
+        self.keep_language(&self.bundle.load());
         old
     }
 
@@ -169,10 +175,19 @@ impl Dispatcher {
         let variant = (act.variants.iter())
             .find(|v| v.name == context)
             .or_else(|| act.variants.iter().find(|v| v.name == DEFAULT_VARIANT));
+        let visitor_language = self.language();
         let choice = variant.map(|v| {
-            let alt = lock(&self.chooser).pick(&act.label, &v.name, v.alternatives.len());
-            (v, alt, v.alternatives[alt].value.as_str())
+            let texts = language::texts_in(&bundle, v, &visitor_language);
+            let count = texts.alternatives.len();
+            let alt = lock(&self.chooser).pick(&act.label, &texts.chooser_key, count);
+            (
+                v,
+                alt,
+                texts.alternatives[alt].value.as_str(),
+                texts.language,
+            )
         });
+        let default_language = bundle.config.languages.default_language();
         let trigger = self.next_id();
         let act_ref = Arc::new(ActRef {
             trigger,
@@ -183,15 +198,23 @@ impl Dispatcher {
             at: format!("{}:{}", act.pos.file, act.pos.line),
         });
         let mut commands = Vec::with_capacity(act.commands.len() + 1);
-        if let Some((_, _, text)) = choice {
+        if let Some((_, _, text, language)) = &choice {
             let say = Args::Say {
-                text: text.to_owned(),
+                text: (*text).to_owned(),
+                language: Some(language.clone()),
             };
             commands.push(self.command(&act_ref, Verb::Say, Some(text), say));
         }
         for c in &act.commands {
             let spec = &c.value;
-            let args = spec.args.clone();
+            let args = match &spec.args {
+                // A SAY among the commands is written in the default language.
+                Args::Say { text, .. } => Args::Say {
+                    text: text.clone(),
+                    language: Some(default_language.clone()),
+                },
+                args => args.clone(),
+            };
             commands.push(self.command(&act_ref, spec.verb.clone(), spec.arg.as_deref(), args));
         }
         let triggered = Triggered {
@@ -199,9 +222,10 @@ impl Dispatcher {
             reference: act_ref.reference.clone(),
             label: act.label.clone(),
             context: context.clone(),
-            variant: choice.map(|(v, _, _)| v.name.clone()),
-            alternative: choice.map(|(_, alt, _)| alt),
-            text: choice.map(|(_, _, text)| text.to_owned()),
+            variant: choice.as_ref().map(|(v, _, _, _)| v.name.clone()),
+            alternative: choice.as_ref().map(|(_, alt, _, _)| *alt),
+            text: choice.as_ref().map(|(_, _, text, _)| (*text).to_owned()),
+            language: choice.as_ref().map(|(_, _, _, language)| language.clone()),
             commands: commands.iter().map(resolved).collect(),
         };
         self.hub.publish(EventKind::ActTriggered {
@@ -210,6 +234,7 @@ impl Dispatcher {
             variant: triggered.variant.clone(),
             alternative: triggered.alternative,
             text: triggered.text.clone(),
+            language: triggered.language.clone(),
             interrupt: req.interrupt,
         });
         drop(bundle);

@@ -66,6 +66,9 @@ pub struct Triggered {
     pub alternative: Option<usize>,
     /// The chosen text.
     pub text: Option<String>,
+    /// The language of the chosen text (the default one when it has no translation into the
+    /// visitor's); `null` when the act has no text.
+    pub language: Option<crate::content::Language>,
     /// Every command in order, the implicit `SAY` first.
     pub commands: Vec<ResolvedCommand>,
 }
@@ -89,6 +92,20 @@ pub enum TriggerError {
         /// The closest existing context.
         suggestion: Option<String>,
     },
+    /// No such language in the bundle (`languages:`).
+    #[error("{language:?} is not one of this bundle's languages ({available})")]
+    UnknownLanguage {
+        /// The language asked for, as sent.
+        language: String,
+        /// The bundle's languages, listed.
+        available: String,
+    },
+    /// A touchscreen asked for a language its page offers no button for.
+    #[error("the page on the touchscreen offers no button for the language {language:?}")]
+    LanguageNotOffered {
+        /// The language asked for.
+        language: String,
+    },
     /// A touchscreen asked for an act whose speech is already running or waiting.
     #[error("the act {label:?} is already being said or about to be; it is not repeated")]
     AlreadySpeaking {
@@ -111,6 +128,8 @@ impl TriggerError {
             TriggerError::UnknownAct { .. } => ErrorCode::UnknownAct,
             TriggerError::UnknownContext { .. } => ErrorCode::UnknownContext,
             TriggerError::AlreadySpeaking { .. } => ErrorCode::AlreadySpeaking,
+            TriggerError::UnknownLanguage { .. } => ErrorCode::UnknownLanguage,
+            TriggerError::LanguageNotOffered { .. } => ErrorCode::NotOffered,
         }
     }
 
@@ -119,7 +138,9 @@ impl TriggerError {
         match self {
             TriggerError::UnknownAct { suggestion, .. }
             | TriggerError::UnknownContext { suggestion, .. } => suggestion.as_deref(),
-            TriggerError::AlreadySpeaking { .. } => None,
+            TriggerError::AlreadySpeaking { .. }
+            | TriggerError::UnknownLanguage { .. }
+            | TriggerError::LanguageNotOffered { .. } => None,
         }
     }
 }

@@ -9,7 +9,7 @@ use serde::Serialize;
 use super::origin::{ActRef, ClientRole, Source};
 use super::recording::RecordingEvent;
 use super::session::{Consent, SessionEnd};
-use crate::content::Args;
+use crate::content::{Args, Language};
 use crate::wire::ErrorCode;
 
 /// One thing that happened. Serialized with `type` as the tag.
@@ -47,6 +47,11 @@ pub enum EventKind {
         alternative: Option<usize>,
         /// The exact text chosen.
         text: Option<String>,
+        /// The language the text is in: the visitor's language, or the bundle's default
+        /// when the act has no translation into it (format 3); absent when the act has no
+        /// text.
+        #[serde(skip_serializing_if = "Option::is_none")]
+        language: Option<Language>,
         /// Whether the trigger interrupted current speech.
         interrupt: bool,
     },
@@ -180,6 +185,15 @@ pub enum EventKind {
         source: Source,
         /// The new context.
         context: String,
+    },
+    /// The visitor's language changed (a kiosk's language button, an operator, a dialog
+    /// manager, or the server: back to the default when a visitor session ends).
+    #[serde(rename = "language.changed")]
+    LanguageChanged {
+        /// Who changed it.
+        source: Source,
+        /// The new language.
+        language: Language,
     },
     /// Everything was stopped (global stop or `DRIVE_STOP`).
     #[serde(rename = "stop")]
@@ -472,6 +486,7 @@ impl EventKind {
             self,
             EventKind::ActTriggered { .. }
                 | EventKind::ContextChanged { .. }
+                | EventKind::LanguageChanged { .. }
                 | EventKind::ProposalMade { .. }
                 | EventKind::ProposalAccepted { .. }
                 | EventKind::ProposalDismissed { .. }

@@ -207,6 +207,8 @@ pub async fn get_state(State(state): State<AppState>, _: Authorized) -> Json<Val
         "queues": adapters,
         "channels": state.dispatcher.channel_status(),
         "context": state.dispatcher.context(),
+        "language": state.dispatcher.language(),
+        "languages": state.dispatcher.bundle().config.languages.all(),
         "clients": state.clients(),
         "proposals": state.proposals.pending(),
         "session": state.visits.current(),

@@ -77,7 +77,10 @@ impl From<TriggerError> for AppError {
     fn from(e: TriggerError) -> Self {
         let status = match e {
             TriggerError::UnknownAct { .. } => StatusCode::NOT_FOUND,
-            TriggerError::UnknownContext { .. } => StatusCode::BAD_REQUEST,
+            TriggerError::UnknownContext { .. } | TriggerError::UnknownLanguage { .. } => {
+                StatusCode::BAD_REQUEST
+            }
+            TriggerError::LanguageNotOffered { .. } => StatusCode::FORBIDDEN,
             TriggerError::AlreadySpeaking { .. } => StatusCode::CONFLICT,
         };
         AppError {

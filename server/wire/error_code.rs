@@ -22,6 +22,8 @@ pub enum ErrorCode {
     TooManyConnections,
     /// `unknown-context`: No such context.
     UnknownContext,
+    /// `unknown-language`: Not one of the bundle's languages.
+    UnknownLanguage,
     /// `unauthorized`: A missing or wrong credential.
     Unauthorized,
     /// `cross-origin`: A request from a browser page of another site.
@@ -114,7 +116,7 @@ pub enum ErrorCode {
 
 impl ErrorCode {
     /// Every code, for tests and documentation checks.
-    pub const ALL: [ErrorCode; 51] = [
+    pub const ALL: [ErrorCode; 52] = [
         ErrorCode::BadRequest,
         ErrorCode::BodyNotObject,
         ErrorCode::ConflictingLength,
@@ -122,6 +124,7 @@ impl ErrorCode {
         ErrorCode::BodyTooLarge,
         ErrorCode::TooManyConnections,
         ErrorCode::UnknownContext,
+        ErrorCode::UnknownLanguage,
         ErrorCode::Unauthorized,
         ErrorCode::CrossOrigin,
         ErrorCode::UnknownAct,
@@ -178,6 +181,7 @@ impl ErrorCode {
             ErrorCode::BodyTooLarge => "body-too-large",
             ErrorCode::TooManyConnections => "too-many-connections",
             ErrorCode::UnknownContext => "unknown-context",
+            ErrorCode::UnknownLanguage => "unknown-language",
             ErrorCode::Unauthorized => "unauthorized",
             ErrorCode::CrossOrigin => "cross-origin",
             ErrorCode::UnknownAct => "unknown-act",

@@ -109,6 +109,7 @@ fn needs_connection(frame: &ClientFrame) -> Option<&'static str> {
         ClientFrame::Trigger { .. }
         | ClientFrame::Stop { .. }
         | ClientFrame::Context { .. }
+        | ClientFrame::Language { .. }
         | ClientFrame::Accept { .. }
         | ClientFrame::Dismiss { .. }
         | ClientFrame::Mark { .. } => None,

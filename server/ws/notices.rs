@@ -8,7 +8,7 @@ use crate::dispatch::{Notifier, Speaking};
 use crate::events::ClientRole;
 use crate::state::ClientLinks;
 use crate::wire::outbox::Frame;
-use crate::ws::protocol::{NotCarriedOut, outcome_frame, speaking_frame};
+use crate::ws::protocol::{NotCarriedOut, language_frame, outcome_frame, speaking_frame};
 
 /// The websocket side of the dispatcher's [`Notifier`].
 pub struct ClientNotices {
@@ -38,5 +38,11 @@ impl Notifier for ClientNotices {
     fn speaking(&self, now: Option<Speaking>) {
         let frame = Frame::from(speaking_frame(now));
         self.links.send_to_role(ClientRole::Kiosk, &frame);
+    }
+
+    fn language(&self, language: &crate::content::Language) {
+        let frame = Frame::from(language_frame(None, language));
+        self.links.send_to_role(ClientRole::Kiosk, &frame);
+        self.links.send_to_role(ClientRole::Projector, &frame);
     }
 }

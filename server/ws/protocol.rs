@@ -75,6 +75,14 @@ pub enum ClientFrame {
         #[serde(default, rename = "ref")]
         reference: Option<String>,
     },
+    /// Set the visitor's language (a kiosk: only one its page offers a button for).
+    Language {
+        /// The language, one of the bundle's `languages:`.
+        language: String,
+        /// Echoed back.
+        #[serde(default, rename = "ref")]
+        reference: Option<String>,
+    },
     /// An adapter process tells of something the robot noticed (one of its `robot_events`).
     Robot {
         /// The event's name.
@@ -232,6 +240,8 @@ pub struct StateView {
     pub pose: Option<Pose>,
     /// The current context.
     pub context: String,
+    /// The visitor's language.
+    pub language: crate::content::Language,
     /// Live reload: a refused save's problems, a folder that cannot be watched, settings not
     /// yet in effect (the operator console's banner).
     pub reload: ReloadView,

@@ -149,6 +149,10 @@ impl Session {
             ClientFrame::Context { context, reference } => {
                 triggers::set_context(client, role, context, reference);
             }
+            ClientFrame::Language {
+                language,
+                reference,
+            } => triggers::set_language(client, role, &language, reference),
             ClientFrame::Page { page, via, element } => {
                 let run = triggers::page_shown(client, role, page, via, element);
                 self.record(run);

@@ -14,7 +14,7 @@ use crate::dispatch::TriggerRequest;
 use crate::events::{ClientRole, EventKind, KioskCause, element_description};
 use crate::wire::ErrorCode;
 use crate::ws::client::Client;
-use crate::ws::protocol::{context_frame, stopped_frame, triggered_frame};
+use crate::ws::protocol::{context_frame, language_frame, stopped_frame, triggered_frame};
 
 const TRIGGER_ROLES: [ClientRole; 3] = [ClientRole::Kiosk, ClientRole::Operator, ClientRole::Dm];
 const CONTROL_ROLES: [ClientRole; 2] = [ClientRole::Operator, ClientRole::Dm];
@@ -206,6 +206,28 @@ pub(super) fn set_context(
             reference.as_deref(),
             e.suggestion(),
         ),
+    }
+}
+
+/// Sets the visitor's language: operators and dialog managers any of the bundle's, a kiosk
+/// only one a button on the page it shows offers (as with `data-act`).
+pub(super) fn set_language(
+    client: &Client,
+    role: Option<ClientRole>,
+    language: &str,
+    reference: Option<String>,
+) {
+    let Some(role) = client.allowed(role, &TRIGGER_ROLES, reference.as_deref()) else {
+        return;
+    };
+    let page = client.state.devices.display.snapshot().page;
+    let dispatcher = &client.state.dispatcher;
+    match dispatcher.set_language(language, role.source(), page.as_deref()) {
+        Ok(language) => client.send_logged(
+            language_frame(reference.as_deref(), &language),
+            reference.as_deref(),
+        ),
+        Err(e) => client.reply_error(e.code(), &e.to_string(), reference.as_deref(), None),
     }
 }
 

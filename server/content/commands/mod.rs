@@ -73,6 +73,11 @@ impl<'a> CommandChecker<'a> {
         self.root
     }
 
+    /// The bundle's languages (pages in `pages/de/` fall back to `pages/`).
+    pub fn languages(&self) -> &crate::content::config::Languages {
+        &self.config.languages
+    }
+
     /// The media formats sniffed so far, shared with the page checks.
     pub fn media(&self) -> &MediaSniffs {
         &self.sniffs

@@ -29,7 +29,8 @@ fn splits_the_verb_from_a_trimmed_argument() {
             verb: Verb::Say,
             arg: Some("Hello there".to_owned()),
             args: Args::Say {
-                text: "Hello there".to_owned()
+                text: "Hello there".to_owned(),
+                language: None,
             }
         })
     );

@@ -3,7 +3,8 @@
 //! value here has its own range and wording for the author.
 
 use crate::content::acts_file::yaml::{Kind, Node};
-use crate::content::config::{AdapterKind, Bounds, SiteConfig};
+use crate::content::config::{AdapterKind, Bounds, Language, SiteConfig};
+use crate::content::model::Located;
 
 use super::Reader;
 
@@ -36,9 +37,15 @@ fn positive(text: &str) -> Option<f64> {
 }
 
 impl Reader {
-    pub(super) fn speech(&mut self, node: &Node, config: &mut SiteConfig) {
+    /// `speech:`; returns its `voices:`, settled once `languages:` is known.
+    pub(super) fn speech(
+        &mut self,
+        node: &Node,
+        config: &mut SiteConfig,
+    ) -> Vec<(Located<Language>, String)> {
         let speech = &mut config.speech;
-        const KEYS: [&str; 4] = ["adapter", "voice", "rate", "max_seconds"];
+        let mut voices = Vec::new();
+        const KEYS: [&str; 5] = ["adapter", "voice", "voices", "rate", "max_seconds"];
         for (key, value) in self.entries(node, &KEYS, "speech") {
             match key {
                 "adapter" => {
@@ -58,6 +65,7 @@ impl Reader {
                         speech.voice = voice;
                     }
                 }
+                "voices" => voices = self.voices(value, is_voice_name),
                 "max_seconds" => {
                     let parse = |t: &str| t.parse::<u32>().ok().filter(|s| (1..=3600).contains(s));
                     if let Some(seconds) = self.setting(value, MAX_SECONDS_USAGE, parse) {
@@ -72,6 +80,7 @@ impl Reader {
                 }
             }
         }
+        voices
     }
 
     pub(super) fn drive(&mut self, node: &Node, config: &mut SiteConfig) {

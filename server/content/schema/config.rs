@@ -20,7 +20,9 @@ use site::{access, mqtt, operator, server, verbs};
 
 /// The keys of the sections whose lists live inline in the loader's functions; the test
 /// `section_keys_are_the_loaders` asks the loader for each list and compares.
-const SPEECH_KEYS: &[&str] = &["adapter", "voice", "rate", "max_seconds"];
+const SPEECH_KEYS: &[&str] = &["adapter", "voice", "voices", "rate", "max_seconds"];
+/// A short BCP 47 language tag, as `content::Language::parse` reads it (any case).
+const LANGUAGE_PATTERN: &str = "^[A-Za-z]{2,3}(-([A-Za-z]{2}|[0-9]{3}|[A-Za-z]{4}))?$";
 const DISPLAY_KEYS: &[&str] = &["adapter"];
 const DRIVE_KEYS: &[&str] = &["adapter", "speed", "pose_rate", "bounds"];
 const BOUNDS_KEYS: &[&str] = &["min_x", "min_y", "max_x", "max_y"];
@@ -61,6 +63,23 @@ fn top_level(key: &str) -> Value {
                     { "type": "null" },
                     context,
                     { "type": "array", "items": context, "uniqueItems": true },
+                ],
+            })
+        }
+        "languages" => {
+            let language = json!({
+                "type": "string",
+                "pattern": LANGUAGE_PATTERN,
+                "description": "A short language tag, e.g. `en`, `de` or `pt-br`.",
+            });
+            json!({
+                "description": "The bundle's languages, the default first, e.g. `[en, de]`. \
+                                Texts in another language are written `Text@de:` beside \
+                                `Text:`, pages in `pages/de/`. Without it the bundle has one \
+                                language: that of `speech: voice`, else `en`.",
+                "anyOf": [
+                    language,
+                    { "type": "array", "items": language, "minItems": 1, "uniqueItems": true },
                 ],
             })
         }
@@ -213,6 +232,17 @@ fn speech(key: &str) -> Value {
             "type": "string",
             "pattern": "^[A-Za-z0-9+_/][A-Za-z0-9+_/-]*$",
             "description": "The voice: a language such as `en`, `en-us` or `de`.",
+        }),
+        "voices" => json!({
+            "type": "object",
+            "propertyNames": { "pattern": LANGUAGE_PATTERN },
+            "additionalProperties": {
+                "type": "string",
+                "pattern": "^[A-Za-z0-9+_/][A-Za-z0-9+_/-]*$",
+            },
+            "description": "The espeak-ng voice of each language, e.g. `{en: en-gb, de: de}`. \
+                            A language without one speaks with the voice named like it (the \
+                            default language with `voice`, when that is written).",
         }),
         "rate" => json!({
             "type": "integer",

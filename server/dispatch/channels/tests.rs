@@ -22,6 +22,7 @@ fn say(id: u64, trigger: u64, source: Source, priority: u8) -> Waiting {
         arg: Some("Hello".into()),
         args: Arc::new(Args::Say {
             text: "Hello".into(),
+            language: None,
         }),
     };
     Waiting {

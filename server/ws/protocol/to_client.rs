@@ -43,6 +43,11 @@ enum ServerFrame<'a> {
         reference: Option<&'a str>,
         context: &'a str,
     },
+    Language {
+        #[serde(rename = "ref", skip_serializing_if = "Option::is_none")]
+        reference: Option<&'a str>,
+        language: &'a crate::content::Language,
+    },
     Proposed {
         #[serde(rename = "ref")]
         reference: Option<&'a str>,
@@ -147,6 +152,14 @@ pub fn stopped_frame(reference: Option<&str>) -> String {
 /// `context`: the answer to a context change.
 pub fn context_frame(reference: Option<&str>, context: &str) -> String {
     encode(&ServerFrame::Context { reference, context })
+}
+
+/// `language`: the answer to a language change, and what kiosks are told of every change.
+pub fn language_frame(reference: Option<&str>, language: &crate::content::Language) -> String {
+    encode(&ServerFrame::Language {
+        reference,
+        language,
+    })
 }
 
 /// `proposed`: the answer to `propose`.

@@ -1,0 +1,126 @@
+//! Texts in the bundle's other languages, written beside the original: `Text@de:` beside
+//! `Text:`, `TextChild@de:` beside `TextChild:`. A reviewer sees original and translation
+//! side by side, a missing one shows, and the act's label stays the one id of the act in
+//! every language (docs/AUTHORING.md, "Several languages").
+
+use std::collections::BTreeMap;
+
+use crate::content::config::Languages;
+use crate::content::diagnostic::Diagnostic;
+use crate::content::language::{LANGUAGE_USAGE, Language};
+use crate::content::model::{Located, Pos, Translation, Variant};
+
+/// What the `@` of a text key names.
+pub(super) enum Suffix {
+    /// The default language: the key is the original text (`Text@en:` is `Text:`).
+    Default,
+    /// Another of the bundle's languages.
+    Other(Language),
+    /// Not a language of the bundle (reported).
+    Refused,
+}
+
+/// Reads the language after the `@` of the text key `name` (`base@tag`) written at `pos`.
+pub(super) fn suffix(
+    name: &str,
+    tag: &str,
+    pos: &Pos,
+    languages: &Languages,
+    out: &mut Vec<Diagnostic>,
+) -> Suffix {
+    let Some(language) = Language::parse(tag) else {
+        let message = format!(
+            "`{tag}` in `{name}` is not a language tag. {LANGUAGE_USAGE} The bundle's languages \
+             are {}.",
+            languages.listed()
+        );
+        out.push(Diagnostic::error("bad-language", pos, message));
+        return Suffix::Refused;
+    };
+    if language == *languages.default_language() {
+        return Suffix::Default;
+    }
+    if languages.translated().contains(&language) {
+        return Suffix::Other(language);
+    }
+    let message = format!(
+        "`{name}` is in `{language}`, which is not one of the bundle's languages ({}). Add \
+         `{language}` to `languages:` in docent.yaml, or correct the language after the `@`.",
+        languages.listed()
+    );
+    out.push(Diagnostic::error("unknown-language", pos, message));
+    Suffix::Refused
+}
+
+/// The translations of one act as they are read, put beside their originals at the end.
+#[derive(Default)]
+pub(super) struct Pending {
+    /// (variant name, language, key as written, its place, texts): texts empty when the
+    /// translation was written but unusable (already reported).
+    texts: Vec<(String, Language, String, Translation)>,
+}
+
+impl Pending {
+    /// A translation of `variant` into `language`, written as `key` at `pos`.
+    pub(super) fn add(
+        &mut self,
+        variant: &str,
+        language: Language,
+        key: &str,
+        pos: Pos,
+        alternatives: Vec<Located<String>>,
+    ) {
+        let translation = Translation { pos, alternatives };
+        (self.texts).push((variant.to_owned(), language, key.to_owned(), translation));
+    }
+
+    /// Puts each translation beside its original, reporting one without an original, and
+    /// warns about each text not translated into each of the bundle's other languages.
+    pub(super) fn settle(
+        self,
+        label: &str,
+        variants: &mut [Variant],
+        languages: &Languages,
+        out: &mut Vec<Diagnostic>,
+    ) {
+        let mut written: BTreeMap<(String, Language), ()> = BTreeMap::new();
+        for (name, language, key, translation) in self.texts {
+            written.insert((name.clone(), language.clone()), ());
+            let Some(variant) = variants.iter_mut().find(|v| v.name == name) else {
+                let message = format!(
+                    "`{key}` translates `{name}`, but the act `{label}` has no `{name}` in the \
+                     default language ({}). Write `{name}:` first; the translation goes beside \
+                     it.",
+                    languages.default_language()
+                );
+                out.push(Diagnostic::error(
+                    "translation-without-original",
+                    &translation.pos,
+                    message,
+                ));
+                continue;
+            };
+            if !translation.alternatives.is_empty() {
+                variant.translations.insert(language, translation);
+            }
+        }
+        for variant in variants.iter() {
+            for language in languages.translated() {
+                if written.contains_key(&(variant.name.clone(), language.clone())) {
+                    continue;
+                }
+                let message = format!(
+                    "The act `{label}` has no `{name}@{language}`: a visitor in `{language}` \
+                     hears the `{default}` text. Add `{name}@{language}:` beside `{name}:`.",
+                    name = variant.name,
+                    default = languages.default_language(),
+                );
+                out.push(Diagnostic::warning(
+                    "missing-translation",
+                    &variant.pos,
+                    message,
+                ));
+            }
+        }
+    }
+}

@@ -1,0 +1,216 @@
+//! `languages:` (the bundle's languages, the first the default) and `speech: voices:` (the
+//! espeak-ng voice of each). Read apart from the other sections because both need the other:
+//! a voice's language must be one of `languages:`, and a bundle without `languages:` speaks
+//! the language of its `speech: voice`.
+
+use std::collections::BTreeMap;
+
+use crate::content::acts_file::yaml::{Kind, Node};
+use crate::content::config::{Language, Languages, SiteConfig};
+use crate::content::diagnostic::Diagnostic;
+use crate::content::language::LANGUAGE_USAGE;
+use crate::content::model::Located;
+
+use super::Reader;
+
+const LANGUAGES_USAGE: &str = "`languages` lists the bundle's languages, the default first, \
+                               e.g. `languages: [en, de]`.";
+const VOICES_USAGE: &str = "`voices` gives each language its espeak-ng voice, e.g. \
+                            `voices: {en: en-gb, de: de}`.";
+
+impl Reader {
+    /// `languages:`: a list (or a single tag), no repeats; every tag checked.
+    pub(super) fn languages(&mut self, node: &Node) -> Vec<Located<Language>> {
+        let items: Vec<&Node> = match &node.kind {
+            Kind::Seq(items) => items.iter().collect(),
+            Kind::Str { .. } | Kind::Guessed(_) => vec![node],
+            _ => {
+                self.bad(node, LANGUAGES_USAGE);
+                return Vec::new();
+            }
+        };
+        let mut out: Vec<Located<Language>> = Vec::new();
+        for item in items {
+            let Some(language) = self.language(item) else {
+                continue;
+            };
+            if out.iter().any(|l| l.value == language) {
+                self.bad(item, "This language is listed twice.");
+                continue;
+            }
+            out.push(Located {
+                value: language,
+                pos: item.pos.clone(),
+            });
+        }
+        if out.is_empty() && matches!(node.kind, Kind::Seq(_)) {
+            self.bad(node, LANGUAGES_USAGE);
+        }
+        out
+    }
+
+    /// One language tag, or `None` after a `bad-language` at `node`.
+    fn language(&mut self, node: &Node) -> Option<Language> {
+        let text = node.as_text().unwrap_or_default();
+        let language = Language::parse(text);
+        if language.is_none() {
+            let found = node
+                .as_text()
+                .map_or_else(|| node.describe().to_owned(), |t| format!("`{t}`"));
+            let message = format!("{found} is not a language tag. {LANGUAGE_USAGE}");
+            self.diagnostics
+                .push(Diagnostic::error("bad-language", &node.pos, message));
+        }
+        language
+    }
+
+    /// `speech: voices:`: language → voice name, each language checked later against
+    /// `languages:` (which may be written after `speech:`).
+    pub(super) fn voices(
+        &mut self,
+        node: &Node,
+        is_voice_name: fn(&str) -> bool,
+    ) -> Vec<(Located<Language>, String)> {
+        let Kind::Map(entries) = &node.kind else {
+            if !matches!(node.kind, Kind::Null) {
+                self.bad(node, VOICES_USAGE);
+            }
+            return Vec::new();
+        };
+        let mut out: Vec<(Located<Language>, String)> = Vec::new();
+        for (key, value) in entries {
+            let Some(language) = self.language(key) else {
+                continue;
+            };
+            if out.iter().any(|(l, _)| l.value == language) {
+                self.bad(key, "This language has a voice already.");
+                continue;
+            }
+            let usage = "A voice is an espeak-ng voice name such as `en`, `en-gb` or `de`.";
+            let parse = |t: &str| is_voice_name(t).then(|| t.to_owned());
+            if let Some(voice) = self.setting(value, usage, parse) {
+                let pos = key.pos.clone();
+                out.push((
+                    Located {
+                        value: language,
+                        pos,
+                    },
+                    voice,
+                ));
+            }
+        }
+        out
+    }
+
+    /// Puts the languages and voices together once the whole file is read: without
+    /// `languages:`, the bundle speaks the language of `speech: voice` (English when that is
+    /// not a language tag or not written); every language gets its voice.
+    pub(super) fn settle_languages(
+        &mut self,
+        written: Vec<Located<Language>>,
+        voices: Vec<(Located<Language>, String)>,
+        voice_written: bool,
+        config: &mut SiteConfig,
+    ) {
+        let from_voice = || {
+            voice_written
+                .then(|| Language::parse(&config.speech.voice))
+                .flatten()
+        };
+        config.languages = Languages::new(written.iter().map(|l| l.value.clone()).collect())
+            .unwrap_or_else(|| Languages::single(from_voice().unwrap_or_else(Language::english)));
+        config.language_places = written;
+        let mut chosen: BTreeMap<Language, String> = BTreeMap::new();
+        for (language, voice) in voices {
+            if !config.languages.all().contains(&language.value) {
+                let message = format!(
+                    "`{}` has a voice but is not one of the bundle's languages ({}). Add it to \
+                     `languages:` or remove its voice.",
+                    language.value,
+                    config.languages.listed()
+                );
+                self.diagnostics.push(Diagnostic::error(
+                    "unknown-language",
+                    &language.pos,
+                    message,
+                ));
+                continue;
+            }
+            chosen.insert(language.value, voice);
+        }
+        let default = config.languages.default_language().clone();
+        config.speech.voices.clear(); // the defaults' English voice is not this bundle's
+        for language in config.languages.all() {
+            let voice = chosen.remove(language).unwrap_or_else(|| {
+                if *language == default && voice_written {
+                    config.speech.voice.clone()
+                } else {
+                    language.as_str().to_owned()
+                }
+            });
+            config.speech.voices.insert(language.clone(), voice);
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use crate::content::config_file::test_support::{parse, problems};
+
+    fn voices(text: &str) -> Vec<(String, String)> {
+        let config = parse(text).config;
+        (config.speech.voices.iter())
+            .map(|(l, v)| (l.to_string(), v.clone()))
+            .collect()
+    }
+
+    #[test]
+    fn the_first_language_is_the_default_and_each_gets_a_voice() {
+        let file = parse("languages: [en, de]\nspeech:\n  voices: {en: en-gb}\n");
+        assert!(file.diagnostics.is_empty(), "{:?}", file.diagnostics);
+        assert_eq!(file.config.languages.default_language().as_str(), "en");
+        assert_eq!(file.config.languages.listed(), "en, de");
+        let expected = [("de", "de"), ("en", "en-gb")].map(|(l, v)| (l.into(), v.into()));
+        assert_eq!(
+            voices("languages: [en, de]\nspeech:\n  voices: {en: en-gb}\n"),
+            expected
+        );
+    }
+
+    #[test]
+    fn without_languages_the_bundle_speaks_its_voices_language_or_english() {
+        let german = parse("speech:\n  voice: de\n").config;
+        assert_eq!(german.languages.listed(), "de");
+        assert_eq!(
+            voices("speech:\n  voice: de\n"),
+            [("de".into(), "de".into())]
+        );
+        assert_eq!(
+            parse("speech:\n  voice: gmw/en\n")
+                .config
+                .languages
+                .listed(),
+            "en"
+        );
+        assert_eq!(parse("home: a.html\n").config.languages.listed(), "en");
+        // `speech: voice` speaks the default language when `languages:` is written too.
+        let both = "languages: [de, en]\nspeech:\n  voice: de-1\n";
+        let expected = [("de", "de-1"), ("en", "en")].map(|(l, v)| (l.into(), v.into()));
+        assert_eq!(voices(both), expected);
+    }
+
+    #[test]
+    fn a_bad_tag_a_repeated_language_and_a_foreign_voice_are_reported_where_written() {
+        let found = problems("languages: [en, english, en]\nspeech:\n  voices:\n    fr: fr\n");
+        let codes: Vec<(&str, u32, u32)> = found.iter().map(|p| (p.0, p.1, p.2)).collect();
+        assert_eq!(
+            codes,
+            [
+                ("bad-language", 1, 17),
+                ("config-bad-value", 1, 26),
+                ("unknown-language", 4, 5)
+            ],
+            "{found:?}"
+        );
+    }
+}

@@ -1,0 +1,143 @@
+//! The visitor's language: one robot-wide state like the context (a robot speaks to one
+//! visitor group at a time). Set by a kiosk's language button, an operator or a dialog
+//! manager; back to the bundle's default when a visitor session ends or a reloaded bundle
+//! lacks it. Every change is a `language.changed` event and a `language` frame to the kiosks,
+//! which then show their page in the new language.
+
+use std::sync::Arc;
+
+use tokio::sync::broadcast::error::RecvError;
+
+use crate::content::{Bundle, Language, Located, Variant};
+use crate::dispatch::{Dispatcher, TriggerError};
+use crate::events::{EventKind, Source};
+use crate::sync::lock;
+
+/// The texts of a variant chosen for the visitor's language.
+pub(super) struct InLanguage<'b> {
+    /// The alternatives to choose from.
+    pub alternatives: &'b [Located<String>],
+    /// The language they are in (the default one when the variant has no translation).
+    pub language: Language,
+    /// The chooser's key: its memory of the last alternative is kept per language.
+    pub chooser_key: String,
+}
+
+/// `variant`'s texts in `language`, falling back to the bundle's default language.
+pub(super) fn texts_in<'b>(
+    bundle: &Bundle,
+    variant: &'b Variant,
+    language: &Language,
+) -> InLanguage<'b> {
+    match variant.in_language(language) {
+        (alternatives, Some(language)) => InLanguage {
+            alternatives,
+            language: language.clone(),
+            chooser_key: format!("{}@{language}", variant.name),
+        },
+        (alternatives, None) => InLanguage {
+            alternatives,
+            language: bundle.config.languages.default_language().clone(),
+            chooser_key: variant.name.clone(),
+        },
+    }
+}
+
+impl Dispatcher {
+    /// The visitor's language now.
+    pub fn language(&self) -> Language {
+        lock(&self.language).clone()
+    }
+
+    /// Changes the visitor's language to the bundle's language spelt `wanted`; a kiosk
+    /// (`Source::Kiosk`) only to one a button on `page` offers.
+    pub fn set_language(
+        &self,
+        wanted: &str,
+        source: Source,
+        page: Option<&str>,
+    ) -> Result<Language, TriggerError> {
+        // Checked and changed under the lock, against the bundle live then (as the context).
+        let mut current = lock(&self.language);
+        let bundle = self.bundle.load();
+        let Some(language) = bundle.config.languages.find(wanted).cloned() else {
+            return Err(TriggerError::UnknownLanguage {
+                language: wanted.to_owned(),
+                available: bundle.config.languages.listed(),
+            });
+        };
+        if source == Source::Kiosk
+            && !page.is_some_and(|page| bundle.page_offers_language(page, &language))
+        {
+            return Err(TriggerError::LanguageNotOffered {
+                language: language.to_string(),
+            });
+        }
+        *current = language.clone();
+        self.publish_language(&language, source);
+        drop(current);
+        Ok(language)
+    }
+
+    /// Logs and tells the kiosks of a change (called under the language lock, so that the
+    /// log's last change is the language in force).
+    pub(super) fn publish_language(&self, language: &Language, source: Source) {
+        self.hub.publish(EventKind::LanguageChanged {
+            source,
+            language: language.clone(),
+        });
+        if let Some(notifier) = self.notifier.get() {
+            notifier.language(language);
+        }
+    }
+
+    /// Back to the default language after `bundle` went live, if it lacks the current one.
+    pub(super) fn keep_language(&self, bundle: &Bundle) {
+        let mut current = lock(&self.language);
+        if bundle.config.languages.all().contains(&current) {
+            return;
+        }
+        *current = bundle.config.languages.default_language().clone();
+        self.publish_language(&current, Source::Server);
+    }
+
+    /// Follows the hub: when a visitor session ends, the next visitors start in the
+    /// bundle's default language. Runs until shutdown.
+    pub async fn reset_language_after_sessions(self: Arc<Self>) {
+        let mut events = self.hub.subscribe();
+        let shutdown = self.life.shutdown.clone();
+        loop {
+            let event = tokio::select! {
+                event = events.recv() => event,
+                () = shutdown.cancelled() => return,
+            };
+            match event {
+                Ok(event) if matches!(event.kind, EventKind::SessionEnded { .. }) => {
+                    self.back_to_default();
+                }
+                Ok(_) => {}
+                Err(RecvError::Lagged(missed)) => {
+                    // A session end may be among them: the default is the safe language.
+                    tracing::warn!(missed, "the language reset fell behind the hub");
+                    self.back_to_default();
+                }
+                Err(RecvError::Closed) => return,
+            }
+        }
+    }
+
+    fn back_to_default(&self) {
+        let mut current = lock(&self.language);
+        let default = self
+            .bundle
+            .load()
+            .config
+            .languages
+            .default_language()
+            .clone();
+        if *current != default {
+            *current = default;
+            self.publish_language(&current, Source::Server);
+        }
+    }
+}
