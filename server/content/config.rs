@@ -14,6 +14,9 @@ pub use crate::content::config_policy::{
     Channel, ChannelPolicies, ChannelPolicy, MAX_PRIORITY, MAX_QUEUE_LIMIT, Priorities, WhenBusy,
 };
 pub use crate::content::reaction::Reaction;
+pub use crate::content::schedule::Schedule;
+
+use crate::content::attract::AttractLoop;
 
 /// Which adapter serves a verb. The route table is built from these, never from `match` arms
 /// spread over the code.
@@ -136,6 +139,8 @@ pub struct KioskConfig {
     pub idle_act: Option<String>,
     /// Whether leaving a page cancels the speech that page started (`leave_page_stops_speech`).
     pub leave_page_stops_speech: bool,
+    /// The attract loop an unused touchscreen runs (`kiosk: attract:`), if any.
+    pub attract: Option<AttractLoop>,
 }
 
 /// What the projector shows once a video has ended (`projector: after_video:`).
@@ -312,6 +317,9 @@ pub struct SiteConfig {
     pub reactions: Vec<Reaction>,
     /// The fleet's MQTT broker and this robot's id in it (`mqtt:`, docs/FLEET.md).
     pub mqtt: MqttSettings,
+    /// Opening hours, with a home page and attract loop per range (`schedule:`); `None`:
+    /// always open.
+    pub schedule: Option<Schedule>,
 }
 
 impl Default for SiteConfig {
@@ -338,6 +346,7 @@ impl Default for SiteConfig {
                 idle: Duration::from_secs(120),
                 idle_act: None,
                 leave_page_stops_speech: true,
+                attract: None,
             },
             projector: ProjectorConfig {
                 after_video: AfterVideo::Black,
@@ -356,6 +365,7 @@ impl Default for SiteConfig {
             rosbridge: RosbridgeConfig::default(),
             reactions: Vec::new(),
             mqtt: MqttSettings::default(),
+            schedule: None,
         }
     }
 }
