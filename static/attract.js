@@ -43,9 +43,9 @@ export function createAttract(shell) {
     swallow(event);
     if (!loop) shield.remove();
   });
-  for (const type of ["mousedown", "mouseup", "touchstart", "touchend", "contextmenu"]) {
-    shield.addEventListener(type, swallow, { passive: false });
-  }
+  // The shield is the target of the whole touch, so nothing reaches the page; its click (which
+  // a cancelled touchend would suppress, keeping the shield up) takes it away.
+  for (const type of ["mousedown", "mouseup", "contextmenu"]) shield.addEventListener(type, swallow);
 
   function report(frame) {
     unsent.push(frame);
