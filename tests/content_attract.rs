@@ -86,18 +86,28 @@ fn an_unknown_attract_act_is_reported_with_a_suggestion() {
     let dir = bundle(&[ACTS, ("docent.yaml", &config)]);
     let report = check(dir.path());
     assert_eq!(places(&report), one("unknown-act", "docent.yaml:2:29"));
-    assert!(report.diagnostics[0].message.contains("Did you mean `INVITE`?"));
+    assert!(
+        report.diagnostics[0]
+            .message
+            .contains("Did you mean `INVITE`?")
+    );
 }
 
 #[test]
 fn an_attract_loop_needs_pages_or_an_act() {
     let lines = ["kiosk:", "  attract:", "    after: 2m"];
-    assert_eq!(problems(&lines, &[]), one("config-bad-value", "docent.yaml:3:5"));
+    assert_eq!(
+        problems(&lines, &[]),
+        one("config-bad-value", "docent.yaml:3:5")
+    );
 }
 
 #[test]
 fn attract_times_need_their_unit() {
-    let lines = ["kiosk:", "  attract: {after: 120, act: INVITE, every: 0.5s}"];
+    let lines = [
+        "kiosk:",
+        "  attract: {after: 120, act: INVITE, every: 0.5s}",
+    ];
     assert_eq!(
         problems(&lines, &[]),
         [
@@ -114,13 +124,19 @@ fn the_closed_page_must_exist() {
         "  closed: closed.html",
         "  open: [{days: daily, hours: 09:00-17:00}]",
     ];
-    assert_eq!(problems(&lines, &[]), one("missing-file", "docent.yaml:2:11"));
+    assert_eq!(
+        problems(&lines, &[]),
+        one("missing-file", "docent.yaml:2:11")
+    );
 }
 
 #[test]
 fn a_schedule_needs_its_closed_page() {
     let lines = ["schedule:", "  open: [{days: daily, hours: 09:00-17:00}]"];
-    assert_eq!(problems(&lines, &[]), one("config-bad-value", "docent.yaml:2:3"));
+    assert_eq!(
+        problems(&lines, &[]),
+        one("config-bad-value", "docent.yaml:2:3")
+    );
 }
 
 #[test]
@@ -133,7 +149,10 @@ fn a_range_home_page_must_exist() {
         "      hours: 09:00-17:00",
         "      home: school.html",
     ];
-    assert_eq!(problems(&lines, &[]), one("missing-file", "docent.yaml:6:13"));
+    assert_eq!(
+        problems(&lines, &[]),
+        one("missing-file", "docent.yaml:6:13")
+    );
 }
 
 #[test]
@@ -158,8 +177,14 @@ fn overlapping_ranges_are_reported_once_at_the_second() {
         ]
     );
     let message = &report.diagnostics[0].message;
-    assert!(message.contains("On Fri, 10:00-12:00 overlaps 09:00-17:00 (line 5)"), "{message}");
-    assert!(message.contains("`09:00-12:00` and `12:00-17:00`"), "{message}");
+    assert!(
+        message.contains("On Fri, 10:00-12:00 overlaps 09:00-17:00 (line 5)"),
+        "{message}"
+    );
+    assert!(
+        message.contains("`09:00-12:00` and `12:00-17:00`"),
+        "{message}"
+    );
 }
 
 #[test]

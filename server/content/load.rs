@@ -76,7 +76,13 @@ fn load(root: &Path) -> LoadReport {
     {
         let labels: Vec<&str> = merged.index.keys().map(String::as_str).collect();
         let knows = |label: &str| merged.knows(label);
-        check_screen_refs(&settings.screen_refs, &checker, knows, &labels, &mut diagnostics);
+        check_screen_refs(
+            &settings.screen_refs,
+            &checker,
+            knows,
+            &labels,
+            &mut diagnostics,
+        );
     }
     check_reaction_acts(&merged, &settings.reaction_acts, &mut diagnostics);
     check_map(&checker, &config, settings.map.as_ref(), &mut diagnostics);

@@ -64,7 +64,11 @@ impl CalendarDate {
         if parts.next().is_some() || y.len() != 4 || m.len() != 2 || d.len() != 2 {
             return None;
         }
-        let number = |t: &str| t.bytes().all(|b| b.is_ascii_digit()).then(|| t.parse().ok())?;
+        let number = |t: &str| {
+            t.bytes()
+                .all(|b| b.is_ascii_digit())
+                .then(|| t.parse().ok())?
+        };
         let date = CalendarDate {
             year: number(y)?,
             month: u8::try_from(number(m)?).ok()?,
@@ -74,7 +78,8 @@ impl CalendarDate {
     }
 
     fn month_days(self) -> u8 {
-        let leap = self.year % 4 == 0 && (self.year % 100 != 0 || self.year % 400 == 0);
+        let y = self.year;
+        let leap = y.is_multiple_of(4) && (!y.is_multiple_of(100) || y.is_multiple_of(400));
         match self.month {
             1 | 3 | 5 | 7 | 8 | 10 | 12 => 31,
             4 | 6 | 9 | 11 => 30,
@@ -187,9 +192,8 @@ impl SiteConfig {
                 .chain(s.special_days.values().flatten())
                 .filter_map(|h| h.attract.as_ref())
         });
-        (self.kiosk.idle_act.iter().map(String::as_str)).chain(
-            (self.kiosk.attract.iter().chain(schedule)).filter_map(|a| a.act.as_deref()),
-        )
+        (self.kiosk.idle_act.iter().map(String::as_str))
+            .chain((self.kiosk.attract.iter().chain(schedule)).filter_map(|a| a.act.as_deref()))
     }
 }
 

@@ -77,7 +77,10 @@ impl Reader {
                     let act: Option<String> = self.setting(value, ACT_USAGE, label);
                     if let Some(act) = &act {
                         let pos = value.pos.clone();
-                        let located = Located { value: act.clone(), pos };
+                        let located = Located {
+                            value: act.clone(),
+                            pos,
+                        };
                         self.screen_refs.acts.push(located);
                     }
                     usable &= act.is_some();

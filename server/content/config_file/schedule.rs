@@ -95,7 +95,10 @@ impl Reader {
             for day in days {
                 for range in &ranges {
                     schedule.week[day].push(extras.hours(range));
-                    written[day].push(Written { pos: range.pos.clone(), ..*range });
+                    written[day].push(Written {
+                        pos: range.pos.clone(),
+                        ..*range
+                    });
                 }
             }
         }
@@ -171,7 +174,12 @@ impl Reader {
     fn days(&mut self, node: &Node) -> Option<Vec<usize>> {
         let parts: Vec<(String, Pos)> = match &node.kind {
             Kind::Seq(items) => (items.iter())
-                .map(|item| (item.as_text().unwrap_or_default().to_owned(), item.pos.clone()))
+                .map(|item| {
+                    (
+                        item.as_text().unwrap_or_default().to_owned(),
+                        item.pos.clone(),
+                    )
+                })
                 .collect(),
             _ => match node.as_text() {
                 Some(text) => split_at_commas(node, text),
@@ -231,7 +239,11 @@ impl Reader {
     }
 
     /// A special day's date, each date once.
-    fn date(&mut self, node: &Node, seen: &mut BTreeMap<CalendarDate, u32>) -> Option<CalendarDate> {
+    fn date(
+        &mut self,
+        node: &Node,
+        seen: &mut BTreeMap<CalendarDate, u32>,
+    ) -> Option<CalendarDate> {
         let date = self.setting(node, DATE_USAGE, CalendarDate::parse)?;
         if let Some(line) = seen.insert(date, node.pos.line) {
             let message = format!("{date} is listed twice (first on line {line}). Keep one.");
@@ -263,9 +275,8 @@ impl Reader {
                 (later, earlier)
             };
             fine = false;
-            let told = |d: &Diagnostic| {
-                d.code == "schedule-overlap" && (d.line, d.column) == at(second)
-            };
+            let told =
+                |d: &Diagnostic| d.code == "schedule-overlap" && (d.line, d.column) == at(second);
             if self.diagnostics.iter().any(told) {
                 continue; // the same range on another of its days
             }
@@ -345,7 +356,9 @@ fn weekday(word: &str) -> Option<usize> {
         "saturday",
         "sunday",
     ];
-    let day = WEEKDAYS.iter().position(|d| d.eq_ignore_ascii_case(short))?;
+    let day = WEEKDAYS
+        .iter()
+        .position(|d| d.eq_ignore_ascii_case(short))?;
     (word.len() == 3 || word == full[day]).then_some(day)
 }
 
@@ -354,7 +367,10 @@ fn weekday(word: &str) -> Option<usize> {
 fn day_like(word: &str) -> String {
     let mut letters = word.trim().chars().take(3);
     let first = letters.next().map(|c| c.to_ascii_uppercase());
-    first.into_iter().chain(letters.map(|c| c.to_ascii_lowercase())).collect()
+    first
+        .into_iter()
+        .chain(letters.map(|c| c.to_ascii_lowercase()))
+        .collect()
 }
 
 /// `09:00-17:00` into minutes from midnight, or why not (a sentence).
@@ -367,9 +383,11 @@ fn time_range(text: &str) -> Result<(u16, u16), &'static str> {
         return Err("Write each time as hours and minutes, `HH:MM`, from 00:00 to 24:00.");
     };
     if from >= to {
-        return Err("A range must end after it starts on the same day; for hours past \
+        return Err(
+            "A range must end after it starts on the same day; for hours past \
                     midnight write two ranges on the two days (`22:00-24:00` and \
-                    `00:00-02:00`).");
+                    `00:00-02:00`).",
+        );
     }
     Ok((from, to))
 }

@@ -61,12 +61,32 @@ fn home_at(config: &SiteConfig, clock: &WallClock) -> Option<String> {
 fn opening_and_closing_minutes_are_open_and_closed() {
     let config = site();
     // Monday 2025-12-01.
-    assert_eq!(home_at(&config, &at(12, 1, 0, 8, 59)), None, "before opening");
-    assert_eq!(home_at(&config, &at(12, 1, 0, 9, 0)).as_deref(), Some("school.html"));
-    assert_eq!(home_at(&config, &at(12, 1, 0, 11, 59)).as_deref(), Some("school.html"));
-    assert_eq!(home_at(&config, &at(12, 1, 0, 12, 0)).as_deref(), Some("index.html"));
-    assert_eq!(home_at(&config, &at(12, 1, 0, 16, 59)).as_deref(), Some("index.html"));
-    assert_eq!(home_at(&config, &at(12, 1, 0, 17, 0)), None, "closing time is closed");
+    assert_eq!(
+        home_at(&config, &at(12, 1, 0, 8, 59)),
+        None,
+        "before opening"
+    );
+    assert_eq!(
+        home_at(&config, &at(12, 1, 0, 9, 0)).as_deref(),
+        Some("school.html")
+    );
+    assert_eq!(
+        home_at(&config, &at(12, 1, 0, 11, 59)).as_deref(),
+        Some("school.html")
+    );
+    assert_eq!(
+        home_at(&config, &at(12, 1, 0, 12, 0)).as_deref(),
+        Some("index.html")
+    );
+    assert_eq!(
+        home_at(&config, &at(12, 1, 0, 16, 59)).as_deref(),
+        Some("index.html")
+    );
+    assert_eq!(
+        home_at(&config, &at(12, 1, 0, 17, 0)),
+        None,
+        "closing time is closed"
+    );
 }
 
 #[test]
@@ -82,12 +102,21 @@ fn a_range_to_midnight_covers_the_last_minute_and_the_next_day_starts_closed() {
 fn special_days_replace_their_weekday() {
     let config = site();
     // Wednesday 2025-12-24: 09:00-13:00 instead of Mon-Fri's two ranges.
-    assert_eq!(home_at(&config, &at(12, 24, 2, 12, 59)).as_deref(), Some("index.html"));
+    assert_eq!(
+        home_at(&config, &at(12, 24, 2, 12, 59)).as_deref(),
+        Some("index.html")
+    );
     assert_eq!(home_at(&config, &at(12, 24, 2, 13, 0)), None);
-    assert_eq!(home_at(&config, &at(12, 24, 2, 10, 0)).as_deref(), Some("index.html"));
+    assert_eq!(
+        home_at(&config, &at(12, 24, 2, 10, 0)).as_deref(),
+        Some("index.html")
+    );
     // Thursday 2025-12-25: closed all day; Friday the 26th as any Friday.
     assert_eq!(home_at(&config, &at(12, 25, 3, 10, 0)), None);
-    assert_eq!(home_at(&config, &at(12, 26, 4, 10, 0)).as_deref(), Some("school.html"));
+    assert_eq!(
+        home_at(&config, &at(12, 26, 4, 10, 0)).as_deref(),
+        Some("school.html")
+    );
 }
 
 #[test]
@@ -129,13 +158,23 @@ fn the_kiosk_gets_weekdays_monday_first_and_dates_as_text() {
     assert_eq!(json["week"][6][0]["to"], 1440);
     assert_eq!(json["special_days"]["2025-12-25"], serde_json::json!([]));
     let showing = serde_json::to_value(config.showing_at(&at(12, 25, 3, 10, 0))).expect("json");
-    assert_eq!(showing, serde_json::json!({"state": "closed", "page": "closed.html"}));
+    assert_eq!(
+        showing,
+        serde_json::json!({"state": "closed", "page": "closed.html"})
+    );
 }
 
 #[test]
 fn calendar_dates_are_real_days() {
     assert!(CalendarDate::parse("2024-02-29").is_some());
-    for bad in ["2025-02-29", "2025-13-01", "2025-1-01", "25-01-01", "2025-01-00", "2025-01-01-"] {
+    for bad in [
+        "2025-02-29",
+        "2025-13-01",
+        "2025-1-01",
+        "25-01-01",
+        "2025-01-00",
+        "2025-01-01-",
+    ] {
         assert_eq!(CalendarDate::parse(bad), None, "{bad}");
     }
     let date = CalendarDate::parse("2025-03-09").expect("a day");
