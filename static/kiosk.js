@@ -13,11 +13,16 @@
 // speaking is answered with a short notice.
 // Recording (recorder.js): on the server's `record` frame the shell records the microphone (and
 // camera) and uploads the chunks into the session's folder.
+// Attract loop (attract.js) and opening hours (schedule.js): after `after_ms` without a touch
+// the loop runs until the first touch; the schedule, by the kiosk's own clock, picks the home
+// page and attract loop, or shows the closed page (and then neither idles nor attracts).
 
+import { createAttract } from "./attract.js";
 import { answerCameraCalls } from "./camera-kiosk.js";
 import { answerRecordRequests } from "./recorder.js";
 import { encodePath, keepConnected } from "./socket.js";
 import { startBrowserSpeech } from "./speech.js";
+import { followSchedule } from "./schedule.js";
 import { speechState } from "./speech-state.js";
 
 const TRIGGER_ANSWER_TIMEOUT_MS = 10_000;
@@ -26,7 +31,12 @@ const LINK_TOUCH_MS = 10_000; // a link's page reported later was not that touch
 
 const config = document.body.dataset;
 const pagesPath = config.pages || "/pages/";
-const home = config.home || "index.html";
+const defaultHome = config.home || "index.html";
+let home = defaultHome; // the schedule's range may have its own
+let closed = false; // outside opening hours: the closed page, no idle return, no attract loop
+const parsed = (text) => (text ? JSON.parse(text) : null);
+const defaultAttract = parsed(config.attract);
+let attractLoop = defaultAttract;
 const idleMs = Number(config.idleMs) || 0;
 const idleAct = config.idleAct || null;
 
@@ -36,7 +46,7 @@ let wanted = null; // the page shown or being loaded
 let serverPage = null; // the page the server's display state names
 let lastActivity = performance.now();
 let idle = false;
-let idleShown = null; // the home page the idle return showed, until it is reported
+let shownBy = null; // {page, via}: a page the shell showed by itself (idle, attract, schedule)
 let linkTouch = null; // {element, at}: the link a visitor touched, until its page is reported
 
 const listeners = new Map(); // frame or event type -> Set of functions
@@ -116,7 +126,23 @@ function watchActivity(frame) {
 function showState(state) {
   const page = state?.display?.page;
   serverPage = page ?? null;
+  // Closed, or a schedule's own home where the server still has the bundle's: the schedule
+  // wins, and the server is told.
+  const scheduled = closed || (page === defaultHome && home !== defaultHome && !attract.running());
+  if (scheduled && wanted) {
+    if (wanted !== serverPage && socket) socket.send({ type: "page", page: wanted, via: "schedule" });
+    serverPage = wanted;
+    return;
+  }
+  if (scheduled) return showBy(closed ? wanted : home, "schedule");
   if (page) show(page);
+}
+
+/** Shows `page` by the shell's own doing, reported to the server as `via`. */
+function showBy(page, via) {
+  if (!page) return;
+  if (page !== serverPage) shownBy = { page, via };
+  show(page);
 }
 
 /**
@@ -143,11 +169,11 @@ function reportShown(frame) {
   if (linkTouch && performance.now() - linkTouch.at < LINK_TOUCH_MS) {
     frameOut.via = "touch";
     if (linkTouch.element) frameOut.element = linkTouch.element;
-  } else if (page === idleShown) {
-    frameOut.via = "idle";
+  } else if (page === shownBy?.page) {
+    frameOut.via = shownBy.via;
   }
   linkTouch = null;
-  idleShown = null;
+  shownBy = null;
   socket.send(frameOut);
 }
 
@@ -169,6 +195,7 @@ const socket = keepConnected({
       }
       pending.clear();
     }
+    if (online) attract.flush();
     emit("connection", { online });
   },
   onFrame: (frame) => {
@@ -177,6 +204,7 @@ const socket = keepConnected({
     } else if (frame.type === "command" && frame.verb === "DISPLAY_PAGE") {
       // A page change by the robot counts as activity: a tour is not an idle kiosk.
       activity();
+      attract.stop("robot");
       serverPage = frame.args.page;
       reportPageShown(frame.id, frame.args.page);
       show(frame.args.page);
@@ -262,17 +290,22 @@ function reportPageShown(id, page) {
 }
 
 // Idle: back home after `idleMs` without touch; then the idle act, if one is configured.
-if (idleMs > 0) {
-  setInterval(() => {
-    if (idle || performance.now() - lastActivity < idleMs) return;
-    idle = true;
-    if (wanted === home) return; // already home: nothing to do, nothing to send
-    idleShown = home;
-    show(home);
-    if (idleAct) triggerOnArrival(home, idleAct);
-    idle = true; // the trigger above counted as activity
-  }, IDLE_CHECK_MS);
-}
+// After the attract loop's `after_ms` without touch, the loop (attract.js).
+setInterval(() => {
+  if (closed) return;
+  const quiet = performance.now() - lastActivity;
+  if (attractLoop && !attract.running() && quiet >= attractLoop.after_ms) {
+    attract.start(attractLoop);
+    idle = true; // its act counted as activity
+    return;
+  }
+  if (idleMs <= 0 || idle || quiet < idleMs) return;
+  idle = true;
+  if (wanted === home || attract.running()) return; // nothing to do, nothing to send
+  showBy(home, "idle");
+  if (idleAct) triggerOnArrival(home, idleAct);
+  idle = true; // the trigger above counted as activity
+}, IDLE_CHECK_MS);
 
 /**
  * Triggers `label` once `page` is shown (and reported): its speech belongs to the new page, so
@@ -289,6 +322,33 @@ function triggerOnArrival(page, label) {
 for (const type of ["pointerdown", "keydown", "wheel"]) {
   addEventListener(type, activity, { capture: true, passive: true });
 }
+
+// The attract loop's pages and act are the shell's own doing: not a visitor's, not a session.
+const attract = createAttract({
+  show: (page) => showBy(page, "attract"),
+  trigger: (label) => window.docentShell.trigger(label, { via: "attract" }),
+  send: (frame) => socket.send(frame),
+  onTouchEnd: () => showBy(home, "attract"),
+});
+
+const schedule = parsed(config.schedule);
+if (schedule) followSchedule(schedule, { home: defaultHome, attract: defaultAttract }, (showing) => {
+  if (!showing.open) {
+    closed = true;
+    attract.stop("schedule");
+    showBy(showing.page, "schedule");
+    return;
+  }
+  const before = { closed, home, attractLoop };
+  closed = false;
+  home = showing.home;
+  attractLoop = showing.attract;
+  if (attract.running() && JSON.stringify(before.attractLoop) !== JSON.stringify(attractLoop)) {
+    attract.stop("schedule");
+  }
+  // Opening, or a new home while the old one is on show (no visitor busy elsewhere).
+  if (before.closed || wanted === before.home || wanted === null) showBy(home, "schedule");
+});
 for (const type of ["contextmenu", "selectstart", "dragstart", "gesturestart"]) {
   addEventListener(type, (event) => event.preventDefault(), { capture: true });
 }

@@ -17,6 +17,9 @@ pub use crate::content::config_policy::{
 };
 pub use crate::content::language::{Language, Languages};
 pub use crate::content::reaction::Reaction;
+pub use crate::content::schedule::Schedule;
+
+use crate::content::attract::AttractLoop;
 
 /// Which adapter serves a verb. The route table is built from these, never from `match` arms
 /// spread over the code.
@@ -152,6 +155,8 @@ pub struct KioskConfig {
     pub idle_act: Option<String>,
     /// Whether leaving a page cancels the speech that page started (`leave_page_stops_speech`).
     pub leave_page_stops_speech: bool,
+    /// The attract loop an unused touchscreen runs (`kiosk: attract:`), if any.
+    pub attract: Option<AttractLoop>,
 }
 
 /// What the projector shows once a video has ended (`projector: after_video:`).
@@ -333,6 +338,9 @@ pub struct SiteConfig {
     pub reactions: Vec<Reaction>,
     /// The fleet's MQTT broker and this robot's id in it (`mqtt:`, docs/FLEET.md).
     pub mqtt: MqttSettings,
+    /// Opening hours, with a home page and attract loop per range (`schedule:`); `None`:
+    /// always open.
+    pub schedule: Option<Schedule>,
 }
 
 impl Default for SiteConfig {
@@ -362,6 +370,7 @@ impl Default for SiteConfig {
                 idle: Duration::from_secs(120),
                 idle_act: None,
                 leave_page_stops_speech: true,
+                attract: None,
             },
             projector: ProjectorConfig {
                 after_video: AfterVideo::Black,
@@ -380,6 +389,7 @@ impl Default for SiteConfig {
             rosbridge: RosbridgeConfig::default(),
             reactions: Vec::new(),
             mqtt: MqttSettings::default(),
+            schedule: None,
         }
     }
 }

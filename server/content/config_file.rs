@@ -12,6 +12,7 @@ use crate::content::duration::parse_duration;
 use crate::content::model::Located;
 
 mod access;
+pub(crate) mod attract;
 pub(crate) mod codebook;
 mod devices;
 mod languages;
@@ -21,6 +22,7 @@ pub(crate) mod policy;
 pub(crate) mod reactions;
 mod reader;
 pub(crate) mod rosbridge;
+pub(crate) mod schedule;
 pub(crate) mod screens;
 pub(crate) mod server;
 mod verbs;
@@ -44,6 +46,9 @@ pub(crate) struct ConfigFile {
     pub visitor_groups: Vec<(&'static str, Located<String>)>,
     /// The acts `reactions:` trigger, with their places (checked later).
     pub reaction_acts: Vec<Located<String>>,
+    /// The pages and acts the attract loops and the schedule name, with their places
+    /// (checked later, `attract::check_screen_refs`).
+    pub screen_refs: attract::ScreenRefs,
     /// Problems found.
     pub diagnostics: Vec<Diagnostic>,
 }
@@ -69,6 +74,7 @@ pub(crate) const TOP_KEYS: &[&str] = &[
     "reactions",
     "mqtt",
     "rosbridge",
+    "schedule",
 ];
 const HOME_USAGE: &str = "`home` names the page under pages/ the kiosk starts on, e.g. \
                           `home: index.html`.";
@@ -82,12 +88,14 @@ pub(crate) fn parse_config(file: &Arc<str>, bytes: &[u8]) -> ConfigFile {
     let parsed = yaml::parse(file, bytes, "config-syntax", Recovery::None);
     let mut reader = Reader {
         diagnostics: parsed.diagnostics,
+        screen_refs: attract::ScreenRefs::default(),
     };
     let mut out = ConfigFile::default();
     if let Some(root) = &parsed.root {
         reader.top_level(root, &mut out);
     }
     out.diagnostics = reader.diagnostics;
+    out.screen_refs = reader.screen_refs;
     out
 }
 
@@ -151,6 +159,7 @@ impl Reader {
                 "codebook" => codebook = Some(self.codebook(value)),
                 "reactions" => (config.reactions, out.reaction_acts) = self.reactions(value),
                 "mqtt" => self.mqtt(value, &mut config.mqtt),
+                "schedule" => config.schedule = self.schedule(value),
                 _ => self.verbs(value, config),
             }
         }

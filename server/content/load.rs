@@ -8,6 +8,7 @@ use std::sync::Arc;
 
 use crate::content::commands::{CommandChecker, path_error_code};
 use crate::content::config::{Language, SiteConfig};
+use crate::content::config_file::attract::check_screen_refs;
 use crate::content::config_file::{ConfigFile, parse_config};
 use crate::content::contexts::{check_undeclared, contexts};
 use crate::content::diagnostic::Diagnostic;
@@ -72,12 +73,25 @@ fn load(root: &Path) -> LoadReport {
     check_page_labels(gathered.pages, &config, &mut merged, &mut diagnostics);
     check_home(&checker, &config, settings.home.as_ref(), &mut diagnostics);
     check_idle_act(&merged, settings.idle_act.as_ref(), &mut diagnostics);
+    {
+        let labels: Vec<&str> = merged.index.keys().map(String::as_str).collect();
+        let knows = |label: &str| merged.knows(label);
+        check_screen_refs(
+            &settings.screen_refs,
+            &checker,
+            knows,
+            &labels,
+            &mut diagnostics,
+        );
+    }
     check_reaction_acts(&merged, &settings.reaction_acts, &mut diagnostics);
     check_map(&checker, &config, settings.map.as_ref(), &mut diagnostics);
     if !settings_unread {
         check_undeclared(&config, &merged.acts, &mut diagnostics);
         let idle = settings.idle_act.as_ref().map(|a| a.value.as_str());
-        let reacting = settings.reaction_acts.iter().map(|a| a.value.as_str());
+        let reacting = (settings.reaction_acts.iter())
+            .chain(&settings.screen_refs.acts)
+            .map(|a| a.value.as_str());
         let referenced = (merged.page_acts.iter().map(String::as_str))
             .chain(idle)
             .chain(reacting);
@@ -276,7 +290,7 @@ fn check_page_labels(
                  {hint} Fix the label in `docent.trigger(...)` or add the act."
             );
             out.push(Diagnostic::error("unknown-act", pos, message));
-        } else if !labels.contains(value) && config.kiosk.idle_act.as_deref() != Some(value) {
+        } else if !labels.contains(value) && !config.kiosk_own_acts().any(|a| a == value) {
             let message = format!(
                 "This page script triggers the act `{value}`, but no page offers it with \
                  `data-act`, so the touchscreen is refused it and nothing happens. Add a \

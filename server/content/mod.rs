@@ -18,6 +18,7 @@
 //! - `paths`: resolving a relative path inside the bundle (shared with the HTTP file routes).
 //! - `encoding`: files not saved as UTF-8, explained.
 //! - `duration`: `2s`, `500ms`, `1.5m`.
+//! - `attract`, `schedule`: the kiosk's attract loop and opening hours, parsed once.
 //! - `highlight`: the areas of a `HIGHLIGHT` argument.
 //! - `operator_check`: what the operator console uses (act keys, map, visitor groups),
 //!   checked against the whole bundle.
@@ -32,12 +33,14 @@
 //! - `report`: the content report (acts, pages, media, problems) behind `/report`.
 
 pub mod args;
+pub mod attract;
 pub mod config;
 pub mod diagnostic;
 pub mod language;
 pub mod model;
 pub mod reaction;
 pub mod report;
+pub mod schedule;
 pub mod schema;
 
 mod acts_file;

@@ -285,6 +285,20 @@ pub enum EventKind {
         #[serde(skip_serializing_if = "Option::is_none")]
         link: Option<String>,
     },
+    /// A kiosk's attract loop began: its pages and act are the screen's own doing.
+    #[serde(rename = "attract.started")]
+    AttractStarted {
+        /// The kiosk.
+        client: u64,
+    },
+    /// A kiosk's attract loop ended (a touch's own `touch` event follows it).
+    #[serde(rename = "attract.ended")]
+    AttractEnded {
+        /// The kiosk.
+        client: u64,
+        /// What ended it.
+        by: super::AttractEnd,
+    },
     /// The robot's software noticed something (an adapter process sent it).
     #[serde(rename = "robot")]
     Robot(super::RobotEvent),

@@ -6,6 +6,7 @@
 //! The serialized form is a compatibility boundary: it is both the corpus log line and the
 //! `event` frame sent to operator and dialog-manager clients (see `docs/CORPUS.md`).
 
+mod attract;
 mod hub;
 mod kind;
 mod logged;
@@ -17,6 +18,7 @@ mod session;
 mod stamped;
 mod touch;
 
+pub use attract::{AttractEnd, AttractState};
 pub use hub::{Committer, CorpusFeed, EVENT_CHANNEL_CAPACITY, HISTORY_LEN, Hub};
 pub use kind::EventKind;
 pub use logged::{LogUnwritable, Logged};

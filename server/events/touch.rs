@@ -20,6 +20,10 @@ pub enum KioskCause {
     Idle,
     /// The page's own script called `docent.trigger` or moved to another page.
     Script,
+    /// The kiosk's attract loop showed a page or triggered its act.
+    Attract,
+    /// The schedule showed the closed page or a range's home page.
+    Schedule,
 }
 
 impl KioskCause {
@@ -57,6 +61,8 @@ mod tests {
         assert!(!KioskCause::is_touch(Some(KioskCause::Timer)));
         assert!(!KioskCause::is_touch(Some(KioskCause::Idle)));
         assert!(!KioskCause::is_touch(Some(KioskCause::Script)));
+        assert!(!KioskCause::is_touch(Some(KioskCause::Attract)));
+        assert!(!KioskCause::is_touch(Some(KioskCause::Schedule)));
     }
 
     #[test]

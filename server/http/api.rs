@@ -1,6 +1,7 @@
 //! The trigger API: acts, triggers, stop, context, state and health. Routes reach devices only
 //! through the dispatcher.
 
+use crate::content::schedule::WallClock;
 use axum::Json;
 use axum::extract::rejection::PathRejection;
 use axum::extract::{Path, State};
@@ -196,8 +197,12 @@ pub async fn get_state(State(state): State<AppState>, _: Authorized) -> Json<Val
             .strip_prefix("SAY ")
             .map(str::to_owned)
     });
+    let bundle = state.dispatcher.bundle();
+    // What the touchscreen should show by the schedule, by this machine's clock.
+    let scheduled = bundle.config.showing_at(&WallClock::now());
     Json(json!({
         "display": state.devices.display.snapshot(),
+        "schedule": scheduled,
         "pose": (state.devices.drive.as_ref().map(|d| d.pose()))
             .or_else(|| state.devices.rosbridge.as_ref().and_then(|r| r.pose())),
         "waypoint": (state.devices.drive.as_ref().and_then(|d| d.waypoint()))

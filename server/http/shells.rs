@@ -29,6 +29,10 @@ pub struct KioskShell<'a> {
     pub idle_ms: u128,
     /// The act triggered on going idle, if any.
     pub idle_act: Option<&'a str>,
+    /// `kiosk: attract:` as JSON for `static/attract.js`; empty when there is none.
+    pub attract: String,
+    /// `schedule:` in its parsed form, as JSON for `static/schedule.js`; empty when none.
+    pub schedule: String,
     /// Whether the kiosk speaks `SAY` itself (`speech: {adapter: browser}`).
     pub browser_speech: bool,
     /// Voice (a language tag or voice name) for browser speech.
@@ -52,6 +56,8 @@ impl<'a> KioskShell<'a> {
             home: &config.home,
             idle_ms: config.kiosk.idle.as_millis(),
             idle_act: config.kiosk.idle_act.as_deref(),
+            attract: json_or_empty(config.kiosk.attract.as_ref()),
+            schedule: json_or_empty(config.schedule.as_ref()),
             browser_speech: config.speech.adapter == Some(AdapterKind::Browser),
             voice: &config.speech.voice,
             rate: config.speech.rate_wpm,
@@ -59,6 +65,14 @@ impl<'a> KioskShell<'a> {
             unavailable_page,
         }
     }
+}
+
+/// `value` as JSON for a `data-` attribute (askama escapes it), or empty for none: the
+/// kiosk's scripts take the parsed form and never parse `docent.yaml` text themselves.
+fn json_or_empty<T: serde::Serialize>(value: Option<&T>) -> String {
+    value
+        .and_then(|v| serde_json::to_string(v).ok())
+        .unwrap_or_default()
 }
 
 /// `pages/projector/projector.html`: the projector shell.

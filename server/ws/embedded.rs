@@ -121,6 +121,7 @@ fn needs_connection(frame: &ClientFrame) -> Option<&'static str> {
              websocket",
         ),
         ClientFrame::Page { .. }
+        | ClientFrame::Attract { .. }
         | ClientFrame::Signal { .. }
         | ClientFrame::Started { .. }
         | ClientFrame::Done { .. }

@@ -14,6 +14,7 @@
 //! `notices` tells a client what became of its commands and kiosks who is speaking.
 //! `embedded` is the same session without a websocket, for other transports (MQTT).
 
+mod attract;
 mod client;
 mod connection;
 mod diagnose;

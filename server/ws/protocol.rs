@@ -6,7 +6,7 @@
 use serde::{Deserialize, Serialize};
 
 use crate::adapters::{Display, Pose};
-use crate::events::{ClientRole, KioskCause};
+use crate::events::{AttractEnd, AttractState, ClientRole, KioskCause};
 use crate::reload::ReloadView;
 
 /// The protocol version sent in `welcome`. 4: `command` frames carry the parsed `args`.
@@ -101,6 +101,14 @@ pub enum ClientFrame {
         /// The link touched, as the kiosk describes it.
         #[serde(default)]
         element: Option<String>,
+    },
+    /// A kiosk's attract loop began or ended (`static/attract.js`).
+    Attract {
+        /// Began or ended.
+        state: AttractState,
+        /// What ended it (with `ended`).
+        #[serde(default)]
+        by: Option<AttractEnd>,
     },
     /// A dialog manager proposes an act to the operators.
     Propose {

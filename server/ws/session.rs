@@ -20,7 +20,7 @@ use crate::ws::hello::{self, Hello, Refused};
 use crate::ws::protocol::{ClientFrame, MAX_FRAME_BYTES};
 use crate::ws::triggers::{self, RefusedRun, Trigger};
 use crate::ws::writer::Feed;
-use crate::ws::{initiative, recording, reports, robot, signal};
+use crate::ws::{attract, initiative, recording, reports, robot, signal};
 
 /// One connection's state, changed only by its own methods below.
 pub(super) struct Session {
@@ -157,6 +157,7 @@ impl Session {
                 let run = triggers::page_shown(client, role, page, via, element);
                 self.record(run);
             }
+            ClientFrame::Attract { state, by } => attract::reported(client, role, state, by),
             ClientFrame::Propose {
                 label,
                 context,

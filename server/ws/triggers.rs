@@ -130,11 +130,12 @@ pub(super) fn trigger(
     run
 }
 
-/// Whether a kiosk may trigger `label`: an act its pages offer, or the idle act.
+/// Whether a kiosk may trigger `label`: an act its pages offer, the idle act or an attract
+/// loop's act.
 fn offered(client: &Client, label: &str) -> Result<(), String> {
     let bundle = client.state.dispatcher.bundle();
     let offered = bundle.page_acts.iter().any(|a| a == label)
-        || bundle.config.kiosk.idle_act.as_deref() == Some(label);
+        || bundle.config.kiosk_own_acts().any(|a| a == label);
     if !offered {
         return Err(format!(
             "no page of this bundle offers the act {label:?}, so a touchscreen may not \

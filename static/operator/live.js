@@ -4,6 +4,7 @@
 // before those, the per-adapter snapshot of GET /api/state `queues`). The snapshot is fetched
 // after `welcome` while events already arrive: a part of it is used only as long as no event
 // about that part came first (an event is newer than any snapshot still on its way).
+// The kiosk's attract loop (attract.started / attract.ended events) is shown beside its page.
 
 import { h, shorten } from "./dom.js";
 
@@ -20,10 +21,18 @@ export function createLive(els) {
   // `verbs`: the verbs of command events seen (the snapshot's queue entries of those verbs are
   // older); `queue`: a stop emptied every queue.
   const told = { display: false, speech: false, queue: false, verbs: new Set() };
+  let kioskPage = null;
+  let attracting = false;
+
+  function showKiosk() {
+    const loop = attracting ? h("span", { class: "muted small", dataset: { attract: "" } }, " · attract loop") : "";
+    els.kiosk.replaceChildren(kioskPage ?? "–", loop);
+  }
 
   function showDisplay(display) {
     if (!display) return;
-    els.kiosk.textContent = display.page ?? "–";
+    kioskPage = display.page ?? null;
+    showKiosk();
     // What the projector reported (docs/PROTOCOL.md `projector_state`), not what was asked.
     const state = display.projector_state ?? "black";
     const shown = display.highlight ? `highlight ${display.highlight}` : display.projector;
@@ -81,6 +90,9 @@ export function createLive(els) {
       if (e.type === "stop") told.queue = told.speech = true;
       if (e.type === "display.changed") {
         showDisplay(e);
+      } else if (e.type === "attract.started" || e.type === "attract.ended") {
+        attracting = e.type === "attract.started";
+        showKiosk();
       } else if (e.type === "command.sent") {
         commands.set(e.command, { id: e.command, verb: e.verb, arg: e.arg ?? null, label: e.label, adapter: e.adapter, started: false });
         showQueue();
@@ -113,6 +125,7 @@ export function createLive(els) {
     reset() {
       told.display = told.speech = told.queue = false;
       told.verbs.clear();
+      attracting = false;
       commands.clear();
       snapshot = [];
       speakingId = null;

@@ -11,6 +11,8 @@ use crate::content::suggest::did_you_mean;
 pub(super) struct Reader {
     /// Problems so far, in the order found.
     pub diagnostics: Vec<Diagnostic>,
+    /// The pages and acts the kiosk's attract loops and schedule name, checked later.
+    pub screen_refs: super::attract::ScreenRefs,
 }
 
 impl Reader {

@@ -1,7 +1,7 @@
 //! The `kiosk:`, `projector:` and `corpus:` sections of `docent.yaml`: how the touchscreen and
 //! projector shells behave (idle return home, idle act, what follows a video, the soft edge of
 //! highlights) and how visitors' touches cut the corpus into sessions. Whether the idle act
-//! exists is checked later, with the acts (`load.rs`).
+//! exists is checked later, with the acts (`load.rs`); `attract:` is read by `attract.rs`.
 
 use crate::content::acts_file::yaml::{Kind, Node};
 use crate::content::config::{AfterVideo, RecordTracks, SessionStart, SiteConfig};
@@ -13,7 +13,7 @@ use crate::events::{Consent, robot_event_name_problem};
 use super::Reader;
 
 /// The keys of `kiosk:`.
-pub(crate) const KIOSK_KEYS: &[&str] = &["idle", "idle_act", "leave_page_stops_speech"];
+pub(crate) const KIOSK_KEYS: &[&str] = &["idle", "idle_act", "leave_page_stops_speech", "attract"];
 const IDLE_USAGE: &str = "`idle` is how long the touchscreen waits without a touch before it \
                           returns to the home page: a length of time with its unit, e.g. \
                           `idle: 2m` or `idle: 90s`; `idle: 0s` turns it off.";
@@ -56,6 +56,10 @@ impl Reader {
                 if let Some(stops) = self.choice(value, "`leave_page_stops_speech`", &options) {
                     config.kiosk.leave_page_stops_speech = stops;
                 }
+                continue;
+            }
+            if key == "attract" {
+                config.kiosk.attract = self.attract(value);
                 continue;
             }
             if key == "idle" {

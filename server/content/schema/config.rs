@@ -14,6 +14,7 @@ use crate::content::config_file::screens::CORPUS_KEYS;
 use crate::content::config_file::server::KEYS as SERVER_KEYS;
 
 mod rosbridge;
+mod screens;
 mod site;
 
 use site::{access, mqtt, operator, server, verbs};
@@ -27,7 +28,7 @@ const DISPLAY_KEYS: &[&str] = &["adapter"];
 const DRIVE_KEYS: &[&str] = &["adapter", "speed", "pose_rate", "bounds"];
 const BOUNDS_KEYS: &[&str] = &["min_x", "min_y", "max_x", "max_y"];
 const ADAPTERS_KEYS: &[&str] = &["timeout"];
-const KIOSK_KEYS: &[&str] = &["idle", "idle_act", "leave_page_stops_speech"];
+const KIOSK_KEYS: &[&str] = &["idle", "idle_act", "leave_page_stops_speech", "attract"];
 const PROJECTOR_KEYS: &[&str] = &["after_video", "highlight_edge"];
 const ACCESS_KEYS: &[&str] = &["operator_token", "dm_token"];
 const SITE_VERB_KEYS: &[&str] = &["adapter", "argument", "description"];
@@ -146,6 +147,7 @@ fn top_level(key: &str) -> Value {
              --mqtt URL --robot-id ID` overrides both.",
         ),
         "rosbridge" => rosbridge::rosbridge(),
+        "schedule" => screens::schedule(),
         // A key added to the loader without a schema here fails the tests (no description).
         _ => json!({}),
     }
@@ -353,6 +355,7 @@ fn kiosk(key: &str) -> Value {
             "description": "The label of the act to trigger when the touchscreen goes idle, \
                             e.g. `INVITE`.",
         }),
+        "attract" => screens::attract(),
         "leave_page_stops_speech" => json!({
             "type": "boolean",
             "description": "Whether leaving a page stops the speech that page started (true \

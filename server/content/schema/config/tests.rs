@@ -72,6 +72,8 @@ fn section_keys_are_the_loaders() {
         (&["channels", "speech"], &["channels", "*"]),
         (&["priorities"], &["priorities"]),
         (&["rosbridge"], &["rosbridge"]),
+        (&["kiosk", "attract"], &["kiosk", "attract"]),
+        (&["schedule"], &["schedule"]),
     ] {
         assert_eq!(
             schema_keys(&schema, path),

@@ -1,0 +1,157 @@
+//! `attract:` in `docent.yaml` (under `kiosk:`, or in a schedule range): the attract loop
+//! an unused touchscreen runs. The pages and the act it names are collected with their places
+//! in [`ScreenRefs`] and checked against the bundle later, like every page and act
+//! (`check_screen_refs`, called by `load.rs`).
+
+use std::time::Duration;
+
+use crate::content::acts_file::yaml::{Kind, Node};
+use crate::content::attract::AttractLoop;
+use crate::content::commands::{CommandChecker, path_error_code};
+use crate::content::diagnostic::Diagnostic;
+use crate::content::duration::parse_duration;
+use crate::content::model::Located;
+use crate::content::paths::BundleArea;
+use crate::content::suggest::did_you_mean;
+
+use super::Reader;
+
+/// The keys of an `attract:` section.
+pub(crate) const ATTRACT_KEYS: &[&str] = &["after", "pages", "every", "act"];
+const AFTER_USAGE: &str = "`after` is how long the touchscreen waits without a touch before \
+                           the attract loop starts: a length of time with its unit, e.g. \
+                           `after: 3m`.";
+const EVERY_USAGE: &str = "`every` is how long each attract page stays on screen (with only \
+                           an act: how often the act is repeated), at least one second, e.g. \
+                           `every: 10s`.";
+const PAGES_USAGE: &str = "`pages` lists the pages under pages/ the attract loop shows in \
+                           turn, e.g. `pages: [attract/a.html, attract/b.html]`.";
+const ACT_USAGE: &str = "`act` is the label of the act the attract loop triggers when it \
+                         starts, e.g. `act: INVITE`.";
+const NEEDS_CONTENT: &str = "An attract loop needs `pages`, an `act`, or both, e.g. \
+                             `attract: {after: 3m, pages: [attract/a.html], every: 10s}` or \
+                             `attract: {after: 3m, act: INVITE}`.";
+/// `after` when not written.
+const DEFAULT_AFTER: Duration = Duration::from_secs(120);
+
+/// The pages and acts the kiosk's own settings name (attract loops, schedule), with their
+/// places, checked against the bundle once it is read.
+#[derive(Debug, Default)]
+pub(crate) struct ScreenRefs {
+    /// Pages under `pages/`: attract pages, the closed page, schedule home pages.
+    pub pages: Vec<Located<String>>,
+    /// Acts the attract loops trigger.
+    pub acts: Vec<Located<String>>,
+}
+
+impl Reader {
+    /// Reads an `attract:` section; `None` (after reporting) when it is unusable.
+    pub(super) fn attract(&mut self, node: &Node) -> Option<AttractLoop> {
+        let mut attract = AttractLoop {
+            after: DEFAULT_AFTER,
+            pages: Vec::new(),
+            every: None,
+            act: None,
+        };
+        let mut usable = true;
+        for (key, value) in self.entries(node, ATTRACT_KEYS, "attract") {
+            match key {
+                "after" => {
+                    let after = |t: &str| parse_duration(t).filter(|d| !d.is_zero());
+                    match self.setting(value, AFTER_USAGE, after) {
+                        Some(after) => attract.after = after,
+                        None => usable = false,
+                    }
+                }
+                "every" => {
+                    let every = |t: &str| parse_duration(t).filter(|d| d.as_millis() >= 1000);
+                    attract.every = self.setting(value, EVERY_USAGE, every);
+                    usable &= attract.every.is_some();
+                }
+                "pages" => match self.attract_pages(value) {
+                    Some(pages) => attract.pages = pages,
+                    None => usable = false,
+                },
+                _ => {
+                    let label = |t: &str| (!t.chars().any(char::is_whitespace)).then(|| t.into());
+                    let act: Option<String> = self.setting(value, ACT_USAGE, label);
+                    if let Some(act) = &act {
+                        let pos = value.pos.clone();
+                        let located = Located {
+                            value: act.clone(),
+                            pos,
+                        };
+                        self.screen_refs.acts.push(located);
+                    }
+                    usable &= act.is_some();
+                    attract.act = act;
+                }
+            }
+        }
+        if usable && attract.pages.is_empty() && attract.act.is_none() {
+            self.bad(node, NEEDS_CONTENT);
+            return None;
+        }
+        usable.then_some(attract)
+    }
+
+    /// `pages:` of an attract loop: one page or a list of them.
+    fn attract_pages(&mut self, node: &Node) -> Option<Vec<String>> {
+        let items: Vec<&Node> = match &node.kind {
+            Kind::Seq(items) if !items.is_empty() => items.iter().collect(),
+            Kind::Str { .. } => vec![node],
+            _ => {
+                self.bad(node, PAGES_USAGE);
+                return None;
+            }
+        };
+        let mut pages = Vec::new();
+        for item in items {
+            let page = self.page_setting(item, PAGES_USAGE)?;
+            pages.push(page);
+        }
+        Some(pages)
+    }
+
+    /// A page under `pages/` named in the kiosk's settings, remembered to be checked later.
+    pub(super) fn page_setting(&mut self, node: &Node, usage: &str) -> Option<String> {
+        let page = self.setting(node, usage, |t| Some(t.to_owned()))?;
+        let located = Located {
+            value: page.clone(),
+            pos: node.pos.clone(),
+        };
+        self.screen_refs.pages.push(located);
+        Some(page)
+    }
+}
+
+/// Every page the kiosk's settings name must be a page of the bundle (the checks a
+/// `DISPLAY_PAGE` path gets), and every act they trigger must exist.
+pub(crate) fn check_screen_refs(
+    refs: &ScreenRefs,
+    checker: &CommandChecker<'_>,
+    knows: impl Fn(&str) -> bool,
+    labels: &[&str],
+    out: &mut Vec<Diagnostic>,
+) {
+    for Located { value, pos } in &refs.pages {
+        if let Some((err, problem)) = checker.path_problem(BundleArea::Pages, value) {
+            let message = format!(
+                "{problem} The kiosk shows this page by its own settings (an attract loop or \
+                 the schedule): add it, or fix the name in docent.yaml."
+            );
+            out.push(Diagnostic::error(path_error_code(&err), pos, message));
+        }
+    }
+    for Located { value, pos } in &refs.acts {
+        if knows(value) {
+            continue;
+        }
+        let hint = did_you_mean(value, labels.iter().copied());
+        let message = format!(
+            "The attract loop triggers the act `{value}`, but no act has that label.{hint} \
+             Fix `act` in docent.yaml or add the act."
+        );
+        out.push(Diagnostic::error("unknown-act", pos, message));
+    }
+}

@@ -1,0 +1,269 @@
+//! The kiosk's attract loop (`kiosk: attract:`) and opening hours (`schedule:`) in
+//! `docent.yaml`: one broken bundle per check, each problem at its exact file, line and
+//! column, and a good one loaded into its parsed form.
+
+mod common;
+
+use std::time::Duration;
+
+use common::check::{assert_plain, bundle, check, loaded, places, yaml};
+
+const ACTS: (&str, &str) = ("acts.yaml", "- Label: INVITE\n  Text: Come closer!\n");
+
+/// (code, place) of the bundle with `docent.yaml` of `lines` and the extra `files`.
+fn problems(lines: &[&str], files: &[(&str, &str)]) -> Vec<(&'static str, String)> {
+    let config = yaml(lines);
+    let mut all = vec![ACTS, ("docent.yaml", config.as_str())];
+    all.extend_from_slice(files);
+    let dir = bundle(&all);
+    let report = check(dir.path());
+    assert_plain(&report);
+    places(&report)
+}
+
+fn one(code: &'static str, place: &str) -> Vec<(&'static str, String)> {
+    vec![(code, place.to_owned())]
+}
+
+#[test]
+fn a_good_attract_loop_and_schedule_load() {
+    let config = yaml(&[
+        "kiosk:",
+        "  attract: {after: 90s, pages: [attract/a.html, attract/b.html], every: 8s}",
+        "schedule:",
+        "  closed: closed.html",
+        "  open:",
+        "    - {days: Mon-Fri, hours: 09:00-17:00}",
+        "    - {days: Sat, hours: 10:00-14:00, attract: {after: 1m, act: INVITE}}",
+    ]);
+    let dir = bundle(&[
+        ACTS,
+        ("docent.yaml", &config),
+        ("pages/attract/a.html", "<title>a</title>"),
+        ("pages/attract/b.html", "<title>b</title>"),
+        ("pages/closed.html", "<title>closed</title>"),
+    ]);
+    let bundle = loaded(check(dir.path()));
+    let attract = bundle.config.kiosk.attract.as_ref().expect("attract");
+    assert_eq!(attract.after, Duration::from_secs(90));
+    assert_eq!(attract.pages, ["attract/a.html", "attract/b.html"]);
+    assert_eq!(attract.every, Some(Duration::from_secs(8)));
+    let schedule = bundle.config.schedule.as_ref().expect("schedule");
+    assert_eq!(schedule.week[0].len(), 1);
+    assert_eq!(schedule.week[5][0].from, 600);
+    assert!(schedule.week[6].is_empty(), "closed on Sundays");
+    // The attract act is the kiosk's own: triggered by nothing else, it is not unused.
+    assert!(bundle.config.kiosk_own_acts().any(|a| a == "INVITE"));
+}
+
+#[test]
+fn a_missing_attract_page_is_reported_at_its_name() {
+    let lines = ["kiosk:", "  attract: {pages: [attract/a.html, nope.html]}"];
+    let found = problems(&lines, &[("pages/attract/a.html", "a")]);
+    assert_eq!(found, one("missing-file", "docent.yaml:2:37"));
+}
+
+#[test]
+fn an_attract_page_outside_pages_is_refused() {
+    let lines = ["kiosk:", "  attract:", "    pages: ../docent.yaml"];
+    assert_eq!(
+        problems(&lines, &[]),
+        one("path-outside-bundle", "docent.yaml:3:12")
+    );
+}
+
+#[test]
+fn a_miscased_attract_page_is_reported() {
+    let lines = ["kiosk:", "  attract:", "    pages: [Attract.html]"];
+    let found = problems(&lines, &[("pages/attract.html", "a")]);
+    assert_eq!(found, one("miscased-file", "docent.yaml:3:13"));
+}
+
+#[test]
+fn an_unknown_attract_act_is_reported_with_a_suggestion() {
+    let lines = ["kiosk:", "  attract: {after: 2m, act: INVTE}"];
+    let config = yaml(&lines);
+    let dir = bundle(&[ACTS, ("docent.yaml", &config)]);
+    let report = check(dir.path());
+    assert_eq!(places(&report), one("unknown-act", "docent.yaml:2:29"));
+    assert!(
+        report.diagnostics[0]
+            .message
+            .contains("Did you mean `INVITE`?")
+    );
+}
+
+#[test]
+fn an_attract_loop_needs_pages_or_an_act() {
+    let lines = ["kiosk:", "  attract:", "    after: 2m"];
+    assert_eq!(
+        problems(&lines, &[]),
+        one("config-bad-value", "docent.yaml:3:5")
+    );
+}
+
+#[test]
+fn attract_times_need_their_unit() {
+    let lines = [
+        "kiosk:",
+        "  attract: {after: 120, act: INVITE, every: 0.5s}",
+    ];
+    assert_eq!(
+        problems(&lines, &[]),
+        [
+            ("config-bad-value", "docent.yaml:2:20".to_owned()),
+            ("config-bad-value", "docent.yaml:2:45".to_owned()),
+        ]
+    );
+}
+
+#[test]
+fn the_closed_page_must_exist() {
+    let lines = [
+        "schedule:",
+        "  closed: closed.html",
+        "  open: [{days: daily, hours: 09:00-17:00}]",
+    ];
+    assert_eq!(
+        problems(&lines, &[]),
+        one("missing-file", "docent.yaml:2:11")
+    );
+}
+
+#[test]
+fn a_schedule_needs_its_closed_page() {
+    let lines = ["schedule:", "  open: [{days: daily, hours: 09:00-17:00}]"];
+    assert_eq!(
+        problems(&lines, &[]),
+        one("config-bad-value", "docent.yaml:2:3")
+    );
+}
+
+#[test]
+fn a_range_home_page_must_exist() {
+    let lines = [
+        "schedule:",
+        "  closed: index.html",
+        "  open:",
+        "    - days: Mon",
+        "      hours: 09:00-17:00",
+        "      home: school.html",
+    ];
+    assert_eq!(
+        problems(&lines, &[]),
+        one("missing-file", "docent.yaml:6:13")
+    );
+}
+
+#[test]
+fn overlapping_ranges_are_reported_once_at_the_second() {
+    let lines = [
+        "schedule:",
+        "  closed: index.html",
+        "  open:",
+        "    - days: Mon-Fri",
+        "      hours: 09:00-17:00",
+        "    - days: Fri-Sat",
+        "      hours: 10:00-12:00, 16:30-18:00",
+    ];
+    let config = yaml(&lines);
+    let dir = bundle(&[ACTS, ("docent.yaml", &config)]);
+    let report = check(dir.path());
+    assert_eq!(
+        places(&report),
+        [
+            ("schedule-overlap", "docent.yaml:7:14".to_owned()),
+            ("schedule-overlap", "docent.yaml:7:27".to_owned()),
+        ]
+    );
+    let message = &report.diagnostics[0].message;
+    assert!(
+        message.contains("On Fri, 10:00-12:00 overlaps 09:00-17:00 (line 5)"),
+        "{message}"
+    );
+    assert!(
+        message.contains("`09:00-12:00` and `12:00-17:00`"),
+        "{message}"
+    );
+}
+
+#[test]
+fn overlapping_ranges_of_a_special_day_are_reported() {
+    let lines = [
+        "schedule:",
+        "  closed: index.html",
+        "  special_days:",
+        "    - {date: 2025-12-24, hours: '09:00-13:00, 12:00-14:00'}",
+    ];
+    assert_eq!(
+        problems(&lines, &[]),
+        one("schedule-overlap", "docent.yaml:4:47")
+    );
+}
+
+#[test]
+fn malformed_hours_are_reported_at_the_range_with_an_example() {
+    for (hours, column, says) in [
+        ("9-17", 14, "`HH:MM`"),
+        ("09:00", 14, "joined by `-`"),
+        ("17:00-09:00", 14, "two ranges"),
+        ("09:00-17:00, 18:00-25:00", 27, "`HH:MM`"),
+        ("09:60-17:00", 14, "`HH:MM`"),
+    ] {
+        let line = format!("      hours: {hours}");
+        let config = yaml(&[
+            "schedule:",
+            "  closed: index.html",
+            "  open:",
+            "    - days: Mon",
+            &line,
+        ]);
+        let dir = bundle(&[ACTS, ("docent.yaml", &config)]);
+        let report = check(dir.path());
+        assert_eq!(
+            places(&report),
+            one("config-bad-value", &format!("docent.yaml:5:{column}")),
+            "{hours}"
+        );
+        let message = &report.diagnostics[0].message;
+        assert!(message.contains(says), "{hours}: {message}");
+        assert!(message.contains("e.g. `09:00-17:00`"), "{hours}: {message}");
+    }
+}
+
+#[test]
+fn malformed_days_are_reported_with_a_suggestion() {
+    let lines = [
+        "schedule:",
+        "  closed: index.html",
+        "  open:",
+        "    - days: Mon, Tuesday, Frday",
+        "      hours: 09:00-17:00",
+    ];
+    let config = yaml(&lines);
+    let dir = bundle(&[ACTS, ("docent.yaml", &config)]);
+    let report = check(dir.path());
+    assert_eq!(places(&report), one("config-bad-value", "docent.yaml:4:27"));
+    let message = &report.diagnostics[0].message;
+    assert!(message.contains("Did you mean `Fri`?"), "{message}");
+    assert!(message.contains("`Mon-Fri`"), "{message}");
+}
+
+#[test]
+fn bad_and_repeated_dates_are_reported() {
+    let lines = [
+        "schedule:",
+        "  closed: index.html",
+        "  special_days:",
+        "    - {date: 2025-02-29, hours: closed}",
+        "    - {date: 2025-12-25, hours: closed}",
+        "    - {date: 2025-12-25, hours: 10:00-12:00}",
+    ];
+    assert_eq!(
+        problems(&lines, &[]),
+        [
+            ("config-bad-value", "docent.yaml:4:14".to_owned()),
+            ("config-bad-value", "docent.yaml:6:14".to_owned()),
+        ]
+    );
+}
