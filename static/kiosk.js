@@ -13,8 +13,13 @@
 // speaking is answered with a short notice.
 // Recording (recorder.js): on the server's `record` frame the shell records the microphone (and
 // camera) and uploads the chunks into the session's folder.
+// Captions (caption.js): what the robot says, in the page while it is said. While Docent is
+// away (outage.js) a calm notice shows and taps answer "one moment"; the hello of a new
+// connection says which page is shown, so a restarted server keeps the visitor there.
 
 import { answerCameraCalls } from "./camera-kiosk.js";
+import { captions } from "./caption.js";
+import { outage } from "./outage.js";
 import { answerRecordRequests } from "./recorder.js";
 import { encodePath, keepConnected } from "./socket.js";
 import { startBrowserSpeech } from "./speech.js";
@@ -77,6 +82,8 @@ function show(page) {
     old.src = "about:blank"; // unloads the old page: its timers and listeners end with it
     front = 1 - front;
     speech.markPage(next);
+    outages.watch(next.contentWindow);
+    caption.page();
     emit("page", { page });
   };
   next.removeAttribute("srcdoc"); // it would win over src
@@ -151,6 +158,35 @@ function reportShown(frame) {
   socket.send(frameOut);
 }
 
+/** The documents overlays go into: the shown page's (null if unreachable) and the shell's. */
+function overlayDocuments() {
+  let page = null;
+  try {
+    page = frames[front].classList.contains("shown") ? frames[front].contentDocument : null;
+  } catch {
+    page = null;
+  }
+  return { page, shell: document };
+}
+/** The shell's own controls on screen, which overlays must not hide either. */
+function shellControls() {
+  return [...document.querySelectorAll("#docent-stop-speech, #docent-notice")]
+    .filter((element) => !element.hidden)
+    .map((element) => element.getBoundingClientRect());
+}
+const caption = captions({ documents: overlayDocuments, avoid: shellControls });
+const outages = outage({ documents: overlayDocuments, avoid: shellControls });
+outages.start();
+
+/** What a new connection's hello adds: the page on show, unless it is the "not available" copy. */
+function helloExtra() {
+  if (!wanted || frames[front].hasAttribute("srcdoc")) {
+    wanted = null; // the server's page is loaded again
+    return {};
+  }
+  return { page: wanted };
+}
+
 const speech = speechState({
   button: document.getElementById("docent-stop-speech"),
   notice: document.getElementById("docent-notice"),
@@ -161,8 +197,11 @@ const socket = keepConnected({
   path: config.ws || "/ws",
   role: "kiosk",
   name: "kiosk",
+  hello: helloExtra,
   onOnline: (online) => {
+    outages.online(online);
     if (!online) {
+      caption.forget();
       speech.forget(frames[front]);
       for (const [ref, resolve] of pending) {
         resolve({ type: "error", code: "disconnected", message: "the connection to Docent was lost", ref });
@@ -182,6 +221,8 @@ const socket = keepConnected({
       show(frame.args.page);
     } else if (frame.type === "changed") {
       bundleChanged(frame);
+    } else if (frame.type === "caption") {
+      caption.onFrame(frame);
     } else if (frame.type === "speaking" || frame.type === "outcome" || frame.type === "error") {
       speech.onFrame(frame, frames[front]);
     }
@@ -264,7 +305,8 @@ function reportPageShown(id, page) {
 // Idle: back home after `idleMs` without touch; then the idle act, if one is configured.
 if (idleMs > 0) {
   setInterval(() => {
-    if (idle || performance.now() - lastActivity < idleMs) return;
+    // Not while Docent is away: the home page could not be loaded.
+    if (idle || !outages.isOnline() || performance.now() - lastActivity < idleMs) return;
     idle = true;
     if (wanted === home) return; // already home: nothing to do, nothing to send
     idleShown = home;

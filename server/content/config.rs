@@ -7,6 +7,7 @@ use std::fmt;
 use std::time::Duration;
 
 pub use crate::content::config_corpus::{CorpusSettings, RecordTracks, SessionStart};
+pub use crate::content::config_file::captions::CaptionSettings;
 pub use crate::content::config_file::codebook::{Code, Codebook, CodebookTier};
 pub use crate::content::config_file::mqtt::{MqttPassword, MqttSettings};
 pub use crate::content::config_file::rosbridge::{PoseMessage, RosbridgeConfig, TopicEvent};
@@ -312,6 +313,8 @@ pub struct SiteConfig {
     pub reactions: Vec<Reaction>,
     /// The fleet's MQTT broker and this robot's id in it (`mqtt:`, docs/FLEET.md).
     pub mqtt: MqttSettings,
+    /// Which screens show captions of the robot's speech (`captions:`).
+    pub captions: CaptionSettings,
 }
 
 impl Default for SiteConfig {
@@ -356,6 +359,7 @@ impl Default for SiteConfig {
             rosbridge: RosbridgeConfig::default(),
             reactions: Vec::new(),
             mqtt: MqttSettings::default(),
+            captions: CaptionSettings::default(),
         }
     }
 }

@@ -12,6 +12,7 @@ use crate::content::duration::parse_duration;
 use crate::content::model::Located;
 
 mod access;
+pub(crate) mod captions;
 pub(crate) mod codebook;
 mod devices;
 pub(crate) mod mqtt;
@@ -67,6 +68,7 @@ pub(crate) const TOP_KEYS: &[&str] = &[
     "reactions",
     "mqtt",
     "rosbridge",
+    "captions",
 ];
 const HOME_USAGE: &str = "`home` names the page under pages/ the kiosk starts on, e.g. \
                           `home: index.html`.";
@@ -141,6 +143,7 @@ impl Reader {
                 "codebook" => codebook = Some(self.codebook(value)),
                 "reactions" => (config.reactions, out.reaction_acts) = self.reactions(value),
                 "mqtt" => self.mqtt(value, &mut config.mqtt),
+                "captions" => self.captions(value, config),
                 _ => self.verbs(value, config),
             }
         }

@@ -127,6 +127,7 @@ fn top_level(key: &str) -> Value {
              --mqtt URL --robot-id ID` overrides both.",
         ),
         "rosbridge" => rosbridge::rosbridge(),
+        "captions" => site::captions(),
         // A key added to the loader without a schema here fails the tests (no description).
         _ => json!({}),
     }
