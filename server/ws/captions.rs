@@ -2,10 +2,11 @@
 //! captioned from its `command.started` (the speech device began: espeak's process, the
 //! `log` adapter's pacing, a websocket adapter's or the browser's `started`) to its end
 //! (`command.done`, `failed` or `cancelled`), with the text of its `command.sent`, the text
-//! actually spoken. At every change the screens and consoles get a `caption` frame
-//! (docs/PROTOCOL.md): kiosks when the live bundle's `captions: kiosk` is on (the default),
-//! projectors when `captions: projector` is, operators always (the console's caption line).
-//! A screen whose captions are off gets `text: null`, so one turned off by a reload clears.
+//! actually spoken. At every change the screens get a `caption` frame (docs/PROTOCOL.md):
+//! kiosks when the live bundle's `captions: kiosk` is on (the default), projectors when
+//! `captions: projector` is. A screen whose captions are off gets `text: null`, so one turned
+//! off by a reload clears. Operators follow the same events in their event stream (the
+//! console's caption line), so a client that declined events gets no frames it did not ask for.
 //! A client that joins is told the caption in force, under the same lock as the changes, so
 //! it never gets an older one after a newer.
 
@@ -23,12 +24,8 @@ use crate::sync::lock;
 use crate::wire::outbox::{Frame, Outbox};
 use crate::ws::protocol::caption_frame;
 
-/// The roles that are told captions.
-const CAPTIONED: [ClientRole; 3] = [
-    ClientRole::Kiosk,
-    ClientRole::Projector,
-    ClientRole::Operator,
-];
+/// The roles that are told captions: the screens.
+const CAPTIONED: [ClientRole; 2] = [ClientRole::Kiosk, ClientRole::Projector];
 
 /// The caption in force and the clients it goes to.
 pub struct Captions {
@@ -89,7 +86,7 @@ impl Now {
         let on = match role {
             ClientRole::Kiosk => settings.kiosk,
             ClientRole::Projector => settings.projector,
-            _ => true,
+            _ => false,
         };
         (self.shown.as_ref())
             .filter(|_| on)
@@ -248,7 +245,10 @@ mod tests {
         now.take(&started(1));
         now.take(&started(2)); // 1 was cut short; its cancellation is logged after 2 started
         assert!(!now.take(&done(1)));
-        assert_eq!(now.for_role(ClientRole::Operator, ALL_ON), Some((2, "two")));
+        assert_eq!(
+            now.for_role(ClientRole::Projector, ALL_ON),
+            Some((2, "two"))
+        );
     }
 
     #[test]
@@ -260,7 +260,7 @@ mod tests {
     }
 
     #[test]
-    fn a_screen_whose_captions_are_off_gets_none_and_operators_always_get_one() {
+    fn a_screen_whose_captions_are_off_gets_none_and_other_roles_never_get_one() {
         let mut now = Now::default();
         now.take(&sent(3, "SAY", "Hello"));
         now.take(&started(3));
@@ -275,6 +275,6 @@ mod tests {
             projector: false,
         };
         assert_eq!(now.for_role(ClientRole::Kiosk, off), None);
-        assert_eq!(now.for_role(ClientRole::Operator, off), Some((3, "Hello")));
+        assert_eq!(now.for_role(ClientRole::Operator, ALL_ON), None);
     }
 }

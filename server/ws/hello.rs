@@ -11,7 +11,7 @@
 //! A kiosk that reconnects says which page it shows (`page`): the welcome's state keeps the
 //! visitor there (`DisplayState::join_kiosk_showing`) unless the tour moved on meanwhile; a
 //! page not of the bundle is refused with `unknown-page` and the kiosk follows the state. A
-//! joining kiosk, projector or console is told the caption in force (`ws::captions`).
+//! joining kiosk or projector is told the caption in force (`ws::captions`).
 
 use crate::access::{Needed, Refusal};
 use crate::content::{BundleArea, resolve_in_bundle};
@@ -196,8 +196,6 @@ pub(super) fn join(client: &Client, admitted: Admitted) {
         verbs: verbs.clone(),
     };
     state.client_joined(client.id, info, client.outbox.clone());
-    let captions = state.dispatcher.bundle().config.captions;
-    state.captions.tell_joined(role, &client.outbox, captions);
     if role == ClientRole::Kiosk {
         // Joined first, so every later change reaches this kiosk on its own. Sent when
         // nothing speaks too: a shell that reconnects after a restart must drop what it knew.
@@ -205,6 +203,9 @@ pub(super) fn join(client: &Client, admitted: Admitted) {
             client.outbox.send(Frame::from(speaking_frame(now)));
         });
     }
+    // After `speaking`: a screen learns who speaks, then what is being said.
+    let captions = state.dispatcher.bundle().config.captions;
+    state.captions.tell_joined(role, &client.outbox, captions);
     state.hub.publish(EventKind::ClientConnected {
         client: client.id,
         role,

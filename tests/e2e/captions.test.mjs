@@ -2,7 +2,8 @@
 // is captioned in the kiosk's page from the speech device's `started` to its `done` (a test
 // adapter on the websocket plays the speech device, so every step waits for an event, never a
 // pause), styled by the bundle's CSS and placed over no button; off per bundle and per page;
-// on the projector when the bundle asks; and as a line in the operator console.
+// on the projector when the bundle asks; and as a line in the operator console, which follows
+// the same events.
 
 import assert from 'node:assert/strict';
 import { after, before, test } from 'node:test';
