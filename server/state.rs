@@ -63,6 +63,8 @@ pub struct AppState {
     pub reactions: Arc<Reactions>,
     /// The fleet over MQTT: this robot's bridge and the fleet view, when started with a broker.
     pub fleet: Arc<crate::fleet::FleetHandles>,
+    /// The caption of what the robot is saying, told to screens and consoles (`ws::Captions`).
+    pub captions: Arc<crate::ws::Captions>,
     clients: Arc<Clients>,
 }
 
@@ -137,6 +139,14 @@ impl AppState {
             linger: Linger::start(&life),
         });
         let links = ClientLinks(Arc::clone(&clients));
+        let captions = crate::ws::Captions::new(links.clone());
+        let live = Arc::clone(&dispatcher);
+        let follow = Arc::clone(&captions).follow(
+            hub.subscribe(),
+            move || live.bundle().config.captions,
+            life.shutdown.clone(),
+        );
+        life.spawn(follow);
         let recordings = Arc::new(Recordings::new(hub.clone(), links, folders, life.clone()));
         // Subscribed now, before any client can connect or any session start.
         let live = Arc::clone(&dispatcher);
@@ -158,6 +168,7 @@ impl AppState {
             recordings,
             reactions: Arc::default(),
             fleet: Arc::default(),
+            captions,
             clients,
             life,
         }

@@ -16,9 +16,14 @@
 // Attract loop (attract.js) and opening hours (schedule.js): after `after_ms` without a touch
 // the loop runs until the first touch; the schedule, by the kiosk's own clock, picks the home
 // page and attract loop, or shows the closed page (and then neither idles nor attracts).
+// Captions (caption.js): what the robot says, in the page while it is said. While Docent is
+// away (outage.js) a calm notice shows and taps answer "one moment"; the hello of a new
+// connection says which page is shown, so a restarted server keeps the visitor there.
 
 import { createAttract } from "./attract.js";
 import { answerCameraCalls } from "./camera-kiosk.js";
+import { captions } from "./caption.js";
+import { outage } from "./outage.js";
 import { answerRecordRequests } from "./recorder.js";
 import { encodePath, keepConnected } from "./socket.js";
 import { startBrowserSpeech } from "./speech.js";
@@ -87,6 +92,8 @@ function show(page) {
     old.src = "about:blank"; // unloads the old page: its timers and listeners end with it
     front = 1 - front;
     speech.markPage(next);
+    outages.watch(next.contentWindow);
+    caption.page();
     emit("page", { page });
   };
   next.removeAttribute("srcdoc"); // it would win over src
@@ -177,6 +184,35 @@ function reportShown(frame) {
   socket.send(frameOut);
 }
 
+/** The documents overlays go into: the shown page's (null if unreachable) and the shell's. */
+function overlayDocuments() {
+  let page = null;
+  try {
+    page = frames[front].classList.contains("shown") ? frames[front].contentDocument : null;
+  } catch {
+    page = null;
+  }
+  return { page, shell: document };
+}
+/** The shell's own controls on screen, which overlays must not hide either. */
+function shellControls() {
+  return [...document.querySelectorAll("#docent-stop-speech, #docent-notice")]
+    .filter((element) => !element.hidden)
+    .map((element) => element.getBoundingClientRect());
+}
+const caption = captions({ documents: overlayDocuments, avoid: shellControls });
+const outages = outage({ documents: overlayDocuments, avoid: shellControls });
+outages.start();
+
+/** What a new connection's hello adds: the page on show, unless it is the "not available" copy. */
+function helloExtra() {
+  if (!wanted || frames[front].hasAttribute("srcdoc")) {
+    wanted = null; // the server's page is loaded again
+    return {};
+  }
+  return { page: wanted };
+}
+
 const speech = speechState({
   button: document.getElementById("docent-stop-speech"),
   notice: document.getElementById("docent-notice"),
@@ -187,8 +223,11 @@ const socket = keepConnected({
   path: config.ws || "/ws",
   role: "kiosk",
   name: "kiosk",
+  hello: helloExtra,
   onOnline: (online) => {
+    outages.online(online);
     if (!online) {
+      caption.forget();
       speech.forget(frames[front]);
       for (const [ref, resolve] of pending) {
         resolve({ type: "error", code: "disconnected", message: "the connection to Docent was lost", ref });
@@ -210,6 +249,8 @@ const socket = keepConnected({
       show(frame.args.page);
     } else if (frame.type === "changed") {
       bundleChanged(frame);
+    } else if (frame.type === "caption") {
+      caption.onFrame(frame);
     } else if (frame.type === "speaking" || frame.type === "outcome" || frame.type === "error") {
       speech.onFrame(frame, frames[front]);
     }
@@ -292,7 +333,8 @@ function reportPageShown(id, page) {
 // Idle: back home after `idleMs` without touch; then the idle act, if one is configured.
 // After the attract loop's `after_ms` without touch, the loop (attract.js).
 setInterval(() => {
-  if (closed) return;
+  // Not while Docent is away: the home page and the loop's pages could not be loaded.
+  if (closed || !outages.isOnline()) return;
   const quiet = performance.now() - lastActivity;
   if (attractLoop && !attract.running() && quiet >= attractLoop.after_ms) {
     attract.start(attractLoop);

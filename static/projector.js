@@ -14,6 +14,12 @@
 // reconnect the server has already settled them, so they are dropped. The welcome and state
 // frames never start a film: a film plays only from its command, and the server's state never
 // names one that is over (a held film's last frame is shown again, silent).
+//
+// Captions: with `captions: projector: true` Docent sends `caption` frames here too, and what
+// the robot says is shown at the foot of the wall while it is said (`.docent-caption`).
+// While Docent is away nothing is shown about it: the wall keeps its last picture (a picture
+// is part of the exhibit, and a wall going dark mid-sentence alarms more than one that holds
+// still); the welcome after the return shows the server's state again.
 
 import { encodePath, keepConnected } from "./socket.js";
 
@@ -217,18 +223,40 @@ function showState(display = {}) {
   else showPicture(file, reporter(null));
 }
 
+/** Shows `text` as the wall's caption, or removes it (null). */
+function caption(text) {
+  let element = document.getElementById("docent-caption");
+  if (!text) {
+    element?.remove();
+    return;
+  }
+  if (!element) {
+    element = document.createElement("div");
+    element.id = "docent-caption";
+    element.className = "docent-caption";
+    element.setAttribute("aria-live", "polite");
+    document.body.append(element);
+  }
+  element.textContent = text;
+}
+
 link = keepConnected({
   path: config.ws || "/ws",
   role: "projector",
   name: "projector",
   onFrame: (frame) => {
-    if (frame.type === "welcome") connection += 1;
+    if (frame.type === "welcome") {
+      connection += 1;
+      caption(null); // the caption in force, if any, follows the welcome
+    }
     if (frame.type === "welcome" || frame.type === "state") {
       showState(frame.state?.display);
     } else if (frame.type === "command" && frame.verb === "PROJECT") {
       project(frame.args.file, frame.args.kind, reporter(frame.id ?? null));
     } else if (frame.type === "command" && frame.verb === "HIGHLIGHT") {
       highlight(frame.arg ?? null, frame.args.areas, reporter(frame.id ?? null));
+    } else if (frame.type === "caption") {
+      caption(typeof frame.text === "string" ? frame.text : null);
     } else if (frame.type === "cancel") {
       black(); // a stop: the film or picture on its way ends here
       highlighted = null;

@@ -1,44 +1,39 @@
 // socket.js: the one websocket a shell (kiosk or projector) keeps to Docent. Says hello with
-// its role, hands every frame to the shell, reconnects after a server restart or network loss
-// with exponential backoff and jitter (0.5 s doubling to 10 s, +-30 %), and shows the
-// element #docent-offline only after 3 s without a welcomed connection.
+// its role (and what the shell adds, e.g. the page a kiosk shows), hands every frame to the
+// shell and reconnects after a server restart or network loss. The retries stay quick so a
+// returning server finds the kiosk again within about a second: 0.25 s doubling to 1 s, each
+// +-20 % at random so that many screens do not knock in step; at most one attempt a second
+// once the server has been away a while, a polite rate for a server starting up.
+// What a lost connection looks like to visitors is the shell's business (outage.js).
 
-const FIRST_DELAY_MS = 500;
-const MAX_DELAY_MS = 10_000;
-const JITTER = 0.3;
-const OFFLINE_BANNER_AFTER_MS = 3_000;
+const FIRST_DELAY_MS = 250;
+const MAX_DELAY_MS = 1_000;
+const JITTER = 0.2;
 
 /**
  * Opens the socket and keeps it open.
  * @param {{path: string, role: string, name?: string,
- *          hello?: object, onFrame: (frame: object) => void,
- *          onOnline?: (online: boolean) => void}} options (`hello`: extra fields, e.g. verbs)
- * @returns {{send: (frame: object) => boolean}} `send` is false when not connected.
+ *          hello?: object | (() => object), onFrame: (frame: object) => void,
+ *          onOnline?: (online: boolean) => void}} options `hello`: extra fields of the hello
+ *          frame (e.g. verbs), or a function giving them at each connection; `onOnline(true)`
+ *          on each welcome, `onOnline(false)` when a welcomed connection is lost.
+ * @returns {{send: (frame: object) => boolean, online: () => boolean}} `send` is false when
+ *          not connected.
  */
 export function keepConnected({ path, role, name = null, hello = {}, onFrame, onOnline = () => {} }) {
   const url = new URL(path, location.href);
   url.protocol = url.protocol === "https:" ? "wss:" : "ws:";
-  const banner = document.getElementById("docent-offline");
   let socket = null;
   let welcomed = false;
   let delay = FIRST_DELAY_MS;
-  let bannerTimer = null;
-
-  const armBanner = () => {
-    bannerTimer ??= setTimeout(() => {
-      if (banner) banner.hidden = false;
-    }, OFFLINE_BANNER_AFTER_MS);
-  };
-  const online = () => {
-    clearTimeout(bannerTimer);
-    bannerTimer = null;
-    if (banner) banner.hidden = true;
-  };
 
   const open = () => {
     const ws = new WebSocket(url);
     socket = ws;
-    ws.onopen = () => ws.send(JSON.stringify({ ...hello, type: "hello", role, name }));
+    ws.onopen = () => {
+      const extra = typeof hello === "function" ? hello() : hello;
+      ws.send(JSON.stringify({ ...extra, type: "hello", role, name }));
+    };
     ws.onmessage = (message) => {
       let frame;
       try {
@@ -50,8 +45,9 @@ export function keepConnected({ path, role, name = null, hello = {}, onFrame, on
         // Back off again from the start only once the server really answered.
         welcomed = true;
         delay = FIRST_DELAY_MS;
-        online();
+        onFrame(frame);
         onOnline(true);
+        return;
       }
       onFrame(frame);
     };
@@ -60,7 +56,6 @@ export function keepConnected({ path, role, name = null, hello = {}, onFrame, on
       socket = null;
       if (welcomed) onOnline(false);
       welcomed = false;
-      armBanner();
       const wait = delay * (1 + JITTER * (2 * Math.random() - 1));
       delay = Math.min(delay * 2, MAX_DELAY_MS);
       setTimeout(open, wait);
@@ -69,7 +64,6 @@ export function keepConnected({ path, role, name = null, hello = {}, onFrame, on
     ws.onerror = () => {};
   };
 
-  armBanner();
   open();
   return {
     send(frame) {
@@ -77,6 +71,7 @@ export function keepConnected({ path, role, name = null, hello = {}, onFrame, on
       socket.send(JSON.stringify(frame));
       return true;
     },
+    online: () => welcomed && socket?.readyState === WebSocket.OPEN,
   };
 }
 

@@ -20,6 +20,7 @@
 //! state never names one that is over, and the page starts films only from commands.
 
 mod adapter;
+mod adopt;
 mod books;
 
 use std::sync::{Arc, Mutex, Weak};
@@ -126,6 +127,9 @@ struct Current {
     display: Display,
     /// The command whose picture, film or highlight the projector state is about.
     projecting: Option<u64>,
+    /// A `DISPLAY_PAGE` came while no touchscreen was connected: the next kiosk to join is
+    /// sent its page, even if it says it shows another (`adopt.rs`).
+    page_commanded_unseen: bool,
 }
 
 /// The display state, the channels to display clients and the reports they owe. Shared by
@@ -155,6 +159,7 @@ impl DisplayState {
                     ..Display::default()
                 },
                 projecting: None,
+                page_commanded_unseen: false,
             }),
             kiosk: broadcast::channel(DISPLAY_CHANNEL_CAPACITY).0,
             projector: broadcast::channel(DISPLAY_CHANNEL_CAPACITY).0,
@@ -180,7 +185,10 @@ impl DisplayState {
         role: ClientRole,
         client: u64,
     ) -> (Display, Option<broadcast::Receiver<Frame>>) {
-        let current = lock(&self.current);
+        let mut current = lock(&self.current);
+        if role == ClientRole::Kiosk {
+            current.page_commanded_unseen = false;
+        }
         let subscribed = self.subscribe_locked(&current, role);
         if let Some(screen) = Screen::of(role) {
             lock(&self.books).join(screen, client);

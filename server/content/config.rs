@@ -9,6 +9,7 @@ use std::time::Duration;
 use crate::content::model::Located;
 
 pub use crate::content::config_corpus::{CorpusSettings, RecordTracks, SessionStart};
+pub use crate::content::config_file::captions::CaptionSettings;
 pub use crate::content::config_file::codebook::{Code, Codebook, CodebookTier};
 pub use crate::content::config_file::mqtt::{MqttPassword, MqttSettings};
 pub use crate::content::config_file::rosbridge::{PoseMessage, RosbridgeConfig, TopicEvent};
@@ -341,6 +342,8 @@ pub struct SiteConfig {
     /// Opening hours, with a home page and attract loop per range (`schedule:`); `None`:
     /// always open.
     pub schedule: Option<Schedule>,
+    /// Which screens show captions of the robot's speech (`captions:`).
+    pub captions: CaptionSettings,
 }
 
 impl Default for SiteConfig {
@@ -390,6 +393,7 @@ impl Default for SiteConfig {
             reactions: Vec::new(),
             mqtt: MqttSettings::default(),
             schedule: None,
+            captions: CaptionSettings::default(),
         }
     }
 }

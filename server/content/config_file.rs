@@ -13,6 +13,7 @@ use crate::content::model::Located;
 
 mod access;
 pub(crate) mod attract;
+pub(crate) mod captions;
 pub(crate) mod codebook;
 mod devices;
 mod languages;
@@ -75,6 +76,7 @@ pub(crate) const TOP_KEYS: &[&str] = &[
     "mqtt",
     "rosbridge",
     "schedule",
+    "captions",
 ];
 const HOME_USAGE: &str = "`home` names the page under pages/ the kiosk starts on, e.g. \
                           `home: index.html`.";
@@ -160,6 +162,7 @@ impl Reader {
                 "reactions" => (config.reactions, out.reaction_acts) = self.reactions(value),
                 "mqtt" => self.mqtt(value, &mut config.mqtt),
                 "schedule" => config.schedule = self.schedule(value),
+                "captions" => self.captions(value, config),
                 _ => self.verbs(value, config),
             }
         }

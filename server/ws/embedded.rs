@@ -64,6 +64,7 @@ impl EmbeddedSession {
             name: Some(name.to_owned()),
             token,
             events: false,
+            page: None,
         });
         self.session.role().is_some()
     }

@@ -7,8 +7,14 @@
 //! Three steps, so that the session can record what each decides in between, in the order the
 //! client sees it: [`admit`] (the credential), [`welcome`] (the `welcome` frame and the feed
 //! the session hands to the writer) and [`join`] (the server learns of the client).
+//!
+//! A kiosk that reconnects says which page it shows (`page`): the welcome's state keeps the
+//! visitor there (`DisplayState::join_kiosk_showing`) unless the tour moved on meanwhile; a
+//! page not of the bundle is refused with `unknown-page` and the kiosk follows the state. A
+//! joining kiosk or projector is told the caption in force (`ws::captions`).
 
 use crate::access::{Needed, Refusal};
+use crate::content::{BundleArea, resolve_in_bundle};
 use crate::events::{ClientRole, EventKind, robot_event_name_problem};
 use crate::state::ClientInfo;
 use crate::wire::ErrorCode;
@@ -25,6 +31,8 @@ pub(super) struct Hello {
     pub(super) name: Option<String>,
     pub(super) token: Option<String>,
     pub(super) events: bool,
+    /// The page a reconnecting kiosk shows.
+    pub(super) page: Option<String>,
 }
 
 /// A client whose `hello` was accepted: the session records its role.
@@ -36,6 +44,8 @@ pub(super) struct Admitted {
     name: Option<String>,
     /// Whether an operator or dialog manager asked for the event stream.
     events: bool,
+    /// The page a kiosk said it shows, checked to be one of the bundle's.
+    page: Option<String>,
 }
 
 /// Why a `hello` was refused; the client was told already.
@@ -69,6 +79,7 @@ pub(super) fn admit(client: &Client, hello: Hello) -> Result<Admitted, Refused> 
         name,
         token,
         events,
+        page,
     } = hello;
     if let Some(needed) = needed(role, client.address.local)
         && let Err(refusal) = (client.state.access).check(client.address, needed, token.as_deref())
@@ -99,13 +110,34 @@ pub(super) fn admit(client: &Client, hello: Hello) -> Result<Admitted, Refused> 
     } else {
         Vec::new()
     };
+    let page = page.and_then(|page| shown_page(client, role, page));
     Ok(Admitted {
         role,
         verbs,
         robot_events,
         name,
         events,
+        page,
     })
+}
+
+/// The page a kiosk's `hello` says it shows, if it is one of the bundle's; anything else is
+/// answered with an error, and the kiosk is sent the server's page in its welcome.
+fn shown_page(client: &Client, role: ClientRole, page: String) -> Option<String> {
+    if role != ClientRole::Kiosk {
+        let message = "only a kiosk says in its hello which page it shows (\"page\")";
+        client.reply_error(ErrorCode::BadFrame, message, None, None);
+        return None;
+    }
+    let root = &client.state.dispatcher.bundle().root;
+    if resolve_in_bundle(root, BundleArea::Pages, &page).is_err() {
+        let message = format!(
+            "{page:?} is not a page of this bundle: the kiosk is sent the page Docent shows"
+        );
+        client.reply_error(ErrorCode::UnknownPage, &message, None, None);
+        return None;
+    }
+    Some(page)
 }
 
 /// Sends the `welcome` frame (and an operator's recent history); returns the feed the writer
@@ -113,7 +145,14 @@ pub(super) fn admit(client: &Client, hello: Hello) -> Result<Admitted, Refused> 
 pub(super) fn welcome(client: &Client, admitted: &Admitted) -> Option<Feed> {
     let role = admitted.role;
     let state = &client.state;
-    let (display, display_rx) = state.devices.display.join(role, client.id);
+    let (display, display_rx) = match &admitted.page {
+        Some(page) if role == ClientRole::Kiosk => {
+            let display = &state.devices.display;
+            let (shown, rx, _) = display.join_kiosk_showing(client.id, page.clone());
+            (shown, rx)
+        }
+        _ => state.devices.display.join(role, client.id),
+    };
     // Subscribed before the state is read: an event (a refused save, a context change)
     // published in between then arrives after the welcome instead of falling between them.
     let events = match (role, &display_rx) {
@@ -164,6 +203,9 @@ pub(super) fn join(client: &Client, admitted: Admitted) {
             client.outbox.send(Frame::from(speaking_frame(now)));
         });
     }
+    // After `speaking`: a screen learns who speaks, then what is being said.
+    let captions = state.dispatcher.bundle().config.captions;
+    state.captions.tell_joined(role, &client.outbox, captions);
     state.hub.publish(EventKind::ClientConnected {
         client: client.id,
         role,

@@ -11,10 +11,12 @@
 //! relay), `reports` (devices' reports on their commands) and `recording` (a kiosk's clock
 //! and its recordings' reports). Handlers return what the session must remember.
 //! `violation` maps a broken websocket frame to its RFC 6455 close code.
-//! `notices` tells a client what became of its commands and kiosks who is speaking.
+//! `notices` tells a client what became of its commands and kiosks who is speaking;
+//! `captions` tells the screens and consoles what is being said, while it is said.
 //! `embedded` is the same session without a websocket, for other transports (MQTT).
 
 mod attract;
+mod captions;
 mod client;
 mod connection;
 mod diagnose;
@@ -32,6 +34,7 @@ mod triggers;
 mod violation;
 mod writer;
 
+pub use captions::Captions;
 pub use connection::ws_upgrade;
 pub use embedded::EmbeddedSession;
 pub use notices::ClientNotices;

@@ -39,6 +39,10 @@ pub enum ClientFrame {
         /// client that only triggers can say false and save both sides the traffic.
         #[serde(default = "yes")]
         events: bool,
+        /// The page a reconnecting kiosk shows (relative to `pages/`): a restarted server
+        /// adopts it instead of sending the kiosk home (docs/PROTOCOL.md, `hello`).
+        #[serde(default)]
+        page: Option<String>,
     },
     /// Trigger an act.
     Trigger {

@@ -118,6 +118,7 @@ impl Session {
                 name,
                 token,
                 events,
+                page,
             } => self.hello(Hello {
                 role,
                 verbs,
@@ -125,6 +126,7 @@ impl Session {
                 name,
                 token,
                 events,
+                page,
             }),
             ClientFrame::Trigger {
                 label,

@@ -1,5 +1,6 @@
 // main.js: the operator console (GET /operator), wiring its modules together. The panels: acts
-// (actlist.js, preview.js), live state (live.js, map.js, clients.js), history, proposals, marks,
+// (actlist.js, preview.js), live state (live.js, map.js, clients.js), the caption line beside
+// Stop (caption.js), history, proposals, marks,
 // the shared context (context.js) and the camera (camerapanel.js, which loads camera.js when
 // the server has it). Signing in, the one websocket as an operator and lockouts are access.js;
 // the server's frames and events reach the panels through events.js; Stop, which never waits
@@ -14,6 +15,7 @@ import { createActList } from "./actlist.js";
 import * as api from "./api.js";
 import { createCameraPanel } from "./camerapanel.js";
 import { createClients } from "./clients.js";
+import { createCaptionLine } from "./caption.js";
 import { createContext } from "./context.js";
 import { byId, createNotice } from "./dom.js";
 import { createEvents } from "./events.js";
@@ -104,6 +106,7 @@ const marks = createMarks({
 });
 
 const robotLink = createRobotLink(byId("robot-link"));
+const captionLine = createCaptionLine(byId("caption-line"));
 const recording = createRecording({ status: byId("recording-status"), alert: byId("recording-alert") });
 
 const reloadBanner = createReloadBanner({
@@ -119,6 +122,7 @@ const access = createAccess({
   ...accessElements(byId),
   onFrame: (frame) => {
     reloadBanner.onFrame(frame);
+    captionLine.onFrame(frame);
     events.onFrame(frame);
   },
   onOnline: () => loadSettings(),

@@ -52,7 +52,10 @@ impl DisplayState {
             let before = current.display.clone();
             match showing {
                 // The kiosk's state stays the tour's page: a touchscreen that connects shows it.
-                Showing::Page => current.display.page = command.arg.as_deref().map(str::to_owned),
+                Showing::Page => {
+                    current.display.page = command.arg.as_deref().map(str::to_owned);
+                    current.page_commanded_unseen = true;
+                }
                 // A projection nobody showed must not appear later (a film least of all).
                 _ => set_projector(&mut current, ProjectorState::Black),
             }

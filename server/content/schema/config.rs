@@ -148,6 +148,7 @@ fn top_level(key: &str) -> Value {
         ),
         "rosbridge" => rosbridge::rosbridge(),
         "schedule" => screens::schedule(),
+        "captions" => site::captions(),
         // A key added to the loader without a schema here fails the tests (no description).
         _ => json!({}),
     }

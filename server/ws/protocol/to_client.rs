@@ -91,6 +91,10 @@ enum ServerFrame<'a> {
         client: Option<u64>,
         stoppable: bool,
     },
+    Caption {
+        text: Option<&'a str>,
+        command: Option<u64>,
+    },
     Error {
         code: ErrorCode,
         message: &'a str,
@@ -246,6 +250,15 @@ pub fn speaking_frame(now: Option<crate::dispatch::Speaking>) -> String {
         source: now.map(|n| n.source),
         client: now.and_then(|n| n.client),
         stoppable: now.is_some_and(|n| n.source == Source::Kiosk),
+    })
+}
+
+/// `caption`: the text the robot is saying now (its `SAY` command's id), shown from the
+/// speech device's start to its end; `None` when nothing is being said or shown.
+pub fn caption_frame(now: Option<(u64, &str)>) -> String {
+    encode(&ServerFrame::Caption {
+        text: now.map(|(_, text)| text),
+        command: now.map(|(id, _)| id),
     })
 }
 

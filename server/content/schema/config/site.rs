@@ -7,6 +7,7 @@ use serde_json::{Value, json};
 
 use super::SITE_VERB_KEYS;
 use crate::content::config::Credential;
+use crate::content::config_file::captions::KEYS as CAPTION_KEYS;
 use crate::content::config_file::operator::{MAP_FORMATS, VISITOR_GROUPS};
 use crate::content::model::Verb;
 use crate::content::schema::{VARIANT_KEY_PATTERN, any_case, choice, section, words};
@@ -172,4 +173,26 @@ pub(super) fn operator(key: &str) -> Value {
         ),
         _ => json!({}),
     }
+}
+
+/// `captions:`: which screens show what the robot says while it is said.
+pub(super) fn captions() -> Value {
+    section(
+        CAPTION_KEYS,
+        |key| {
+            let (screen, default) = match key {
+                "kiosk" => ("the touchscreen", "true"),
+                _ => ("the projector", "false"),
+            };
+            json!({
+                "type": "boolean",
+                "description": format!(
+                    "Whether {screen} shows what the robot says as a caption while it is said \
+                     (default `{default}`)."
+                ),
+            })
+        },
+        "Captions of the robot's speech: on the touchscreen by default (a page may opt out \
+         with <meta name=\"docent-captions\" content=\"off\">), on the projector when asked.",
+    )
 }

@@ -60,6 +60,7 @@ fn section_keys_are_the_loaders() {
         (&["adapters"], &["adapters"]),
         (&["kiosk"], &["kiosk"]),
         (&["projector"], &["projector"]),
+        (&["captions"], &["captions"]),
         (&["access"], &["access"]),
         (&["operator"], &["operator"]),
         (&["server"], &["server"]),
