@@ -123,7 +123,7 @@ async fn the_log_holds_every_event_with_its_fields_in_sequence() {
     );
     assert_eq!(
         sent_say["args"],
-        serde_json::json!({"text": "Hello everyone"})
+        serde_json::json!({"text": "Hello everyone", "language": "en"})
     );
     for kind in [
         "display.changed",

@@ -192,6 +192,7 @@ mod tests {
             arg: Some(text.to_owned()),
             args: Arc::new(Args::Say {
                 text: text.to_owned(),
+                language: None,
             }),
             adapter: "log",
         }
