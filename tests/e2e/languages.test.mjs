@@ -7,7 +7,8 @@
 // kiosk, the operator switches back with the console's language buttons by keyboard, and a
 // visitor session's end sets the default language again. Also `/pages/de/` over plain HTTP:
 // the German page, the English fallback, 404 for a page in neither, nothing outside the bundle
-// through `..`; and axe-core on the German page. Every wait is for an event or an element.
+// through `..`; and axe-core on the German page and on the console with its language
+// buttons. Every wait is for an event or an element.
 
 import assert from 'node:assert/strict';
 import fs from 'node:fs';
@@ -28,6 +29,22 @@ before(async () => {
   browser = await launchBrowser();
 });
 after(() => browser?.close());
+
+/**
+ * The serious and critical axe-core violations (WCAG 2.2 A and AA) on `page`, or only inside
+ * the element `within` (a CSS selector), one line each.
+ */
+async function axeViolations(page, within = null) {
+  await page.addScriptTag({ content: AXE });
+  const values = ['wcag2a', 'wcag2aa', 'wcag21a', 'wcag21aa', 'wcag22aa'];
+  const result = await page.evaluate(
+    ([tags, scope]) => window.axe.run(scope ? { include: [[scope]] } : document, { runOnly: { type: 'tag', values: tags } }),
+    [values, within],
+  );
+  return result.violations
+    .filter((v) => v.impact === 'serious' || v.impact === 'critical')
+    .map((v) => `${v.id} at ${v.nodes[0].target.join(' ')}: ${v.nodes[0].failureSummary}`);
+}
 
 /** GET `rawPath` exactly as written (no URL normalisation of `..`): status and body. */
 function getRaw(server, rawPath) {
@@ -89,6 +106,8 @@ test('a visitor chooses German on the touchscreen; the operator switches back; a
     const english = console_.locator('#language-buttons button[data-language="en"]');
     await console_.locator('#language-buttons button[data-language="de"][aria-pressed="true"]').waitFor();
     assert.equal(await console_.locator('#language-pick').isVisible(), true);
+    // The language buttons only: the rest of the console is accessibility.test.mjs's.
+    assert.deepEqual(await axeViolations(console_, '#language-pick'), [], 'the console\'s language buttons');
     await english.focus();
     await console_.keyboard.press('Enter');
     const back = await observer.waitForEvent((e) => e.type === 'language.changed' && e.language === 'en');
@@ -152,11 +171,7 @@ test('the German page passes axe (WCAG 2.2 AA, serious and critical)', { timeout
     const page = await context.newPage();
     const res = await page.goto(`${server.base}/pages/de/index.html`, { waitUntil: 'load' });
     assert.equal(res.status(), 200);
-    await page.addScriptTag({ content: AXE });
-    const tags = ['wcag2a', 'wcag2aa', 'wcag21a', 'wcag21aa', 'wcag22aa'];
-    const result = await page.evaluate((values) => window.axe.run(document, { runOnly: { type: 'tag', values } }), tags);
-    const bad = result.violations.filter((v) => v.impact === 'serious' || v.impact === 'critical').map((v) => `${v.id}: ${v.nodes[0].failureSummary}`);
-    assert.deepEqual(bad, []);
+    assert.deepEqual(await axeViolations(page), []);
   } finally {
     await context.close();
     await server.stop();
