@@ -9,8 +9,11 @@ use std::process::ExitCode;
 use anyhow::Context;
 use clap::{Parser, Subcommand, ValueEnum};
 use docent::access::{AccessMode, AccessSetup, Origin, decide_access};
+use docent::adapters::{espeak_available, espeak_voices};
 use docent::content::config::AdapterKind;
-use docent::content::{Colour, Diagnostic, load_bundle, render_diagnostics, schema};
+use docent::content::{
+    Colour, Diagnostic, load_bundle, no_voice_diagnostics, render_diagnostics, schema,
+};
 use docent::corpus::cli as corpus_cli;
 use docent::fleet::cli as fleet_cli;
 use docent::http::ConnectionLimits;
@@ -172,7 +175,16 @@ fn main() -> ExitCode {
 }
 
 fn check(bundle: &Path, format: Format, deny_warnings: bool) -> anyhow::Result<ExitCode> {
-    let report = load_bundle(bundle);
+    let mut report = load_bundle(bundle);
+    // A bundle that speaks through espeak-ng: each language needs an installed voice. Asked of
+    // espeak-ng here, not while loading (loading runs nothing); serving warns the same way.
+    if let Some(config) = report.bundle.as_ref().map(|b| &b.config)
+        && config.speech.adapter == Some(AdapterKind::Espeak)
+        && espeak_available()
+    {
+        let missing = no_voice_diagnostics(config, &espeak_voices());
+        report.diagnostics.extend(missing);
+    }
     let (errors, warnings) = counts(&report.diagnostics);
     match format {
         Format::Json => println!("{}", serde_json::to_string_pretty(&report.diagnostics)?),

@@ -164,8 +164,9 @@ fn speech_adapter(
              it will speak with its default voice"
         ));
     }
-    for (language, voice) in &config.voices {
-        if *voice != config.voice && !installed.contains(voice) {
+    // `speech: voice` itself is warned about above; `docent check` names the same languages.
+    for (language, voice) in crate::content::unspoken_languages(config, &installed) {
+        if voice != config.voice {
             warnings.push(format!(
                 "no installed espeak-ng voice speaks the language {language}: it has no voice \
                  {voice:?} (see `espeak-ng --voices`; choose one in speech: voices)"

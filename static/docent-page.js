@@ -14,6 +14,10 @@
 // tap on an element with `data-docent-stop` (a page's own stop control). While the robot
 // speaks, the shell sets `data-docent-speaking` on this page's <html> (style it as you like);
 // a tapped element whose act is already speaking gets `docent-already-speaking` briefly.
+// An element with `data-language="de"` switches the visitor's language when tapped (with press
+// feedback; Docent then shows the page in that language); a refused switch (the language is
+// not one of the bundle's, or this page offers no button for it) is told on screen by the
+// shell, logged here, and marks the element `docent-refused` briefly.
 
 (() => {
 "use strict";
@@ -22,6 +26,7 @@ if (window.docent) return; // a page that also includes this script itself
 const PRESS_MS = 150;
 const REPEAT_GUARD_MS = 400;
 const ALREADY_SPEAKING_MS = 1_500;
+const REFUSED_MS = 1_500;
 const PAGES_PREFIX = "/pages/";
 
 /** The kiosk shell's API, or undefined (not framed yet, or opened on its own). */
@@ -166,7 +171,7 @@ function press(element) {
 
 let release = null;
 document.addEventListener("pointerdown", (event) => {
-  const target = event.target.closest?.("[data-act]");
+  const target = event.target.closest?.("[data-act], [data-language]");
   if (target) release = press(target);
 });
 for (const type of ["pointerup", "pointercancel"]) {
@@ -200,6 +205,31 @@ document.addEventListener("click", (event) => {
   });
 }, { capture: true });
 
+// Language buttons: the shell asks Docent for the language; a refusal is never silent.
+document.addEventListener("click", (event) => {
+  const target = event.target.closest?.("[data-language]:not([data-act])");
+  if (!target) return;
+  event.preventDefault();
+  if (target.matches(":disabled, [aria-disabled='true']")) return;
+  const now = performance.now();
+  if (now - (lastFired.get(target) ?? -Infinity) < REPEAT_GUARD_MS) return;
+  lastFired.set(target, now);
+  if (!target.classList.contains("docent-pressed")) press(target)();
+  const language = target.dataset.language;
+  Promise.resolve(withShell(
+    (shell) => shell.setLanguage(language),
+    () => {
+      noShell(`language ${language} not chosen`);
+      return { type: "error", code: "no-shell", message: "not in the kiosk shell" };
+    },
+  )).then((answer) => {
+    if (answer?.type !== "error") return;
+    console.warn(`docent: language ${language} refused: ${answer.message ?? answer.code}`);
+    target.classList.add("docent-refused");
+    setTimeout(() => target.classList.remove("docent-refused"), REFUSED_MS);
+  });
+}, { capture: true });
+
 // A link the visitor follows: the shell names it when it reports the page it leads to.
 document.addEventListener("click", (event) => {
   const link = event.target.closest?.("a[href]:not([data-act])");
@@ -229,7 +259,7 @@ html { touch-action: manipulation; -webkit-user-select: none; user-select: none;
   -webkit-touch-callout: none; -webkit-tap-highlight-color: transparent; }
 input, textarea, [contenteditable] { -webkit-user-select: text; user-select: text; }
 img, a { -webkit-user-drag: none; }
-[data-act] { cursor: pointer; transition: transform 80ms ease-out, filter 80ms ease-out; }
+[data-act], [data-language] { cursor: pointer; transition: transform 80ms ease-out, filter 80ms ease-out; }
 .docent-pressed { transform: scale(0.97); filter: brightness(0.85); }
 `;
 // First, so the page's own styles win. This script runs inside <head> while it is parsed.

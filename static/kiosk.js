@@ -25,6 +25,7 @@ import { answerCameraCalls } from "./camera-kiosk.js";
 import { captions } from "./caption.js";
 import { outage } from "./outage.js";
 import { answerRecordRequests } from "./recorder.js";
+import { kioskLanguage } from "./language.js";
 import { encodePath, keepConnected } from "./socket.js";
 import { startBrowserSpeech } from "./speech.js";
 import { followSchedule } from "./schedule.js";
@@ -97,7 +98,7 @@ function show(page) {
     emit("page", { page });
   };
   next.removeAttribute("srcdoc"); // it would win over src
-  next.src = pagesPath + encodePath(page);
+  next.src = pagesPath + encodePath(language.path(page));
 }
 
 /** Loads the page on show again (its file changed), through the same flash-free swap. */
@@ -114,7 +115,7 @@ function bundleChanged(frame) {
     return;
   }
   const pages = Array.isArray(frame.pages) ? frame.pages : [];
-  const mine = wanted && pages.includes(wanted);
+  const mine = wanted && (pages.includes(wanted) || pages.includes(language.path(wanted)));
   const asset = pages.some((file) => !/\.html?$/i.test(file));
   if (wanted && (mine || asset)) reloadPage();
 }
@@ -161,7 +162,7 @@ function reportShown(frame) {
   try {
     const path = decodeURIComponent(frame.contentWindow.location.pathname);
     if (!path.startsWith(pagesPath)) return;
-    page = path.slice(pagesPath.length);
+    page = language.page(path.slice(pagesPath.length));
   } catch {
     return;
   }
@@ -219,6 +220,13 @@ const speech = speechState({
   stop: () => window.docentShell.stopSpeech(),
 });
 
+const language = kioskLanguage({
+  languages: config.languages,
+  send: (frame) => socket.send(frame),
+  say: (text) => speech.say(text),
+  onChange: () => reloadPage(), // the page on show, in the new language
+});
+
 const socket = keepConnected({
   path: config.ws || "/ws",
   role: "kiosk",
@@ -238,6 +246,7 @@ const socket = keepConnected({
     emit("connection", { online });
   },
   onFrame: (frame) => {
+    language.onFrame(frame); // before the page: it is shown in the language in force
     if (frame.type === "welcome" || frame.type === "state") {
       showState(frame.state);
     } else if (frame.type === "command" && frame.verb === "DISPLAY_PAGE") {
@@ -293,6 +302,11 @@ window.docentShell = {
   stopSpeech() {
     return Promise.resolve(socket.send({ type: "stop", ref: `kiosk-stop-${++refCount}` }));
   },
+  /** A `data-language` button: asks Docent for that language (language.js). */
+  setLanguage(tag) {
+    activity();
+    return language.ask(tag);
+  },
   /** A page's link was touched: the page it leads to is reported as that touch's. */
   linkTouched(element) {
     linkTouch = { element: element ? String(element) : undefined, at: performance.now() };
@@ -321,7 +335,7 @@ function reportPageShown(id, page) {
     }
     socket.send(missing ? { type: "failed", id, reason: `the touchscreen could not show ${page}: it is not available` } : { type: "done", id });
   };
-  if (wanted === page && front()?.src.endsWith(pagesPath + encodePath(page))) return report();
+  if (wanted === page && front()?.src.endsWith(pagesPath + encodePath(language.path(page)))) return report();
   const stopPage = window.docentShell.on("page", (shown) => {
     stop();
     if (shown.page === page) report();

@@ -5,7 +5,9 @@
 // text; a click or Enter fires), and so is signing in (access.js): the preview fires acts as an
 // operator, with the operator credential, or none on an `--open` server. Below the screens it
 // shows the words being spoken now (a SAY from its `command.started` to its end, from the
-// events every operator gets), and it says so when this browser has no voice (speech.js).
+// events every operator gets), marked with its language (`args.language`, so that a screen
+// reader reads a German text as German; the kiosk frame's browser speech speaks it in that
+// language, speech.js), and it says so when this browser has no voice (speech.js).
 
 import { accessElements, createAccess } from "./operator/access.js";
 import { createActList } from "./operator/actlist.js";
@@ -46,13 +48,17 @@ fit();
 
 // --- what is being said -------------------------------------------------------------------
 
-const said = new Map(); // SAY command id -> its text, from command.sent
+const said = new Map(); // SAY command id -> {text, language}, from command.sent
 let speakingId = null;
 
-function showSpeaking(text) {
+function showSpeaking(saying) {
   const el = byId("speaking");
-  if (text === null) el.replaceChildren(h("span", { class: "muted" }, "silent"));
-  else el.replaceChildren(h("span", { class: "said" }, `“${text}”`));
+  if (saying === null) el.replaceChildren(h("span", { class: "muted" }, "silent"));
+  else {
+    const words = h("span", { class: "said" }, `“${saying.text}”`);
+    if (saying.language) words.lang = saying.language;
+    el.replaceChildren(words);
+  }
 }
 
 function onEvent(e) {
@@ -64,10 +70,10 @@ function onEvent(e) {
   }
   if (e.verb !== "SAY") return;
   if (e.type === "command.sent") {
-    said.set(e.command, e.arg ?? "");
+    said.set(e.command, { text: e.arg ?? "", language: e.args?.language ?? null });
   } else if (e.type === "command.started") {
     speakingId = e.command;
-    showSpeaking(said.get(e.command) ?? "…");
+    showSpeaking(said.get(e.command) ?? { text: "…", language: null });
   } else if (ENDED.has(e.type)) {
     said.delete(e.command);
     if (e.command === speakingId) {

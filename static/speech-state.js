@@ -49,6 +49,8 @@ export function speechState({ button, notice, stop }) {
 
   return {
     markPage,
+    /** Shows a short notice (also language.js's refusals). */
+    say,
     /** The connection is gone: nothing is known to speak until Docent says so again. */
     forget(shown) {
       speaking = null;

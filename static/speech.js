@@ -7,6 +7,9 @@
 // (headless, or no speech installed) shows each text instead: the SAY runs as long as the text
 // would take to say at the configured rate, so acts go on as they would, and the preview says
 // that speech is shown as text only (`detectVoice`, also used by preview.js).
+// Each SAY is spoken in its language (`args.language`, docs/PROTOCOL.md): `utterance.lang` is
+// set to it, with a voice of that language where the browser has one; the configured voice
+// speaks the bundle's default language, or any SAY without a language.
 
 import { keepConnected } from "./socket.js";
 
@@ -41,6 +44,12 @@ export function detectVoice({ waitMs = VOICE_WAIT_MS } = {}) {
 export function speakingMs(text, wpm) {
   const words = String(text ?? "").split(/\s+/).filter(Boolean).length;
   return Math.max(MIN_TEXT_MS, (words / (Number(wpm) || NORMAL_WPM)) * 60_000);
+}
+
+/** The language (`en`) the configured voice speaks: its tag's, or its browser voice's. */
+function configuredLanguage(configured, voices) {
+  const named = voices.find((v) => v.name.toLowerCase() === configured);
+  return String(named?.lang ?? configured).toLowerCase().split(/[-_]/)[0];
 }
 
 /**
@@ -82,9 +91,13 @@ export function startBrowserSpeech({ path, voice, wpm }) {
     synth?.cancel();
   };
 
-  const pickVoice = () => {
+  /** A voice for `language` (a tag such as `de`), else the configured one. */
+  const pickVoice = (language) => {
     const voices = synth?.getVoices?.() ?? [];
-    const wanted = String(voice || "").toLowerCase();
+    const configured = String(voice || "").toLowerCase();
+    const tag = String(language || "").toLowerCase();
+    const speaksConfigured = !tag || configuredLanguage(configured, voices) === tag.split("-")[0];
+    const wanted = speaksConfigured ? configured : tag;
     return (
       voices.find((v) => v.name.toLowerCase() === wanted) ??
       voices.find((v) => v.lang.toLowerCase() === wanted) ??
@@ -102,9 +115,11 @@ export function startBrowserSpeech({ path, voice, wpm }) {
       return next();
     }
     const utterance = new SpeechSynthesisUtterance(command.arg ?? "");
-    const chosen = pickVoice();
+    const language = command.args?.language;
+    const chosen = pickVoice(language);
     if (chosen) utterance.voice = chosen;
-    if (voice) utterance.lang = voice;
+    if (language) utterance.lang = language;
+    else if (voice) utterance.lang = voice;
     utterance.rate = Math.min(10, Math.max(0.1, (Number(wpm) || NORMAL_WPM) / NORMAL_WPM));
     speaking = command.id;
     const finish = (frame) => {

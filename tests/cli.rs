@@ -97,6 +97,43 @@ fn check_lists_problems_with_places_and_exits_1() {
 }
 
 #[test]
+fn check_warns_about_a_language_no_installed_espeak_voice_speaks() {
+    // The start-up check and `docent check` share one rule (content::voices).
+    let b = TempBundle::new("- Label: A\n  Text: [Hello]\n  Text@de: [Hallo]\n  Key: A\n")
+        .with_file("pages/de/index.html", "<!doctype html><title>Start</title>")
+        .with_file(
+            "docent.yaml",
+            "languages: [en, de]\nspeech:\n  adapter: espeak\n  voices: {en: en, de: zz-nowhere}\n",
+        );
+    let (_, out, _) = docent(&["check", b.path().to_str().unwrap(), "--format", "json"]);
+    let problems: Vec<Value> = serde_json::from_str(&out).unwrap();
+    let found: Vec<(&str, &str, &str, u64, u64)> = (problems.iter())
+        .map(|p| {
+            let text = |k: &str| p[k].as_str().unwrap_or_default();
+            let number = |k: &str| p[k].as_u64().unwrap_or_default();
+            (
+                text("code"),
+                text("severity"),
+                text("file"),
+                number("line"),
+                number("column"),
+            )
+        })
+        .collect();
+    assert_eq!(
+        found,
+        [("no-voice", "warning", "docent.yaml", 4, 20)],
+        "{out}"
+    );
+    assert!(
+        problems[0]["message"]
+            .as_str()
+            .unwrap()
+            .contains("zz-nowhere")
+    );
+}
+
+#[test]
 fn deny_warnings_fails_a_bundle_with_only_warnings() {
     let b = TempBundle::new("- Label: A\n  Text: [Hello]\n");
     let path = b.path().to_str().unwrap();

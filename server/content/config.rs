@@ -302,6 +302,9 @@ pub struct SiteConfig {
     /// Where each language of `languages:` was written (empty when it was not), for
     /// problems found later (a language no voice speaks).
     pub language_places: Vec<Located<Language>>,
+    /// Where each language's voice was written in `speech: voices:` (the entry's key), for
+    /// a voice `docent check` finds no installed espeak-ng voice for.
+    pub voice_places: Vec<Located<Language>>,
     /// Speech settings.
     pub speech: SpeechConfig,
     /// Drive settings.
@@ -353,6 +356,7 @@ impl Default for SiteConfig {
             contexts: Vec::new(),
             languages: Languages::default(),
             language_places: Vec::new(),
+            voice_places: Vec::new(),
             speech: SpeechConfig {
                 adapter: None,
                 voice: "en".to_owned(),

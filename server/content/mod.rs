@@ -27,6 +27,7 @@
 //!   length in spoken texts.
 //! - `suggest`: "did you mean" for labels, keys, verbs and file names.
 //! - `unused`: acts that nothing triggers.
+//! - `voices`: the languages no installed espeak-ng voice speaks (start-up and `docent check`).
 //! - `gather`: reading the acts files and pages on every core.
 //! - `load`: putting it together: `load_bundle`.
 //! - `schema`: JSON Schemas of the acts file and `docent.yaml`, for editors.
@@ -63,6 +64,7 @@ mod render;
 mod speech;
 mod suggest;
 mod unused;
+mod voices;
 
 pub use args::{Args, MediaKind};
 pub use diagnostic::{Diagnostic, Severity};
@@ -79,3 +81,4 @@ pub use paths::{BundleArea, PathError, resolve_in_bundle};
 pub use render::{Colour, render_diagnostics};
 pub use speech::speaking_time;
 pub use suggest::closest;
+pub use voices::{no_voice_diagnostics, unspoken_languages};

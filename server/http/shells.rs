@@ -25,6 +25,9 @@ pub struct KioskShell<'a> {
     pub pages_path: &'a str,
     /// The bundle's home page, relative to `pages/`.
     pub home: &'a str,
+    /// The bundle's languages separated by spaces, the default first (`en de`): pages in
+    /// another language are shown from its folder (`pages/de/`).
+    pub languages: String,
     /// Milliseconds without touch before returning home; 0 disables.
     pub idle_ms: u128,
     /// The act triggered on going idle, if any.
@@ -54,6 +57,10 @@ impl<'a> KioskShell<'a> {
             ws_path: WS_PATH,
             pages_path: "/pages/",
             home: &config.home,
+            languages: (config.languages.all().iter())
+                .map(|language| language.as_str())
+                .collect::<Vec<_>>()
+                .join(" "),
             idle_ms: config.kiosk.idle.as_millis(),
             idle_act: config.kiosk.idle_act.as_deref(),
             attract: json_or_empty(config.kiosk.attract.as_ref()),

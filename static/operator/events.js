@@ -7,17 +7,19 @@
 
 /**
  * @param {{panels: {live: object, clients: object, history: object, proposals: object,
- *          marks: object, map: object, robotLink?: object}, context: object, camera: object,
+ *          marks: object, map: object, robotLink?: object}, context: object, language: object,
+ *          camera: object,
  *          operatorName: HTMLElement, name: () => string|null, stopped: (ref: string) => void,
  *          notice: (message: string) => void,
  *          getJson: (path: string, wanted: () => boolean) => Promise<object|null>,
- *          connected: () => boolean}} options `context`: context.js; `camera`: camerapanel.js;
+ *          connected: () => boolean}} options `context`: context.js; `language`: language.js;
+ *          `camera`: camerapanel.js;
  *          `operatorName`: where this console's name and client id are shown; `stopped`: a
  *          websocket stop was answered; `getJson`: a GET with the credential (api.js)
  * @returns {{onFrame: (frame: object) => void, now: () => number}} `now`: the server's clock
  *          in ms, as far as the live events tell
  */
-export function createEvents({ panels, context, camera, operatorName, name, stopped, notice, getJson, connected }) {
+export function createEvents({ panels, context, language, camera, operatorName, name, stopped, notice, getJson, connected }) {
   const { live, clients, history, proposals, marks, map } = panels;
   let me = null;
   let lastSeq = -Infinity; // the highest event seq handled on this connection
@@ -49,6 +51,7 @@ export function createEvents({ panels, context, camera, operatorName, name, stop
     // The server parsed the waypoint at load: `args` is {x, y, heading}.
     else if (e.type === "command.sent" && e.verb === "SET_WAYPOINT") map.waypoint(e.args ?? null);
     else if (e.type === "context.changed") context.changed(e);
+    else if (e.type === "language.changed") language.changed(e);
     else if (e.type === "robot.link") panels.robotLink?.set(e);
   }
 
@@ -67,6 +70,7 @@ export function createEvents({ panels, context, camera, operatorName, name, stop
     live.welcome(frame.state);
     map.pose(frame.state?.pose);
     context.set(frame.state?.context);
+    language.set(frame.state?.language);
     operatorName.textContent = `${name() || "operator"} #${me}`;
     loadState();
   }
@@ -81,6 +85,7 @@ export function createEvents({ panels, context, camera, operatorName, name, stop
       return;
     }
     live.apiState(state);
+    language.snapshot(state);
     clients.snapshot(state.clients);
     proposals.snapshot(state.proposals);
     panels.recording?.snapshot(state.recording);

@@ -1,6 +1,6 @@
 // history.js: what happened, newest first: every act triggered by anyone (time, source, act,
 // variant and the exact text chosen), stops, refused triggers, proposals accepted, dismissed or
-// withdrawn (their dialog manager left), context changes, corpus marks, robot events and
+// withdrawn (their dialog manager left), context and language changes, corpus marks, robot events and
 // reactions to them that could not run, the fleet broker's link going down and up. An act whose
 // command was cancelled or failed says so on its line, with the reason: a text that was never
 // said must not read as said. Several consoles see each other's acts here live.
@@ -45,6 +45,8 @@ export function createHistory(list) {
         return ["proposal", [`withdrawn proposal ${e.proposal}: `, h("strong", {}, e.label ?? "?"), e.reason ? ` (${e.reason})` : ""]];
       case "context.changed":
         return ["mark", [`context → ${e.context}`]];
+      case "language.changed":
+        return ["mark", [`language → ${e.language}`]];
       case "session.started":
         return ["mark", [`session ${e.session} started`]];
       case "session.ended":

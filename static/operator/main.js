@@ -1,7 +1,7 @@
 // main.js: the operator console (GET /operator), wiring its modules together. The panels: acts
 // (actlist.js, preview.js), live state (live.js, map.js, clients.js), the caption line beside
 // Stop (caption.js), history, proposals, marks,
-// the shared context (context.js) and the camera (camerapanel.js, which loads camera.js when
+// the shared context (context.js), the visitor's language (language.js) and the camera (camerapanel.js, which loads camera.js when
 // the server has it). Signing in, the one websocket as an operator and lockouts are access.js;
 // the server's frames and events reach the panels through events.js; Stop, which never waits
 // (over HTTP when the websocket cannot or does not answer), is stop.js; keys.js the keyboard.
@@ -20,6 +20,7 @@ import { createContext } from "./context.js";
 import { byId, createNotice } from "./dom.js";
 import { createEvents } from "./events.js";
 import { createHistory } from "./history.js";
+import { createLanguage } from "./language.js";
 import { bindKeys } from "./keys.js";
 import { createLive } from "./live.js";
 import { createMap } from "./map.js";
@@ -59,6 +60,12 @@ const context = createContext({
   note: byId("context-note"),
   list,
   ask: (wanted) => send({ type: "context", context: wanted, ref: ref("context") }, `context ${wanted}`),
+});
+const language = createLanguage({
+  group: byId("language-pick"),
+  buttons: byId("language-buttons"),
+  note: byId("language-note"),
+  ask: (wanted) => send({ type: "language", language: wanted, ref: ref("language") }, `language ${wanted}`),
 });
 const liveView = createLive({
   kiosk: byId("kiosk-page"),
@@ -139,6 +146,7 @@ const stopper = createStop({
 const events = createEvents({
   panels: { live: liveView, clients, history, proposals, marks, map, recording, robotLink },
   context,
+  language,
   camera,
   operatorName: byId("operator-name"),
   name: access.name,

@@ -136,6 +136,7 @@ impl Reader {
                 ));
                 continue;
             }
+            config.voice_places.push(language.clone());
             chosen.insert(language.value, voice);
         }
         let default = config.languages.default_language().clone();
