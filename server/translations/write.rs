@@ -31,14 +31,16 @@ pub struct Edit {
 pub enum EditError {
     /// The key is not at the start of its line (a `{Text: ...}` mapping written inline).
     #[error(
-        "{file}:{line}: `{key}` is written inside a mapping on one line ({{...}}); write the \
-         act with one key per line, then import again"
+        "{file}:{line}:{column}: `{key}` is written inside a mapping on one line ({{...}}); \
+         write the act with one key per line, then import again"
     )]
     Inline {
         /// The file.
         file: String,
-        /// The key's line.
+        /// The original's line.
         line: u32,
+        /// The original's column.
+        column: u32,
         /// The key being written.
         key: String,
     },
@@ -151,6 +153,7 @@ fn entry(source: &str, starts: &[usize], pos: &Pos, key: &str) -> Result<Entry, 
         return Err(EditError::Inline {
             file: pos.file.to_string(),
             line: pos.line,
+            column: pos.column,
             key: key.to_owned(),
         });
     }
