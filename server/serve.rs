@@ -156,12 +156,21 @@ fn speech_adapter(
     if kind != AdapterKind::Espeak {
         return kind;
     }
-    let voice = &config.voice;
-    if !espeak_voices().contains(voice) {
+    let installed = espeak_voices();
+    if !installed.contains(&config.voice) {
+        let voice = &config.voice;
         warnings.push(format!(
             "espeak-ng has no voice {voice:?} (see `espeak-ng --voices`); \
              it will speak with its default voice"
         ));
+    }
+    for (language, voice) in &config.voices {
+        if *voice != config.voice && !installed.contains(voice) {
+            warnings.push(format!(
+                "no installed espeak-ng voice speaks the language {language}: it has no voice \
+                 {voice:?} (see `espeak-ng --voices`; choose one in speech: voices)"
+            ));
+        }
     }
     if *output == SpeechOutput::Audio && !espeak_can_play() {
         if config.adapter.is_none() {

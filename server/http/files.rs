@@ -5,7 +5,8 @@
 //! `data-act` taps and the `docent` JS API) to them, so authors include nothing themselves.
 //! It goes first in `<head>` as a classic script, so `docent` exists before any script of the
 //! page runs. A page that is not there answers a browser with a friendly page
-//! ([`missing_page`](super::missing_page)), never with JSON.
+//! ([`missing_page`](super::missing_page)), never with JSON. A file under a language folder
+//! (`/pages/de/tour.html`) that is not there is served from the default language's `pages/`.
 
 use axum::extract::rejection::PathRejection;
 use axum::extract::{Path, Request, State};
@@ -51,11 +52,33 @@ async fn serve(
             return not_found(&state, area, &rel, req.headers(), error).await;
         }
     };
-    let root = state.dispatcher.bundle().root.clone();
+    let bundle = state.dispatcher.bundle();
+    let root = bundle.root.clone();
+    // `pages/de/tour.html` missing: the default language's `pages/tour.html` (a page or an
+    // asset a translated page links to), through the same gate (docs/AUTHORING.md).
+    let fallback = (area == BundleArea::Pages)
+        .then(|| {
+            bundle
+                .config
+                .languages
+                .page_fallback(&rel)
+                .map(str::to_owned)
+        })
+        .flatten();
+    drop(bundle);
     // Resolving reads directories: keep it off the threads that carry triggers.
     let checked = {
         let rel = rel.clone();
-        tokio::task::spawn_blocking(move || resolve_in_bundle(&root, area, &rel)).await
+        tokio::task::spawn_blocking(move || {
+            let found = resolve_in_bundle(&root, area, &rel);
+            match (&found, fallback) {
+                (Err(PathError::NotFound), Some(fallback)) => {
+                    resolve_in_bundle(&root, area, &fallback)
+                }
+                _ => found,
+            }
+        })
+        .await
     };
     let Ok(checked) = checked else {
         return AppError::internal("path check panicked").into_response();

@@ -7,7 +7,7 @@
 // interrupts current speech); the star keeps an act among the favourites.
 
 import { groupActs, textsFor } from "./acts.js";
-import { h, shorten } from "./dom.js";
+import { h, shorten, wrappableLabel } from "./dom.js";
 import { highlight, indexActs, search } from "./search.js";
 import * as store from "./store.js";
 
@@ -52,7 +52,7 @@ export function createActList({ element, count, onFire, onPreview }) {
         // Tab (or a click) to a button chooses it: Enter then fires what the preview shows.
         onfocus: () => choose(rows.findIndex((r) => r.button === fire)),
       },
-      h("span", { class: "act-label" }, act.label),
+      h("span", { class: "act-label" }, wrappableLabel(act.label)),
       act.key ? h("kbd", { class: "act-key" }, `Alt+${act.key}`) : null,
       h("span", { class: "act-text" }, pieces.map((p) => (p.hit ? h("mark", {}, p.text) : p.text))),
     );

@@ -45,6 +45,16 @@ export function clock(time) {
   return date.toLocaleTimeString([], { hour: "2-digit", minute: "2-digit", second: "2-digit", hour12: false });
 }
 
+/**
+ * An act label as children for `h` that may wrap after each `_` (GO_TO_<wbr>HOME_<wbr>COMPUTER):
+ * a narrow column shows the whole label on two lines instead of cutting it off.
+ */
+export function wrappableLabel(label) {
+  return String(label)
+    .split(/(?<=_)/)
+    .flatMap((part, i) => (i === 0 ? [part] : [document.createElement("wbr"), part]));
+}
+
 /** Text shortened to `max` characters with an ellipsis. */
 export function shorten(text, max = 80) {
   const s = String(text ?? "");

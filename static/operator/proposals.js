@@ -5,7 +5,7 @@
 // console accepts or dismisses it (proposal.accepted, proposal.dismissed) or when the server
 // withdraws it because its dialog manager left (proposal.withdrawn).
 
-import { clock, h } from "./dom.js";
+import { clock, h, wrappableLabel } from "./dom.js";
 
 const SETTLED = new Set(["proposal.accepted", "proposal.dismissed", "proposal.withdrawn"]);
 
@@ -44,7 +44,7 @@ export function createProposals({ panel, list, accept, dismiss, says, who, now =
           h(
             "div",
             { class: "proposal-what" },
-            h("strong", { class: "proposal-label" }, p.label),
+            h("strong", { class: "proposal-label" }, wrappableLabel(p.label)),
             p.context ? h("span", { class: "muted small" }, ` ${p.context}`) : null,
             p.reason ? h("span", { class: "proposal-reason" }, ` — ${p.reason}`) : null,
             h("div", { class: "proposal-text small" }, says(p.label, p.context) ?? ""),

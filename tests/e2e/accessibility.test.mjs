@@ -1,6 +1,7 @@
 // axe-core (the npm package, pinned) in headless Chromium over every page a visitor or an
 // operator sees: each shipped bundle's pages and kiosk shell at the kiosk's size, and Docent's
-// own pages (console, preview, projector, sessions, report). No violation of serious or
+// own pages (console, preview, projector, sessions, report, and the fleet view on a real
+// mosquitto: signed out, listing a robot, and with its broker gone). No violation of serious or
 // critical impact against WCAG 2.2 A and AA may remain. The console and Docent's other desktop
 // pages may be zoomed; the touchscreen and projector shells may not (a pinch would strand a
 // visitor), so their viewports are checked too.
@@ -11,7 +12,8 @@ import path from 'node:path';
 import { after, before, test } from 'node:test';
 
 import { launchBrowser, newTouchContext } from './lib/browser.mjs';
-import { REPO, startDocent } from './lib/docent.mjs';
+import { DEADLINE_MS, freePort, OPERATOR_TOKEN, REPO, removeTemp, startDocent, tempDir } from './lib/docent.mjs';
+import { startFleet, startMosquitto } from './lib/fleet.mjs';
 import { newConsoleContext, signIn } from './lib/operator.mjs';
 
 const AXE = fs.readFileSync(path.join(REPO, 'tests/e2e/node_modules/axe-core/axe.min.js'), 'utf8');
@@ -87,5 +89,40 @@ test("Docent's own pages pass axe and may be zoomed, except the projector", { ti
   } finally {
     await context.close();
     await server.stop();
+  }
+});
+
+test('the fleet view passes axe signed out, listing a robot, and with its broker gone, and may be zoomed', { timeout: 120_000 }, async () => {
+  const dir = tempDir('docent-e2e-fleet-axe-');
+  const port = await freePort();
+  const mqtt = `mqtt://127.0.0.1:${port}`;
+  const broker = await startMosquitto(port, dir);
+  let robot;
+  let fleet;
+  const context = await newConsoleContext(browser);
+  try {
+    robot = await startDocent(path.join(REPO, 'dialogs/info-terminal'), { args: ['--no-watch', '--mqtt', mqtt, '--robot-id', 'axe-1'] });
+    fleet = await startFleet(mqtt);
+    const page = await context.newPage();
+    await page.goto(`${fleet.base}/fleet`);
+    await page.locator('#signin[open]').waitFor();
+    const found = { 'signed out (sign-in dialog)': await violations(page) };
+    assert.doesNotMatch(await viewport(page), /user-scalable|maximum-scale/, 'the fleet view may be zoomed');
+
+    await page.fill('#signin-token', OPERATOR_TOKEN);
+    await page.click('#signin-submit');
+    await page.locator('tr[data-robot="axe-1"] [data-field="online"]', { hasText: 'online' }).waitFor({ timeout: DEADLINE_MS });
+    found['a robot listed'] = await violations(page);
+
+    broker.kill('SIGKILL');
+    await page.locator('#link[data-link="down"]').waitFor({ timeout: DEADLINE_MS });
+    found['broker gone'] = await violations(page);
+    for (const [where, list] of Object.entries(found)) assert.deepEqual(list, [], `/fleet ${where}`);
+  } finally {
+    await context.close();
+    broker.kill('SIGKILL');
+    fleet?.child.kill('SIGKILL');
+    await robot?.stop();
+    removeTemp(dir);
   }
 });

@@ -6,63 +6,19 @@
 // at once. It writes docs/screenshots/fleet.png. Every wait is for a message or an element, with a deadline; nothing sleeps.
 
 import assert from 'node:assert/strict';
-import { spawn } from 'node:child_process';
-import fs from 'node:fs';
 import path from 'node:path';
 import { after, before, test } from 'node:test';
 
 import { launchBrowser, watchExceptions } from './lib/browser.mjs';
 import { newConsoleContext, signIn } from './lib/operator.mjs';
-import { corpusEvents, DEADLINE_MS, docentBin, freePort, OPERATOR_TOKEN, REPO, removeTemp, startDocent, tempDir } from './lib/docent.mjs';
+import { corpusEvents, DEADLINE_MS, freePort, OPERATOR_TOKEN, REPO, removeTemp, startDocent, tempDir } from './lib/docent.mjs';
+import { startFleet, startMosquitto } from './lib/fleet.mjs';
 
 let browser;
 before(async () => {
   browser = await launchBrowser();
 });
 after(() => browser?.close());
-
-/** Resolves when `stream` prints a line matching `pattern` (its match), within the deadline. */
-function awaitLine(child, stream, pattern, what) {
-  return new Promise((resolve, reject) => {
-    let seen = '';
-    const timer = setTimeout(() => reject(new Error(`${what} within ${DEADLINE_MS} ms; saw:\n${seen}`)), DEADLINE_MS);
-    child[stream].setEncoding('utf8');
-    child[stream].on('data', (chunk) => {
-      seen += chunk;
-      const found = pattern.exec(seen);
-      if (found) {
-        clearTimeout(timer);
-        resolve(found);
-      }
-    });
-    child.once('exit', (code) => {
-      clearTimeout(timer);
-      reject(new Error(`${what}: exited (${code}):\n${seen}`));
-    });
-  });
-}
-
-/** mosquitto on 127.0.0.1:`port`, once it listens. */
-async function startMosquitto(port, dir) {
-  const conf = path.join(dir, 'mosquitto.conf');
-  fs.writeFileSync(conf, `listener ${port} 127.0.0.1\nallow_anonymous true\npersistence false\nlog_dest stderr\nlog_type all\n`);
-  const binary = ['/usr/sbin/mosquitto', '/usr/bin/mosquitto'].find((p) => fs.existsSync(p));
-  assert.ok(binary, 'mosquitto is installed (scripts/install-test-deps.sh)');
-  const child = spawn(binary, ['-c', conf], { stdio: ['ignore', 'ignore', 'pipe'] });
-  await awaitLine(child, 'stderr', /Opening ipv4 listen socket/, 'mosquitto listens');
-  return child;
-}
-
-/** `docent fleet --mqtt URL` on a free port; its base URL once it serves. */
-async function startFleet(url) {
-  const port = await freePort();
-  const child = spawn(docentBin(), ['fleet', '--mqtt', url, '--listen', `127.0.0.1:${port}`], {
-    stdio: ['ignore', 'pipe', 'ignore'],
-    env: { ...process.env, RUST_LOG: 'docent=warn', DOCENT_OPERATOR_TOKEN: OPERATOR_TOKEN },
-  });
-  const [, base] = await awaitLine(child, 'stdout', /fleet:\s+(http:\/\/\S+)\/fleet/, 'docent fleet prints its address');
-  return { child, base };
-}
 
 test('the fleet view lists two robots on one broker, stops the right one and shows a lost broker', async () => {
   const dir = tempDir('docent-e2e-fleet-');

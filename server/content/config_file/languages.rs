@@ -139,6 +139,7 @@ impl Reader {
             chosen.insert(language.value, voice);
         }
         let default = config.languages.default_language().clone();
+        config.speech.voices.clear(); // the defaults' English voice is not this bundle's
         for language in config.languages.all() {
             let voice = chosen.remove(language).unwrap_or_else(|| {
                 if *language == default && voice_written {

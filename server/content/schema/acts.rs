@@ -9,8 +9,9 @@ use crate::content::model::{DEFAULT_VARIANT, Verb};
 
 /// A variant key other than `Text` itself (which has its own entry): `Text` then letters,
 /// digits or `_` in any alphabet, as the loader's `is_variant_key` accepts. `\p{...}` needs the
-/// `u` flag, which ajv and yaml-language-server both set.
-const OTHER_VARIANT_PATTERN: &str = r"^Text[\p{Alphabetic}\p{N}_]+$";
+/// `u` flag, which ajv and yaml-language-server both set. Any variant, `Text` too, may end in
+/// `@` and a language tag (`Text@de`, `TextChild@pt-br`): its translation.
+const OTHER_VARIANT_PATTERN: &str = r"^Text(?:[\p{Alphabetic}\p{N}_]+(?:@[A-Za-z]{2,3}(?:-(?:[A-Za-z]{2}|[0-9]{3}|[A-Za-z]{4}))?)?|@[A-Za-z]{2,3}(?:-(?:[A-Za-z]{2}|[0-9]{3}|[A-Za-z]{4}))?)$";
 
 /// The schema of an acts file (`acts.yaml`, `tour.yaml`, ...).
 pub fn acts_schema() -> Value {
