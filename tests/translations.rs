@@ -251,7 +251,7 @@ fn an_import_writes_the_translations_and_changes_nothing_else_byte_for_byte() {
   - 'Hello, visitor.'
   Text@de:
   - Willkommen!
-  - \"Hallo, Besucher.\"
+  - Hallo, Besucher.
   TextChild: [Hi kids, \"Hey: you\"]
   TextChild@de: [Hallo Kinder, \"He: du\"]
   Cmds:

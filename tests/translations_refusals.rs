@@ -198,7 +198,7 @@ fn a_result_that_would_not_load_writes_nothing() {
     assert!(
         err.starts_with(
             "docent: with these translations written the bundle would not load, so nothing was \
-             written:\n  acts.yaml:6:17: error[speech-placeholder]: `{name}` looks like a \
+             written:\n  acts.yaml:6:16: error[speech-placeholder]: `{name}` looks like a \
              placeholder"
         ),
         "{err}"
@@ -316,4 +316,29 @@ fn xliff_units_are_reported_by_their_line() {
         )
     );
     assert_eq!(acts(&bundle), ACTS);
+}
+
+#[test]
+fn a_bundle_of_one_language_is_told_how_to_add_another() {
+    let bundle = TempBundle::new("- Label: BYE\n  Text: Good bye\n");
+    let dir = path(bundle.path());
+    let (code, _, err) = docent(&["translations", "export", dir, "--language", "de"]);
+    assert_eq!(
+        (code, err.as_str()),
+        (
+            1,
+            "docent: `de` is not one of the bundle's languages (en). Add it to `languages:` in \
+             docent.yaml (`languages: [en, de]`).\n"
+        )
+    );
+    let (code, _, err) = docent(&["translations", "export", dir, "--language", "en"]);
+    assert_eq!(
+        (code, err.as_str()),
+        (
+            1,
+            "docent: `en` is the bundle's default language: its texts are the originals \
+             (`Text:`), not translations. The bundle has no other language yet: add one to \
+             `languages:` in docent.yaml (`languages: [en, de]`).\n"
+        )
+    );
 }

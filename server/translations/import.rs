@@ -47,8 +47,12 @@ pub fn target_language(written: &str, languages: &Languages) -> Result<Language,
         .iter()
         .map(Language::as_str)
         .collect();
+    let listed = languages.listed();
     let named = if translated.is_empty() {
-        "The bundle has no other language yet: add it to `languages:` in docent.yaml.".to_owned()
+        format!(
+            "The bundle has no other language yet: add one to `languages:` in docent.yaml \
+             (`languages: [{listed}, de]`)."
+        )
     } else {
         format!("Name one it is translated into: {}.", translated.join(", "))
     };
@@ -59,10 +63,14 @@ pub fn target_language(written: &str, languages: &Languages) -> Result<Language,
         ));
     }
     if !languages.translated().contains(&language) {
+        let next = if translated.is_empty() {
+            format!("(`languages: [{listed}, {language}]`).")
+        } else {
+            format!("first. {named}")
+        };
         return Err(format!(
-            "`{language}` is not one of the bundle's languages ({}). Add it to `languages:` in \
-             docent.yaml first. {named}",
-            languages.listed()
+            "`{language}` is not one of the bundle's languages ({listed}). Add it to \
+             `languages:` in docent.yaml {next}"
         ));
     }
     Ok(language)

@@ -3,8 +3,8 @@
 //! about (`acts_file/values.rs`, `acts_file/texts.rs`): `: ` makes a mapping, ` #` starts a
 //! comment, `yes`/`no`/numbers are guessed as other types, a leading `-`, `[`, `{`, quote,
 //! `&`, `*`, `!`, `|`, `>`, `%`, `@` or backtick means something else, and spaces at either
-//! end or line breaks are lost or folded. Plain texts also avoid `,[]{}` so the same spelling
-//! holds inside a flow list `[a, b]`. When in doubt, quote.
+//! end or line breaks are lost or folded. Inside a flow list `[a, b]` a plain text also avoids
+//! `,[]{}`. When in doubt, quote.
 
 use std::borrow::Cow;
 use std::fmt::Write;
@@ -14,9 +14,18 @@ const GUESSED_WORDS: [&str; 12] = [
     "y", "yes", "n", "no", "true", "false", "on", "off", "null", "~", ".inf", ".nan",
 ];
 
-/// `text` spelt for a YAML file (a list item or a value after `Key: `).
-pub fn yaml_text(text: &str) -> Cow<'_, str> {
-    if plain_is_safe(text) {
+/// Where a text is written.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Context {
+    /// A `- ` item or a value after `Key: `.
+    Block,
+    /// An item of a list written `[a, b]`.
+    Flow,
+}
+
+/// `text` spelt for a YAML file, written in `context`.
+pub fn yaml_text(text: &str, context: Context) -> Cow<'_, str> {
+    if plain_is_safe(text, context) {
         Cow::Borrowed(text)
     } else {
         Cow::Owned(double_quoted(text))
@@ -24,7 +33,7 @@ pub fn yaml_text(text: &str) -> Cow<'_, str> {
 }
 
 /// Whether `text` written without quotes reads back as exactly `text`, and as text.
-fn plain_is_safe(text: &str) -> bool {
+fn plain_is_safe(text: &str, context: Context) -> bool {
     let Some(first) = text.chars().next() else {
         return false;
     };
@@ -36,7 +45,8 @@ fn plain_is_safe(text: &str) -> bool {
     let ends_special = text.ends_with(char::is_whitespace) || text.ends_with(':');
     let inner_special = text.contains(": ")
         || text.contains(" #")
-        || text.contains(['\t', ',', '[', ']', '{', '}'])
+        || text.contains('\t')
+        || (context == Context::Flow && text.contains([',', '[', ']', '{', '}']))
         || text.chars().any(needs_escape);
     let guessed = GUESSED_WORDS.contains(&text.to_lowercase().as_str());
     !(starts_special || ends_special || inner_special || guessed)
@@ -77,14 +87,15 @@ mod tests {
     fn ordinary_sentences_stay_plain() {
         for text in [
             "Willkommen im Museum!",
-            "Hallo, kleine Entdecker!".replace(',', "").as_str(),
+            "Hallo, kleine Entdecker!",
             "Ça va? Très bien.",
             "Die Maschine wurde 1984 gebaut.",
             "C# ist eine Sprache",
             "Preis: 5 Euro".replace(": ", " ").as_str(),
         ] {
-            assert_eq!(yaml_text(text), text, "{text:?}");
+            assert_eq!(yaml_text(text, Context::Block), text, "{text:?}");
         }
+        assert_eq!(yaml_text("Hallo, du", Context::Flow), "\"Hallo, du\"");
     }
 
     #[test]
@@ -103,7 +114,7 @@ mod tests {
             ("bell\u{7}", r#""bell\u0007""#),
             ("ends with:", r#""ends with:""#),
         ] {
-            assert_eq!(yaml_text(text), written, "{text:?}");
+            assert_eq!(yaml_text(text, Context::Flow), written, "{text:?}");
         }
     }
 }

@@ -11,7 +11,7 @@
 
 use crate::content::Pos;
 
-use super::quote::yaml_text;
+use super::quote::{Context, yaml_text};
 
 /// One translation to write into a file.
 #[derive(Clone, Debug)]
@@ -199,7 +199,12 @@ fn entry(source: &str, starts: &[usize], pos: &Pos, key: &str) -> Result<Entry, 
 /// The entry `key: texts` in `shape`, ending with a line break; its first line without the
 /// indent (the caller places it).
 fn render(key: &str, texts: &[String], shape: Shape, newline: &str) -> String {
-    let quoted: Vec<_> = texts.iter().map(|t| yaml_text(t)).collect();
+    let context = match shape {
+        Shape::Flow => Context::Flow,
+        Shape::Single if texts.len() > 1 => Context::Flow,
+        Shape::Single | Shape::Items(_) => Context::Block,
+    };
+    let quoted: Vec<_> = texts.iter().map(|t| yaml_text(t, context)).collect();
     match (shape, quoted.as_slice()) {
         (Shape::Single, [one]) => format!("{key}: {one}{newline}"),
         (Shape::Flow | Shape::Single, _) => format!("{key}: [{}]{newline}", quoted.join(", ")),
