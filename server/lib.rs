@@ -16,6 +16,8 @@
 //! - [`recording`]: the kiosk's microphone and camera recorded into a session's `media/`.
 //! - [`fleet`]: many robots over one MQTT broker: each robot's bridge, the fleet view.
 //! - [`robot`]: robot events from adapter processes and ROS topics: logged, sessions, reactions.
+//! - [`translations`]: `docent translations export|import`, the texts as a table for a
+//!   translator (CSV or XLIFF) and the filled table written back into the acts files.
 //! - [`reload`]: live reload: watching the bundle folder, swapping in a good save, refusing a
 //!   broken one.
 //! - [`serve`]: wiring it together and running with graceful shutdown.
@@ -37,5 +39,6 @@ pub mod robot;
 pub mod serve;
 pub mod state;
 pub mod sync;
+pub mod translations;
 pub mod wire;
 pub mod ws;

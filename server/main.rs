@@ -19,6 +19,7 @@ use docent::fleet::cli as fleet_cli;
 use docent::http::ConnectionLimits;
 use docent::reload::ReloadOptions;
 use docent::serve::{ServeOptions, Server, run};
+use docent::translations::cli as translations_cli;
 use tokio::net::TcpListener;
 
 /// Docent presents dialog acts on a robot or kiosk: speech, touchscreen pages, projector, drive.
@@ -61,6 +62,11 @@ enum Cmd {
     Corpus(corpus_cli::CorpusArgs),
     /// Serve only the fleet view: every robot on an MQTT broker, with Stop (docs/FLEET.md).
     Fleet(fleet_cli::FleetArgs),
+    /// Export the texts as a table for a translator (CSV, XLIFF), import the filled table.
+    ///
+    /// Exit status 0 when done, 1 when refused (nothing written), 2 for a command line clap
+    /// cannot read, 3 when done with problems reported (docs/AUTHORING.md).
+    Translations(translations_cli::TranslationsArgs),
 }
 
 /// The schemas `docent schema` knows.
@@ -164,6 +170,7 @@ fn main() -> ExitCode {
         Cmd::Schema { which, out } => write_schema(which, out.as_deref()),
         Cmd::Corpus(args) => return corpus_cli::run(&args),
         Cmd::Fleet(args) => fleet(&args),
+        Cmd::Translations(args) => return translations_cli::run(&args),
     };
     match result {
         Ok(code) => code,

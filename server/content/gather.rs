@@ -17,6 +17,7 @@ use crate::content::commands::CommandChecker;
 use crate::content::config::SiteConfig;
 use crate::content::contexts::check_declared;
 use crate::content::diagnostic::Diagnostic;
+use crate::content::load::ActsReplacements;
 use crate::content::model::{CommandSpec, Located, Pos, Variant};
 use crate::content::pages::{PageLabels, check_pages};
 
@@ -92,6 +93,7 @@ pub(super) fn gather(
     root: &Path,
     names: &[String],
     config: &SiteConfig,
+    replaced: &ActsReplacements,
     out: &mut Vec<Diagnostic>,
 ) -> Gathered {
     // The pages first: they are the largest single job, so the files fill in around them.
@@ -113,7 +115,7 @@ pub(super) fn gather(
                 return done;
             };
             let mut problems = Vec::new();
-            let result = run(job, &checker, config, &mut problems);
+            let result = run(job, &checker, config, replaced, &mut problems);
             done.push((i, result, problems));
         }
     };
@@ -155,17 +157,23 @@ fn run(
     job: Job<'_>,
     checker: &CommandChecker<'_>,
     config: &SiteConfig,
+    replaced: &ActsReplacements,
     out: &mut Vec<Diagnostic>,
 ) -> Done {
     match job {
         Job::Pages => Done::Pages(check_pages(checker, out)),
-        Job::ActsFile(name) => Done::ActsFile(read_checked(name, checker, config, out)),
+        Job::ActsFile(name) => {
+            let replacement = replaced.get(name).map(Vec::as_slice);
+            Done::ActsFile(read_checked(name, replacement, checker, config, out))
+        }
     }
 }
 
-/// One acts file read, its texts and commands checked; `None` when it cannot be opened.
+/// One acts file read (or `replacement`, its new content), its texts and commands checked;
+/// `None` when it cannot be opened.
 fn read_checked(
     name: &str,
+    replacement: Option<&[u8]>,
     checker: &CommandChecker<'_>,
     config: &SiteConfig,
     out: &mut Vec<Diagnostic>,
@@ -186,7 +194,10 @@ fn read_checked(
         ));
         return None;
     }
-    let bytes = read_limited(&path, &file).map_err(|p| out.push(p)).ok()?;
+    let bytes = match replacement {
+        Some(bytes) => bytes.to_vec(),
+        None => read_limited(&path, &file).map_err(|p| out.push(p)).ok()?,
+    };
     let mut read = read_acts_file(&file, &bytes, &config.speech, &config.languages);
     out.append(&mut read.diagnostics);
     let acts = read

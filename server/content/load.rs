@@ -34,10 +34,20 @@ pub struct LoadReport {
 
 /// Loads and checks the bundle in the folder `root`.
 pub fn load_bundle(root: &Path) -> LoadReport {
-    on_reading_stack(|| load(root))
+    load_bundle_replacing(root, &ActsReplacements::new())
 }
 
-fn load(root: &Path) -> LoadReport {
+/// Acts files' contents to read instead of what is on disk, by file name (`acts.yaml`): how
+/// `docent translations import` checks its result before writing anything.
+pub type ActsReplacements = BTreeMap<String, Vec<u8>>;
+
+/// Loads and checks the bundle in `root` as if the acts files named in `replaced` held those
+/// bytes (each must exist on disk: only its content is replaced).
+pub fn load_bundle_replacing(root: &Path, replaced: &ActsReplacements) -> LoadReport {
+    on_reading_stack(|| load(root, replaced))
+}
+
+fn load(root: &Path, replaced: &ActsReplacements) -> LoadReport {
     let started = std::time::Instant::now();
     let mut diagnostics = Vec::new();
     let root = match root.canonicalize() {
@@ -67,7 +77,7 @@ fn load(root: &Path) -> LoadReport {
         .any(|d| d.code == "config-syntax" || d.code == "file-encoding");
     let names = acts_file_names(&root, &mut diagnostics);
     let mut config = settings.config;
-    let gathered = gather(&root, &names, &config, &mut diagnostics);
+    let gathered = gather(&root, &names, &config, replaced, &mut diagnostics);
     let checker = CommandChecker::new(&root, &config);
     let mut merged = merge_acts(gathered.files, &mut diagnostics);
     check_page_labels(gathered.pages, &config, &mut merged, &mut diagnostics);

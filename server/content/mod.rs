@@ -72,7 +72,7 @@ pub use duration::parse_duration;
 pub use fingerprint::{bundle_fingerprint, corpus_fingerprint};
 pub use highlight::{Area, Shape};
 pub use language::{Language, Languages};
-pub use load::{LoadReport, load_bundle};
+pub use load::{ActsReplacements, LoadReport, load_bundle, load_bundle_replacing};
 pub use model::{
     Act, Bundle, CommandSpec, DEFAULT_VARIANT, Located, Pos, Translation, Variant, Verb,
 };

@@ -1,0 +1,344 @@
+//! Every refusal and every reported row of `docent translations`, with its exact words and
+//! exit status, and the acts file untouched where nothing may be written: a bundle with
+//! errors, a language not translated into, a table that cannot be read, a result that would
+//! not load, an act written inline; unknown keys, empty cells, incomplete lists, changed
+//! originals and repeated keys (status 3, the rest written).
+
+mod common;
+
+use std::path::Path;
+use std::process::Command;
+
+use common::TempBundle;
+
+const ACTS: &str = "\
+- Label: HELLO
+  Text: [Hello, Hi, Hey]
+  Text@de: [Hallo, Servus, He]
+- Label: BYE
+  Text: Good bye
+- Label: THANKS
+  Text: Thank you
+";
+
+fn bundle() -> TempBundle {
+    TempBundle::new(ACTS).with_file("docent.yaml", "languages: [en, de]\n")
+}
+
+/// Runs `docent ARGS`: exit status, stdout, stderr.
+fn docent(args: &[&str]) -> (i32, String, String) {
+    let output = Command::new(env!("CARGO_BIN_EXE_docent"))
+        .args(args)
+        .output()
+        .expect("docent runs");
+    let text = |b: &[u8]| String::from_utf8(b.to_vec()).expect("utf-8");
+    (
+        output.status.code().expect("exit status"),
+        text(&output.stdout),
+        text(&output.stderr),
+    )
+}
+
+fn path(p: &Path) -> &str {
+    p.to_str().expect("utf-8 path")
+}
+
+/// Imports `table` (written as a file named `name` in the bundle's folder) into `bundle`.
+fn import(bundle: &TempBundle, name: &str, table: &[u8], extra: &[&str]) -> (i32, String, String) {
+    let file = bundle.path().join(name);
+    std::fs::write(&file, table).expect("table");
+    let mut args = vec!["translations", "import", path(bundle.path()), path(&file)];
+    args.extend(extra);
+    docent(&args)
+}
+
+fn acts(bundle: &TempBundle) -> String {
+    std::fs::read_to_string(bundle.path().join("acts.yaml")).expect("acts")
+}
+
+#[test]
+fn a_bundle_with_errors_is_refused() {
+    let broken = TempBundle::new("- Label: A\n  Text: [Hello]\n  Cmds: [FLY high]\n");
+    let dir = path(broken.path());
+    let (code, out, err) = docent(&["translations", "export", dir, "--language", "de"]);
+    assert_eq!((code, out.as_str()), (1, ""));
+    let first = format!(
+        "docent: {dir} has errors, so its texts cannot be exported or imported (`docent check \
+         {dir}` shows them with their lines):\n  acts.yaml:3:10: error[unknown-verb]"
+    );
+    assert!(err.starts_with(&first), "{err}");
+}
+
+#[test]
+fn a_language_the_texts_are_not_translated_into_is_refused() {
+    let bundle = bundle();
+    let dir = path(bundle.path());
+    for (language, message) in [
+        (
+            "fr",
+            "`fr` is not one of the bundle's languages (en, de). Add it to `languages:` in \
+             docent.yaml first. Name one it is translated into: de.",
+        ),
+        (
+            "EN",
+            "`en` is the bundle's default language: its texts are the originals (`Text:`), not \
+             translations. Name one it is translated into: de.",
+        ),
+        (
+            "german",
+            "`german` is not a language tag. A language is a short language tag: two or three \
+             letters (`en`, `de`, `fr`), optionally a hyphen and a region (`pt-br`, `en-gb`).",
+        ),
+    ] {
+        let export = docent(&["translations", "export", dir, "--language", language]);
+        assert_eq!(export, (1, String::new(), format!("docent: {message}\n")));
+        let table = b"key,en,de\nBYE/Text/1,Good bye,Tschuess\n";
+        let imported = import(&bundle, "t.csv", table, &["--language", language]);
+        assert_eq!(imported, (1, String::new(), format!("docent: {message}\n")));
+    }
+    let (code, _, err) = import(
+        &bundle,
+        "fr.csv",
+        b"key,en,fr\nBYE/Text/1,Good bye,Au revoir\n",
+        &[],
+    );
+    let file = bundle.path().join("fr.csv");
+    assert_eq!(
+        (code, err),
+        (
+            1,
+            format!(
+                "docent: {}: the table's translations: `fr` is not one of the bundle's languages \
+                 (en, de). Add it to `languages:` in docent.yaml first. Name one it is \
+                 translated into: de.\n",
+                file.display()
+            )
+        )
+    );
+    assert_eq!(acts(&bundle), ACTS);
+}
+
+#[test]
+fn an_output_without_a_known_extension_needs_a_format() {
+    let bundle = bundle();
+    let out = bundle.path().join("table.txt");
+    let (code, _, err) = docent(&[
+        "translations",
+        "export",
+        path(bundle.path()),
+        "--language",
+        "de",
+        "--output",
+        path(&out),
+    ]);
+    let expected = format!(
+        "docent: {} does not end in .csv, .xlf or .xliff: say the format with --format csv or \
+         --format xliff\n",
+        out.display()
+    );
+    assert_eq!((code, err), (1, expected));
+    assert!(!out.exists());
+}
+
+#[test]
+fn tables_that_cannot_be_read_are_refused_with_how_to_fix_them() {
+    let bundle = bundle();
+    let cases: [(&str, &[u8], &[&str], &str); 5] = [
+        (
+            "latin1.csv",
+            b"key,en,de\nBYE/Text/1,Good bye,Tsch\xfcss\n",
+            &[],
+            "the table is not UTF-8 text (line 2). Save it as \"CSV UTF-8\" (Excel) or with the \
+             character set \"Unicode (UTF-8)\" (LibreOffice), then import it again",
+        ),
+        (
+            "nokey.csv",
+            b"id,en,de\nBYE/Text/1,Good bye,Tschuess\n",
+            &[],
+            "the table has no `key` column (its first row has: id, en, de). Keep the first row \
+             as Docent wrote it: key, en, the translated language, where",
+        ),
+        (
+            "two.csv",
+            b"key,en,de,fr\nBYE/Text/1,Good bye,Tschuess,Salut\n",
+            &[],
+            "the table has several columns of translations (key, en, de, fr): say which to \
+             import with --language",
+        ),
+        (
+            "fr.xlf",
+            b"<xliff version=\"1.2\"><file source-language=\"en\" target-language=\"fr\"><body/></file></xliff>",
+            &["--language", "de"],
+            "the XLIFF file's translations are in `fr` (target-language), not `de` as \
+             --language says",
+        ),
+        (
+            "broken.xlf",
+            b"<xliff version=\"1.2\">\n<file>\n</xliff>",
+            &[],
+            "the XLIFF file is not well-formed XML at line 3: ",
+        ),
+    ];
+    for (name, table, extra, message) in cases {
+        let (code, out, err) = import(&bundle, name, table, extra);
+        let file = bundle.path().join(name);
+        let start = format!("docent: {}: {message}", file.display());
+        assert_eq!((code, out.as_str()), (1, ""), "{name}");
+        assert!(err.starts_with(&start), "{name}: {err}");
+        assert!(err.ends_with("; nothing was imported\n"), "{name}: {err}");
+    }
+    assert_eq!(acts(&bundle), ACTS);
+}
+
+#[test]
+fn a_result_that_would_not_load_writes_nothing() {
+    let bundle = bundle();
+    let (code, out, err) = import(&bundle, "t.csv", b"key,de\nBYE/Text/1,Auf {name}!\n", &[]);
+    assert_eq!((code, out.as_str()), (1, ""));
+    assert!(
+        err.starts_with(
+            "docent: with these translations written the bundle would not load, so nothing was \
+             written:\n  acts.yaml:6:16: error[speech-placeholder]: `{name}` looks like a \
+             placeholder"
+        ),
+        "{err}"
+    );
+    assert_eq!(acts(&bundle), ACTS);
+}
+
+#[test]
+fn an_act_written_inline_cannot_take_a_translation() {
+    let bundle = TempBundle::new("- {Label: A, Text: Hello}\n")
+        .with_file("docent.yaml", "languages: [en, de]\n");
+    let (code, _, err) = import(&bundle, "t.csv", b"key,de\nA/Text/1,Hallo\n", &[]);
+    assert_eq!(
+        (code, err.as_str()),
+        (
+            1,
+            "docent: acts.yaml:1:14: `Text@de` is written inside a mapping on one line ({...}); \
+             write the act with one key per line, then import again\n"
+        )
+    );
+}
+
+#[test]
+fn rows_that_cannot_be_imported_are_each_reported_and_the_rest_written() {
+    let bundle = bundle();
+    let table = "\
+key,en,de,where
+HELLO/Text/1,Hello,Grüß dich,acts.yaml:2
+HELLO/Text/3,Hey,Na,acts.yaml:2
+BYE/Text/1,Goodbye,Tschüss,acts.yaml:5
+THANKS/Text/1,Thank you,,acts.yaml:7
+NOPE/Text/1,x,y,
+HELLO/Other/1,x,y,
+BYE/Text/2,x,y,
+garbage,x,y,
+BYE/Text/1,Good bye,Ade,acts.yaml:5
+";
+    let (code, out, err) = import(&bundle, "t.csv", table.as_bytes(), &[]);
+    let file = bundle.path().join("t.csv");
+    assert_eq!((code, err.as_str()), (3, ""));
+    assert_eq!(
+        out,
+        format!(
+            "German (de) from {}: 0 translation(s) added, 0 replaced, 0 unchanged.
+9 problem(s):
+  row 4: the English text of BYE/Text/1 changed since this table was made; check the translation (the table has \"Goodbye\", the bundle now \"Good bye\").
+  row 5: THANKS/Text/1 has no German translation (the cell is empty).
+  row 6: NOPE/Text/1: the bundle has no act `NOPE` (renamed or removed since the table was made?); the row is not imported.
+  row 7: HELLO/Other/1: the act `HELLO` has no `Other`; the row is not imported.
+  row 8: BYE/Text/2: `Text` of `BYE` has 1 text(s), so there is no number 2; the row is not imported.
+  row 9: `garbage` is not a text key (keys look like LABEL/Variant/N, e.g. GREETING/Text/1); the row is not imported.
+  row 10: BYE/Text/1 is given a second time (first at row 4) with another translation, so neither is imported.
+  HELLO/Text keeps its current German texts: it has 3 texts, and a translation needs all of them, but the table has none for HELLO/Text/2.
+  BYE/Text stays untranslated: the table gives one of its texts twice, differently.
+",
+            file.display()
+        )
+    );
+    assert_eq!(acts(&bundle), ACTS, "nothing complete to write");
+
+    let (code, out, _) = import(
+        &bundle,
+        "t2.csv",
+        b"key,en,de\nBYE/Text/1,Good bye,Tschuess\n",
+        &[],
+    );
+    assert_eq!(code, 0, "{out}");
+    assert!(
+        out.ends_with(": 1 translation(s) added, 0 replaced, 0 unchanged.\nWritten: acts.yaml.\n"),
+        "{out}"
+    );
+    assert_eq!(
+        acts(&bundle),
+        ACTS.replace(
+            "  Text: Good bye\n",
+            "  Text: Good bye\n  Text@de: Tschuess\n"
+        )
+    );
+}
+
+#[test]
+fn xliff_units_are_reported_by_their_line() {
+    let bundle = bundle();
+    let xliff = r#"<?xml version="1.0" encoding="UTF-8"?>
+<xliff version="1.2" xmlns="urn:oasis:names:tc:xliff:document:1.2">
+  <file original="b" source-language="en" target-language="de" datatype="plaintext">
+    <body>
+      <trans-unit id="BYE/Text/1">
+        <source>Good bye</source>
+        <target>Auf <g id="1">Wiedersehen</g></target>
+      </trans-unit>
+      <trans-unit id="THANKS/Text/1">
+        <source>Thank you</source>
+        <target state="needs-translation"/>
+        <alt-trans><target>Merci</target></alt-trans>
+      </trans-unit>
+    </body>
+  </file>
+</xliff>
+"#;
+    let (code, out, _) = import(&bundle, "t.xlf", xliff.as_bytes(), &[]);
+    let file = bundle.path().join("t.xlf");
+    assert_eq!(
+        (code, out),
+        (
+            3,
+            format!(
+                "German (de) from {}: 0 translation(s) added, 0 replaced, 0 unchanged.
+2 problem(s):
+  line 5: the translation of `BYE/Text/1` contains markup (<g>), which a spoken text cannot hold; it is not imported. Write it as plain text.
+  line 9: THANKS/Text/1 has no German translation (its target is empty).
+",
+                file.display()
+            )
+        )
+    );
+    assert_eq!(acts(&bundle), ACTS);
+}
+
+#[test]
+fn a_bundle_of_one_language_is_told_how_to_add_another() {
+    let bundle = TempBundle::new("- Label: BYE\n  Text: Good bye\n");
+    let dir = path(bundle.path());
+    let (code, _, err) = docent(&["translations", "export", dir, "--language", "de"]);
+    assert_eq!(
+        (code, err.as_str()),
+        (
+            1,
+            "docent: `de` is not one of the bundle's languages (en). Add it to `languages:` in \
+             docent.yaml (`languages: [en, de]`).\n"
+        )
+    );
+    let (code, _, err) = docent(&["translations", "export", dir, "--language", "en"]);
+    assert_eq!(
+        (code, err.as_str()),
+        (
+            1,
+            "docent: `en` is the bundle's default language: its texts are the originals \
+             (`Text:`), not translations. The bundle has no other language yet: add one to \
+             `languages:` in docent.yaml (`languages: [en, de]`).\n"
+        )
+    );
+}
