@@ -112,7 +112,18 @@ pub struct Access {
     proxies: TrustedProxies,
     attempts: Attempts,
     refusals: RefusalLog,
-    kiosks: Mutex<HashMap<IpAddr, TokenBucket>>,
+    kiosks: Mutex<HashMap<(IpAddr, KioskAllowance), TokenBucket>>,
+}
+
+/// Which of a kiosk address's two allowances a frame takes from.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub enum KioskAllowance {
+    /// A visitor's doing: triggers, and page reports of touches and page scripts.
+    Visitor,
+    /// The shell's own doing: attract loop reports and pages shown by the attract loop, the
+    /// schedule or the idle return. Kept apart so that the shell cannot spend the visitor's
+    /// taps (a loop cycling fast would otherwise refuse the touch that ends it).
+    Shell,
 }
 
 impl Access {
@@ -138,11 +149,16 @@ impl Access {
         self.refusals.admit()
     }
 
-    /// Takes one trigger from the allowance of the kiosk address `peer` (all kiosks at one
-    /// address share it, so opening more connections gains nothing); otherwise how long until
-    /// the next is allowed.
-    pub fn kiosk_allowance(&self, peer: Option<IpAddr>, now: Instant) -> Result<(), Duration> {
-        let peer = peer.unwrap_or(IpAddr::V4(Ipv4Addr::UNSPECIFIED));
+    /// Takes one frame from the `which` allowance of the kiosk address `peer` (all kiosks at
+    /// one address share it, so opening more connections gains nothing); otherwise how long
+    /// until the next is allowed.
+    pub fn kiosk_allowance(
+        &self,
+        peer: Option<IpAddr>,
+        which: KioskAllowance,
+        now: Instant,
+    ) -> Result<(), Duration> {
+        let peer = (peer.unwrap_or(IpAddr::V4(Ipv4Addr::UNSPECIFIED)), which);
         let mut kiosks = lock(&self.kiosks);
         if kiosks.len() >= MAX_KIOSK_ADDRESSES && !kiosks.contains_key(&peer) {
             kiosks.retain(|_, b| !b.is_full(now));
@@ -152,7 +168,10 @@ impl Access {
         }
         kiosks
             .entry(peer)
-            .or_insert_with(|| TokenBucket::kiosk(now))
+            .or_insert_with(|| match which {
+                KioskAllowance::Visitor => TokenBucket::kiosk(now),
+                KioskAllowance::Shell => TokenBucket::shell(now),
+            })
             .take(now)
     }
 
@@ -336,11 +355,49 @@ mod tests {
         let access = guarded();
         let now = Instant::now();
         for _ in 0..5 {
-            assert_eq!(access.kiosk_allowance(PEER, now), Ok(()));
+            assert_eq!(
+                access.kiosk_allowance(PEER, KioskAllowance::Visitor, now),
+                Ok(())
+            );
         }
-        assert!(access.kiosk_allowance(PEER, now).is_err());
+        assert!(
+            access
+                .kiosk_allowance(PEER, KioskAllowance::Visitor, now)
+                .is_err()
+        );
         let elsewhere = Some(IpAddr::V4(Ipv4Addr::new(192, 168, 1, 99)));
-        assert_eq!(access.kiosk_allowance(elsewhere, now), Ok(()));
+        assert_eq!(
+            access.kiosk_allowance(elsewhere, KioskAllowance::Visitor, now),
+            Ok(())
+        );
+    }
+
+    #[test]
+    fn the_shells_own_reports_never_spend_the_visitors_taps() {
+        let access = guarded();
+        let now = Instant::now();
+        for _ in 0..8 {
+            assert_eq!(
+                access.kiosk_allowance(PEER, KioskAllowance::Shell, now),
+                Ok(())
+            );
+        }
+        assert!(
+            access
+                .kiosk_allowance(PEER, KioskAllowance::Shell, now)
+                .is_err()
+        );
+        for _ in 0..5 {
+            assert_eq!(
+                access.kiosk_allowance(PEER, KioskAllowance::Visitor, now),
+                Ok(())
+            );
+        }
+        assert!(
+            access
+                .kiosk_allowance(PEER, KioskAllowance::Visitor, now)
+                .is_err()
+        );
     }
 
     #[test]

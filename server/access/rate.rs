@@ -8,6 +8,12 @@ use std::time::{Duration, Instant};
 pub const KIOSK_BURST: f64 = 5.0;
 /// Triggers per second a kiosk may keep up.
 pub const KIOSK_PER_SECOND: f64 = 4.0;
+/// Reports of the kiosk shell's own doing (the attract loop, the schedule, the idle return)
+/// a kiosk may send at once: a separate allowance, so that a loop that just cycled does not
+/// spend the visitor's taps.
+pub const SHELL_BURST: f64 = 8.0;
+/// Reports of the shell's own doing per second a kiosk may keep up.
+pub const SHELL_PER_SECOND: f64 = 2.0;
 /// Signalling frames a client may relay at once.
 pub const SIGNAL_BURST: f64 = 200.0;
 /// Signalling frames per second a client may keep up.
@@ -36,6 +42,11 @@ impl TokenBucket {
     /// The trigger allowance of one kiosk address.
     pub fn kiosk(now: Instant) -> Self {
         Self::new(KIOSK_BURST, KIOSK_PER_SECOND, now)
+    }
+
+    /// The allowance of one kiosk address for reports of the shell's own doing.
+    pub fn shell(now: Instant) -> Self {
+        Self::new(SHELL_BURST, SHELL_PER_SECOND, now)
     }
 
     /// The allowance of relayed WebRTC signalling frames of one connection: a call needs a

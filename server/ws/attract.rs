@@ -5,6 +5,7 @@
 
 use std::time::Instant;
 
+use crate::access::KioskAllowance;
 use crate::events::{AttractEnd, AttractState, ClientRole, EventKind};
 use crate::wire::ErrorCode;
 use crate::ws::client::Client;
@@ -22,8 +23,11 @@ pub(super) fn reported(
     if client.allowed(role, &[ClientRole::Kiosk], None).is_none() {
         return;
     }
-    // From the kiosk's allowance, as its page reports: a faulty kiosk cannot flood the log.
-    let allowance = (client.state.access).kiosk_allowance(client.address.ip, Instant::now());
+    // From the kiosk's allowance for the shell's own doing: a faulty kiosk cannot flood the
+    // log, and a loop that cycled fast cannot spend the taps of the visitor who ends it.
+    let access = &client.state.access;
+    let allowance =
+        access.kiosk_allowance(client.address.ip, KioskAllowance::Shell, Instant::now());
     if let Err(wait) = allowance {
         let message = format!(
             "too many requests from this touchscreen; the next is possible in {} ms",

@@ -9,6 +9,7 @@
 
 use std::time::Instant;
 
+use crate::access::KioskAllowance;
 use crate::content::{BundleArea, resolve_in_bundle};
 use crate::dispatch::TriggerRequest;
 use crate::events::{ClientRole, EventKind, KioskCause, element_description};
@@ -73,7 +74,7 @@ pub(super) fn trigger(
     };
     let mut run = RefusedRun::Unchanged;
     if allowed == ClientRole::Kiosk {
-        if let Err(message) = kiosk_allowance(client) {
+        if let Err(message) = kiosk_allowance(client, KioskAllowance::Visitor) {
             let code = ErrorCode::RateLimited;
             client.reply_error(code, &message, reference.as_deref(), None);
             if run_logged {
@@ -145,13 +146,13 @@ fn offered(client: &Client, label: &str) -> Result<(), String> {
     Ok(())
 }
 
-/// Takes one from this kiosk address's allowance (triggers and `page` reports alike); the
+/// Takes one from this kiosk address's `which` allowance (triggers and `page` reports); the
 /// error is the `rate-limited` message.
-fn kiosk_allowance(client: &Client) -> Result<(), String> {
+fn kiosk_allowance(client: &Client, which: KioskAllowance) -> Result<(), String> {
     let allowance = client
         .state
         .access
-        .kiosk_allowance(client.address.ip, Instant::now());
+        .kiosk_allowance(client.address.ip, which, Instant::now());
     allowance.map_err(|wait| {
         format!(
             "too many requests from this touchscreen; the next is possible in {} ms",
@@ -247,7 +248,14 @@ pub(super) fn page_shown(
     }
     // Before the allowance: leaving a page ends its speech even for a hasty visitor.
     client.state.dispatcher.page_left(client.id, &page);
-    if let Err(message) = kiosk_allowance(client) {
+    // The shell's own pages (attract loop, schedule, idle return) from the shell's allowance.
+    let which = match via {
+        Some(KioskCause::Attract | KioskCause::Schedule | KioskCause::Idle) => {
+            KioskAllowance::Shell
+        }
+        _ => KioskAllowance::Visitor,
+    };
+    if let Err(message) = kiosk_allowance(client, which) {
         client.reply_error(ErrorCode::RateLimited, &message, None, None);
         return RefusedRun::Unchanged;
     }

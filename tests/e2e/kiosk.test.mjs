@@ -44,6 +44,7 @@ test('tapping a data-act button changes the page and its SAY reaches a ws adapte
     'docent.yaml': [
       'home: index.html',
       'contexts: [TextGroup, TextChild]',
+      'languages: [en, de]',
       'speech: {adapter: ws}',
       'drive:',
       '  speed: 100',

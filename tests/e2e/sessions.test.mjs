@@ -29,7 +29,7 @@ after(() => browser?.close());
 /** museum-tour, its speech logged at 600 words a minute (the introduction takes ~4.5 s). */
 function tourBundle() {
   const config = fs.readFileSync(path.join(REPO, 'dialogs/museum-tour/docent.yaml'), 'utf8');
-  const fast = config.replace('speech: { voice: en-us, rate: 160 }', 'speech: { adapter: log, voice: en-us, rate: 600 }');
+  const fast = config.replace('speech: { voice: en-us, rate: 160,', 'speech: { adapter: log, voice: en-us, rate: 600,');
   assert.notEqual(fast, config, 'the speech line is there to change');
   return copyBundle('museum-tour', { 'docent.yaml': fast });
 }

@@ -146,6 +146,7 @@ export function museumTour({ speed = 0.5, camera = 'none' } = {}) {
     'docent.yaml': [
       'home: index.html',
       'contexts: [TextGroup, TextChild]',
+      'languages: [en, de]',
       'speech: {adapter: log, rate: 160}',
       'drive:',
       `  speed: ${speed}`,
