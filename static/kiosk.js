@@ -207,11 +207,13 @@ outages.start();
 
 /** What a new connection's hello adds: the page on show, unless it is the "not available" copy. */
 function helloExtra() {
+  // The visitor's language too, so that a restarted server goes on in it.
+  const shown = language.chosen() ? { language: language.chosen() } : {};
   if (!wanted || frames[front].hasAttribute("srcdoc")) {
     wanted = null; // the server's page is loaded again
-    return {};
+    return shown;
   }
-  return { page: wanted };
+  return { page: wanted, ...shown };
 }
 
 const speech = speechState({

@@ -43,6 +43,8 @@ export function kioskLanguage({ languages, send, say, onChange }) {
   return {
     /** The language in force. */
     current: () => current,
+    /** The visitor's language when it is not the default, else null (for the hello). */
+    chosen: () => (current === fallback ? null : current),
     /** The path under pages/ that shows `page` in the language in force. */
     path: (page) => (current === fallback || !page ? page : `${current}/${page}`),
     /** The page the bundle names for a path under pages/: without its language folder. */

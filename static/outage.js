@@ -13,7 +13,22 @@ import { overlayElement, place } from "./overlay.js";
 const NOTICE_AFTER_MS = 1_000;
 const BUSY_MS = 1_500;
 const CONTROLS = "[data-act], [data-docent-stop], a[href], button, [role=button]";
-const DEFAULT_TEXT = "One moment, please: the robot will be right back.";
+// The notice in the language of the page on show (its `<html lang>`), English otherwise: a
+// German visitor on a German page is not told in English. A page's own element wins.
+const DEFAULT_TEXTS = {
+  en: "One moment, please: the robot will be right back.",
+  de: "Einen Moment bitte: Der Roboter ist gleich wieder da.",
+  fr: "Un instant, s'il vous plaît : le robot revient tout de suite.",
+  es: "Un momento, por favor: el robot vuelve enseguida.",
+  it: "Un momento, per favore: il robot torna subito.",
+  nl: "Een ogenblik alstublieft: de robot is zo terug.",
+};
+
+/** The built-in notice for `doc`'s language (`de-CH` → `de`), English when there is none. */
+function defaultText(doc) {
+  const primary = (doc.documentElement.lang || "en").toLowerCase().split("-")[0];
+  return DEFAULT_TEXTS[primary] ?? DEFAULT_TEXTS.en;
+}
 
 /**
  * @param {{documents: () => {page: Document|null, shell: Document}, avoid: () => DOMRect[]}} options
@@ -32,7 +47,7 @@ export function outage({ documents, avoid }) {
     const doc = page ?? shell;
     const attributes = { role: "status", "aria-live": "polite" };
     const { element, own } = overlayElement(doc, "docent-offline-notice", "data-docent-offline", attributes);
-    if (!own && !element.textContent) element.textContent = DEFAULT_TEXT;
+    if (!own && !element.textContent) element.textContent = defaultText(doc);
     element.hidden = false;
     if (!own) place(element, doc, avoid());
   }

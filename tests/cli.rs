@@ -5,22 +5,9 @@ mod common;
 
 use std::process::Command;
 
+use common::process::run_docent;
 use common::{TempBundle, repo};
 use serde_json::Value;
-
-fn docent(args: &[&str]) -> (i32, String, String) {
-    let out = Command::new(env!("CARGO_BIN_EXE_docent"))
-        .args(args)
-        .current_dir(repo())
-        .output()
-        .unwrap();
-    let text = |b: Vec<u8>| String::from_utf8(b).unwrap();
-    (
-        out.status.code().unwrap_or(-1),
-        text(out.stdout),
-        text(out.stderr),
-    )
-}
 
 #[test]
 fn every_shipped_bundle_passes_the_check() {
@@ -31,7 +18,7 @@ fn every_shipped_bundle_passes_the_check() {
         "poster-presenter",
     ] {
         let path = format!("dialogs/{bundle}");
-        let (code, out, _) = docent(&["check", &path, "--format", "json"]);
+        let (code, out, _) = run_docent(&["check", &path, "--format", "json"]);
         let problems: Vec<Value> = serde_json::from_str(&out).unwrap();
         assert_eq!((code, problems.len()), (0, 0), "{bundle}: {out}");
     }
@@ -43,7 +30,7 @@ const BROKEN: &str =
 #[test]
 fn check_lists_problems_with_places_and_exits_1() {
     let b = TempBundle::new(BROKEN);
-    let (code, out, _) = docent(&["check", b.path().to_str().unwrap(), "--format", "json"]);
+    let (code, out, _) = run_docent(&["check", b.path().to_str().unwrap(), "--format", "json"]);
     assert_eq!(code, 1);
     let mut problems: Vec<Value> = serde_json::from_str(&out).unwrap();
     // Nothing triggers A either: a warning, checked on its own in content_texts.rs.
@@ -77,7 +64,7 @@ fn check_lists_problems_with_places_and_exits_1() {
         (Some("missing-file"), Some(5))
     );
 
-    let (code, text, _) = docent(&["check", b.path().to_str().unwrap()]);
+    let (code, text, _) = run_docent(&["check", b.path().to_str().unwrap()]);
     assert_eq!(code, 1);
     // The human form: what happened, the place, the line with a caret, the hint.
     for expected in [
@@ -105,7 +92,7 @@ fn check_warns_about_a_language_no_installed_espeak_voice_speaks() {
             "docent.yaml",
             "languages: [en, de]\nspeech:\n  adapter: espeak\n  voices: {en: en, de: zz-nowhere}\n",
         );
-    let (_, out, _) = docent(&["check", b.path().to_str().unwrap(), "--format", "json"]);
+    let (_, out, _) = run_docent(&["check", b.path().to_str().unwrap(), "--format", "json"]);
     let problems: Vec<Value> = serde_json::from_str(&out).unwrap();
     let found: Vec<(&str, &str, &str, u64, u64)> = (problems.iter())
         .map(|p| {
@@ -137,10 +124,10 @@ fn check_warns_about_a_language_no_installed_espeak_voice_speaks() {
 fn deny_warnings_fails_a_bundle_with_only_warnings() {
     let b = TempBundle::new("- Label: A\n  Text: [Hello]\n");
     let path = b.path().to_str().unwrap();
-    let (code, text, _) = docent(&["check", path]);
+    let (code, text, _) = run_docent(&["check", path]);
     assert_eq!(code, 0, "{text}");
     assert!(text.contains("warning[unused-act]"), "{text}");
-    let (code, text, _) = docent(&["check", path, "--deny-warnings"]);
+    let (code, text, _) = run_docent(&["check", path, "--deny-warnings"]);
     assert_eq!(code, 1, "{text}");
     assert!(text.contains("0 error(s), 1 warning(s)"), "{text}");
 }
@@ -148,7 +135,7 @@ fn deny_warnings_fails_a_bundle_with_only_warnings() {
 #[test]
 fn serve_refuses_a_bundle_with_errors_and_lists_them() {
     let b = TempBundle::new(BROKEN);
-    let (code, out, err) = docent(&[
+    let (code, out, err) = run_docent(&[
         "serve",
         b.path().to_str().unwrap(),
         "--listen",
@@ -164,7 +151,7 @@ fn serve_refuses_a_bundle_with_errors_and_lists_them() {
 
 #[test]
 fn a_missing_bundle_folder_is_a_clear_error() {
-    let (code, out, _) = docent(&["check", "/no/such/bundle"]);
+    let (code, out, _) = run_docent(&["check", "/no/such/bundle"]);
     assert_eq!(code, 1);
     assert!(
         out.contains("/no/such/bundle") || out.contains("bundle"),

@@ -161,3 +161,45 @@ async fn a_kiosk_switches_only_to_a_language_its_page_offers_and_a_session_end_r
 
     server.stop().await;
 }
+
+#[tokio::test]
+async fn a_restarted_server_goes_on_in_the_language_its_reconnecting_kiosk_shows() {
+    // A fresh server, as after a restart mid-visit: the kiosk says it shows German pages.
+    let server = TestServer::start(&fixture()).await;
+    let mut op = server.operator().await;
+    let kiosk = server
+        .client(json!({"type": "hello", "role": "kiosk", "page": "index.html", "language": "de"}))
+        .await;
+    assert_eq!(
+        kiosk.welcome["state"]["language"], "de",
+        "{}",
+        kiosk.welcome
+    );
+    let adopted = op.event("language.changed").await;
+    assert_eq!(
+        (&adopted["language"], &adopted["source"]),
+        (&json!("de"), &json!("kiosk"))
+    );
+    server.trigger("GREETING", json!({})).await;
+    let triggered = op.event("act.triggered").await;
+    assert_eq!(triggered["language"], "de", "{triggered}");
+
+    // Once the language changed here, the server's stands: a kiosk still in German from
+    // before is brought to English by its welcome.
+    op.send(json!({"type": "language", "language": "en", "ref": "back"}))
+        .await;
+    op.recv_type("language").await;
+    let late = server
+        .client(json!({"type": "hello", "role": "kiosk", "language": "de"}))
+        .await;
+    assert_eq!(late.welcome["state"]["language"], "en");
+
+    // A language the bundle lacks is refused, and the kiosk follows the welcome.
+    let mut odd = server.connect().await;
+    odd.send(json!({"type": "hello", "role": "kiosk", "language": "fr"}))
+        .await;
+    let refused = odd.recv_type("error").await;
+    assert_eq!(refused["code"], "unknown-language", "{refused}");
+    assert_eq!(odd.recv_type("welcome").await["state"]["language"], "en");
+    server.stop().await;
+}

@@ -9,21 +9,8 @@ use std::path::{Path, PathBuf};
 use std::process::Command;
 
 use common::TestServer;
+use common::process::run_docent;
 use serde_json::{Value, json};
-
-/// Runs `docent ARGS`: exit status, stdout, stderr.
-fn docent(args: &[&str]) -> (i32, String, String) {
-    let output = Command::new(env!("CARGO_BIN_EXE_docent"))
-        .args(args)
-        .output()
-        .expect("docent runs");
-    let text = |b: &[u8]| String::from_utf8(b.to_vec()).expect("utf-8");
-    (
-        output.status.code().expect("exit status"),
-        text(&output.stdout),
-        text(&output.stderr),
-    )
-}
 
 fn path(p: &Path) -> &str {
     p.to_str().expect("utf-8 path")
@@ -86,7 +73,7 @@ async fn round_trip(extension: &str) {
     let dir = tempfile::tempdir().expect("temp dir");
     let bundle = fixture_without_tour_translation(dir.path());
     let table = dir.path().join(format!("de.{extension}"));
-    let (code, out, err) = docent(&[
+    let (code, out, err) = run_docent(&[
         "translations",
         "export",
         path(&bundle),
@@ -142,7 +129,7 @@ async fn round_trip(extension: &str) {
         texts[3]
     );
 
-    let (code, out, err) = docent(&["translations", "import", path(&bundle), path(&filled)]);
+    let (code, out, err) = run_docent(&["translations", "import", path(&bundle), path(&filled)]);
     assert_eq!((code, err.as_str()), (0, ""), "{out}");
     assert_eq!(
         out,
@@ -232,7 +219,8 @@ fn an_import_writes_the_translations_and_changes_nothing_else_byte_for_byte() {
          BYE/Text/1,Good bye.,Auf Wiedersehen.,acts.yaml:15\n",
     )
     .expect("table");
-    let (code, out, err) = docent(&["translations", "import", path(bundle.path()), path(&table)]);
+    let (code, out, err) =
+        run_docent(&["translations", "import", path(bundle.path()), path(&table)]);
     std::fs::remove_file(&table).expect("remove table");
     assert_eq!((code, err.as_str()), (0, ""), "{out}");
     assert!(
@@ -333,7 +321,8 @@ fn awkward_texts_read_back_exactly_in_every_shape_of_list() {
     }
     let file = bundle.path().join("../awkward.csv");
     std::fs::write(&file, table).expect("table");
-    let (code, out, err) = docent(&["translations", "import", path(bundle.path()), path(&file)]);
+    let (code, out, err) =
+        run_docent(&["translations", "import", path(bundle.path()), path(&file)]);
     std::fs::remove_file(&file).expect("remove table");
     assert_eq!(code, 0, "{out}{err}");
     let loaded = docent::content::load_bundle(bundle.path())

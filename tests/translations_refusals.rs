@@ -7,9 +7,9 @@
 mod common;
 
 use std::path::Path;
-use std::process::Command;
 
 use common::TempBundle;
+use common::process::run_docent;
 
 const ACTS: &str = "\
 - Label: HELLO
@@ -25,20 +25,6 @@ fn bundle() -> TempBundle {
     TempBundle::new(ACTS).with_file("docent.yaml", "languages: [en, de]\n")
 }
 
-/// Runs `docent ARGS`: exit status, stdout, stderr.
-fn docent(args: &[&str]) -> (i32, String, String) {
-    let output = Command::new(env!("CARGO_BIN_EXE_docent"))
-        .args(args)
-        .output()
-        .expect("docent runs");
-    let text = |b: &[u8]| String::from_utf8(b.to_vec()).expect("utf-8");
-    (
-        output.status.code().expect("exit status"),
-        text(&output.stdout),
-        text(&output.stderr),
-    )
-}
-
 fn path(p: &Path) -> &str {
     p.to_str().expect("utf-8 path")
 }
@@ -49,7 +35,7 @@ fn import(bundle: &TempBundle, name: &str, table: &[u8], extra: &[&str]) -> (i32
     std::fs::write(&file, table).expect("table");
     let mut args = vec!["translations", "import", path(bundle.path()), path(&file)];
     args.extend(extra);
-    docent(&args)
+    run_docent(&args)
 }
 
 fn acts(bundle: &TempBundle) -> String {
@@ -60,7 +46,7 @@ fn acts(bundle: &TempBundle) -> String {
 fn a_bundle_with_errors_is_refused() {
     let broken = TempBundle::new("- Label: A\n  Text: [Hello]\n  Cmds: [FLY high]\n");
     let dir = path(broken.path());
-    let (code, out, err) = docent(&["translations", "export", dir, "--language", "de"]);
+    let (code, out, err) = run_docent(&["translations", "export", dir, "--language", "de"]);
     assert_eq!((code, out.as_str()), (1, ""));
     let first = format!(
         "docent: {dir} has errors, so its texts cannot be exported or imported (`docent check \
@@ -90,7 +76,7 @@ fn a_language_the_texts_are_not_translated_into_is_refused() {
              letters (`en`, `de`, `fr`), optionally a hyphen and a region (`pt-br`, `en-gb`).",
         ),
     ] {
-        let export = docent(&["translations", "export", dir, "--language", language]);
+        let export = run_docent(&["translations", "export", dir, "--language", language]);
         assert_eq!(export, (1, String::new(), format!("docent: {message}\n")));
         let table = b"key,en,de\nBYE/Text/1,Good bye,Tschuess\n";
         let imported = import(&bundle, "t.csv", table, &["--language", language]);
@@ -122,7 +108,7 @@ fn a_language_the_texts_are_not_translated_into_is_refused() {
 fn an_output_without_a_known_extension_needs_a_format() {
     let bundle = bundle();
     let out = bundle.path().join("table.txt");
-    let (code, _, err) = docent(&[
+    let (code, _, err) = run_docent(&[
         "translations",
         "export",
         path(bundle.path()),
@@ -322,7 +308,7 @@ fn xliff_units_are_reported_by_their_line() {
 fn a_bundle_of_one_language_is_told_how_to_add_another() {
     let bundle = TempBundle::new("- Label: BYE\n  Text: Good bye\n");
     let dir = path(bundle.path());
-    let (code, _, err) = docent(&["translations", "export", dir, "--language", "de"]);
+    let (code, _, err) = run_docent(&["translations", "export", dir, "--language", "de"]);
     assert_eq!(
         (code, err.as_str()),
         (
@@ -331,7 +317,7 @@ fn a_bundle_of_one_language_is_told_how_to_add_another() {
              docent.yaml (`languages: [en, de]`).\n"
         )
     );
-    let (code, _, err) = docent(&["translations", "export", dir, "--language", "en"]);
+    let (code, _, err) = run_docent(&["translations", "export", dir, "--language", "en"]);
     assert_eq!(
         (code, err.as_str()),
         (

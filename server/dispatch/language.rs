@@ -5,6 +5,7 @@
 //! which then show their page in the new language.
 
 use std::sync::Arc;
+use std::sync::atomic::Ordering;
 
 use tokio::sync::broadcast::error::RecvError;
 
@@ -79,9 +80,33 @@ impl Dispatcher {
         Ok(language)
     }
 
+    /// Takes the language a reconnecting kiosk shows its pages in (its `hello`), when nothing
+    /// changed the language since this server started: a server restarted mid-visit goes on
+    /// in the visitor's language instead of the default. Once anything changed it (a button,
+    /// an operator, a session's end), the server's language stands and the kiosk follows it.
+    /// Returns the language in force.
+    pub fn adopt_kiosk_language(&self, wanted: &str) -> Result<Language, TriggerError> {
+        let mut current = lock(&self.language);
+        let bundle = self.bundle.load();
+        let Some(language) = bundle.config.languages.find(wanted).cloned() else {
+            return Err(TriggerError::UnknownLanguage {
+                language: wanted.to_owned(),
+                available: bundle.config.languages.listed(),
+            });
+        };
+        if self.language_changed.load(Ordering::Acquire) || *current == language {
+            return Ok(current.clone());
+        }
+        *current = language.clone();
+        self.publish_language(&language, Source::Kiosk);
+        drop(current);
+        Ok(language)
+    }
+
     /// Logs and tells the kiosks of a change (called under the language lock, so that the
     /// log's last change is the language in force).
     pub(super) fn publish_language(&self, language: &Language, source: Source) {
+        self.language_changed.store(true, Ordering::Release);
         self.hub.publish(EventKind::LanguageChanged {
             source,
             language: language.clone(),

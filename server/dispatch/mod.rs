@@ -38,7 +38,7 @@ mod sequence;
 mod visitors;
 
 use std::collections::BTreeMap;
-use std::sync::atomic::{AtomicU64, Ordering};
+use std::sync::atomic::{AtomicBool, AtomicU64, Ordering};
 use std::sync::{Arc, Mutex, OnceLock};
 
 use arc_swap::ArcSwap;
@@ -67,6 +67,9 @@ pub struct Dispatcher {
     context: Mutex<String>,
     /// The visitor's language (`language.rs`).
     language: Mutex<crate::content::Language>,
+    /// Whether the language changed since this server started: a reconnecting kiosk's
+    /// language is taken only until then (`language.rs`).
+    language_changed: AtomicBool,
     next_id: AtomicU64,
     /// Cancelled and replaced by every stop: sequences started before a stop end with it.
     epoch: Mutex<CancellationToken>,
@@ -106,6 +109,7 @@ impl Dispatcher {
             chooser: Mutex::new(Chooser::new(seed)),
             context: Mutex::new(DEFAULT_VARIANT.to_owned()),
             language: Mutex::new(language),
+            language_changed: AtomicBool::new(false),
             next_id: AtomicU64::new(1),
             epoch: Mutex::new(epoch),
             speech_epochs: Mutex::default(),

@@ -65,6 +65,7 @@ impl EmbeddedSession {
             token,
             events: false,
             page: None,
+            language: None,
         });
         self.session.role().is_some()
     }

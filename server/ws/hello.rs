@@ -33,6 +33,8 @@ pub(super) struct Hello {
     pub(super) events: bool,
     /// The page a reconnecting kiosk shows.
     pub(super) page: Option<String>,
+    /// The language a reconnecting kiosk shows its pages in.
+    pub(super) language: Option<String>,
 }
 
 /// A client whose `hello` was accepted: the session records its role.
@@ -46,6 +48,8 @@ pub(super) struct Admitted {
     events: bool,
     /// The page a kiosk said it shows, checked to be one of the bundle's.
     page: Option<String>,
+    /// The language a kiosk said it shows its pages in, as written.
+    language: Option<String>,
 }
 
 /// Why a `hello` was refused; the client was told already.
@@ -80,6 +84,7 @@ pub(super) fn admit(client: &Client, hello: Hello) -> Result<Admitted, Refused> 
         token,
         events,
         page,
+        language,
     } = hello;
     if let Some(needed) = needed(role, client.address.local)
         && let Err(refusal) = (client.state.access).check(client.address, needed, token.as_deref())
@@ -111,6 +116,7 @@ pub(super) fn admit(client: &Client, hello: Hello) -> Result<Admitted, Refused> 
         Vec::new()
     };
     let page = page.and_then(|page| shown_page(client, role, page));
+    let language = language.filter(|_| kiosk_only(client, role, "language"));
     Ok(Admitted {
         role,
         verbs,
@@ -118,15 +124,14 @@ pub(super) fn admit(client: &Client, hello: Hello) -> Result<Admitted, Refused> 
         name,
         events,
         page,
+        language,
     })
 }
 
 /// The page a kiosk's `hello` says it shows, if it is one of the bundle's; anything else is
 /// answered with an error, and the kiosk is sent the server's page in its welcome.
 fn shown_page(client: &Client, role: ClientRole, page: String) -> Option<String> {
-    if role != ClientRole::Kiosk {
-        let message = "only a kiosk says in its hello which page it shows (\"page\")";
-        client.reply_error(ErrorCode::BadFrame, message, None, None);
+    if !kiosk_only(client, role, "page") {
         return None;
     }
     let root = &client.state.dispatcher.bundle().root;
@@ -138,6 +143,25 @@ fn shown_page(client: &Client, role: ClientRole, page: String) -> Option<String>
         return None;
     }
     Some(page)
+}
+
+/// Whether `role` may say `field` in its hello (only a kiosk says what it shows); another
+/// role is told so with `bad-frame` and welcomed all the same.
+fn kiosk_only(client: &Client, role: ClientRole, field: &str) -> bool {
+    if role != ClientRole::Kiosk {
+        let message = format!("only a kiosk says in its hello what it shows ({field:?})");
+        client.reply_error(ErrorCode::BadFrame, &message, None, None);
+    }
+    role == ClientRole::Kiosk
+}
+
+/// Takes a reconnecting kiosk's language when nothing changed the language since this server
+/// started (`Dispatcher::adopt_kiosk_language`); a language the bundle lacks is answered with
+/// `unknown-language`, and the kiosk follows the welcome's language.
+fn adopt_language(client: &Client, wanted: &str) {
+    if let Err(refused) = client.state.dispatcher.adopt_kiosk_language(wanted) {
+        client.reply_error(refused.code(), &refused.to_string(), None, None);
+    }
 }
 
 /// Sends the `welcome` frame (and an operator's recent history); returns the feed the writer
@@ -161,6 +185,9 @@ pub(super) fn welcome(client: &Client, admitted: &Admitted) -> Option<Feed> {
         }
         _ => None,
     };
+    if let Some(language) = &admitted.language {
+        adopt_language(client, language);
+    }
     let mut view = state.state_view();
     view.display = display;
     client.send(welcome_frame(client.id, role, &view));

@@ -43,6 +43,10 @@ pub enum ClientFrame {
         /// adopts it instead of sending the kiosk home (docs/PROTOCOL.md, `hello`).
         #[serde(default)]
         page: Option<String>,
+        /// The visitor's language a reconnecting kiosk shows its pages in: a restarted
+        /// server goes on in it instead of the default (docs/PROTOCOL.md, `hello`).
+        #[serde(default)]
+        language: Option<String>,
     },
     /// Trigger an act.
     Trigger {

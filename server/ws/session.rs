@@ -119,6 +119,7 @@ impl Session {
                 token,
                 events,
                 page,
+                language,
             } => self.hello(Hello {
                 role,
                 verbs,
@@ -127,6 +128,7 @@ impl Session {
                 token,
                 events,
                 page,
+                language,
             }),
             ClientFrame::Trigger {
                 label,

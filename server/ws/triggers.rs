@@ -223,6 +223,22 @@ pub(super) fn set_language(
         return;
     };
     let page = client.state.devices.display.snapshot().page;
+    if role == ClientRole::Kiosk {
+        // A visitor's tap on a language button: from the visitor's allowance, and a touch
+        // like any other, so that the session it starts holds the choice of language.
+        if let Err(message) = kiosk_allowance(client, KioskAllowance::Visitor) {
+            let code = ErrorCode::RateLimited;
+            return client.reply_error(code, &message, reference.as_deref(), None);
+        }
+        let corpus = client.state.dispatcher.bundle().config.corpus;
+        client.state.visits.touched(&corpus, client.id);
+        let touch = Touched {
+            element: Some(format!("the language button {language:?}")),
+            act: None,
+            link: None,
+        };
+        touch.log(client, page.clone());
+    }
     let dispatcher = &client.state.dispatcher;
     match dispatcher.set_language(language, role.source(), page.as_deref()) {
         Ok(language) => client.send_logged(

@@ -6,6 +6,21 @@ use std::io::{BufRead, BufReader};
 use std::path::Path;
 use std::process::{Child, Command, Stdio};
 
+/// Runs `docent ARGS` to its end in the repository's folder: exit status, stdout, stderr.
+pub fn run_docent(args: &[&str]) -> (i32, String, String) {
+    let output = Command::new(env!("CARGO_BIN_EXE_docent"))
+        .args(args)
+        .current_dir(super::repo())
+        .output()
+        .expect("docent runs");
+    let text = |b: Vec<u8>| String::from_utf8(b).expect("utf-8");
+    (
+        output.status.code().expect("exit status"),
+        text(output.stdout),
+        text(output.stderr),
+    )
+}
+
 /// `docent serve BUNDLE --listen 127.0.0.1:0 --open --no-watch --corpus CORPUS`'s arguments.
 pub fn serve_args(bundle: &Path, corpus: &Path) -> Vec<OsString> {
     let mut args: Vec<OsString> = vec!["serve".into(), bundle.into()];

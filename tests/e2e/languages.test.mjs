@@ -17,8 +17,9 @@ import path from 'node:path';
 import { after, before, test } from 'node:test';
 
 import { launchBrowser, newTouchContext, watchExceptions } from './lib/browser.mjs';
-import { corpusEvents, REPO, startDocent } from './lib/docent.mjs';
-import { openShell, waitForShownPage } from './lib/kiosk.mjs';
+import { corpusEvents, freePort, REPO, startDocent } from './lib/docent.mjs';
+import { openShell, shownPage, waitForShownPage } from './lib/kiosk.mjs';
+import { outage, recordConnections } from './lib/outage.mjs';
 import { connectWithToken, newConsoleContext, signIn } from './lib/operator.mjs';
 
 const FIXTURE = path.join(REPO, 'tests/fixtures/two-languages');
@@ -140,6 +141,43 @@ test('a visitor chooses German on the touchscreen; the operator switches back; a
   // The corpus keeps the language of each utterance.
   const said = corpusEvents(server.corpus).filter((e) => e.type === 'act.triggered').map((e) => [e.label, e.language]);
   assert.deepEqual(said, [['GREETING', 'de'], ['GOODBYE', 'de']]);
+});
+
+test('a server restarted mid-visit goes on in the visitor\'s language, on the page the visitor was on', { timeout: 90_000 }, async () => {
+  let server = await startDocent(FIXTURE, { port: await freePort() });
+  const kioskContext = await newTouchContext(browser);
+  try {
+    const kiosk = await kioskContext.newPage();
+    const exceptions = watchExceptions(kiosk);
+    let frame = await openShell(kiosk, server, 'index.html');
+    await frame.tap('#deutsch');
+    frame = await waitForShownPage(kiosk, 'de/index.html');
+    await recordConnections(kiosk);
+    const during = async () => {
+      // The calm notice speaks the page's language.
+      const notice = frame.locator('.docent-offline-notice');
+      await notice.waitFor({ state: 'visible' });
+      assert.equal(await notice.textContent(), 'Einen Moment bitte: Der Roboter ist gleich wieder da.');
+    };
+    const result = await outage({ server, bundle: FIXTURE, tab: kiosk, lengthMs: 1_500, during });
+    server = result.server;
+    assert.equal(await shownPage(kiosk), '/pages/de/index.html', 'the visitor lost the German page');
+    const state = await server.api('/api/state');
+    assert.equal(state.language, 'de', 'the restarted server did not go on in German');
+    frame = await waitForShownPage(kiosk, 'de/index.html');
+    const observer = await connectWithToken(server, 'operator', 'e2e-observer');
+    try {
+      await frame.tap('#greet');
+      const greeting = await observer.waitForEvent((e) => e.type === 'act.triggered' && e.label === 'GREETING');
+      assert.deepEqual([greeting.text, greeting.language], ['Willkommen im Museum!', 'de']);
+    } finally {
+      await observer.close();
+    }
+    assert.deepEqual(exceptions, []);
+  } finally {
+    await kioskContext.close();
+    await server.stop();
+  }
 });
 
 test('/pages/de/ serves the German page, else the English one, 404 for neither, nothing outside the bundle', { timeout: 60_000 }, async () => {
