@@ -47,9 +47,11 @@ pub enum SaveError {
         /// Why.
         error: io::Error,
     },
-    /// The bundle would not load with the translations written: its errors.
+    /// The bundle would not load with the translations written, for errors outside the
+    /// written texts (those inside leave their translation out instead): the errors.
     #[error(
-        "with these translations written the bundle would not load, so nothing was written:\n{}",
+        "with these translations written the bundle would not load, so nothing was written \
+         (the lines are those of the files as the import would have written them):\n{}",
         .0.iter().map(|d| format!("  {d}")).collect::<Vec<_>>().join("\n")
     )]
     WouldNotLoad(Vec<Diagnostic>),

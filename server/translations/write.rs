@@ -91,6 +91,10 @@ pub struct Edited {
     pub texts: Vec<Vec<Range<usize>>>,
 }
 
+/// A part of the file replaced: (start, end, the new text, the edit's index, its texts'
+/// ranges within the new text).
+type Span = (usize, usize, String, usize, Vec<Range<usize>>);
+
 /// `source` (an acts file's text) with `edits` made.
 pub fn edit_file(source: &str, edits: &[Edit]) -> Result<Edited, EditError> {
     let lines = line_starts(source);
@@ -99,8 +103,7 @@ pub fn edit_file(source: &str, edits: &[Edit]) -> Result<Edited, EditError> {
     } else {
         "\n"
     };
-    // (start, end, new text, the edit's index, its texts' ranges within the new text)
-    let mut spans: Vec<(usize, usize, String, usize, Vec<Range<usize>>)> = Vec::new();
+    let mut spans: Vec<Span> = Vec::new();
     for (index, edit) in edits.iter().enumerate() {
         let original = entry(source, &lines, &edit.original, &edit.key)?;
         let (list, ranges) = render(&edit.key, &edit.texts, original.shape, newline);
