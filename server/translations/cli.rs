@@ -2,9 +2,10 @@
 //!
 //! Exit status (docs/AUTHORING.md, "Working with a translator"): 0 when done with nothing to
 //! report; 1 when refused or failed, with nothing written (a bundle with errors, a language
-//! not in `languages:`, a table that cannot be read, a result that would not load); 2 for a
-//! command line clap cannot read; 3 when an import wrote what it could (or had nothing to
-//! write) but reported rows or texts that need a look.
+//! not in `languages:`, a table that cannot be read, a result that would not load for a
+//! reason outside the written texts); 2 for a command line clap cannot read; 3 when an import
+//! wrote what it could (or had nothing to write) but reported rows or texts that need a look,
+//! a translation left out for an error in its texts among them.
 
 use std::io::{self, Write};
 use std::path::{Path, PathBuf};
@@ -214,13 +215,13 @@ fn import(
         })?,
     };
     let plan = plan(&bundle, &target, &table);
-    let added = plan.changes.iter().filter(|c| !c.replaces).count();
-    let replaced = plan.changes.len() - added;
     let saved = if plan.changes.is_empty() {
         Default::default()
     } else {
         save(&bundle, &target, &plan.changes).map_err(|e| Refusal::Said(e.to_string()))?
     };
+    let added = saved.written.iter().filter(|c| !c.replaces).count();
+    let replaced = saved.written.len() - added;
     let name = language_name(&target);
     writeln!(
         out,
@@ -232,10 +233,13 @@ fn import(
     if !saved.files.is_empty() {
         writeln!(out, "Written: {}.", saved.files.join(", "))?;
     }
-    let reported = plan.problems.len() + saved.new_warnings.len();
+    let problems = (plan.problems.iter())
+        .chain(&saved.left_out)
+        .chain(&saved.new_warnings);
+    let reported = plan.problems.len() + saved.left_out.len() + saved.new_warnings.len();
     if reported > 0 {
         writeln!(out, "{reported} problem(s):")?;
-        for problem in plan.problems.iter().chain(&saved.new_warnings) {
+        for problem in problems {
             writeln!(out, "  {problem}")?;
         }
         return Ok(ExitCode::from(REPORTED));

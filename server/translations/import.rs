@@ -31,6 +31,8 @@ pub struct Change {
     pub variant: String,
     /// The texts, one per alternative of the original.
     pub texts: Vec<String>,
+    /// Where each text was read in the table, in the same order.
+    pub places: Vec<Place>,
     /// Whether it replaces an existing list of that language.
     pub replaces: bool,
 }
@@ -262,7 +264,7 @@ fn settle(
         ));
         return;
     }
-    let texts: Vec<String> = slot.texts.into_iter().flatten().map(|(t, _)| t).collect();
+    let (texts, places): (Vec<String>, Vec<Place>) = slot.texts.into_iter().flatten().unzip();
     let same = existing.is_some_and(|e| {
         e.alternatives.len() == texts.len()
             && e.alternatives
@@ -277,6 +279,7 @@ fn settle(
             act: act_index,
             variant: variant.name.clone(),
             texts,
+            places,
             replaces: existing.is_some(),
         });
     }

@@ -8,12 +8,14 @@
 //! - `quote.rs`: a text as YAML must spell it to read back exactly.
 //! - `write.rs`: the edit of one acts file's text, touching nothing else.
 //! - `save.rs`: the result loaded in memory and checked, then written atomically.
+//! - `located.rs`: a diagnostic of that load inside a written text, told by its row and key.
 //! - `cli.rs`: the command line, what it prints and its exit codes (docs/AUTHORING.md,
 //!   "Working with a translator").
 
 pub mod cli;
 pub mod csv;
 pub mod import;
+pub mod located;
 pub mod quote;
 pub mod save;
 pub mod table;

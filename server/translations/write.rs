@@ -9,6 +9,8 @@
 //! The new list copies its original's shape: `[a, b]` on one line, a single text after the
 //! key, or a list of `- ` items at the original's indent.
 
+use std::ops::Range;
+
 use crate::content::Pos;
 
 use super::quote::{Context, yaml_text};
@@ -79,19 +81,32 @@ enum Shape {
     Items(usize),
 }
 
+/// An acts file's text with the edits made, and where each written text landed in it.
+#[derive(Debug)]
+pub struct Edited {
+    /// The file's new text.
+    pub text: String,
+    /// For each edit (in the order given), the byte range of each of its texts in `text`, as
+    /// written (with its quotes): a diagnostic of the new text is traced to its row by these.
+    pub texts: Vec<Vec<Range<usize>>>,
+}
+
+/// A part of the file replaced: (start, end, the new text, the edit's index, its texts'
+/// ranges within the new text).
+type Span = (usize, usize, String, usize, Vec<Range<usize>>);
+
 /// `source` (an acts file's text) with `edits` made.
-pub fn edit_file(source: &str, edits: &[Edit]) -> Result<String, EditError> {
+pub fn edit_file(source: &str, edits: &[Edit]) -> Result<Edited, EditError> {
     let lines = line_starts(source);
     let newline = if source.contains("\r\n") {
         "\r\n"
     } else {
         "\n"
     };
-    // (start, end, new text), applied from the end so earlier offsets stay true.
-    let mut spans: Vec<(usize, usize, String)> = Vec::new();
-    for edit in edits {
+    let mut spans: Vec<Span> = Vec::new();
+    for (index, edit) in edits.iter().enumerate() {
         let original = entry(source, &lines, &edit.original, &edit.key)?;
-        let list = render(&edit.key, &edit.texts, original.shape, newline);
+        let (list, ranges) = render(&edit.key, &edit.texts, original.shape, newline);
         match &edit.existing {
             Some(pos) => {
                 let old = entry(source, &lines, pos, &edit.key)?;
@@ -100,25 +115,40 @@ pub fn edit_file(source: &str, edits: &[Edit]) -> Result<String, EditError> {
                 } else {
                     list.trim_end_matches(newline).to_owned()
                 };
-                spans.push((old.key_start, old.end, list));
+                spans.push((old.key_start, old.end, list, index, ranges));
             }
             None => {
                 let indent = " ".repeat(original.indent);
-                let text = if original.ends_with_break {
-                    format!("{indent}{list}")
+                let (text, lead) = if original.ends_with_break {
+                    (format!("{indent}{list}"), indent.len())
                 } else {
-                    format!("{newline}{indent}{}", list.trim_end_matches(newline))
+                    let lead = newline.len() + indent.len();
+                    let list = list.trim_end_matches(newline);
+                    (format!("{newline}{indent}{list}"), lead)
                 };
-                spans.push((original.end, original.end, text));
+                let ranges = ranges.iter().map(|r| r.start + lead..r.end + lead);
+                spans.push((original.end, original.end, text, index, ranges.collect()));
             }
         }
     }
-    spans.sort_by_key(|(start, ..)| std::cmp::Reverse(*start));
-    let mut out = source.to_owned();
-    for (start, end, text) in spans {
-        out.replace_range(start..end, &text);
+    // Built from the start, so each text's place in the new file is known.
+    spans.sort_by_key(|(start, ..)| *start);
+    let mut out = String::with_capacity(source.len());
+    let mut placed = vec![Vec::new(); edits.len()];
+    let mut copied = 0;
+    for (start, end, text, index, ranges) in spans {
+        let start = start.max(copied);
+        out.push_str(&source[copied..start]);
+        let at = out.len();
+        placed[index] = ranges.iter().map(|r| r.start + at..r.end + at).collect();
+        out.push_str(&text);
+        copied = end.max(start);
     }
-    Ok(out)
+    out.push_str(&source[copied..]);
+    Ok(Edited {
+        text: out,
+        texts: placed,
+    })
 }
 
 /// The byte where each line starts, and the text's length at the end.
@@ -197,26 +227,46 @@ fn entry(source: &str, starts: &[usize], pos: &Pos, key: &str) -> Result<Entry, 
 }
 
 /// The entry `key: texts` in `shape`, ending with a line break; its first line without the
-/// indent (the caller places it).
-fn render(key: &str, texts: &[String], shape: Shape, newline: &str) -> String {
+/// indent (the caller places it). With it, each text's byte range in it.
+fn render(key: &str, texts: &[String], shape: Shape, newline: &str) -> (String, Vec<Range<usize>>) {
     let context = match shape {
         Shape::Flow => Context::Flow,
         Shape::Single if texts.len() > 1 => Context::Flow,
         Shape::Single | Shape::Items(_) => Context::Block,
     };
     let quoted: Vec<_> = texts.iter().map(|t| yaml_text(t, context)).collect();
+    let mut out = String::new();
+    let mut ranges = Vec::with_capacity(quoted.len());
+    let mut push = |out: &mut String, text: &str| {
+        ranges.push(out.len()..out.len() + text.len());
+        out.push_str(text);
+    };
     match (shape, quoted.as_slice()) {
-        (Shape::Single, [one]) => format!("{key}: {one}{newline}"),
-        (Shape::Flow | Shape::Single, _) => format!("{key}: [{}]{newline}", quoted.join(", ")),
+        (Shape::Single, [one]) => {
+            out.push_str(&format!("{key}: "));
+            push(&mut out, one);
+        }
+        (Shape::Flow | Shape::Single, _) => {
+            out.push_str(&format!("{key}: ["));
+            for (i, text) in quoted.iter().enumerate() {
+                if i > 0 {
+                    out.push_str(", ");
+                }
+                push(&mut out, text);
+            }
+            out.push(']');
+        }
         (Shape::Items(indent), _) => {
             let pad = " ".repeat(indent);
-            let mut out = format!("{key}:{newline}");
+            out.push_str(&format!("{key}:"));
             for text in &quoted {
-                out.push_str(&format!("{pad}- {text}{newline}"));
+                out.push_str(&format!("{newline}{pad}- "));
+                push(&mut out, text);
             }
-            out
         }
     }
+    out.push_str(newline);
+    (out, ranges)
 }
 
 #[cfg(test)]
@@ -235,7 +285,9 @@ mod tests {
     #[test]
     fn a_translation_goes_right_after_its_original_in_the_same_shape() {
         let source = "- Label: A\n  Text: [Hello, Hi]  # greeting\n\n  # commands\n  Cmds: []\n";
-        let out = edit_file(source, &[edit(2, 3, None, &["Hallo", "Servus"])]).expect("edited");
+        let out = edit_file(source, &[edit(2, 3, None, &["Hallo", "Servus"])])
+            .expect("edited")
+            .text;
         assert_eq!(
             out,
             "- Label: A\n  Text: [Hello, Hi]  # greeting\n  Text@de: [Hallo, Servus]\n\n  # \
@@ -246,7 +298,9 @@ mod tests {
     #[test]
     fn a_list_of_items_keeps_its_indent_and_crlf() {
         let source = "- Label: A\r\n  Text:\r\n    - Hello\r\n    # second\r\n    - \"Hi\"\r\n- Label: B\r\n";
-        let out = edit_file(source, &[edit(2, 3, None, &["Hallo", "yes"])]).expect("edited");
+        let out = edit_file(source, &[edit(2, 3, None, &["Hallo", "yes"])])
+            .expect("edited")
+            .text;
         assert_eq!(
             out,
             "- Label: A\r\n  Text:\r\n    - Hello\r\n    # second\r\n    - \"Hi\"\r\n  Text@de:\r\n    \
@@ -257,15 +311,34 @@ mod tests {
     #[test]
     fn an_existing_translation_is_replaced_where_it_stands() {
         let source = "- Text: Hello\n  Text@de: Hallihallo # old\n  Label: A";
-        let out = edit_file(source, &[edit(1, 3, Some((2, 3)), &["Hallo: du"])]).expect("edited");
+        let out = edit_file(source, &[edit(1, 3, Some((2, 3)), &["Hallo: du"])])
+            .expect("edited")
+            .text;
         assert_eq!(out, "- Text: Hello\n  Text@de: \"Hallo: du\"\n  Label: A");
     }
 
     #[test]
     fn the_last_line_without_a_break_gets_the_translation_after_it() {
         let source = "- Label: A\n  Text: Hello";
-        let out = edit_file(source, &[edit(2, 3, None, &["Hallo"])]).expect("edited");
+        let out = edit_file(source, &[edit(2, 3, None, &["Hallo"])])
+            .expect("edited")
+            .text;
         assert_eq!(out, "- Label: A\n  Text: Hello\n  Text@de: Hallo");
+    }
+
+    #[test]
+    fn each_written_text_is_found_where_it_landed() {
+        let source =
+            "- Label: A\n  Text: [Hello, Hi]\n- Label: B\n  Text:\n    - Bye\n    - Ciao\n";
+        let edits = [
+            edit(4, 3, None, &["Tschüss", "yes"]),
+            edit(2, 3, None, &["Hallo", "Servus"]),
+        ];
+        let out = edit_file(source, &edits).expect("edited");
+        let texts: Vec<Vec<&str>> = (out.texts.iter())
+            .map(|ranges| ranges.iter().map(|r| &out.text[r.clone()]).collect())
+            .collect();
+        assert_eq!(texts, [vec!["Tschüss", "\"yes\""], vec!["Hallo", "Servus"]]);
     }
 
     #[test]

@@ -251,8 +251,8 @@ impl Walk {
             let key = unit.id.trim().to_owned();
             if let Some(markup) = &unit.markup {
                 self.notes.push(format!(
-                    "line {}: the translation of `{key}` contains markup ({markup}), which a \
-                     spoken text cannot hold; it is not imported. Write it as plain text.",
+                    "line {} ({key}): the target contains markup ({markup}), which a spoken \
+                     text cannot hold; it is not imported. Write it as plain text.",
                     unit.line
                 ));
                 return;
