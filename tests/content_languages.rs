@@ -23,7 +23,7 @@ fn a_translation_sits_beside_its_original_in_the_model() {
     let acts = yaml(&[
         "- Label: HELLO",
         "  Text: [Hello, Hi]",
-        "  Text@de: [Hallo]",
+        "  Text@de: [Hallo, Hi du]",
         "  TextChild@en: [Hey kids]",
         "  TextChild@DE: [Hallo Kinder]",
     ]);
@@ -229,4 +229,53 @@ fn the_fixture_bundle_in_two_languages_loads_with_its_one_untranslated_page() {
     assert!(bundle.page_offers_language("index.html", &de()));
     assert!(!bundle.page_offers_language("tour.html", &de()));
     assert_eq!(bundle.config.speech.voice_for(&de()), "de");
+}
+
+#[test]
+fn a_translation_with_fewer_texts_than_its_original_is_a_warning_at_its_key() {
+    let acts = yaml(&[
+        "- Label: HELLO",
+        "  Text: [Hello, Hi, Good morning]",
+        "  Text@de: [Hallo, Hi du]",
+    ]);
+    let dir = bundle(&[TWO, GERMAN_HOME, ("acts.yaml", &acts)]);
+    let report = check(dir.path());
+    assert_eq!(
+        places(&report),
+        [("translation-count", "acts.yaml:3:3".to_owned())]
+    );
+    let warning = &report.diagnostics[0];
+    assert_eq!(warning.severity, Severity::Warning);
+    for words in [
+        "`Text@de` has 2 texts but `Text` has 3",
+        "translation N goes with text N",
+    ] {
+        assert!(warning.message.contains(words), "{}", warning.message);
+    }
+}
+
+#[test]
+fn a_translation_with_more_texts_than_its_original_is_a_warning_at_its_key() {
+    let acts = yaml(&[
+        "- Label: HELLO",
+        "  Text:",
+        "    - Hello",
+        "    - Hi",
+        "    - Good morning",
+        "  Text@de:",
+        "    - Hallo",
+        "    - Hi du",
+        "    - Guten Morgen",
+        "    - Moin",
+    ]);
+    let dir = bundle(&[TWO, GERMAN_HOME, ("acts.yaml", &acts)]);
+    let report = check(dir.path());
+    assert_eq!(
+        places(&report),
+        [("translation-count", "acts.yaml:6:3".to_owned())]
+    );
+    let message = &report.diagnostics[0].message;
+    for words in ["`Text@de` has 4 texts but `Text` has 3", "never appear"] {
+        assert!(message.contains(words), "{message}");
+    }
 }

@@ -101,6 +101,7 @@ impl Pending {
                 continue;
             };
             if !translation.alternatives.is_empty() {
+                count_mismatch(&key, variant, &translation, out);
                 variant.translations.insert(language, translation);
             }
         }
@@ -123,4 +124,49 @@ impl Pending {
             }
         }
     }
+}
+
+/// Warns when the translation `key` has another number of texts than its original: text N
+/// goes with text N (the translators' table pairs them by number), so a missing one is a gap
+/// and an extra one is never in a table.
+fn count_mismatch(
+    key: &str,
+    variant: &Variant,
+    translation: &Translation,
+    out: &mut Vec<Diagnostic>,
+) {
+    let (original, translated) = (variant.alternatives.len(), translation.alternatives.len());
+    if original == translated {
+        return;
+    }
+    let name = &variant.name;
+    let texts = |n: usize| {
+        if n == 1 {
+            "1 text".to_owned()
+        } else {
+            format!("{n} texts")
+        }
+    };
+    let consequence = if translated < original {
+        format!(
+            "so the texts after number {translated} of `{name}` have no translation here, and a \
+             translator's table shows them as untranslated"
+        )
+    } else {
+        format!(
+            "so the texts after number {original} of `{key}` translate nothing: they never \
+             appear in a translator's table, and an import can replace them"
+        )
+    };
+    let message = format!(
+        "`{key}` has {} but `{name}` has {}: translation N goes with text N, {consequence}. \
+         Write as many texts in `{key}` as in `{name}`, in the same order.",
+        texts(translated),
+        texts(original),
+    );
+    out.push(Diagnostic::warning(
+        "translation-count",
+        &translation.pos,
+        message,
+    ));
 }
