@@ -11,6 +11,11 @@ const TWO: (&str, &str) = (
     "docent.yaml",
     "languages: [en, de]\ncontexts: [TextChild]\n",
 );
+/// The home page with its button to German, so that only the problem under test is reported.
+const HOME: (&str, &str) = (
+    "pages/index.html",
+    "<!doctype html><title>Start</title><button data-language=\"de\">Deutsch</button>",
+);
 /// The German home page, so that only the problem under test is reported.
 const GERMAN_HOME: (&str, &str) = ("pages/de/index.html", "<!doctype html><title>Start</title>");
 
@@ -27,7 +32,7 @@ fn a_translation_sits_beside_its_original_in_the_model() {
         "  TextChild@en: [Hey kids]",
         "  TextChild@DE: [Hallo Kinder]",
     ]);
-    let dir = bundle(&[TWO, GERMAN_HOME, ("acts.yaml", &acts)]);
+    let dir = bundle(&[TWO, HOME, GERMAN_HOME, ("acts.yaml", &acts)]);
     let report = check(dir.path());
     assert_eq!(places(&report), []);
     let bundle = loaded(report);
@@ -58,7 +63,7 @@ fn a_missing_translation_is_a_warning_naming_act_variant_and_language() {
         "  Text@de: [Hallo]",
         "  TextChild: [Hey kids]",
     ]);
-    let dir = bundle(&[TWO, GERMAN_HOME, ("acts.yaml", &acts)]);
+    let dir = bundle(&[TWO, HOME, GERMAN_HOME, ("acts.yaml", &acts)]);
     let report = check(dir.path());
     assert_eq!(
         places(&report),
@@ -86,7 +91,7 @@ fn a_text_in_a_language_the_bundle_lacks_is_an_error_at_its_key() {
         "  Text@fr: [Salut]",
         "  Text@de: [Hallo]",
     ]);
-    let dir = bundle(&[TWO, GERMAN_HOME, ("acts.yaml", &acts)]);
+    let dir = bundle(&[TWO, HOME, GERMAN_HOME, ("acts.yaml", &acts)]);
     let report = check(dir.path());
     assert_eq!(
         places(&report),
@@ -102,7 +107,7 @@ fn a_suffix_that_is_no_language_tag_is_an_error_at_its_key() {
         "  Text: [Hello]",
         "  Text@german: [Hallo]",
     ]);
-    let dir = bundle(&[TWO, GERMAN_HOME, ("acts.yaml", &acts)]);
+    let dir = bundle(&[TWO, HOME, GERMAN_HOME, ("acts.yaml", &acts)]);
     let report = check(dir.path());
     // The German text is still missing, and said so.
     assert_eq!(
@@ -122,7 +127,7 @@ fn the_default_language_written_twice_is_a_duplicate_key() {
         "  Text@en: [Hello again]",
         "  Text@de: [Hallo]",
     ]);
-    let dir = bundle(&[TWO, GERMAN_HOME, ("acts.yaml", &acts)]);
+    let dir = bundle(&[TWO, HOME, GERMAN_HOME, ("acts.yaml", &acts)]);
     let report = check(dir.path());
     assert_eq!(
         places(&report),
@@ -138,7 +143,7 @@ fn a_translation_without_its_original_is_an_error_at_its_key() {
         "  Text@de: [Hallo]",
         "  TextChild@de: [Hallo Kinder]",
     ]);
-    let dir = bundle(&[TWO, GERMAN_HOME, ("acts.yaml", &acts)]);
+    let dir = bundle(&[TWO, HOME, GERMAN_HOME, ("acts.yaml", &acts)]);
     let report = check(dir.path());
     assert_eq!(
         places(&report),
@@ -149,7 +154,7 @@ fn a_translation_without_its_original_is_an_error_at_its_key() {
 #[test]
 fn a_bad_or_repeated_language_in_docent_yaml_is_reported_where_written() {
     let acts = "- Label: HELLO\n  Text: [Hello]\n";
-    let settings = "languages: [en, deutsch, en]\n";
+    let settings = "languages: [en, klingon, en]\n";
     let dir = bundle(&[("docent.yaml", settings), ("acts.yaml", acts)]);
     let report = check(dir.path());
     assert_eq!(
@@ -159,6 +164,9 @@ fn a_bad_or_repeated_language_in_docent_yaml_is_reported_where_written() {
             ("config-bad-value", "docent.yaml:1:26".to_owned()),
         ]
     );
+    let twice = &report.diagnostics[1].message;
+    assert!(twice.contains("Remove the second `en`."), "{twice}");
+    assert!(!twice.contains("Found:"), "{twice}");
 }
 
 #[test]
@@ -181,6 +189,7 @@ fn a_page_missing_in_a_language_is_one_warning_and_links_fall_back_to_it() {
                        <link rel=\"stylesheet\" href=\"style.css\">\n";
     let dir = bundle(&[
         TWO,
+        HOME,
         ("acts.yaml", acts),
         ("pages/tour.html", "<!doctype html><title>Tour</title>"),
         ("pages/style.css", "body { color: black }"),
@@ -238,7 +247,7 @@ fn a_translation_with_fewer_texts_than_its_original_is_a_warning_at_its_key() {
         "  Text: [Hello, Hi, Good morning]",
         "  Text@de: [Hallo, Hi du]",
     ]);
-    let dir = bundle(&[TWO, GERMAN_HOME, ("acts.yaml", &acts)]);
+    let dir = bundle(&[TWO, HOME, GERMAN_HOME, ("acts.yaml", &acts)]);
     let report = check(dir.path());
     assert_eq!(
         places(&report),
@@ -268,7 +277,7 @@ fn a_translation_with_more_texts_than_its_original_is_a_warning_at_its_key() {
         "    - Guten Morgen",
         "    - Moin",
     ]);
-    let dir = bundle(&[TWO, GERMAN_HOME, ("acts.yaml", &acts)]);
+    let dir = bundle(&[TWO, HOME, GERMAN_HOME, ("acts.yaml", &acts)]);
     let report = check(dir.path());
     assert_eq!(
         places(&report),

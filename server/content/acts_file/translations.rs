@@ -29,9 +29,13 @@ pub(super) fn suffix(
     out: &mut Vec<Diagnostic>,
 ) -> Suffix {
     let Some(language) = Language::parse(tag) else {
+        let base = name.split_once('@').map_or(name, |(base, _)| base);
+        let meant = Language::from_name(tag)
+            .map(|l| format!(" Write `{base}@{l}` for {tag}."))
+            .unwrap_or_default();
         let message = format!(
-            "`{tag}` in `{name}` is not a language tag. {LANGUAGE_USAGE} The bundle's languages \
-             are {}.",
+            "`{tag}` in `{name}` is not a language tag.{meant} {LANGUAGE_USAGE} The bundle's \
+             languages are {}.",
             languages.listed()
         );
         out.push(Diagnostic::error("bad-language", pos, message));
