@@ -72,7 +72,7 @@ pub(super) fn offered_language(
     if !languages.all().contains(&language) {
         let message = format!(
             "This button switches to `{language}`, which is not one of the bundle's languages \
-             ({}): a visitor tapping it would only see \"This language is not available here.\". Add `{language}` to `languages:` in \
+             ({}): the visitor would see \"This language is not available here.\" on tapping it. Add `{language}` to `languages:` in \
              docent.yaml, or correct the button.",
             languages.listed()
         );
