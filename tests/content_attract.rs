@@ -7,6 +7,7 @@ mod common;
 use std::time::Duration;
 
 use common::check::{assert_plain, bundle, check, loaded, places, yaml};
+use docent::content::{Colour, render_diagnostics};
 
 const ACTS: (&str, &str) = ("acts.yaml", "- Label: INVITE\n  Text: Come closer!\n");
 
@@ -265,5 +266,96 @@ fn bad_and_repeated_dates_are_reported() {
             ("config-bad-value", "docent.yaml:4:14".to_owned()),
             ("config-bad-value", "docent.yaml:6:14".to_owned()),
         ]
+    );
+}
+
+#[test]
+fn days_written_as_people_write_them_get_the_whole_range_as_the_fix() {
+    for (days, says) in [
+        (
+            "Mon to Fri",
+            "Write a range of days with a hyphen: `Mon-Fri`.",
+        ),
+        (
+            "Mo-Fr",
+            "Days are written by their first three English letters: `Mon-Fri`.",
+        ),
+        ("weekdays", "Write `Mon-Fri` for `weekdays`"),
+        ("weekends", "Write `Sat, Sun` for `weekends`"),
+        ("everyday", "Write `daily` for `everyday`"),
+        ("Mon–Fri", "`–` is a dash from a word processor"),
+    ] {
+        let line = format!("    - days: {days}");
+        let config = yaml(&[
+            "schedule:",
+            "  closed: index.html",
+            "  open:",
+            &line,
+            "      hours: 09:00-17:00",
+        ]);
+        let dir = bundle(&[ACTS, ("docent.yaml", &config)]);
+        let report = check(dir.path());
+        assert_eq!(
+            places(&report),
+            one("config-bad-value", "docent.yaml:4:13"),
+            "{days}"
+        );
+        let message = &report.diagnostics[0].message;
+        assert!(message.starts_with(says), "{days}: {message}");
+        assert!(!message.contains("Did you mean"), "{days}: {message}");
+        if days == "Mon–Fri" {
+            assert!(message.contains("write `Mon-Fri`"), "{message}");
+        }
+    }
+}
+
+#[test]
+fn a_usage_with_an_example_is_rendered_as_one_whole_sentence() {
+    let lines = [
+        "schedule:",
+        "  closed: index.html",
+        "  open:",
+        "    - days: Mon to Fri",
+        "      hours: 09:00-17:00",
+        "  special_days:",
+        "    - {date: 24.12.2025, hours: closed}",
+    ];
+    let config = yaml(&lines);
+    let dir = bundle(&[ACTS, ("docent.yaml", &config)]);
+    let report = check(dir.path());
+    assert_eq!(
+        places(&report),
+        [
+            ("config-bad-value", "docent.yaml:4:13".to_owned()),
+            ("config-bad-value", "docent.yaml:7:14".to_owned()),
+        ]
+    );
+    let text = render_diagnostics(dir.path(), &report.diagnostics, Colour::Plain);
+    for whole in [
+        "help: `days` names weekdays by their first three letters, alone, as a range or \
+         separated by commas, e.g. `Mon-Fri`, `Sat, Sun` or `daily`.",
+        "error[config-bad-value]: `date` is a day written year-month-day, e.g. `date: \
+         2025-12-24`.",
+    ] {
+        assert!(text.contains(whole), "{whole}\n{text}");
+    }
+}
+
+#[test]
+fn ranges_of_one_daily_entry_that_overlap_are_said_to_overlap_every_day() {
+    let lines = [
+        "schedule:",
+        "  closed: index.html",
+        "  open:",
+        "    - {days: daily, hours: '10:00-18:00, 12:00-14:00'}",
+    ];
+    let config = yaml(&lines);
+    let dir = bundle(&[ACTS, ("docent.yaml", &config)]);
+    let report = check(dir.path());
+    assert_eq!(places(&report), one("schedule-overlap", "docent.yaml:4:42"));
+    let message = &report.diagnostics[0].message;
+    assert!(
+        message.starts_with("Every day, 12:00-14:00 overlaps 10:00-18:00 (line 4)"),
+        "{message}"
     );
 }

@@ -11,6 +11,11 @@ const TWO: (&str, &str) = (
     "docent.yaml",
     "languages: [en, de]\ncontexts: [TextChild]\n",
 );
+/// The home page with its button to German, so that only the problem under test is reported.
+const HOME: (&str, &str) = (
+    "pages/index.html",
+    "<!doctype html><title>Start</title><button data-language=\"de\">Deutsch</button>",
+);
 /// The German home page, so that only the problem under test is reported.
 const GERMAN_HOME: (&str, &str) = ("pages/de/index.html", "<!doctype html><title>Start</title>");
 
@@ -23,11 +28,11 @@ fn a_translation_sits_beside_its_original_in_the_model() {
     let acts = yaml(&[
         "- Label: HELLO",
         "  Text: [Hello, Hi]",
-        "  Text@de: [Hallo]",
+        "  Text@de: [Hallo, Hi du]",
         "  TextChild@en: [Hey kids]",
         "  TextChild@DE: [Hallo Kinder]",
     ]);
-    let dir = bundle(&[TWO, GERMAN_HOME, ("acts.yaml", &acts)]);
+    let dir = bundle(&[TWO, HOME, GERMAN_HOME, ("acts.yaml", &acts)]);
     let report = check(dir.path());
     assert_eq!(places(&report), []);
     let bundle = loaded(report);
@@ -58,7 +63,7 @@ fn a_missing_translation_is_a_warning_naming_act_variant_and_language() {
         "  Text@de: [Hallo]",
         "  TextChild: [Hey kids]",
     ]);
-    let dir = bundle(&[TWO, GERMAN_HOME, ("acts.yaml", &acts)]);
+    let dir = bundle(&[TWO, HOME, GERMAN_HOME, ("acts.yaml", &acts)]);
     let report = check(dir.path());
     assert_eq!(
         places(&report),
@@ -86,7 +91,7 @@ fn a_text_in_a_language_the_bundle_lacks_is_an_error_at_its_key() {
         "  Text@fr: [Salut]",
         "  Text@de: [Hallo]",
     ]);
-    let dir = bundle(&[TWO, GERMAN_HOME, ("acts.yaml", &acts)]);
+    let dir = bundle(&[TWO, HOME, GERMAN_HOME, ("acts.yaml", &acts)]);
     let report = check(dir.path());
     assert_eq!(
         places(&report),
@@ -102,7 +107,7 @@ fn a_suffix_that_is_no_language_tag_is_an_error_at_its_key() {
         "  Text: [Hello]",
         "  Text@german: [Hallo]",
     ]);
-    let dir = bundle(&[TWO, GERMAN_HOME, ("acts.yaml", &acts)]);
+    let dir = bundle(&[TWO, HOME, GERMAN_HOME, ("acts.yaml", &acts)]);
     let report = check(dir.path());
     // The German text is still missing, and said so.
     assert_eq!(
@@ -122,7 +127,7 @@ fn the_default_language_written_twice_is_a_duplicate_key() {
         "  Text@en: [Hello again]",
         "  Text@de: [Hallo]",
     ]);
-    let dir = bundle(&[TWO, GERMAN_HOME, ("acts.yaml", &acts)]);
+    let dir = bundle(&[TWO, HOME, GERMAN_HOME, ("acts.yaml", &acts)]);
     let report = check(dir.path());
     assert_eq!(
         places(&report),
@@ -138,7 +143,7 @@ fn a_translation_without_its_original_is_an_error_at_its_key() {
         "  Text@de: [Hallo]",
         "  TextChild@de: [Hallo Kinder]",
     ]);
-    let dir = bundle(&[TWO, GERMAN_HOME, ("acts.yaml", &acts)]);
+    let dir = bundle(&[TWO, HOME, GERMAN_HOME, ("acts.yaml", &acts)]);
     let report = check(dir.path());
     assert_eq!(
         places(&report),
@@ -149,7 +154,7 @@ fn a_translation_without_its_original_is_an_error_at_its_key() {
 #[test]
 fn a_bad_or_repeated_language_in_docent_yaml_is_reported_where_written() {
     let acts = "- Label: HELLO\n  Text: [Hello]\n";
-    let settings = "languages: [en, deutsch, en]\n";
+    let settings = "languages: [en, klingon, en]\n";
     let dir = bundle(&[("docent.yaml", settings), ("acts.yaml", acts)]);
     let report = check(dir.path());
     assert_eq!(
@@ -159,6 +164,9 @@ fn a_bad_or_repeated_language_in_docent_yaml_is_reported_where_written() {
             ("config-bad-value", "docent.yaml:1:26".to_owned()),
         ]
     );
+    let twice = &report.diagnostics[1].message;
+    assert!(twice.contains("Remove the second `en`."), "{twice}");
+    assert!(!twice.contains("Found:"), "{twice}");
 }
 
 #[test]
@@ -181,6 +189,7 @@ fn a_page_missing_in_a_language_is_one_warning_and_links_fall_back_to_it() {
                        <link rel=\"stylesheet\" href=\"style.css\">\n";
     let dir = bundle(&[
         TWO,
+        HOME,
         ("acts.yaml", acts),
         ("pages/tour.html", "<!doctype html><title>Tour</title>"),
         ("pages/style.css", "body { color: black }"),
@@ -229,4 +238,239 @@ fn the_fixture_bundle_in_two_languages_loads_with_its_one_untranslated_page() {
     assert!(bundle.page_offers_language("index.html", &de()));
     assert!(!bundle.page_offers_language("tour.html", &de()));
     assert_eq!(bundle.config.speech.voice_for(&de()), "de");
+}
+
+#[test]
+fn a_translation_with_fewer_texts_than_its_original_is_a_warning_at_its_key() {
+    let acts = yaml(&[
+        "- Label: HELLO",
+        "  Text: [Hello, Hi, Good morning]",
+        "  Text@de: [Hallo, Hi du]",
+    ]);
+    let dir = bundle(&[TWO, HOME, GERMAN_HOME, ("acts.yaml", &acts)]);
+    let report = check(dir.path());
+    assert_eq!(
+        places(&report),
+        [("translation-count", "acts.yaml:3:3".to_owned())]
+    );
+    let warning = &report.diagnostics[0];
+    assert_eq!(warning.severity, Severity::Warning);
+    for words in [
+        "`Text@de` has 2 texts but `Text` has 3",
+        "translation N goes with text N",
+    ] {
+        assert!(warning.message.contains(words), "{}", warning.message);
+    }
+}
+
+#[test]
+fn a_translation_with_more_texts_than_its_original_is_a_warning_at_its_key() {
+    let acts = yaml(&[
+        "- Label: HELLO",
+        "  Text:",
+        "    - Hello",
+        "    - Hi",
+        "    - Good morning",
+        "  Text@de:",
+        "    - Hallo",
+        "    - Hi du",
+        "    - Guten Morgen",
+        "    - Moin",
+    ]);
+    let dir = bundle(&[TWO, HOME, GERMAN_HOME, ("acts.yaml", &acts)]);
+    let report = check(dir.path());
+    assert_eq!(
+        places(&report),
+        [("translation-count", "acts.yaml:6:3".to_owned())]
+    );
+    let message = &report.diagnostics[0].message;
+    for words in ["`Text@de` has 4 texts but `Text` has 3", "never appear"] {
+        assert!(message.contains(words), "{message}");
+    }
+}
+
+#[test]
+fn languages_without_brackets_are_read_as_the_list_meant() {
+    let acts = "- Label: HELLO\n  Text: [Hello]\n  Text@de: [Hallo]\n";
+    let dir = bundle(&[
+        ("docent.yaml", "languages: en, de\n"),
+        HOME,
+        GERMAN_HOME,
+        ("acts.yaml", acts),
+    ]);
+    let report = check(dir.path());
+    assert_eq!(
+        places(&report),
+        [("bad-language", "docent.yaml:1:12".to_owned())],
+        "no knock-on error for Text@de"
+    );
+    let message = &report.diagnostics[0].message;
+    assert!(
+        message.contains("as a list in brackets: `languages: [en, de]`"),
+        "{message}"
+    );
+}
+
+#[test]
+fn language_names_are_answered_with_their_tags_and_read_as_meant() {
+    let acts = "- Label: HELLO\n  Text: [Hello]\n  Text@de: [Hallo]\n";
+    let dir = bundle(&[
+        ("docent.yaml", "languages: [English, Deutsch]\n"),
+        HOME,
+        GERMAN_HOME,
+        ("acts.yaml", acts),
+    ]);
+    let report = check(dir.path());
+    assert_eq!(
+        places(&report),
+        [
+            ("bad-language", "docent.yaml:1:13".to_owned()),
+            ("bad-language", "docent.yaml:1:22".to_owned()),
+        ]
+    );
+    assert!(report.diagnostics[0].message.contains("write `en`"));
+    assert!(report.diagnostics[1].message.contains("write `de`"));
+    assert!(
+        report
+            .diagnostics
+            .iter()
+            .all(|d| !d.message.contains("a list"))
+    );
+}
+
+#[test]
+fn a_language_name_after_the_at_suggests_the_tag() {
+    let acts = yaml(&[
+        "- Label: HELLO",
+        "  Text: [Hello]",
+        "  Text@de: [Hallo]",
+        "  Text@french: [Salut]",
+    ]);
+    let dir = bundle(&[TWO, HOME, GERMAN_HOME, ("acts.yaml", &acts)]);
+    let report = check(dir.path());
+    assert_eq!(
+        places(&report),
+        [("bad-language", "acts.yaml:4:3".to_owned())]
+    );
+    let message = &report.diagnostics[0].message;
+    assert!(message.contains("Write `Text@fr` for french."), "{message}");
+}
+
+#[test]
+fn the_default_written_twice_says_why_the_keys_are_the_same() {
+    let acts = yaml(&["- Label: HELLO", "  Text: [Salut]", "  Text@fr: [Bonjour]"]);
+    let dir = bundle(&[
+        ("docent.yaml", "languages: [fr, en]\n"),
+        (
+            "pages/index.html",
+            "<!doctype html><title>Start</title><button data-language=\"en\">English</button>",
+        ),
+        ("pages/en/index.html", "<!doctype html><title>Start</title>"),
+        ("acts.yaml", &acts),
+    ]);
+    let report = check(dir.path());
+    assert_eq!(
+        places(&report),
+        [
+            ("missing-translation", "acts.yaml:2:3".to_owned()),
+            ("duplicate-key", "acts.yaml:3:3".to_owned()),
+        ]
+    );
+    let message = &report.diagnostics[1].message;
+    assert!(
+        message.contains("because `fr` is the default language, the first in `languages:`"),
+        "{message}"
+    );
+}
+
+#[test]
+fn a_page_folder_of_an_undeclared_language_is_reported_once_without_broken_links() {
+    let acts = "- Label: HELLO\n  Text: [Hello]\n  Text@fr: [Salut]\n";
+    let german = "<!doctype html><title>Start</title>\n\
+                  <link rel=\"stylesheet\" href=\"style.css\"> <a href=\"tour.html\">Rundgang</a>\n";
+    let dir = bundle(&[
+        ("docent.yaml", "languages: [en, fr]\n"),
+        (
+            "pages/index.html",
+            "<!doctype html><title>Start</title><button data-language=\"fr\">Francais</button>",
+        ),
+        ("pages/style.css", "body { color: black }"),
+        ("pages/tour.html", "<!doctype html><title>Tour</title>"),
+        ("pages/fr/index.html", "<!doctype html><title>Debut</title>"),
+        ("pages/fr/tour.html", "<!doctype html><title>Visite</title>"),
+        ("pages/de/index.html", german),
+        ("pages/css/extra.css", "p { margin: 0 }"),
+        ("acts.yaml", acts),
+    ]);
+    let report = check(dir.path());
+    // `css` is a tag too, but `pages/css/` holds no copy of a page: not a language folder.
+    assert_eq!(
+        places(&report),
+        [("unknown-language", "pages/de/index.html:1:1".to_owned())]
+    );
+    let message = &report.diagnostics[0].message;
+    for words in [
+        "`pages/de/` looks like the pages of the language `de`",
+        "not in `languages:`",
+        "add `de` to `languages:`",
+        "rename the folder",
+    ] {
+        assert!(
+            message.to_lowercase().contains(&words.to_lowercase()),
+            "{message}"
+        );
+    }
+}
+
+#[test]
+fn a_button_for_an_undeclared_language_says_what_the_visitor_would_see() {
+    let acts = "- Label: HELLO\n  Text: [Hello]\n  Text@de: [Hallo]\n";
+    let page = "<!doctype html><title>Start</title>\n\
+                <button data-language=\"de\">Deutsch</button> <button data-language=\"fr\">Francais</button>\n";
+    let dir = bundle(&[
+        TWO,
+        GERMAN_HOME,
+        ("acts.yaml", acts),
+        ("pages/index.html", page),
+    ]);
+    let report = check(dir.path());
+    assert_eq!(
+        places(&report),
+        [("unknown-language", "pages/index.html:2:68".to_owned())]
+    );
+    let message = &report.diagnostics[0].message;
+    assert!(
+        message.contains("the visitor would see \"This language is not available here.\""),
+        "{message}"
+    );
+}
+
+#[test]
+fn a_language_no_page_offers_is_a_warning_at_its_place_in_languages() {
+    let acts = "- Label: HELLO\n  Text: [Hello]\n  Text@de: [Hallo]\n  Text@fr: [Salut]\n";
+    let dir = bundle(&[
+        ("docent.yaml", "languages: [en, de, fr]\n"),
+        HOME,
+        GERMAN_HOME,
+        ("pages/fr/index.html", "<!doctype html><title>Debut</title>"),
+        ("acts.yaml", acts),
+    ]);
+    let report = check(dir.path());
+    assert_eq!(
+        places(&report),
+        [("language-unreachable", "docent.yaml:1:21".to_owned())],
+        "not `en`, the default; not `de`, which the home page offers"
+    );
+    let warning = &report.diagnostics[0];
+    assert_eq!(warning.severity, Severity::Warning);
+    assert!(
+        warning.message.contains("data-language=\"fr\""),
+        "{}",
+        warning.message
+    );
+    assert!(
+        warning.message.contains("visitors cannot choose it"),
+        "{}",
+        warning.message
+    );
 }

@@ -194,9 +194,11 @@ fn read_act(node: &Node, reading: &Reading<'_>, out: &mut Vec<Diagnostic>) -> Op
         if let Some((_, first)) = seen.iter().find(|(k, _)| *k == name) {
             let message = format!(
                 "`{written}` appears twice in this act (first at line {}; `{name}` and \
-                 `{name}@{}` are the same key). Keep one: put all its entries in a single list.",
+                 `{name}@{default}` are the same key, because `{default}` is the default \
+                 language, the first in `languages:`). Keep one: put all its entries in a \
+                 single list.",
                 first.line,
-                reading.languages.default_language()
+                default = reading.languages.default_language()
             );
             out.push(Diagnostic::error("duplicate-key", &key.pos, message));
             continue;

@@ -40,6 +40,17 @@ impl Language {
         (primary_ok && subtag_ok && parts.next().is_none()).then(|| Language(lower.into()))
     }
 
+    /// The tag of a language written by its name, in English or in itself (`English`,
+    /// `Deutsch`, `Français`): what an author means by `languages: [English, German]`.
+    pub fn from_name(name: &str) -> Option<Language> {
+        let name = name.trim().to_lowercase();
+        let tag = LANGUAGE_NAMES
+            .iter()
+            .find(|(_, names)| names.contains(&name.as_str()))?
+            .0;
+        Language::parse(tag)
+    }
+
     /// The tag as Docent writes it (lower case).
     pub fn as_str(&self) -> &str {
         &self.0
@@ -50,6 +61,47 @@ impl Language {
         Language(Arc::from("en"))
     }
 }
+
+/// Common language names (in English, in the language itself, and some in German) and their
+/// tags, for the hint after a name written where a tag belongs.
+const LANGUAGE_NAMES: &[(&str, &[&str])] = &[
+    ("en", &["english", "englisch", "anglais"]),
+    ("de", &["german", "deutsch", "allemand"]),
+    (
+        "fr",
+        &[
+            "french",
+            "français",
+            "francais",
+            "französisch",
+            "franzosisch",
+        ],
+    ),
+    ("it", &["italian", "italiano", "italienisch"]),
+    ("es", &["spanish", "español", "espanol", "spanisch"]),
+    ("nl", &["dutch", "nederlands", "niederländisch"]),
+    (
+        "pt",
+        &["portuguese", "português", "portugues", "portugiesisch"],
+    ),
+    ("ja", &["japanese", "日本語", "japanisch"]),
+    ("zh", &["chinese", "中文", "chinesisch", "mandarin"]),
+    ("ko", &["korean", "한국어"]),
+    ("ru", &["russian", "русский", "russisch"]),
+    ("uk", &["ukrainian", "українська"]),
+    ("pl", &["polish", "polski", "polnisch"]),
+    ("cs", &["czech", "čeština", "tschechisch"]),
+    ("sv", &["swedish", "svenska", "schwedisch"]),
+    ("da", &["danish", "dansk", "dänisch"]),
+    ("nb", &["norwegian", "norsk", "norwegisch"]),
+    ("fi", &["finnish", "suomi", "finnisch"]),
+    ("el", &["greek", "ελληνικά", "griechisch"]),
+    ("tr", &["turkish", "türkçe", "türkisch"]),
+    ("ar", &["arabic", "العربية", "arabisch"]),
+    ("he", &["hebrew", "עברית", "hebräisch"]),
+    ("hu", &["hungarian", "magyar", "ungarisch"]),
+    ("ca", &["catalan", "català", "katalanisch"]),
+];
 
 impl fmt::Display for Language {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
@@ -159,6 +211,17 @@ mod tests {
         ] {
             assert_eq!(Language::parse(bad), None, "{bad:?}");
         }
+    }
+
+    #[test]
+    fn common_language_names_give_their_tag() {
+        for (name, tag) in [("English", "en"), ("Deutsch", "de"), ("Français", "fr")] {
+            assert_eq!(
+                Language::from_name(name).map(|l| l.to_string()).as_deref(),
+                Some(tag)
+            );
+        }
+        assert_eq!(Language::from_name("Klingon"), None);
     }
 
     #[test]

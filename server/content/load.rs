@@ -15,7 +15,7 @@ use crate::content::diagnostic::Diagnostic;
 use crate::content::gather::{CheckedAct, CheckedFile, gather, on_reading_stack, read_limited};
 use crate::content::model::{Act, Bundle, Located, Pos};
 use crate::content::operator_check::{KeyBindings, check_map, visitor_groups};
-use crate::content::pages::PageLabels;
+use crate::content::pages::{PageLabels, check_reachable_languages};
 use crate::content::paths::{BundleArea, PathError};
 use crate::content::suggest::did_you_mean;
 use crate::content::unused::check_unused;
@@ -278,6 +278,7 @@ fn check_page_labels(
         triggered,
         languages,
     } = labels;
+    check_reachable_languages(config, &languages, out);
     merged.page_languages = languages;
     let known = |label: &str| merged.knows(label);
     for Located { value, pos } in &offered {

@@ -95,7 +95,13 @@ fn split_message(message: &str) -> (&str, Option<&str>) {
         match c {
             '`' => in_code = !in_code,
             '"' if !in_code => in_quote = !in_quote,
-            ' ' if !in_code && !in_quote && matches!(previous, '.' | '?' | '!') => {
+            // "e.g." and "i.e." end no sentence: the example belongs to what it illustrates.
+            ' ' if !in_code
+                && !in_quote
+                && matches!(previous, '.' | '?' | '!')
+                && !message[..i].ends_with("e.g.")
+                && !message[..i].ends_with("i.e.") =>
+            {
                 let rest = message[i..].trim_start();
                 if !rest.is_empty() {
                     return (&message[..i], Some(rest));
@@ -117,7 +123,14 @@ mod tests {
     fn messages_split_after_the_first_sentence_outside_code_and_quotes() {
         assert_eq!(
             split_message("`a. b` is odd. Fix it. Now."),
-            ("`a. b` is odd.", Some("Fix it. Now."))
+            ("`a. b` is odd.", Some("Fix it. Now.")),
+        );
+        assert_eq!(
+            split_message("`date` is a day, e.g. `date: 2025-12-24`. Found: `x`."),
+            (
+                "`date` is a day, e.g. `date: 2025-12-24`.",
+                Some("Found: `x`.")
+            )
         );
         assert_eq!(
             split_message("It says \"Hi. There\" here. Quote it."),

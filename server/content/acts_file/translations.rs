@@ -29,9 +29,13 @@ pub(super) fn suffix(
     out: &mut Vec<Diagnostic>,
 ) -> Suffix {
     let Some(language) = Language::parse(tag) else {
+        let base = name.split_once('@').map_or(name, |(base, _)| base);
+        let meant = Language::from_name(tag)
+            .map(|l| format!(" Write `{base}@{l}` for {tag}."))
+            .unwrap_or_default();
         let message = format!(
-            "`{tag}` in `{name}` is not a language tag. {LANGUAGE_USAGE} The bundle's languages \
-             are {}.",
+            "`{tag}` in `{name}` is not a language tag.{meant} {LANGUAGE_USAGE} The bundle's \
+             languages are {}.",
             languages.listed()
         );
         out.push(Diagnostic::error("bad-language", pos, message));
@@ -101,6 +105,7 @@ impl Pending {
                 continue;
             };
             if !translation.alternatives.is_empty() {
+                count_mismatch(&key, variant, &translation, out);
                 variant.translations.insert(language, translation);
             }
         }
@@ -123,4 +128,49 @@ impl Pending {
             }
         }
     }
+}
+
+/// Warns when the translation `key` has another number of texts than its original: text N
+/// goes with text N (the translators' table pairs them by number), so a missing one is a gap
+/// and an extra one is never in a table.
+fn count_mismatch(
+    key: &str,
+    variant: &Variant,
+    translation: &Translation,
+    out: &mut Vec<Diagnostic>,
+) {
+    let (original, translated) = (variant.alternatives.len(), translation.alternatives.len());
+    if original == translated {
+        return;
+    }
+    let name = &variant.name;
+    let texts = |n: usize| {
+        if n == 1 {
+            "1 text".to_owned()
+        } else {
+            format!("{n} texts")
+        }
+    };
+    let consequence = if translated < original {
+        format!(
+            "so the texts after number {translated} of `{name}` have no translation here, and a \
+             translator's table shows them as untranslated"
+        )
+    } else {
+        format!(
+            "so the texts after number {original} of `{key}` translate nothing: they never \
+             appear in a translator's table, and an import can replace them"
+        )
+    };
+    let message = format!(
+        "`{key}` has {} but `{name}` has {}: translation N goes with text N, {consequence}. \
+         Write as many texts in `{key}` as in `{name}`, in the same order.",
+        texts(translated),
+        texts(original),
+    );
+    out.push(Diagnostic::warning(
+        "translation-count",
+        &translation.pos,
+        message,
+    ));
 }

@@ -19,11 +19,18 @@ const VOICES_USAGE: &str = "`voices` gives each language its espeak-ng voice, e.
                             `voices: {en: en-gb, de: de}`.";
 
 impl Reader {
-    /// `languages:`: a list (or a single tag), no repeats; every tag checked.
+    /// `languages:`: a list (or a single tag), no repeats; every tag checked. A list written
+    /// without its brackets (`en, fr`) or with language names (`English`) is reported and
+    /// read as meant, so that the texts in those languages bring no errors of their own.
     pub(super) fn languages(&mut self, node: &Node) -> Vec<Located<Language>> {
         let items: Vec<&Node> = match &node.kind {
             Kind::Seq(items) => items.iter().collect(),
-            Kind::Str { .. } | Kind::Guessed(_) => vec![node],
+            Kind::Str { .. } | Kind::Guessed(_) => {
+                if let Some(meant) = self.languages_without_brackets(node) {
+                    return meant;
+                }
+                vec![node]
+            }
             _ => {
                 self.bad(node, LANGUAGES_USAGE);
                 return Vec::new();
@@ -35,7 +42,15 @@ impl Reader {
                 continue;
             };
             if out.iter().any(|l| l.value == language) {
-                self.bad(item, "This language is listed twice.");
+                let told = |d: &Diagnostic| (d.line, d.column) == (item.pos.line, item.pos.column);
+                if self.diagnostics.iter().any(told) {
+                    continue; // a name (`English`) already reported with its tag
+                }
+                let message = format!(
+                    "`{language}` is listed twice in `languages:`. Remove the second `{language}`."
+                );
+                self.diagnostics
+                    .push(Diagnostic::error("config-bad-value", &item.pos, message));
                 continue;
             }
             out.push(Located {
@@ -43,25 +58,65 @@ impl Reader {
                 pos: item.pos.clone(),
             });
         }
-        if out.is_empty() && matches!(node.kind, Kind::Seq(_)) {
+        if matches!(&node.kind, Kind::Seq(items) if items.is_empty()) {
             self.bad(node, LANGUAGES_USAGE);
         }
         out
     }
 
-    /// One language tag, or `None` after a `bad-language` at `node`.
+    /// `languages: en, fr`: the list meant, after saying how to write it; `None` when the text
+    /// has no comma or a part is no language.
+    fn languages_without_brackets(&mut self, node: &Node) -> Option<Vec<Located<Language>>> {
+        let text = node.as_text()?;
+        if !text.contains(',') {
+            return None;
+        }
+        let mut meant: Vec<Language> = Vec::new();
+        for part in text.split(',') {
+            let language = Language::parse(part).or_else(|| Language::from_name(part))?;
+            if !meant.contains(&language) {
+                meant.push(language);
+            }
+        }
+        let tags: Vec<&str> = meant.iter().map(Language::as_str).collect();
+        let message = format!(
+            "`{}` is not a language tag but several: write the languages as a list in \
+             brackets: `languages: [{}]`. Docent reads them as that list meanwhile.",
+            text.trim(),
+            tags.join(", ")
+        );
+        self.diagnostics
+            .push(Diagnostic::error("bad-language", &node.pos, message));
+        let located = meant.into_iter().map(|value| Located {
+            value,
+            pos: node.pos.clone(),
+        });
+        Some(located.collect())
+    }
+
+    /// One language tag; a language written by its name (`English`) is reported with its tag
+    /// and taken as meant; `None` after any other `bad-language` at `node`.
     fn language(&mut self, node: &Node) -> Option<Language> {
         let text = node.as_text().unwrap_or_default();
-        let language = Language::parse(text);
-        if language.is_none() {
-            let found = node
-                .as_text()
-                .map_or_else(|| node.describe().to_owned(), |t| format!("`{t}`"));
-            let message = format!("{found} is not a language tag. {LANGUAGE_USAGE}");
+        if let Some(language) = Language::parse(text) {
+            return Some(language);
+        }
+        if let Some(meant) = Language::from_name(text) {
+            let message = format!(
+                "`{}` is the name of a language, not its tag: write `{meant}`. {LANGUAGE_USAGE}",
+                text.trim()
+            );
             self.diagnostics
                 .push(Diagnostic::error("bad-language", &node.pos, message));
+            return Some(meant);
         }
-        language
+        let found = node
+            .as_text()
+            .map_or_else(|| node.describe().to_owned(), |t| format!("`{t}`"));
+        let message = format!("{found} is not a language tag. {LANGUAGE_USAGE}");
+        self.diagnostics
+            .push(Diagnostic::error("bad-language", &node.pos, message));
+        None
     }
 
     /// `speech: voices:`: language → voice name, each language checked later against

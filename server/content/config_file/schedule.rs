@@ -10,9 +10,10 @@ use crate::content::acts_file::yaml::{Kind, Node};
 use crate::content::diagnostic::Diagnostic;
 use crate::content::model::Pos;
 use crate::content::schedule::{CalendarDate, DAY_MINUTES, OpenHours, Schedule, WEEKDAYS};
-use crate::content::suggest::did_you_mean;
 
 use super::Reader;
+
+mod days;
 
 /// The keys of `schedule:`.
 pub(crate) const SCHEDULE_KEYS: &[&str] = &["closed", "open", "special_days"];
@@ -41,6 +42,8 @@ struct Written {
     from: u16,
     to: u16,
     pos: Pos,
+    /// The days of its entry as written (`every day`, `Mon-Fri`), for an overlap within it.
+    days: String,
 }
 
 impl Reader {
@@ -78,9 +81,13 @@ impl Reader {
             let mut days = None;
             let mut ranges = None;
             let mut extras = Extras::default();
+            let mut days_written = String::new();
             for (key, value) in self.entries(entry, OPEN_KEYS, "an `open` entry") {
                 match key {
-                    "days" => days = self.days(value),
+                    "days" => {
+                        days = self.days(value);
+                        days_written = days::days_as_written(value);
+                    }
                     "hours" => ranges = self.hours(value).filter(|r| !r.is_empty()),
                     _ => usable &= self.extra(key, value, &mut extras),
                 }
@@ -97,6 +104,7 @@ impl Reader {
                     schedule.week[day].push(extras.hours(range));
                     written[day].push(Written {
                         pos: range.pos.clone(),
+                        days: days_written.clone(),
                         ..*range
                     });
                 }
@@ -170,54 +178,6 @@ impl Reader {
         extras.attract.is_some()
     }
 
-    /// `Mon-Fri`, `Sat, Sun`, `[Mon, Wed]`, `daily`: the weekday indexes, Monday 0.
-    fn days(&mut self, node: &Node) -> Option<Vec<usize>> {
-        let parts: Vec<(String, Pos)> = match &node.kind {
-            Kind::Seq(items) => (items.iter())
-                .map(|item| {
-                    (
-                        item.as_text().unwrap_or_default().to_owned(),
-                        item.pos.clone(),
-                    )
-                })
-                .collect(),
-            _ => match node.as_text() {
-                Some(text) => split_at_commas(node, text),
-                None => {
-                    self.bad(node, DAYS_USAGE);
-                    return None;
-                }
-            },
-        };
-        let mut days = Vec::new();
-        for (part, pos) in parts {
-            let part = part.trim();
-            if part.eq_ignore_ascii_case("daily") {
-                days.extend(0..7);
-                continue;
-            }
-            let (first, last) = part.split_once('-').unwrap_or((part, part));
-            let (Some(first), Some(last)) = (weekday(first), weekday(last)) else {
-                let word = [first, last].into_iter().find(|w| weekday(w).is_none());
-                let hint = did_you_mean(&day_like(word.unwrap_or(part)), WEEKDAYS);
-                self.bad_at(&pos, &format!("{DAYS_USAGE}{hint}"), part);
-                return None;
-            };
-            // A range may run over the weekend: `Fri-Mon` is Friday to Monday.
-            let mut day = first;
-            loop {
-                days.push(day);
-                if day == last {
-                    break;
-                }
-                day = (day + 1) % 7;
-            }
-        }
-        days.sort_unstable();
-        days.dedup();
-        Some(days)
-    }
-
     /// `09:00-12:00, 13:00-17:00`: each range with its place.
     fn hours(&mut self, node: &Node) -> Option<Vec<Written>> {
         let Some(text) = node.as_text() else {
@@ -228,7 +188,12 @@ impl Reader {
         for (part, pos) in split_at_commas(node, text) {
             let part = part.trim();
             match time_range(part) {
-                Ok((from, to)) => ranges.push(Written { from, to, pos }),
+                Ok((from, to)) => ranges.push(Written {
+                    from,
+                    to,
+                    pos,
+                    days: String::new(),
+                }),
                 Err(why) => {
                     self.bad_at(&pos, &format!("{why} {HOURS_USAGE}"), part);
                     return None;
@@ -280,8 +245,14 @@ impl Reader {
             if self.diagnostics.iter().any(told) {
                 continue; // the same range on another of its days
             }
+            // Ranges of the same days overlap on each of them: name the days as written.
+            let when = match first.days.as_str() {
+                _ if first.days.is_empty() || first.days != second.days => format!("On {day}"),
+                "every day" => "Every day".to_owned(),
+                days => format!("On {days}"),
+            };
             let message = format!(
-                "On {day}, {} overlaps {} (line {}): the kiosk cannot be in two ranges at \
+                "{when}, {} overlaps {} (line {}): the kiosk cannot be in two ranges at \
                  once. End one where the next begins, e.g. `09:00-12:00` and `12:00-17:00`, \
                  or name fewer days (`Mon-Fri` and `Sat`).",
                 clock_range(second),
@@ -343,38 +314,14 @@ fn split_at_commas(node: &Node, text: &str) -> Vec<(String, Pos)> {
     parts
 }
 
-/// `Mon` … `Sun` (any case, or the full English name): 0 for Monday.
-fn weekday(word: &str) -> Option<usize> {
-    let word = word.trim().to_ascii_lowercase();
-    let short = word.get(..3)?;
-    let full = [
-        "monday",
-        "tuesday",
-        "wednesday",
-        "thursday",
-        "friday",
-        "saturday",
-        "sunday",
-    ];
-    let day = WEEKDAYS
-        .iter()
-        .position(|d| d.eq_ignore_ascii_case(short))?;
-    (word.len() == 3 || word == full[day]).then_some(day)
-}
-
-/// A misspelt day as its first three letters, capitalised (`frday` → `Frd`), to be compared
-/// with the day names.
-fn day_like(word: &str) -> String {
-    let mut letters = word.trim().chars().take(3);
-    let first = letters.next().map(|c| c.to_ascii_uppercase());
-    first
-        .into_iter()
-        .chain(letters.map(|c| c.to_ascii_lowercase()))
-        .collect()
-}
-
 /// `09:00-17:00` into minutes from midnight, or why not (a sentence).
 fn time_range(text: &str) -> Result<(u16, u16), &'static str> {
+    if text.contains(days::WORD_PROCESSOR_DASHES) {
+        return Err(
+            "This range has a dash from a word processor (`–`), not the plain minus \
+                    sign `-` (the key next to 0) that joins its start and end.",
+        );
+    }
     let (from, to) = text
         .split_once('-')
         .ok_or("A range needs its start and end joined by `-`.")?;

@@ -25,6 +25,7 @@ use links::{Target, css_urls, resolve, srcset_urls};
 use scan::{LinkUse, PageScan, Unclosed, Value};
 use text::SourceText;
 
+pub(crate) use languages::check_reachable_languages;
 pub use script::act_delay;
 
 /// Files larger than this are not read; no real touchscreen page comes near it.
@@ -46,7 +47,9 @@ pub(crate) struct PageLabels {
 pub(crate) fn check_pages(checker: &CommandChecker<'_>, out: &mut Vec<Diagnostic>) -> PageLabels {
     let mut labels = PageLabels::default();
     let mut html_pages = Vec::new();
-    for rel in list_files(checker.root(), BundleArea::Pages) {
+    let files = list_files(checker.root(), BundleArea::Pages);
+    let stray = languages::StrayFolders::find(checker, &files);
+    for rel in files {
         let lower = rel.to_ascii_lowercase();
         let kind = match lower.rsplit_once('.').map(|(_, ext)| ext) {
             Some("html" | "htm") => FileKind::Page,
@@ -65,7 +68,11 @@ pub(crate) fn check_pages(checker: &CommandChecker<'_>, out: &mut Vec<Diagnostic
             continue;
         };
         let file: Arc<str> = Arc::from(format!("pages/{rel}"));
-        let page = PageFile { checker, rel: &rel };
+        let page = PageFile {
+            checker,
+            rel: &rel,
+            stray: &stray,
+        };
         match kind {
             FileKind::Page => {
                 html_pages.push(rel.clone());
@@ -84,7 +91,8 @@ pub(crate) fn check_pages(checker: &CommandChecker<'_>, out: &mut Vec<Diagnostic
             }
         }
     }
-    languages::check_translated_pages(checker, &html_pages, out);
+    stray.report(checker, &html_pages, out);
+    languages::check_translated_pages(checker, &html_pages, &stray, out);
     labels
 }
 
@@ -100,6 +108,8 @@ struct PageFile<'c, 'r> {
     checker: &'c CommandChecker<'c>,
     /// Its path inside `pages/`: relative links start from its folder.
     rel: &'r str,
+    /// Folders named like a language the bundle does not list (reported once, elsewhere).
+    stray: &'r languages::StrayFolders,
 }
 
 impl PageFile<'_, '_> {
@@ -199,7 +209,9 @@ impl PageFile<'_, '_> {
             Target::Bundle { area, rel } => {
                 // `tour.html` in `pages/de/`: the kiosk shows `pages/tour.html` when there is
                 // no German one (the page-translation check warns about that once per page).
-                let rel = match self.checker.languages().page_fallback(&rel) {
+                let fallback = (self.checker.languages().page_fallback(&rel))
+                    .or_else(|| self.stray.page_fallback(&rel));
+                let rel = match fallback {
                     Some(fallback)
                         if area == BundleArea::Pages
                             && self.checker.path_problem(area, &rel).is_some() =>
