@@ -87,6 +87,10 @@ fn check_lists_problems_with_places_and_exits_1() {
 fn check_warns_about_a_language_no_installed_espeak_voice_speaks() {
     // The start-up check and `docent check` share one rule (content::voices).
     let b = TempBundle::new("- Label: A\n  Text: [Hello]\n  Text@de: [Hallo]\n  Key: A\n")
+        .with_file(
+            "pages/index.html",
+            "<!doctype html><title>Start</title><button data-language=\"de\">Deutsch</button>",
+        )
         .with_file("pages/de/index.html", "<!doctype html><title>Start</title>")
         .with_file(
             "docent.yaml",
