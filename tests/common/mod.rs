@@ -6,6 +6,7 @@
 
 pub mod check;
 pub mod corpus;
+pub mod languages;
 pub mod process;
 
 #[allow(unused_imports)] // As `dead_code` above: each test binary uses a different part.
