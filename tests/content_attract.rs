@@ -251,6 +251,26 @@ fn malformed_days_are_reported_with_a_suggestion() {
 }
 
 #[test]
+fn days_split_by_the_comma_of_braces_are_explained_with_the_quotes_that_fix_them() {
+    let lines = [
+        "schedule:",
+        "  closed: index.html",
+        "  open:",
+        "    - { days: Sat, Sun, hours: 10:00-18:00 }",
+    ];
+    let config = yaml(&lines);
+    let dir = bundle(&[ACTS, ("docent.yaml", &config)]);
+    let report = check(dir.path());
+    assert_eq!(
+        places(&report),
+        one("config-unknown-key", "docent.yaml:4:20")
+    );
+    let message = &report.diagnostics[0].message;
+    assert!(message.contains("`Sun` is a day"), "{message}");
+    assert!(message.contains("`days: \"Sat, Sun\"`"), "{message}");
+}
+
+#[test]
 fn bad_and_repeated_dates_are_reported() {
     let lines = [
         "schedule:",

@@ -92,6 +92,7 @@ impl Reader {
                     _ => usable &= self.extra(key, value, &mut extras),
                 }
             }
+            self.explain_days_split_by_braces(entry);
             let (Some(days), Some(ranges)) = (days, ranges) else {
                 if matches!(entry.kind, Kind::Map(_)) {
                     self.needs_both(entry, "days", LIST_USAGE);

@@ -4,6 +4,7 @@
 //! part of it (`Did you mean Mon?` for `Mon to Fri` would open on Mondays only).
 
 use crate::content::acts_file::yaml::{Kind, Node};
+use crate::content::diagnostic::Diagnostic;
 use crate::content::model::Pos;
 use crate::content::schedule::WEEKDAYS;
 use crate::content::suggest::did_you_mean;
@@ -157,6 +158,36 @@ fn any_day(word: &str) -> Option<usize> {
     table
         .iter()
         .position(|names| names.contains(&word.as_str()))
+}
+
+impl Reader {
+    /// `{ days: Sat, Sun, hours: ... }`: inside braces the comma ends the setting, so YAML
+    /// made `days: Sat` and a setting `Sun`. The generic "not a setting" said of a day is
+    /// replaced by what happened and the fix (quotes, or the entry on several lines).
+    pub(super) fn explain_days_split_by_braces(&mut self, entry: &Node) {
+        let Kind::Map(entries) = &entry.kind else {
+            return;
+        };
+        for (key, value) in entries {
+            let name = key.as_text().unwrap_or_default();
+            if !matches!(value.kind, Kind::Null) || weekday(name).is_none() {
+                continue;
+            }
+            let at_key = |d: &Diagnostic| {
+                d.code == "config-unknown-key"
+                    && *d.file == *key.pos.file
+                    && (d.line, d.column) == (key.pos.line, key.pos.column)
+            };
+            let Some(found) = self.diagnostics.iter_mut().find(|d| at_key(d)) else {
+                continue;
+            };
+            found.message = format!(
+                "`{name}` is a day, but here it became a setting of its own: inside `{{ }}` a \
+                 comma separates settings, so the days ended before `{name}`. Put the days in \
+                 quotes, e.g. `days: \"Sat, Sun\"`, or write them as a list: `days: [Sat, Sun]`."
+            );
+        }
+    }
 }
 
 /// `Mon` … `Sun` (any case, or the full English name): 0 for Monday.
