@@ -44,6 +44,15 @@ pub(super) fn texts_in<'b>(
     }
 }
 
+/// The bundle's language spelt `wanted` (any case), or `unknown-language` listing them.
+fn bundle_language(bundle: &Bundle, wanted: &str) -> Result<Language, TriggerError> {
+    let languages = &bundle.config.languages;
+    (languages.find(wanted).cloned()).ok_or_else(|| TriggerError::UnknownLanguage {
+        language: wanted.to_owned(),
+        available: languages.listed(),
+    })
+}
+
 impl Dispatcher {
     /// The visitor's language now.
     pub fn language(&self) -> Language {
@@ -61,12 +70,7 @@ impl Dispatcher {
         // Checked and changed under the lock, against the bundle live then (as the context).
         let mut current = lock(&self.language);
         let bundle = self.bundle.load();
-        let Some(language) = bundle.config.languages.find(wanted).cloned() else {
-            return Err(TriggerError::UnknownLanguage {
-                language: wanted.to_owned(),
-                available: bundle.config.languages.listed(),
-            });
-        };
+        let language = bundle_language(&bundle, wanted)?;
         if source == Source::Kiosk
             && !page.is_some_and(|page| bundle.page_offers_language(page, &language))
         {
@@ -88,12 +92,7 @@ impl Dispatcher {
     pub fn adopt_kiosk_language(&self, wanted: &str) -> Result<Language, TriggerError> {
         let mut current = lock(&self.language);
         let bundle = self.bundle.load();
-        let Some(language) = bundle.config.languages.find(wanted).cloned() else {
-            return Err(TriggerError::UnknownLanguage {
-                language: wanted.to_owned(),
-                available: bundle.config.languages.listed(),
-            });
-        };
+        let language = bundle_language(&bundle, wanted)?;
         if self.language_changed.load(Ordering::Acquire) || *current == language {
             return Ok(current.clone());
         }

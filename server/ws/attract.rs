@@ -3,12 +3,11 @@
 //! ends a loop is a visitor's first touch and is handled as one (a `touch` event, a session
 //! started when none runs), while the loop's own pages and act never start a session.
 
-use std::time::Instant;
-
 use crate::access::KioskAllowance;
 use crate::events::{AttractEnd, AttractState, ClientRole, EventKind};
 use crate::wire::ErrorCode;
 use crate::ws::client::Client;
+use crate::ws::triggers::kiosk_allowance;
 
 /// The element a touch that ends the loop is described as, in the `touch` event.
 const ENDING_TOUCH: &str = "the attract loop";
@@ -25,14 +24,7 @@ pub(super) fn reported(
     }
     // From the kiosk's allowance for the shell's own doing: a faulty kiosk cannot flood the
     // log, and a loop that cycled fast cannot spend the taps of the visitor who ends it.
-    let access = &client.state.access;
-    let allowance =
-        access.kiosk_allowance(client.address.ip, KioskAllowance::Shell, Instant::now());
-    if let Err(wait) = allowance {
-        let message = format!(
-            "too many requests from this touchscreen; the next is possible in {} ms",
-            wait.as_millis().max(1)
-        );
+    if let Err(message) = kiosk_allowance(client, KioskAllowance::Shell) {
         return client.reply_error(ErrorCode::RateLimited, &message, None, None);
     }
     let hub = &client.state.hub;

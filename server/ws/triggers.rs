@@ -148,7 +148,7 @@ fn offered(client: &Client, label: &str) -> Result<(), String> {
 
 /// Takes one from this kiosk address's `which` allowance (triggers and `page` reports); the
 /// error is the `rate-limited` message.
-fn kiosk_allowance(client: &Client, which: KioskAllowance) -> Result<(), String> {
+pub(super) fn kiosk_allowance(client: &Client, which: KioskAllowance) -> Result<(), String> {
     let allowance = client
         .state
         .access
