@@ -39,10 +39,13 @@ fn bundle(ros: &RosSide, extra: &str) -> TempBundle {
     TempBundle::new(ACTS).with_file("docent.yaml", &yaml)
 }
 
-/// A client of the test's own on `/sim/log`, where the base tells each goal and stop.
+/// A client of the test's own on `/sim/log`, where the base tells each goal and stop; matched
+/// (the base's heartbeat arrived) before it is returned, as a fresh ROS subscription misses
+/// what is published before discovery matches it.
 async fn sim_log(ros: &RosSide) -> RosClient {
     let mut client = RosClient::connect(&ros.url).await.expect("connects");
     client.subscribe("/sim/log", "std_msgs/msg/String").await;
+    log_entry(&mut client, "alive").await;
     client
 }
 

@@ -47,6 +47,9 @@ class SimBase(Node):
         self.create_subscription(Empty, args.stop_topic, lambda _m: self.halt("stop"), 10)
         self.create_subscription(Twist, args.cmd_vel, self.on_twist, 10)
         self.create_timer(1.0 / args.rate, self.tick)
+        # A heartbeat on the log: a test's fresh subscription waits for one before it acts, so
+        # that DDS has matched it with this publisher and no entry it awaits can be lost.
+        self.create_timer(0.05, lambda: self.log(alive=True))
 
     def log(self, **entry):
         self.log_pub.publish(String(data=json.dumps(entry)))
