@@ -76,6 +76,18 @@ impl Server {
                 .into_iter()
                 .map(|p| format!("a recording could not be checked: {p}")),
         );
+        // Consent is final: media a crash left after a refusal go now, before anyone reads them.
+        let (removed, problems) = crate::recording::remove_unconsented(corpus.dir());
+        for file in removed {
+            warnings.push(format!(
+                "{} was removed: its visitors declined or withdrew consent, and a crash had \
+                 left it",
+                file.display()
+            ));
+        }
+        warnings.extend(problems.into_iter().map(|p| {
+            format!("a recording whose visitors withdrew consent could not be removed: {p}; remove it by hand")
+        }));
         let output = match &options.speech_wav {
             Some(dir) => {
                 std::fs::create_dir_all(dir)?;

@@ -147,7 +147,13 @@ impl AppState {
             life.shutdown.clone(),
         );
         life.spawn(follow);
-        let recordings = Arc::new(Recordings::new(hub.clone(), links, folders, life.clone()));
+        let recordings = Arc::new(Recordings::new(
+            hub.clone(),
+            Arc::clone(&visits),
+            links,
+            folders,
+            life.clone(),
+        ));
         // Subscribed now, before any client can connect or any session start.
         let live = Arc::clone(&dispatcher);
         let follow = Arc::clone(&recordings).follow(

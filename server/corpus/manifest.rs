@@ -10,6 +10,7 @@ use std::path::Path;
 use serde::{Deserialize, Serialize};
 
 use crate::corpus::layout::SESSION_MANIFEST;
+use crate::events::Consent;
 
 /// The manifest's format version: fields change meaning only with a new one.
 pub const MANIFEST_FORMAT: u32 = 1;
@@ -96,9 +97,22 @@ impl SessionManifest {
         std::fs::rename(&partial, &path)
     }
 
+    /// Whether the visitors' consent, as last noted, lets their recordings be kept and used:
+    /// only `recorded` does. A manifest whose word is none Docent writes keeps nothing.
+    pub fn media_allowed(&self) -> bool {
+        media_allowed(&self.consent)
+    }
+
     /// Reads `dir`'s manifest.
     pub fn read_from(dir: &Path) -> io::Result<SessionManifest> {
         let text = std::fs::read(dir.join(SESSION_MANIFEST))?;
         serde_json::from_slice(&text).map_err(|e| io::Error::new(io::ErrorKind::InvalidData, e))
     }
+}
+
+/// Whether a manifest's `consent` word lets a session's recordings be kept and used: only
+/// `recorded` does (declined, withdrawn, or anything unreadable keeps nothing). The one rule
+/// for every reader of media: exports, the `/sessions` page, start-up recovery.
+pub fn media_allowed(consent: &str) -> bool {
+    Consent::from_word(consent) == Some(Consent::Recorded)
 }

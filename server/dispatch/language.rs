@@ -7,8 +7,6 @@
 use std::sync::Arc;
 use std::sync::atomic::Ordering;
 
-use tokio::sync::broadcast::error::RecvError;
-
 use crate::content::{Bundle, Language, Located, Variant};
 use crate::dispatch::{Dispatcher, TriggerError};
 use crate::events::{EventKind, Source};
@@ -126,26 +124,21 @@ impl Dispatcher {
     }
 
     /// Follows the hub: when a visitor session ends, the next visitors start in the
-    /// bundle's default language. Runs until shutdown.
+    /// bundle's default language. Runs until shutdown. Session ends come without loss
+    /// ([`crate::events::Hub::follow`]): one missed would greet the next visitors in the last
+    /// ones' language, and a lag guessed as an end would switch the current ones' mid-visit.
     pub async fn reset_language_after_sessions(self: Arc<Self>) {
-        let mut events = self.hub.subscribe();
+        let mut ends = self
+            .hub
+            .follow(|kind| matches!(kind, EventKind::SessionEnded { .. }));
         let shutdown = self.life.shutdown.clone();
         loop {
-            let event = tokio::select! {
-                event = events.recv() => event,
+            tokio::select! {
+                end = ends.recv() => match end {
+                    Some(_) => self.back_to_default(),
+                    None => return,
+                },
                 () = shutdown.cancelled() => return,
-            };
-            match event {
-                Ok(event) if matches!(event.kind, EventKind::SessionEnded { .. }) => {
-                    self.back_to_default();
-                }
-                Ok(_) => {}
-                Err(RecvError::Lagged(missed)) => {
-                    // A session end may be among them: the default is the safe language.
-                    tracing::warn!(missed, "the language reset fell behind the hub");
-                    self.back_to_default();
-                }
-                Err(RecvError::Closed) => return,
             }
         }
     }

@@ -1,7 +1,8 @@
 //! The event hub: stamps events and fans them out. The corpus writer gets every event (the log
 //! must not lose anything) by taking, in one swap, all events published since its last batch;
 //! websocket subscribers get them through a bounded broadcast channel and handle lag
-//! themselves. The writer reports how far the log is written through a `watch`, so that an
+//! themselves; the components that carry out a decision (recordings, the language reset)
+//! follow the few kinds they act on without loss ([`Hub::follow`]). The writer reports how far the log is written through a `watch`, so that an
 //! acknowledgement can wait until its event is in the file ([`Hub::logged`]).
 
 use std::collections::VecDeque;
@@ -10,7 +11,7 @@ use std::sync::{Arc, Mutex, OnceLock};
 use std::thread::Thread;
 use std::time::{Duration, Instant, SystemTime};
 
-use tokio::sync::{broadcast, watch};
+use tokio::sync::{broadcast, mpsc, watch};
 
 use crate::events::logged::check_logged;
 use crate::events::{Event, EventKind, LogUnwritable, Logged};
@@ -46,6 +47,8 @@ struct Inner {
     /// The `seq` of the latest event published (read without the lock by acknowledgements).
     published: AtomicU64,
     broadcast: broadcast::Sender<Arc<Event>>,
+    /// Lossless followers of a few kinds of events ([`Hub::follow`]).
+    followers: Mutex<Vec<Follower>>,
     /// The latest history events (see [`EventKind::is_history`]), oldest first.
     history: Mutex<VecDeque<Arc<Event>>>,
     /// The writer thread, woken by a publish while it sleeps with nothing to do, or by an
@@ -59,6 +62,14 @@ struct Inner {
     committer: Mutex<Option<Arc<dyn Committer>>>,
     /// When an acknowledgement last wrote the log itself (on tokio's clock, which tests pause).
     acknowledged_write: Mutex<Option<tokio::time::Instant>>,
+}
+
+/// Which events a lossless follower takes.
+pub type Interest = fn(&EventKind) -> bool;
+
+struct Follower {
+    interest: Interest,
+    events: mpsc::UnboundedSender<Arc<Event>>,
 }
 
 #[derive(Default)]
@@ -91,6 +102,7 @@ impl Hub {
             queue: Mutex::new(Queue::default()),
             published: AtomicU64::new(0),
             broadcast,
+            followers: Mutex::default(),
             history: Mutex::new(VecDeque::with_capacity(HISTORY_LEN)),
             writer: OnceLock::new(),
             wake_asked: AtomicBool::new(false),
@@ -119,6 +131,13 @@ impl Hub {
         let wake = std::mem::take(&mut queue.writer_idle);
         // No subscribers is fine.
         let _ = self.inner.broadcast.send(Arc::clone(&event));
+        {
+            let mut followers = lock(&self.inner.followers);
+            // Under the queue's lock: each follower gets its events in `seq` order.
+            followers.retain(|f| {
+                !(f.interest)(&event.kind) || f.events.send(Arc::clone(&event)).is_ok()
+            });
+        }
         if event.kind.is_history() {
             let mut history = lock(&self.inner.history);
             if history.len() == HISTORY_LEN {
@@ -222,7 +241,18 @@ impl Hub {
         self.inner.wake_writer();
     }
 
-    /// A receiver of every event published from now on.
+    /// Every event from now on that `interest` takes, none ever skipped: for a component that
+    /// carries out a decision (a consent, a session's end), which must not miss one however
+    /// busy the hub is. The channel is unbounded, so `interest` must take only kinds that
+    /// come at human pace (sessions, consents, clients joining), never triggers or commands.
+    pub fn follow(&self, interest: Interest) -> mpsc::UnboundedReceiver<Arc<Event>> {
+        let (events, rx) = mpsc::unbounded_channel();
+        lock(&self.inner.followers).push(Follower { interest, events });
+        rx
+    }
+
+    /// A receiver of every event published from now on (it lags, skipping events, when it
+    /// falls more than [`EVENT_CHANNEL_CAPACITY`] behind).
     pub fn subscribe(&self) -> broadcast::Receiver<Arc<Event>> {
         self.inner.broadcast.subscribe()
     }
@@ -374,5 +404,37 @@ mod tests {
         });
         let then = std::future::poll_fn(|cx| Poll::Ready(waiting.as_mut().poll(cx))).await;
         assert!(then.is_ready(), "the log caught up: readers go on");
+    }
+
+    #[tokio::test]
+    async fn a_follower_gets_every_event_it_takes_in_order_however_many_are_published() {
+        let (hub, _feed) = Hub::new();
+        let mut lagging = hub.subscribe();
+        let mut ends = hub.follow(|kind| matches!(kind, EventKind::ServerStopping));
+        for _ in 0..3 {
+            publish(&hub, 2 * EVENT_CHANNEL_CAPACITY as u64);
+            hub.publish(EventKind::ServerStopping);
+        }
+        let mut seqs = Vec::new();
+        while let Ok(event) = ends.try_recv() {
+            assert!(matches!(event.kind, EventKind::ServerStopping));
+            seqs.push(event.seq);
+        }
+        let every = 2 * EVENT_CHANNEL_CAPACITY as u64 + 1;
+        assert_eq!(seqs, [every, 2 * every, 3 * every]);
+        assert!(
+            matches!(
+                lagging.try_recv(),
+                Err(broadcast::error::TryRecvError::Lagged(_))
+            ),
+            "a broadcast subscriber skips what it missed"
+        );
+        drop(ends);
+        publish(&hub, 1);
+        hub.publish(EventKind::ServerStopping);
+        assert!(
+            lock(&hub.inner.followers).is_empty(),
+            "a follower gone is dropped"
+        );
     }
 }

@@ -19,7 +19,7 @@ mod stamped;
 mod touch;
 
 pub use attract::{AttractEnd, AttractState};
-pub use hub::{Committer, CorpusFeed, EVENT_CHANNEL_CAPACITY, HISTORY_LEN, Hub};
+pub use hub::{Committer, CorpusFeed, EVENT_CHANNEL_CAPACITY, HISTORY_LEN, Hub, Interest};
 pub use kind::EventKind;
 pub use logged::{LogUnwritable, Logged};
 pub use origin::{ActRef, ClientRole, Source};

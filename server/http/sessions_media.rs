@@ -25,6 +25,7 @@ use tower::ServiceExt;
 use tower_http::services::ServeFile;
 
 use crate::corpus::layout::SESSION_MANIFEST;
+use crate::corpus::manifest::media_allowed;
 use crate::http::AppError;
 use crate::http::auth::Authorized;
 use crate::http::sessions::session_dir;
@@ -109,12 +110,16 @@ pub struct MediaFile {
 }
 
 /// The media the manifest in `dir` lists, read tolerantly (no list, or a manifest without
-/// one, is no media); an entry whose path is not a plain one inside `media/` is left out.
+/// one, is no media); an entry whose path is not a plain one inside `media/` is left out, and
+/// a session whose visitors declined or withdrew consent has none, whatever files are left.
 pub fn media_list(dir: &Path) -> Vec<MediaFile> {
     let Ok(text) = std::fs::read(dir.join(SESSION_MANIFEST)) else {
         return Vec::new();
     };
     let manifest: Value = serde_json::from_slice(&text).unwrap_or(Value::Null);
+    if !media_allowed(manifest["consent"].as_str().unwrap_or_default()) {
+        return Vec::new();
+    }
     let Some(entries) = manifest["media"].as_array() else {
         return Vec::new();
     };

@@ -4,6 +4,7 @@
 //! starts, or at shutdown. Every start and end is published here, under the same lock that
 //! changes the state, so that the log's order is the order things happened.
 
+use std::collections::VecDeque;
 use std::sync::{Arc, Mutex};
 use std::time::Duration;
 
@@ -45,10 +46,28 @@ pub struct Visits {
     started_by_touch: Notify,
 }
 
+/// How many ended sessions' final consent is remembered: a recording's last chunks may
+/// arrive after its session ended, and are taken only if that consent was `recorded`.
+const ENDED_REMEMBERED: usize = 16;
+
 #[derive(Debug, Default)]
 struct Inner {
     last: u64,
     current: Option<Current>,
+    /// The latest sessions that ended, with their final consent, oldest first.
+    ended: VecDeque<(u64, Consent)>,
+}
+
+impl Inner {
+    /// Takes the running session away, remembering its final consent.
+    fn take_current(&mut self) -> Option<Current> {
+        let ended = self.current.take()?;
+        if self.ended.len() == ENDED_REMEMBERED {
+            self.ended.pop_front();
+        }
+        self.ended.push_back((ended.number, ended.consent));
+        Some(ended)
+    }
 }
 
 #[derive(Debug)]
@@ -105,7 +124,7 @@ impl Visits {
     /// Ends the running session, if any, and returns its number.
     pub fn end(&self, source: Source, client: Option<u64>, reason: SessionEnd) -> Option<u64> {
         let mut inner = lock(&self.inner);
-        let ended = inner.current.take()?;
+        let ended = inner.take_current()?;
         self.publish_end(ended.number, source, client, reason);
         Some(ended.number)
     }
@@ -118,6 +137,20 @@ impl Visits {
     /// The running session's consent.
     pub fn consent(&self) -> Option<Consent> {
         lock(&self.inner).current.as_ref().map(|c| c.consent)
+    }
+
+    /// Session `number`'s consent as it stands: the running session's, or the one an ended
+    /// session ended with. `None` for a session not known (long ended, or never started):
+    /// nothing of it may be recorded.
+    pub fn consent_of(&self, number: u64) -> Option<Consent> {
+        let inner = lock(&self.inner);
+        match &inner.current {
+            Some(current) if current.number == number => Some(current.consent),
+            _ => (inner.ended.iter())
+                .rev()
+                .find(|(n, _)| *n == number)
+                .map(|(_, consent)| *consent),
+        }
     }
 
     /// A visitor touched the screen of kiosk `client` (a trigger, a page): starts a session
@@ -185,7 +218,7 @@ impl Visits {
             let overdue = (inner.current.as_ref()).is_some_and(|c| {
                 c.by_touch && !idle.is_zero() && c.last_touch + idle <= Instant::now()
             });
-            if overdue && let Some(ended) = inner.current.take() {
+            if overdue && let Some(ended) = inner.take_current() {
                 self.publish_end(ended.number, Source::Server, None, SessionEnd::Idle);
             }
         }
@@ -206,7 +239,7 @@ impl Visits {
         client: Option<u64>,
         by_touch: bool,
     ) -> u64 {
-        if let Some(ended) = inner.current.take() {
+        if let Some(ended) = inner.take_current() {
             self.publish_end(ended.number, source, client, SessionEnd::NextSession);
         }
         inner.last += 1;

@@ -11,7 +11,6 @@ use std::path::Path;
 use std::sync::Arc;
 use std::time::Duration;
 
-use tokio::sync::broadcast::error::RecvError;
 use tokio_util::sync::CancellationToken;
 
 use super::frames::{record_frame, record_stop_frame};
@@ -29,12 +28,14 @@ pub const FINAL_UPLOAD_GRACE: Duration = Duration::from_secs(30);
 
 impl Recordings {
     /// Follows the hub until `shutdown`; `tracks()` reads the live bundle's `corpus: record`.
+    /// The events it acts on come without loss ([`crate::events::Hub::follow`]): a session's
+    /// start or end missed under load would record visitors nobody asked, or stop nobody.
     pub async fn follow(
         self: Arc<Self>,
         tracks: impl Fn() -> RecordTracks,
         shutdown: CancellationToken,
     ) {
-        let mut events = self.hub.subscribe();
+        let mut events = self.hub.follow(acted_on);
         // The running session: its number, the seq and mono_us of its `session.started`.
         let mut running: Option<(u64, u64, u64)> = None;
         loop {
@@ -42,14 +43,7 @@ impl Recordings {
                 event = events.recv() => event,
                 () = shutdown.cancelled() => return,
             };
-            let event = match event {
-                Ok(event) => event,
-                Err(RecvError::Lagged(missed)) => {
-                    tracing::warn!(missed, "the recording controller fell behind the hub");
-                    continue;
-                }
-                Err(RecvError::Closed) => return,
-            };
+            let Some(event) = event else { return };
             self.on_event(&event, &mut running, &tracks).await;
         }
     }
@@ -79,8 +73,10 @@ impl Recordings {
                         self.begin(number, seq, mono, tracks()).await;
                     }
                 }
+                // Carried out already, before the mark was answered (`note_consent`); this
+                // catches a refusal that raced a recording's start.
                 (Consent::Recorded, _) => {}
-                (refused, _) => self.withdraw(*session, *refused).await,
+                (refused, _) => self.refuse(*session, *refused),
             },
             EventKind::SessionEnded { .. } => {
                 *running = None;
@@ -131,6 +127,9 @@ impl Recordings {
         let Some(dir) = self.folders.folder(seq) else {
             return; // It ended already.
         };
+        if self.visits.consent_of(number) != Some(Consent::Recorded) {
+            return; // Declined or withdrawn meanwhile.
+        }
         let kiosks: Vec<u64> = {
             let mut inner = lock(&self.inner);
             inner.session = Some(Recorded {
@@ -142,6 +141,14 @@ impl Recordings {
             });
             inner.kiosks.keys().copied().collect()
         };
+        // A refusal between the check above and now found no session to stop: stop it here.
+        if let Some(refused) = self
+            .visits
+            .consent_of(number)
+            .filter(|c| *c != Consent::Recorded)
+        {
+            return self.refuse(number, refused);
+        }
         for client in kiosks {
             self.start_for(client).await;
         }
@@ -156,9 +163,10 @@ impl Recordings {
         let Some((recording, path, tracks)) = planned else {
             return;
         };
+        let made = path.clone();
         let opened = tokio::task::spawn_blocking(move || {
-            std::fs::create_dir_all(path.parent().unwrap_or(Path::new(".")))?;
-            ChunkFile::open(&path)
+            std::fs::create_dir_all(made.parent().unwrap_or(Path::new(".")))?;
+            ChunkFile::open(&made)
         })
         .await
         .unwrap_or_else(|e| Err(std::io::Error::other(e)));
@@ -173,8 +181,14 @@ impl Recordings {
         let frame = record_frame(&recording, &tracks);
         {
             let mut inner = lock(&self.inner);
-            let Some(kiosk) = inner.kiosks.get_mut(&client) else {
-                return; // It left meanwhile.
+            let still = inner.session.as_ref().map(|s| s.number) == Some(recording.session);
+            let Some(kiosk) = inner.kiosks.get_mut(&client).filter(|_| still) else {
+                // It left, or the session ended or lost its consent meanwhile: the file
+                // made for it goes (it was never announced).
+                drop(inner);
+                lock(&recording.chunks).take();
+                remove_unannounced(&path);
+                return;
             };
             *kiosk = KioskRecording {
                 state: "starting",
@@ -230,29 +244,35 @@ impl Recordings {
         });
     }
 
-    /// The visitors of session `number` declined or withdrew consent: recordings stop and
-    /// close at once (later chunks are refused), and the session's media files are removed.
-    async fn withdraw(self: &Arc<Self>, number: u64, consent: Consent) {
-        let dir = {
-            let inner = lock(&self.inner);
-            match &inner.session {
-                Some(s) if s.number == number => s.dir.clone(),
-                _ => return, // Nothing recorded in this session.
+    /// The visitors of session `number` declined or withdrew consent: its recordings stop and
+    /// close now (later chunks are refused: 410), each kiosk is told, and the session's media
+    /// files are removed (`recording.deleted`), all before the caller answers the mark.
+    /// Nothing when the session is not being recorded (nothing of it was kept).
+    pub(super) fn refuse(&self, number: u64, consent: Consent) {
+        let (dir, told) = {
+            let mut inner = lock(&self.inner);
+            let dir = match &inner.session {
+                Some(s) if s.number == number => Some(s.dir.clone()),
+                _ => None,
+            };
+            if dir.is_some() {
+                inner.session = None;
             }
+            let told: Vec<(u64, u64)> = (inner.open.values())
+                .filter(|(r, _)| r.session == number)
+                .map(|(r, _)| (r.client, r.id))
+                .collect();
+            (dir, told)
         };
-        self.stop_all(StopReason::Consent);
-        let ids: Vec<u64> = (lock(&self.inner).open.values())
-            .filter(|(r, _)| r.session == number)
-            .map(|(r, _)| r.id)
-            .collect();
-        for id in ids {
+        for (client, id) in told {
+            let frame = record_stop_frame(id, StopReason::Consent);
+            self.links.send_to(client, &Frame::from(frame));
             self.close(id, StopReason::Consent);
         }
-        let media = dir.join(MEDIA_DIR);
-        let removed = tokio::task::spawn_blocking(move || remove_media(&media))
-            .await
-            .unwrap_or_else(|e| Err(std::io::Error::other(e)));
-        match removed {
+        let Some(dir) = dir else { return };
+        // On this thread, not a blocking task: the mark is answered only once the files
+        // are gone (a session's media are a few files, one per recording).
+        match remove_media(&dir.join(MEDIA_DIR)) {
             Ok(files) => {
                 self.hub
                     .publish(EventKind::Recording(RecordingEvent::Deleted {
@@ -276,6 +296,36 @@ impl Recordings {
                         ),
                     }));
             }
+        }
+    }
+}
+
+/// The events the controller acts on: sessions, consents, kiosks coming and going, shutdown.
+fn acted_on(kind: &EventKind) -> bool {
+    matches!(
+        kind,
+        EventKind::SessionStarted { .. }
+            | EventKind::ConsentChanged { .. }
+            | EventKind::SessionEnded { .. }
+            | EventKind::ServerStopping
+            | EventKind::ClientConnected {
+                role: ClientRole::Kiosk,
+                ..
+            }
+            | EventKind::ClientLeft {
+                role: ClientRole::Kiosk,
+                ..
+            }
+    )
+}
+
+/// Removes a recording file (and its index) that was made but never announced to its kiosk.
+fn remove_unannounced(path: &Path) {
+    for file in [path.to_owned(), super::chunks::index_path(path)] {
+        if let Err(e) = std::fs::remove_file(&file)
+            && e.kind() != std::io::ErrorKind::NotFound
+        {
+            tracing::warn!(error = %e, file = %file.display(), "could not remove an unused recording file");
         }
     }
 }
@@ -337,7 +387,12 @@ fn remove_media(media: &Path) -> std::io::Result<Vec<String>> {
             entry.file_name().to_string_lossy()
         ));
     }
-    std::fs::remove_dir(media)?;
+    match std::fs::remove_dir(media) {
+        // A recording being opened this moment made a file; it removes it itself when it
+        // finds the session no longer recorded.
+        Err(e) if e.kind() == std::io::ErrorKind::DirectoryNotEmpty => {}
+        other => other?,
+    }
     removed.sort();
     Ok(removed)
 }

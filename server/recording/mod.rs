@@ -30,14 +30,17 @@ use serde::Serialize;
 use crate::access::Secret;
 use crate::content::config::RecordTracks;
 use crate::corpus::SessionFolders;
-use crate::events::{EventKind, FailureCode, Hub, RecordingEvent, StopReason, Track};
+use crate::events::{
+    Consent, EventKind, FailureCode, Hub, RecordingEvent, Source, StopReason, Track,
+};
 use crate::lifecycle::Lifecycle;
+use crate::operator::{ConsentRefused, Visits};
 use crate::state::ClientLinks;
 use crate::sync::lock;
 
 pub use chunks::ChunkFile;
 pub use frames::clock_frame;
-pub use recover::{Cut, cut_unacknowledged};
+pub use recover::{Cut, cut_unacknowledged, remove_unconsented};
 pub use upload::{MAX_CHUNK_BYTES, put_chunk};
 
 /// The folder of a session's recordings, inside its folder.
@@ -110,6 +113,9 @@ struct Inner {
 /// websocket reports.
 pub struct Recordings {
     hub: Hub,
+    /// The visitor sessions: the one source of each session's consent, read before every
+    /// recording starts and every chunk is stored.
+    visits: Arc<Visits>,
     links: ClientLinks,
     folders: SessionFolders,
     /// Tracks the timers that close recordings whose kiosk never confirmed its last chunk.
@@ -118,10 +124,18 @@ pub struct Recordings {
 }
 
 impl Recordings {
-    /// No recording yet; recordings go into the session folders `folders` names.
-    pub fn new(hub: Hub, links: ClientLinks, folders: SessionFolders, life: Lifecycle) -> Self {
+    /// No recording yet; recordings go into the session folders `folders` names, for the
+    /// sessions `visits` holds.
+    pub fn new(
+        hub: Hub,
+        visits: Arc<Visits>,
+        links: ClientLinks,
+        folders: SessionFolders,
+        life: Lifecycle,
+    ) -> Self {
         Recordings {
             hub,
+            visits,
             links,
             folders,
             life,
@@ -221,14 +235,61 @@ impl Recordings {
         self.close(id, reason);
     }
 
-    /// The open recording `id`, if `token` is its upload token.
-    fn authorised(&self, id: u64, token: &str) -> Result<Arc<Recording>, upload::Refusal> {
-        let inner = lock(&self.inner);
-        let (recording, _) = inner.open.get(&id).ok_or(upload::Refusal::Gone)?;
-        if !recording.token.matches(token) {
-            return Err(upload::Refusal::Unauthorized);
+    /// Notes what the running session's visitors agreed to (see [`Visits::set_consent`]) and
+    /// carries it out before returning: a consent declined or withdrawn has stopped and closed
+    /// the session's recordings and removed its media by then, so the mark's answer never
+    /// precedes it. The only way consent changes.
+    pub fn note_consent(
+        &self,
+        consent: Consent,
+        source: Source,
+        client: u64,
+    ) -> Result<u64, ConsentRefused> {
+        let session = self.visits.set_consent(consent, source, client)?;
+        if consent != Consent::Recorded {
+            self.refuse(session, consent);
         }
-        Ok(Arc::clone(recording))
+        Ok(session)
+    }
+
+    /// Whether session `number`'s media may be kept: its consent, as it stands, is `recorded`.
+    fn may_keep(&self, number: u64) -> bool {
+        self.visits.consent_of(number) == Some(Consent::Recorded)
+    }
+
+    /// The open recording `id`, if `token` is its upload token and its session's consent
+    /// allows it.
+    fn authorised(&self, id: u64, token: &str) -> Result<Arc<Recording>, upload::Refusal> {
+        let recording = {
+            let inner = lock(&self.inner);
+            let (recording, _) = inner.open.get(&id).ok_or(upload::Refusal::Gone)?;
+            if !recording.token.matches(token) {
+                return Err(upload::Refusal::Unauthorized);
+            }
+            Arc::clone(recording)
+        };
+        if !self.may_keep(recording.session) {
+            return Err(upload::Refusal::Gone);
+        }
+        Ok(recording)
+    }
+
+    /// Appends chunk `seq` of `recording`, if it is still open and its session's consent, read
+    /// under the file's lock, still allows it: a refusal closes the file under the same lock
+    /// ([`Recordings::close`]) once the consent is changed, so no chunk is stored after it.
+    /// `None`: closed, or consent gone.
+    fn append(
+        &self,
+        recording: &Recording,
+        seq: u64,
+        body: &[u8],
+    ) -> Option<std::io::Result<chunks::Appended>> {
+        let mut chunks = lock(&recording.chunks);
+        let file = chunks.as_mut()?;
+        if !self.may_keep(recording.session) {
+            return None;
+        }
+        Some(file.append(seq, body))
     }
 
     /// Closes recording `id`: no more chunks; `recording.stopped` with what it holds.

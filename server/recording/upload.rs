@@ -62,15 +62,19 @@ pub async fn put_chunk(
             ));
         }
     };
+    let all = std::sync::Arc::clone(recordings);
+    let session = recording.session;
     let stored = tokio::task::spawn_blocking(move || {
-        let mut chunks = crate::sync::lock(&recording.chunks);
-        let file = chunks.as_mut()?;
-        Some(file.append(seq, &body).map_err(|e| (e, recording.client)))
+        let stored = all.append(&recording, seq, &body)?;
+        Some(stored.map_err(|e| (e, recording.client)))
     })
     .await
     .map_err(AppError::internal)?;
     match stored {
         None => Ok(gone(id)),
+        // Consent refused while it was written: the refusal removed it with the rest, and
+        // no acknowledgement may follow the refusal's.
+        Some(Ok(Appended::Stored { .. })) if !recordings.may_keep(session) => Ok(gone(id)),
         Some(Ok(Appended::Stored { acked, next, .. })) => {
             Ok(Json(json!({ "acked": acked, "next": next })).into_response())
         }

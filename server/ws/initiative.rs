@@ -169,7 +169,7 @@ pub(super) fn mark(
                 return;
             };
             let consent = Consent::from_word(word).expect("one of the words above");
-            match visits.set_consent(consent, source, id) {
+            match client.state.recordings.note_consent(consent, source, id) {
                 Ok(session) => Some(session),
                 Err(refused) => {
                     let code = match refused {

@@ -323,3 +323,58 @@ fn a_recording_cut_in_the_middle_of_a_packet_is_copied_up_to_the_last_whole_one(
         "1.62 s, as ffmpeg reads it"
     );
 }
+
+#[test]
+fn a_session_whose_visitors_withdrew_or_declined_exports_no_recording_and_says_so() {
+    for consent in ["withdrawn", "declined"] {
+        // A manifest that still lists the recording and a file still in the folder: what a
+        // server that missed the withdrawal left (issue 24).
+        let (_corpus, dir) = session(vec![media("media/audio-1.webm", 109_042, 1)]);
+        chromium_recording(&dir.join("media/audio-1.webm"));
+        let mut manifest = SessionManifest::read_from(&dir).unwrap();
+        manifest.consent = consent.to_owned();
+        manifest.write_to(&dir).unwrap();
+        let out = dir.join("exports");
+        let (files, warnings) = export(&dir, &out);
+        assert_eq!(
+            files,
+            [out.join(format!("{NAME}.eaf"))],
+            "{consent}: no WAV"
+        );
+        assert_eq!(
+            warnings,
+            [ExportWarning::MediaWithheld {
+                consent: consent.to_owned(),
+                files: 2,
+            }],
+            "{consent}"
+        );
+        let said = warnings[0].to_string();
+        assert!(
+            said.contains("no recording of this session is exported"),
+            "{said}"
+        );
+        let eaf = std::fs::read_to_string(&files[0]).unwrap();
+        assert!(
+            !eaf.contains("MEDIA_DESCRIPTOR"),
+            "{consent}: nothing linked"
+        );
+        let wavs = std::fs::read_dir(&out)
+            .unwrap()
+            .filter(|f| {
+                f.as_ref()
+                    .unwrap()
+                    .path()
+                    .extension()
+                    .is_some_and(|e| e == "wav")
+            })
+            .count();
+        assert_eq!(wavs, 0, "{consent}");
+        let mcap = export_session(&dir, ExportFormat::Mcap, &out).unwrap();
+        let bytes = std::fs::read(&mcap.files[0]).unwrap();
+        let named = bytes
+            .windows(b"audio-1.webm".len())
+            .any(|w| w == b"audio-1.webm");
+        assert!(!named, "{consent}: the MCAP names no recording");
+    }
+}

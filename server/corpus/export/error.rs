@@ -114,6 +114,24 @@ pub enum ExportWarning {
         /// Why.
         problem: String,
     },
+    /// The visitors did not consent to being recorded (declined, or withdrew): no recording
+    /// of them is exported, and none is linked or named.
+    #[error(
+        "the visitors' consent is {consent:?}, not \"recorded\": no recording of this session \
+         is exported, copied or linked{}",
+        if *files > 0 {
+            format!(" ({files} media file(s) are still in its folder: `docent corpus purge` or \
+                     the server's next start removes them)")
+        } else {
+            String::new()
+        }
+    )]
+    MediaWithheld {
+        /// The manifest's consent word.
+        consent: String,
+        /// Media files left in the session's folder or listed in its manifest.
+        files: usize,
+    },
     /// The manifest lists a media file the session's folder does not have.
     #[error(
         "session.json lists the media file {file:?}, which is not a file in the session's \

@@ -293,8 +293,12 @@ impl SessionExport {
             problem,
         };
         let text = std::fs::read(&path).map_err(|e| damaged(e.to_string()))?;
-        let manifest: serde_json::Value =
+        let mut manifest: serde_json::Value =
             serde_json::from_slice(&text).map_err(|e| damaged(e.to_string()))?;
+        if !self.manifest.media_allowed() {
+            // Read again as it is, but consent holds here too (`SessionExport::open`).
+            manifest["media"] = serde_json::Value::Array(Vec::new());
+        }
         let session = Session {
             dir: &self.dir,
             manifest: &manifest,

@@ -160,12 +160,23 @@ impl SessionExport {
             return Err(ExportError::NotASession(dir.to_owned()));
         }
         let (bytes, locked) = read_with_lock(&events)?;
-        let manifest =
+        let mut manifest =
             SessionManifest::read_from(dir).map_err(|e| ExportError::DamagedManifest {
                 path: dir.join(SESSION_MANIFEST),
                 problem: e.to_string(),
             })?;
         let mut warnings = Vec::new();
+        // Consent is read here, once, for every format: without it no recording is copied,
+        // linked or named, whatever files a crash or an older Docent left behind.
+        if !manifest.media_allowed() {
+            let left = std::fs::read_dir(dir.join(crate::recording::MEDIA_DIR))
+                .map_or(0, |entries| entries.count());
+            warnings.push(ExportWarning::MediaWithheld {
+                consent: manifest.consent.clone(),
+                files: left.max(manifest.media.len()),
+            });
+            manifest.media.clear();
+        }
         let (log, timeline) = read_log(&events, bytes, &mut warnings)?;
         // A running Docent keeps the file it writes locked, also for a while after the
         // session's end: the end in the log is what tells a finished session.
