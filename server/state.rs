@@ -156,10 +156,8 @@ impl AppState {
         ));
         // Subscribed now, before any client can connect or any session start.
         let live = Arc::clone(&dispatcher);
-        let follow = Arc::clone(&recordings).follow(
-            move || live.bundle().config.corpus.record,
-            life.shutdown.clone(),
-        );
+        let follow = Arc::clone(&recordings)
+            .follow(move || live.bundle().config.corpus, life.shutdown.clone());
         life.spawn(follow);
         AppState {
             dispatcher,

@@ -3,7 +3,7 @@
 // WebM with MediaRecorder in one-second chunks and uploads them strictly in order, each with the
 // recording's own token, keeping the chunks not yet acknowledged in a bounded queue: a network
 // error or a 5xx is retried with back-off, a 409 resumes from the chunk the server names, a 410
-// ends the recording (stopped, or consent withdrawn). It places the first sample on the server's
+// ends the recording (stopped, or consent withdrawn), and so does a 507 (a recording limit). It places the first sample on the server's
 // clock (a few `clock` round trips, the best kept) and says so in `recording-started`; on
 // `record-stop` it stops, uploads what is left and says `recording-stopped`. Whatever fails
 // (permission, device, recorder, uploads past the retry budget, a full queue) is reported at
@@ -139,8 +139,9 @@ function record(frame, { send, syncClock }) {
       }
       return pump();
     }
-    if (response?.status === 410) {
-      // Closed by the server (stopped, consent declined or withdrawn): nothing more to send.
+    if (response?.status === 410 || response?.status === 507) {
+      // Closed by the server (stopped, consent declined or withdrawn; 507: a recording limit
+      // or the disk's reserve, which the server has told operators): nothing more to send.
       return end();
     }
     if (response && response.status < 500) {

@@ -365,3 +365,74 @@ async fn a_kiosk_that_cannot_record_is_told_to_operators_at_once() {
     assert_eq!(status, 410, "a failed recording takes no chunks");
     server.stop().await;
 }
+
+/// A server whose `corpus: record_limits` are `limits`, a session started by its operator, and
+/// its kiosk.
+async fn limited(limits: &str) -> (TestServer, WsClient, WsClient, TempBundle) {
+    let b = site(&format!(", record_limits: {{{limits}}}"));
+    let server = TestServer::start(b.path()).await;
+    let kiosk = kiosk(&server).await;
+    let mut op = server.operator().await;
+    mark(&mut op, "session_start", None).await;
+    (server, kiosk, op, b)
+}
+
+#[tokio::test]
+async fn a_kiosk_uploading_past_its_limits_is_stopped_and_the_robot_goes_on() {
+    for (limits, per) in [
+        ("per_session: 10 kB", "per_session"),
+        ("per_kiosk: 10 kB", "per_kiosk"),
+    ] {
+        let (server, mut kiosk, mut op, _b) = limited(limits).await;
+        let record = kiosk.recv_type("record").await;
+        let id = record["recording"].clone();
+        for seq in 0..2 {
+            assert_eq!(chunk(&server, &record, seq, &[7; 4000]).await.0, 200);
+        }
+        let (status, refused) = chunk(&server, &record, 2, &[7; 4000]).await;
+        assert_eq!((status, &refused["code"]), (507, &json!("recording-limit")));
+        let said = refused["error"].as_str().unwrap();
+        assert!(said.contains(per) && said.contains("10.0 kB"), "{said}");
+        let failed = op.event("recording.failed").await;
+        assert_eq!(
+            (&failed["code"], &failed["recording"]),
+            (&json!("limit-reached"), &id)
+        );
+        assert_eq!(kiosk.recv_type("record-stop").await["recording"], id);
+        // Refused for good, and nothing more was written.
+        assert_eq!(chunk(&server, &record, 2, &[7; 10]).await.0, 410);
+        let file = media(&server, record["file"].as_str().unwrap());
+        assert_eq!(std::fs::metadata(&file).unwrap().len(), 8000);
+        // The robot goes on: an act is still acknowledged and logged.
+        op.send(json!({"type": "trigger", "label": "WELCOME", "ref": "t"}))
+            .await;
+        op.recv_where(|f| f["type"] == "triggered" && f["ref"] == "t")
+            .await;
+        drop(kiosk);
+        server.stop().await;
+    }
+}
+
+#[tokio::test]
+async fn no_recording_starts_when_the_disk_has_no_more_than_its_reserve() {
+    // More than any test machine's disk holds: the reserve is never there.
+    let (server, mut kiosk, mut op, _b) = limited("keep_free: 1000 TB").await;
+    let failed = op.event("recording.failed").await;
+    assert_eq!(failed["code"], "disk-full");
+    let said = failed["message"].as_str().unwrap();
+    assert!(
+        said.contains("keep_free") && said.contains("1000.0 TB"),
+        "{said}"
+    );
+    // The kiosk was asked for nothing, and triggers are still taken.
+    kiosk
+        .send(json!({"type": "trigger", "label": "WELCOME", "ref": "k"}))
+        .await;
+    let answer = kiosk
+        .recv_where(|f| f["type"] == "record" || f["ref"] == "k")
+        .await;
+    assert_eq!(answer["type"], "triggered", "{answer}");
+    drop(kiosk);
+    let events = server.stop().await;
+    assert!(!events.iter().any(|e| e["type"] == "recording.started"));
+}

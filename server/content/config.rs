@@ -8,7 +8,7 @@ use std::time::Duration;
 
 use crate::content::model::Located;
 
-pub use crate::content::config_corpus::{CorpusSettings, RecordTracks, SessionStart};
+pub use crate::content::config_corpus::{CorpusSettings, RecordLimits, RecordTracks, SessionStart};
 pub use crate::content::config_file::captions::CaptionSettings;
 pub use crate::content::config_file::codebook::{Code, Codebook, CodebookTier};
 pub use crate::content::config_file::mqtt::{MqttPassword, MqttSettings};

@@ -27,6 +27,33 @@ pub struct CorpusSettings {
     pub consent: Consent,
     /// What the kiosk device records during a session whose consent is `recorded`.
     pub record: RecordTracks,
+    /// How much the recordings may take (`corpus: record_limits:`).
+    pub record_limits: RecordLimits,
+}
+
+/// How much of the disk recordings may take (`corpus: record_limits:`): the kiosks upload
+/// without a credential, so a kiosk (or anyone on its network) must not be able to fill the
+/// disk the corpus log is written to. Recordings stop first, with the operator told.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct RecordLimits {
+    /// Bytes all recordings of one session may hold together.
+    pub per_session: u64,
+    /// Bytes one kiosk's recordings may hold in one session.
+    pub per_kiosk: u64,
+    /// Bytes left free on the corpus's disk: a chunk that would leave less is refused, so the
+    /// event log can always be written.
+    pub keep_free: u64,
+}
+
+impl Default for RecordLimits {
+    fn default() -> Self {
+        // An hour of 1080p VP8 with Opus at Chromium's default rate is about 1.1 GB.
+        RecordLimits {
+            per_session: 4_000_000_000,
+            per_kiosk: 2_000_000_000,
+            keep_free: 1_000_000_000,
+        }
+    }
 }
 
 /// What the kiosk device records (`corpus: record:`): its microphone, its camera, both or
@@ -70,6 +97,7 @@ impl Default for CorpusSettings {
                 audio: true,
                 video: false,
             },
+            record_limits: RecordLimits::default(),
         }
     }
 }

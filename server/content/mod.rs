@@ -61,6 +61,7 @@ mod operator_check;
 mod pages;
 mod paths;
 mod render;
+pub mod size;
 mod speech;
 mod suggest;
 mod unused;

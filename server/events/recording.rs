@@ -62,7 +62,7 @@ impl StopReason {
 }
 
 /// Why a recording could not start or go on: reported by the kiosk (or found by the server,
-/// `disk-error`), logged as `recording.failed` and shown to operators at once.
+/// `disk-error`, `limit-reached`, `disk-full`), logged as `recording.failed` and shown to operators at once.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize)]
 #[serde(rename_all = "kebab-case")]
 pub enum FailureCode {
@@ -80,6 +80,12 @@ pub enum FailureCode {
     QueueFull,
     /// The server could not write the recording to disk.
     DiskError,
+    /// The recording reached a limit of `corpus: record_limits` (its session's or its
+    /// kiosk's share): the server stopped it.
+    LimitReached,
+    /// The corpus's disk has no more room than the reserve kept for the event log
+    /// (`record_limits: keep_free`): the server stopped recording.
+    DiskFull,
     /// Any other failure a kiosk reports (a newer kiosk's code).
     #[serde(other)]
     Other,

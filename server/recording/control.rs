@@ -14,9 +14,10 @@ use std::time::Duration;
 use tokio_util::sync::CancellationToken;
 
 use super::frames::{record_frame, record_stop_frame};
+use super::quota::SessionQuota;
 use super::{ChunkFile, Inner, KioskRecording, MEDIA_DIR, Recorded, Recording, Recordings};
 use crate::access::Secret;
-use crate::content::config::RecordTracks;
+use crate::content::config::{CorpusSettings, RecordTracks};
 use crate::events::{
     ClientRole, Consent, Event, EventKind, FailureCode, RecordingEvent, StopReason, Track,
 };
@@ -27,12 +28,13 @@ use crate::wire::outbox::Frame;
 pub const FINAL_UPLOAD_GRACE: Duration = Duration::from_secs(30);
 
 impl Recordings {
-    /// Follows the hub until `shutdown`; `tracks()` reads the live bundle's `corpus: record`.
+    /// Follows the hub until `shutdown`; `settings()` reads the live bundle's `corpus:` (what
+    /// is recorded, and its limits).
     /// The events it acts on come without loss ([`crate::events::Hub::follow`]): a session's
     /// start or end missed under load would record visitors nobody asked, or stop nobody.
     pub async fn follow(
         self: Arc<Self>,
-        tracks: impl Fn() -> RecordTracks,
+        settings: impl Fn() -> CorpusSettings,
         shutdown: CancellationToken,
     ) {
         let mut events = self.hub.follow(acted_on);
@@ -44,7 +46,7 @@ impl Recordings {
                 () = shutdown.cancelled() => return,
             };
             let Some(event) = event else { return };
-            self.on_event(&event, &mut running, &tracks).await;
+            self.on_event(&event, &mut running, &settings).await;
         }
     }
 
@@ -52,7 +54,7 @@ impl Recordings {
         self: &Arc<Self>,
         event: &Event,
         running: &mut Option<(u64, u64, u64)>,
-        tracks: &impl Fn() -> RecordTracks,
+        settings: &impl Fn() -> CorpusSettings,
     ) {
         match &event.kind {
             EventKind::SessionStarted {
@@ -60,7 +62,7 @@ impl Recordings {
             } => {
                 *running = Some((*session, event.seq, event.mono_us));
                 if *consent == Consent::Recorded {
-                    self.begin(*session, event.seq, event.mono_us, tracks())
+                    self.begin(*session, event.seq, event.mono_us, settings())
                         .await;
                 }
             }
@@ -70,7 +72,7 @@ impl Recordings {
                 (Consent::Recorded, Some((number, seq, mono))) if number == *session => {
                     let recording = lock(&self.inner).session.is_some();
                     if !recording {
-                        self.begin(number, seq, mono, tracks()).await;
+                        self.begin(number, seq, mono, settings()).await;
                     }
                 }
                 // Carried out already, before the mark was answered (`note_consent`); this
@@ -119,8 +121,9 @@ impl Recordings {
         number: u64,
         seq: u64,
         start_mono_us: u64,
-        tracks: RecordTracks,
+        settings: CorpusSettings,
     ) {
+        let tracks = settings.record;
         if !tracks.any() || self.hub.logged(seq).await.is_err() {
             return;
         }
@@ -138,6 +141,7 @@ impl Recordings {
                 dir,
                 next_file: 1,
                 tracks,
+                quota: Arc::new(SessionQuota::new(settings.record_limits)),
             });
             inner.kiosks.keys().copied().collect()
         };
@@ -163,6 +167,14 @@ impl Recordings {
         let Some((recording, path, tracks)) = planned else {
             return;
         };
+        // The disk keeps room for the event log: no recording starts without it.
+        let folder = path
+            .parent()
+            .and_then(Path::parent)
+            .unwrap_or(Path::new("."));
+        if let Err(refused) = recording.quota.room_to_start(folder) {
+            return self.failed(client, None, refused.code, &refused.message);
+        }
         let made = path.clone();
         let opened = tokio::task::spawn_blocking(move || {
             std::fs::create_dir_all(made.parent().unwrap_or(Path::new(".")))?;
@@ -345,7 +357,7 @@ fn plan(
     let file = format!("{MEDIA_DIR}/{}-{}.webm", track.as_str(), session.next_file);
     session.next_file += 1;
     let path = session.dir.join(&file);
-    let (number, tracks) = (session.number, session.tracks);
+    let (number, tracks, quota) = (session.number, session.tracks, Arc::clone(&session.quota));
     inner.next_id += 1;
     let recording = Arc::new(Recording {
         id: inner.next_id,
@@ -354,6 +366,7 @@ fn plan(
         track,
         file,
         token: Secret::generate(),
+        quota,
         chunks: std::sync::Mutex::new(None),
     });
     Some((recording, path, tracks))

@@ -18,6 +18,7 @@
 pub mod chunks;
 mod control;
 mod frames;
+mod quota;
 mod recover;
 mod upload;
 
@@ -40,6 +41,8 @@ use crate::sync::lock;
 
 pub use chunks::ChunkFile;
 pub use frames::clock_frame;
+use quota::OverLimit as Over;
+pub use quota::{OverLimit, SessionQuota, available_bytes};
 pub use recover::{Cut, cut_unacknowledged, remove_unconsented};
 pub use upload::{MAX_CHUNK_BYTES, put_chunk};
 
@@ -83,8 +86,20 @@ pub struct Recording {
     /// Relative to the session folder: `media/audio-1.webm`.
     file: String,
     token: Secret,
+    /// Its session's limits and what its recordings hold.
+    quota: Arc<SessionQuota>,
     /// The file; `None` once the recording is closed (chunks are refused then).
     chunks: Mutex<Option<ChunkFile>>,
+}
+
+/// What became of a chunk handed to [`Recordings::append`].
+enum Appending {
+    /// The recording is closed, or its visitors' consent is gone.
+    Closed,
+    /// A limit of `corpus: record_limits` (or the disk's reserve) refused it.
+    OverLimit(Over),
+    /// The file's answer.
+    Done(std::io::Result<chunks::Appended>),
 }
 
 /// The session being recorded.
@@ -97,6 +112,8 @@ struct Recorded {
     /// The number of the next file (`audio-N.webm`), from 1 within the session.
     next_file: u32,
     tracks: RecordTracks,
+    /// Its limits, shared by its recordings.
+    quota: Arc<SessionQuota>,
 }
 
 #[derive(Debug, Default)]
@@ -274,22 +291,45 @@ impl Recordings {
         Ok(recording)
     }
 
-    /// Appends chunk `seq` of `recording`, if it is still open and its session's consent, read
-    /// under the file's lock, still allows it: a refusal closes the file under the same lock
-    /// ([`Recordings::close`]) once the consent is changed, so no chunk is stored after it.
-    /// `None`: closed, or consent gone.
-    fn append(
-        &self,
-        recording: &Recording,
-        seq: u64,
-        body: &[u8],
-    ) -> Option<std::io::Result<chunks::Appended>> {
+    /// Appends chunk `seq` of `recording`, if it is still open, its session's consent, read
+    /// under the file's lock, still allows it, and its limits have room: a refusal closes the
+    /// file under the same lock ([`Recordings::close`]) once the consent is changed, so no chunk
+    /// is stored after it.
+    fn append(&self, recording: &Recording, seq: u64, body: &[u8]) -> Appending {
         let mut chunks = lock(&recording.chunks);
-        let file = chunks.as_mut()?;
+        let Some(file) = chunks.as_mut() else {
+            return Appending::Closed;
+        };
         if !self.may_keep(recording.session) {
-            return None;
+            return Appending::Closed;
         }
-        Some(file.append(seq, body))
+        // Only a chunk that would be appended counts (a resend is answered as before).
+        let counted = if seq == file.chunks() {
+            body.len() as u64
+        } else {
+            0
+        };
+        if counted > 0 {
+            let folder = file.path().parent().unwrap_or(std::path::Path::new("."));
+            let available = || available_bytes(folder);
+            if let Err(over) = recording.quota.take(recording.client, counted, available) {
+                return Appending::OverLimit(over);
+            }
+        }
+        let appended = file.append(seq, body);
+        if !matches!(appended, Ok(chunks::Appended::Stored { new: true, .. })) && counted > 0 {
+            recording.quota.give_back(recording.client, counted);
+        }
+        Appending::Done(appended)
+    }
+
+    /// Stops recording `id` of kiosk `client` that reached a limit: the kiosk is told to stop,
+    /// operators see `recording.failed` with the limit's words, the file keeps what it holds.
+    fn over_limit(&self, client: u64, id: u64, over: &Over) {
+        let frame = frames::record_stop_frame(id, StopReason::Failed);
+        self.links
+            .send_to(client, &crate::wire::outbox::Frame::from(frame));
+        self.failed(client, Some(id), over.code, &over.message);
     }
 
     /// Closes recording `id`: no more chunks; `recording.stopped` with what it holds.

@@ -12,6 +12,7 @@ use axum::http::{HeaderMap, StatusCode};
 use axum::response::{IntoResponse, Response};
 use serde_json::json;
 
+use super::Appending;
 use super::chunks::Appended;
 use crate::events::FailureCode;
 use crate::http::AppError;
@@ -63,22 +64,29 @@ pub async fn put_chunk(
         }
     };
     let all = std::sync::Arc::clone(recordings);
-    let session = recording.session;
-    let stored = tokio::task::spawn_blocking(move || {
-        let stored = all.append(&recording, seq, &body)?;
-        Some(stored.map_err(|e| (e, recording.client)))
-    })
-    .await
-    .map_err(AppError::internal)?;
+    let (session, client) = (recording.session, recording.client);
+    let stored = tokio::task::spawn_blocking(move || all.append(&recording, seq, &body))
+        .await
+        .map_err(AppError::internal)?;
     match stored {
-        None => Ok(gone(id)),
+        Appending::Closed => Ok(gone(id)),
+        Appending::OverLimit(over) => {
+            recordings.over_limit(client, id, &over);
+            Err(AppError::new(
+                StatusCode::INSUFFICIENT_STORAGE,
+                ErrorCode::RecordingLimit,
+                over.message,
+            ))
+        }
         // Consent refused while it was written: the refusal removed it with the rest, and
         // no acknowledgement may follow the refusal's.
-        Some(Ok(Appended::Stored { .. })) if !recordings.may_keep(session) => Ok(gone(id)),
-        Some(Ok(Appended::Stored { acked, next, .. })) => {
+        Appending::Done(Ok(Appended::Stored { .. })) if !recordings.may_keep(session) => {
+            Ok(gone(id))
+        }
+        Appending::Done(Ok(Appended::Stored { acked, next, .. })) => {
             Ok(Json(json!({ "acked": acked, "next": next })).into_response())
         }
-        Some(Ok(Appended::Gap { next })) => Ok((
+        Appending::Done(Ok(Appended::Gap { next })) => Ok((
             StatusCode::CONFLICT,
             Json(json!({
                 "error": format!("chunk {seq} comes after a gap: send chunk {next} first"),
@@ -87,7 +95,7 @@ pub async fn put_chunk(
             })),
         )
             .into_response()),
-        Some(Err((e, client))) => {
+        Appending::Done(Err(e)) => {
             let message = format!("the server could not store chunk {seq} of recording {id}: {e}");
             recordings.failed(client, Some(id), FailureCode::DiskError, &message);
             Err(AppError::internal(message))

@@ -106,6 +106,8 @@ pub enum ErrorCode {
     ChunkOutOfOrder,
     /// `recording-gone`: A chunk for a recording that is closed or unknown.
     RecordingGone,
+    /// `recording-limit`: A chunk beyond a recording limit or the disk's reserve.
+    RecordingLimit,
     /// `broker-down`: The fleet view's link to the MQTT broker is down: nothing was sent.
     BrokerDown,
     /// `robot-silent`: A robot did not answer a fleet command in time.
@@ -116,7 +118,7 @@ pub enum ErrorCode {
 
 impl ErrorCode {
     /// Every code, for tests and documentation checks.
-    pub const ALL: [ErrorCode; 52] = [
+    pub const ALL: [ErrorCode; 53] = [
         ErrorCode::BadRequest,
         ErrorCode::BodyNotObject,
         ErrorCode::ConflictingLength,
@@ -166,6 +168,7 @@ impl ErrorCode {
         ErrorCode::SessionDamaged,
         ErrorCode::ChunkOutOfOrder,
         ErrorCode::RecordingGone,
+        ErrorCode::RecordingLimit,
         ErrorCode::BrokerDown,
         ErrorCode::RobotSilent,
         ErrorCode::RobotRefused,
@@ -223,6 +226,7 @@ impl ErrorCode {
             ErrorCode::SessionDamaged => "session-damaged",
             ErrorCode::ChunkOutOfOrder => "chunk-out-of-order",
             ErrorCode::RecordingGone => "recording-gone",
+            ErrorCode::RecordingLimit => "recording-limit",
             ErrorCode::BrokerDown => "broker-down",
             ErrorCode::RobotSilent => "robot-silent",
             ErrorCode::RobotRefused => "robot-refused",

@@ -13,6 +13,8 @@ const ADVICE = {
   "upload-failed": "The kiosk could not upload its recording for a while: check its network. What was uploaded is kept; start a new session to record again.",
   "queue-full": "The kiosk's recording could not be uploaded fast enough and was stopped. Check its network, then start a new session.",
   "disk-error": "The server could not write the recording. Check the corpus folder's disk, then start a new session.",
+  "limit-reached": "The recording reached its limit (corpus: record_limits in docent.yaml) and was stopped; what was recorded is kept. Start a new session to record again, or raise the limit.",
+  "disk-full": "The corpus folder's disk is down to the space kept free for the event log, so recording stopped; the robot goes on. Free space on the disk (or export and purge old sessions), then start a new session.",
 };
 
 /**

@@ -4,9 +4,10 @@
 //! exists is checked later, with the acts (`load.rs`); `attract:` is read by `attract.rs`.
 
 use crate::content::acts_file::yaml::{Kind, Node};
-use crate::content::config::{AfterVideo, RecordTracks, SessionStart, SiteConfig};
+use crate::content::config::{AfterVideo, RecordLimits, RecordTracks, SessionStart, SiteConfig};
 use crate::content::duration::parse_duration;
 use crate::content::model::Located;
+use crate::content::size::parse_size;
 use crate::content::suggest::did_you_mean;
 use crate::events::{Consent, robot_event_name_problem};
 
@@ -24,7 +25,12 @@ pub(crate) const CORPUS_KEYS: &[&str] = &[
     "session_start_events",
     "consent",
     "record",
+    "record_limits",
 ];
+/// The keys of `corpus: record_limits:`.
+pub(crate) const RECORD_LIMITS_KEYS: &[&str] = &["per_session", "per_kiosk", "keep_free"];
+const RECORD_LIMITS_USAGE: &str = "is an amount of storage with its unit, e.g. `4 GB`, \
+                                   `500 MB` or `1.5 GiB` (a bare number is refused).";
 const START_EVENTS_USAGE: &str = "`session_start_events` lists the robot events (sent by an \
                                   adapter process, see docs/PROTOCOL.md) that start a visitor \
                                   session when none runs, e.g. `[person.near]`: names of \
@@ -101,6 +107,10 @@ impl Reader {
                 }
                 continue;
             }
+            if key == "record_limits" {
+                self.record_limits(value, &mut config.corpus.record_limits);
+                continue;
+            }
             if key == "consent" {
                 let options = [
                     ("recorded", Consent::Recorded),
@@ -117,6 +127,21 @@ impl Reader {
             ];
             if let Some(start) = self.choice(value, "`session_start`", &options) {
                 config.corpus.session_start = start;
+            }
+        }
+    }
+
+    /// Reads `corpus: record_limits:`: each limit an amount of storage.
+    fn record_limits(&mut self, node: &Node, limits: &mut RecordLimits) {
+        for (key, value) in self.entries(node, RECORD_LIMITS_KEYS, "record_limits") {
+            let usage = format!("`record_limits: {key}` {RECORD_LIMITS_USAGE}");
+            let Some(bytes) = self.setting(value, &usage, parse_size) else {
+                continue;
+            };
+            match key {
+                "per_session" => limits.per_session = bytes,
+                "per_kiosk" => limits.per_kiosk = bytes,
+                _ => limits.keep_free = bytes,
             }
         }
     }
@@ -198,7 +223,7 @@ mod tests {
 
     use std::time::Duration;
 
-    use crate::content::config::{AfterVideo, RecordTracks};
+    use crate::content::config::{AfterVideo, RecordLimits, RecordTracks};
 
     #[test]
     fn kiosk_and_projector_settings_are_read() {
@@ -239,6 +264,38 @@ mod tests {
             );
             assert_eq!(file.config.projector.highlight_edge, 0.02, "default kept");
         }
+    }
+
+    #[test]
+    fn record_limits_are_amounts_with_units_and_a_bad_one_keeps_its_default() {
+        let limits = |text: &str| parse(text).config.corpus.record_limits;
+        assert_eq!(limits("corpus: {}\n"), RecordLimits::default());
+        let set = limits(
+            "corpus:\n  record_limits: {per_session: 2 GB, per_kiosk: 500 MB, keep_free: 1.5 GiB}\n",
+        );
+        assert_eq!(
+            set,
+            RecordLimits {
+                per_session: 2_000_000_000,
+                per_kiosk: 500_000_000,
+                keep_free: 1_610_612_736,
+            }
+        );
+        let file = parse("corpus:\n  record_limits: {per_session: 2000}\n");
+        assert_eq!(file.config.corpus.record_limits, RecordLimits::default());
+        let problem = &file.diagnostics[0];
+        assert_eq!(
+            (problem.code, problem.line),
+            ("config-bad-value", 2),
+            "{problem:?}"
+        );
+        assert!(problem.message.contains("`4 GB`"), "{}", problem.message);
+        let typo = parse("corpus:\n  record_limits: {per_sesion: 2 GB}\n");
+        assert!(
+            typo.diagnostics[0].message.contains("per_session"),
+            "{:?}",
+            typo.diagnostics
+        );
     }
 
     #[test]

@@ -10,7 +10,7 @@ use crate::content::config_file::mqtt::KEYS as MQTT_KEYS;
 use crate::content::config_file::operator::KEYS as OPERATOR_KEYS;
 use crate::content::config_file::policy::{CHANNEL_KEYS, PRIORITY_KEYS};
 use crate::content::config_file::reactions::REACTION_KEYS;
-use crate::content::config_file::screens::CORPUS_KEYS;
+use crate::content::config_file::screens::{CORPUS_KEYS, RECORD_LIMITS_KEYS};
 use crate::content::config_file::server::KEYS as SERVER_KEYS;
 
 mod rosbridge;
@@ -326,6 +326,29 @@ fn corpus(key: &str) -> Value {
             "uniqueItems": true,
             "items": { "type": "string", "pattern": "^[a-z][a-z0-9._-]{0,63}$" },
         }),
+        "record_limits" => section(
+            RECORD_LIMITS_KEYS,
+            |key| {
+                let what = match key {
+                    "per_session" => {
+                        "All recordings of one visitor session together (default 4 GB)."
+                    }
+                    "per_kiosk" => "One kiosk's recordings in one visitor session (default 2 GB).",
+                    _ => {
+                        "Left free on the corpus's disk, so the event log can always be \
+                          written (default 1 GB)."
+                    }
+                };
+                json!({
+                    "type": "string",
+                    "pattern": r"^\s*(\d+(\.\d*)?|\.\d+)\s*([bB]|[kKmMgGtT][iI]?[bB])\s*$",
+                    "description": format!("{what} An amount with its unit: `4 GB`, `500 MB`, `1.5 GiB`."),
+                    "examples": ["4 GB", "500 MB"],
+                })
+            },
+            "How much of the disk recordings may take; a chunk beyond a limit is refused, the \
+             recording stops and operators are told.",
+        ),
         "record" => json!({
             "description": "What the kiosk device records during a session whose consent is \
                             `recorded`: `[audio]` (the default, its microphone), \
