@@ -21,6 +21,7 @@ use super::broker::{Broker, LinkStatus, topic};
 use super::commands;
 use super::link::{LinkNote, run_link};
 use super::robot_state::{self, Battery, Identity};
+use super::signed::Replays;
 use crate::events::EventKind;
 use crate::state::AppState;
 
@@ -232,6 +233,7 @@ async fn run_commands(
 ) {
     let reply = topic(&robot, "reply");
     let mut broker_ip: Option<IpAddr> = None;
+    let mut replays = Replays::default();
     let shutdown = state.life.shutdown.clone();
     loop {
         let payload = tokio::select! {
@@ -249,7 +251,7 @@ async fn run_commands(
                 found.unwrap_or(IpAddr::V4(std::net::Ipv4Addr::UNSPECIFIED))
             }
         };
-        for frame in commands::answer(&state, ip, &payload).await {
+        for frame in commands::answer(&state, (ip, &robot), &mut replays, &payload).await {
             if let Err(e) = client.publish(&reply, QoS::AtLeastOnce, false, frame).await {
                 tracing::warn!("could not publish an answer on {reply}: {e}");
             }
@@ -257,7 +259,7 @@ async fn run_commands(
     }
 }
 
-/// The broker's address, which failed credentials count against.
+/// The broker's address, named in the corpus as where the commands came through.
 async fn resolve(host: &str) -> Option<IpAddr> {
     if let Ok(ip) = host.parse() {
         return Some(ip);

@@ -1,6 +1,8 @@
 //! What the fleet tests share: a real mosquitto on a free loopback port (killed on drop), a
-//! `docent serve --mqtt` child process per robot (killed on drop), and an MQTT test client
-//! whose messages are awaited with a deadline, never slept for.
+//! `docent serve --mqtt` child process per robot (killed on drop), an MQTT test client
+//! whose messages are awaited with a deadline, never slept for, and the signing of fleet
+//! commands written from docs/FLEET.md (HMAC-SHA256 with the `hmac` crate, not Docent's code),
+//! so that the format as documented is what the robots take.
 
 #![allow(dead_code)] // Each test binary uses a different part.
 
@@ -9,8 +11,11 @@ use std::path::{Path, PathBuf};
 use std::process::{Child, Command, Stdio};
 use std::time::Duration;
 
+use hmac::{Hmac, KeyInit, Mac};
+use rand::RngExt;
 use rumqttc::{AsyncClient, Event, Incoming, MqttOptions, QoS};
-use serde_json::Value;
+use serde_json::{Value, json};
+use sha2::Sha256;
 use tokio::sync::mpsc;
 
 use crate::common::{DEADLINE, DM_TOKEN, OPERATOR_TOKEN, process};
@@ -266,8 +271,10 @@ impl Drop for Robot {
 pub struct Message {
     /// Its topic.
     pub topic: String,
-    /// Its payload as JSON.
+    /// Its payload as JSON (null if it is not).
     pub json: Value,
+    /// Its payload as text (bytes not UTF-8 replaced).
+    pub text: String,
 }
 
 /// An MQTT client of the test: subscribes to `filters` (again after each reconnection).
@@ -296,13 +303,13 @@ impl TestClient {
                     }
                     Ok(Event::Incoming(Incoming::Publish(p))) => {
                         let json = serde_json::from_slice(&p.payload).unwrap_or(Value::Null);
-                        if tx
-                            .send(Message {
-                                topic: p.topic,
-                                json,
-                            })
-                            .is_err()
-                        {
+                        let text = String::from_utf8_lossy(&p.payload).into_owned();
+                        let message = Message {
+                            topic: p.topic,
+                            json,
+                            text,
+                        };
+                        if tx.send(message).is_err() {
                             return;
                         }
                     }
@@ -329,25 +336,174 @@ impl TestClient {
         found.unwrap_or_else(|_| panic!("no wanted message on {topic} within the deadline"))
     }
 
+    /// The next message on any topic, within the deadline.
+    pub async fn recv(&mut self) -> Message {
+        let message = tokio::time::timeout(DEADLINE, self.messages.recv()).await;
+        let message = message.expect("a message within the deadline");
+        message.expect("the client runs")
+    }
+
     /// Publishes `command` on robot `robot`'s `cmd` topic.
     pub async fn command(&self, robot: &str, command: Value) {
+        self.publish(&format!("docent/{robot}/cmd"), &command).await;
+    }
+
+    /// Publishes `payload` on `topic`.
+    pub async fn publish(&self, topic: &str, payload: &Value) {
         (self.client)
-            .publish(
-                format!("docent/{robot}/cmd"),
-                QoS::AtLeastOnce,
-                false,
-                command.to_string(),
-            )
+            .publish(topic, QoS::AtLeastOnce, false, payload.to_string())
             .await
             .expect("published");
     }
 
-    /// Publishes `command` on `robot`'s `cmd` and returns its answer with `reference`.
-    pub async fn ask(&mut self, robot: &str, reference: &str, command: Value) -> Value {
+    /// Publishes the envelope `command` (whose `ref` is `reference`) on `robot`'s `cmd` and
+    /// returns the reply envelope with that `ref`, as it came.
+    pub async fn ask_envelope(&mut self, robot: &str, reference: &str, command: Value) -> Value {
         self.command(robot, command).await;
         let topic = format!("docent/{robot}/reply");
         self.next(&topic, |answer| answer["ref"] == reference).await
     }
+
+    /// Sends `frame` to `robot` signed with the operator credential and returns the answer
+    /// frame, after checking the reply is signed too.
+    pub async fn ask(&mut self, robot: &str, frame: Value) -> Value {
+        let reference = fresh_ref();
+        let command = signed(robot, ("operator", OPERATOR_TOKEN), &reference, &frame);
+        let reply = self.ask_envelope(robot, &reference, command).await;
+        assert!(reply_signed(&reply, OPERATOR_TOKEN), "{reply}");
+        assert_eq!(reply["robot"], robot);
+        reply_frame(&reply)
+    }
+}
+
+/// HMAC-SHA256 of `text` keyed by `key`, in lowercase hex.
+pub fn hmac_hex(key: &str, text: &str) -> String {
+    let mut mac = <Hmac<Sha256> as KeyInit>::new_from_slice(key.as_bytes()).expect("any key");
+    mac.update(text.as_bytes());
+    let bytes = mac.finalize().into_bytes();
+    bytes.iter().map(|b| format!("{b:02x}")).collect()
+}
+
+/// A fresh random `ref`.
+pub fn fresh_ref() -> String {
+    let bits: u128 = rand::rng().random();
+    format!("{bits:032x}")
+}
+
+/// Milliseconds since the Unix epoch.
+pub fn now_ms() -> u64 {
+    let since = std::time::SystemTime::now().duration_since(std::time::UNIX_EPOCH);
+    since.expect("after 1970").as_millis() as u64
+}
+
+/// The signed command envelope of `frame` for `robot`, as `(role, credential)`, signed now.
+pub fn signed(robot: &str, (role, key): (&str, &str), reference: &str, frame: &Value) -> Value {
+    signed_at(robot, (role, key), reference, frame, now_ms())
+}
+
+/// As [`signed`], with the timestamp `ts`.
+pub fn signed_at(
+    robot: &str,
+    (role, key): (&str, &str),
+    reference: &str,
+    frame: &Value,
+    ts: u64,
+) -> Value {
+    let frame = frame.to_string();
+    let text = format!("docent-command-v1\n{robot}\n{role}\n{reference}\n{ts}\n{frame}");
+    json!({"robot": robot, "role": role, "ref": reference, "ts": ts, "frame": frame,
+        "mac": hmac_hex(key, &text)})
+}
+
+/// A reply envelope for `frame` as `robot` would sign it with `key`.
+pub fn signed_reply(robot: &str, reference: &str, frame: &Value, key: &str) -> Value {
+    let frame = frame.to_string();
+    let text = format!("docent-reply-v1\n{robot}\n{reference}\n{frame}");
+    json!({"robot": robot, "ref": reference, "frame": frame, "mac": hmac_hex(key, &text)})
+}
+
+/// Whether a reply envelope carries a valid MAC with `key`.
+pub fn reply_signed(reply: &Value, key: &str) -> bool {
+    let field = |name: &str| reply[name].as_str().unwrap_or_default().to_owned();
+    let text = format!(
+        "docent-reply-v1\n{}\n{}\n{}",
+        field("robot"),
+        field("ref"),
+        field("frame")
+    );
+    reply["mac"].as_str() == Some(hmac_hex(key, &text).as_str())
+}
+
+/// The answer frame a reply envelope carries.
+pub fn reply_frame(reply: &Value) -> Value {
+    let frame = reply["frame"]
+        .as_str()
+        .expect("a reply envelope with a frame");
+    serde_json::from_str(frame).expect("the frame is JSON")
+}
+
+/// Reads the fleet view's live stream on `robot` until `done` accepts the robots it lists.
+pub async fn fleet_until(robot: &Robot, done: impl Fn(&[Value]) -> bool) -> Vec<Value> {
+    let mut response = reqwest::Client::new()
+        .get(robot.url("/api/fleet/updates"))
+        .bearer_auth(OPERATOR_TOKEN)
+        .send()
+        .await
+        .expect("the fleet stream answers");
+    assert_eq!(response.status(), 200);
+    let mut robots: std::collections::BTreeMap<String, Value> = Default::default();
+    let mut buffer = String::new();
+    let read = async {
+        loop {
+            let chunk = response
+                .chunk()
+                .await
+                .expect("stream readable")
+                .expect("stream open");
+            buffer.push_str(std::str::from_utf8(&chunk).expect("UTF-8"));
+            while let Some(end) = buffer.find("\n\n") {
+                let message: String = buffer.drain(..end + 2).collect();
+                let Some(data) = message.lines().find_map(|l| l.strip_prefix("data: ")) else {
+                    continue;
+                };
+                let data: Value = serde_json::from_str(data).expect("JSON update");
+                let id = |r: &Value| r["robot"].as_str().unwrap_or_default().to_owned();
+                if let Some(all) = data["robots"].as_array() {
+                    robots = all.iter().map(|r| (id(r), r.clone())).collect();
+                } else if data["robot"].is_object() {
+                    robots.insert(id(&data["robot"]), data["robot"].clone());
+                }
+                let listed: Vec<Value> = robots.values().cloned().collect();
+                if done(&listed) {
+                    return listed;
+                }
+            }
+        }
+    };
+    tokio::time::timeout(DEADLINE, read)
+        .await
+        .expect("the fleet view shows it within the deadline")
+}
+
+/// Whether `robots` lists `id` online with its state.
+pub fn online(robots: &[Value], id: &str) -> bool {
+    robots
+        .iter()
+        .any(|r| r["robot"] == id && r["online"] == true && r["state"]["page"].is_string())
+}
+
+/// `POST /api/fleet/robots/{target}/stop` on `view` with the operator credential: the status
+/// and the body.
+pub async fn fleet_stop(view: &Robot, target: &str) -> (u16, Value) {
+    let url = view.url(&format!("/api/fleet/robots/{target}/stop"));
+    let response = reqwest::Client::new()
+        .post(url)
+        .bearer_auth(OPERATOR_TOKEN)
+        .send()
+        .await
+        .expect("answers");
+    let status = response.status().as_u16();
+    (status, response.json().await.expect("JSON"))
 }
 
 /// The corpus lines of `corpus` (every day log and session log) of `type`.
