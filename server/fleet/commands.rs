@@ -46,35 +46,43 @@ struct Refused {
     message: String,
 }
 
-/// A command whose envelope checked out.
-struct Verified {
+/// A command whose envelope checked out, to run.
+pub struct Verified {
     role: ClientRole,
     key: Secret,
     reference: String,
     frame: String,
 }
 
-/// The reply envelopes (JSON text) to one command `payload` for robot `robot`, which came
-/// through the broker at `broker`.
-pub async fn answer(
+/// Checks a command `payload` for robot `robot`, which came through the broker at `broker`
+/// (its address or host name, for the log): the command to run, or the reply envelope (JSON
+/// text, unsigned) refusing it. Quick and never waiting, so that the bridge checks every
+/// command as it arrives and only verified ones queue to run: a flood of bad commands through
+/// the broker cannot crowd a rightly signed Stop out of the queue.
+pub fn check(
     state: &AppState,
-    (broker, robot): (IpAddr, &str),
+    (broker, robot): (&str, &str),
     replays: &mut Replays,
     payload: &[u8],
+) -> Result<Verified, String> {
+    verify(state, (broker, robot), replays, payload).map_err(|refused| {
+        let frame = error_frame(refused.code, &refused.message, None, None);
+        json_text(&SignedReply {
+            robot: robot.to_owned(),
+            reference: refused.reference,
+            frame,
+            mac: None,
+        })
+    })
+}
+
+/// Runs a verified `command` for robot `robot` through the websocket's own session code;
+/// the reply envelopes (JSON text), each signed with the command's credential.
+pub async fn run(
+    state: &AppState,
+    (broker, robot): (IpAddr, &str),
+    command: Verified,
 ) -> Vec<String> {
-    let command = match verify(state, (broker, robot), replays, payload) {
-        Ok(command) => command,
-        Err(refused) => {
-            let frame = error_frame(refused.code, &refused.message, None, None);
-            let reply = SignedReply {
-                robot: robot.to_owned(),
-                reference: refused.reference,
-                frame,
-                mac: None,
-            };
-            return vec![json_text(&reply)];
-        }
-    };
     // Never local: an `--open` server takes no commands from a broker anybody may reach.
     let address = ClientAddress {
         ip: Some(broker),
@@ -111,7 +119,7 @@ fn json_text(reply: &SignedReply) -> String {
 /// Reads and checks a command's envelope.
 fn verify(
     state: &AppState,
-    (broker, robot): (IpAddr, &str),
+    (broker, robot): (&str, &str),
     replays: &mut Replays,
     payload: &[u8],
 ) -> Result<Verified, Refused> {
@@ -126,7 +134,14 @@ fn verify(
         .filter(|r| signed::reference_problem(r).is_none())
         .map(str::to_owned);
     let command = envelope(fields).map_err(|(code, message)| {
-        tracing::warn!(code = code.as_str(), "MQTT command refused: {message}");
+        // Within the shared allowance: anyone who can publish could flood the log.
+        if let Some(unlogged) = state.access.admit_refusal_log() {
+            tracing::warn!(
+                code = code.as_str(),
+                unlogged,
+                "MQTT command refused: {message}"
+            );
+        }
         refused(reference.clone(), code, &message)
     })?;
     let role = role_of(&command.role).map_err(|(c, m)| refused(reference.clone(), c, &m))?;
@@ -270,7 +285,7 @@ fn unfresh_refusal(reference: Option<String>, unfresh: Unfresh) -> Refused {
 
 /// Logs a counted bad signature, within the shared allowance of logged refusals; one that
 /// only waits (`Locked`) is not logged again, so a flood cannot flood the log.
-fn log_refusal(state: &AppState, broker: IpAddr, role: ClientRole, refusal: Refusal) {
+fn log_refusal(state: &AppState, broker: &str, role: ClientRole, refusal: Refusal) {
     if matches!(refusal, Refusal::Locked(_)) {
         return;
     }
