@@ -11,14 +11,20 @@ use std::path::{Path, PathBuf};
 use std::process::{Child, Command, Stdio};
 use std::time::Duration;
 
-use hmac::{Hmac, KeyInit, Mac};
-use rand::RngExt;
 use rumqttc::{AsyncClient, Event, Incoming, MqttOptions, QoS};
-use serde_json::{Value, json};
-use sha2::Sha256;
+use serde_json::Value;
 use tokio::sync::mpsc;
 
 use crate::common::{DEADLINE, DM_TOKEN, OPERATOR_TOKEN, process};
+
+mod signing;
+mod view;
+
+// Each test binary uses a different part (as `dead_code` above).
+#[allow(unused_imports)]
+pub use signing::*;
+#[allow(unused_imports)]
+pub use view::*;
 
 /// A mosquitto broker on 127.0.0.1, killed when dropped.
 pub struct Mosquitto {
@@ -374,136 +380,6 @@ impl TestClient {
         assert_eq!(reply["robot"], robot);
         reply_frame(&reply)
     }
-}
-
-/// HMAC-SHA256 of `text` keyed by `key`, in lowercase hex.
-pub fn hmac_hex(key: &str, text: &str) -> String {
-    let mut mac = <Hmac<Sha256> as KeyInit>::new_from_slice(key.as_bytes()).expect("any key");
-    mac.update(text.as_bytes());
-    let bytes = mac.finalize().into_bytes();
-    bytes.iter().map(|b| format!("{b:02x}")).collect()
-}
-
-/// A fresh random `ref`.
-pub fn fresh_ref() -> String {
-    let bits: u128 = rand::rng().random();
-    format!("{bits:032x}")
-}
-
-/// Milliseconds since the Unix epoch.
-pub fn now_ms() -> u64 {
-    let since = std::time::SystemTime::now().duration_since(std::time::UNIX_EPOCH);
-    since.expect("after 1970").as_millis() as u64
-}
-
-/// The signed command envelope of `frame` for `robot`, as `(role, credential)`, signed now.
-pub fn signed(robot: &str, (role, key): (&str, &str), reference: &str, frame: &Value) -> Value {
-    signed_at(robot, (role, key), reference, frame, now_ms())
-}
-
-/// As [`signed`], with the timestamp `ts`.
-pub fn signed_at(
-    robot: &str,
-    (role, key): (&str, &str),
-    reference: &str,
-    frame: &Value,
-    ts: u64,
-) -> Value {
-    let frame = frame.to_string();
-    let text = format!("docent-command-v1\n{robot}\n{role}\n{reference}\n{ts}\n{frame}");
-    json!({"robot": robot, "role": role, "ref": reference, "ts": ts, "frame": frame,
-        "mac": hmac_hex(key, &text)})
-}
-
-/// A reply envelope for `frame` as `robot` would sign it with `key`.
-pub fn signed_reply(robot: &str, reference: &str, frame: &Value, key: &str) -> Value {
-    let frame = frame.to_string();
-    let text = format!("docent-reply-v1\n{robot}\n{reference}\n{frame}");
-    json!({"robot": robot, "ref": reference, "frame": frame, "mac": hmac_hex(key, &text)})
-}
-
-/// Whether a reply envelope carries a valid MAC with `key`.
-pub fn reply_signed(reply: &Value, key: &str) -> bool {
-    let field = |name: &str| reply[name].as_str().unwrap_or_default().to_owned();
-    let text = format!(
-        "docent-reply-v1\n{}\n{}\n{}",
-        field("robot"),
-        field("ref"),
-        field("frame")
-    );
-    reply["mac"].as_str() == Some(hmac_hex(key, &text).as_str())
-}
-
-/// The answer frame a reply envelope carries.
-pub fn reply_frame(reply: &Value) -> Value {
-    let frame = reply["frame"]
-        .as_str()
-        .expect("a reply envelope with a frame");
-    serde_json::from_str(frame).expect("the frame is JSON")
-}
-
-/// Reads the fleet view's live stream on `robot` until `done` accepts the robots it lists.
-pub async fn fleet_until(robot: &Robot, done: impl Fn(&[Value]) -> bool) -> Vec<Value> {
-    let mut response = reqwest::Client::new()
-        .get(robot.url("/api/fleet/updates"))
-        .bearer_auth(OPERATOR_TOKEN)
-        .send()
-        .await
-        .expect("the fleet stream answers");
-    assert_eq!(response.status(), 200);
-    let mut robots: std::collections::BTreeMap<String, Value> = Default::default();
-    let mut buffer = String::new();
-    let read = async {
-        loop {
-            let chunk = response
-                .chunk()
-                .await
-                .expect("stream readable")
-                .expect("stream open");
-            buffer.push_str(std::str::from_utf8(&chunk).expect("UTF-8"));
-            while let Some(end) = buffer.find("\n\n") {
-                let message: String = buffer.drain(..end + 2).collect();
-                let Some(data) = message.lines().find_map(|l| l.strip_prefix("data: ")) else {
-                    continue;
-                };
-                let data: Value = serde_json::from_str(data).expect("JSON update");
-                let id = |r: &Value| r["robot"].as_str().unwrap_or_default().to_owned();
-                if let Some(all) = data["robots"].as_array() {
-                    robots = all.iter().map(|r| (id(r), r.clone())).collect();
-                } else if data["robot"].is_object() {
-                    robots.insert(id(&data["robot"]), data["robot"].clone());
-                }
-                let listed: Vec<Value> = robots.values().cloned().collect();
-                if done(&listed) {
-                    return listed;
-                }
-            }
-        }
-    };
-    tokio::time::timeout(DEADLINE, read)
-        .await
-        .expect("the fleet view shows it within the deadline")
-}
-
-/// Whether `robots` lists `id` online with its state.
-pub fn online(robots: &[Value], id: &str) -> bool {
-    robots
-        .iter()
-        .any(|r| r["robot"] == id && r["online"] == true && r["state"]["page"].is_string())
-}
-
-/// `POST /api/fleet/robots/{target}/stop` on `view` with the operator credential: the status
-/// and the body.
-pub async fn fleet_stop(view: &Robot, target: &str) -> (u16, Value) {
-    let url = view.url(&format!("/api/fleet/robots/{target}/stop"));
-    let response = reqwest::Client::new()
-        .post(url)
-        .bearer_auth(OPERATOR_TOKEN)
-        .send()
-        .await
-        .expect("answers");
-    let status = response.status().as_u16();
-    (status, response.json().await.expect("JSON"))
 }
 
 /// The corpus lines of `corpus` (every day log and session log) of `type`.
