@@ -166,6 +166,11 @@ async fn a_forged_stopped_answer_is_never_taken_for_a_stop() {
     let (view, (status, body)) = stopping.await.expect("the stop ran");
     assert_eq!(status, 504, "a forged answer was taken: {body}");
     assert_eq!(body["code"], "robot-silent", "{body}");
+    let said = body["error"].as_str().unwrap_or_default();
+    assert!(
+        said.contains("not signed with this view's operator credential"),
+        "{said}"
+    );
 
     // The same view takes an answer bound to its request: the forgeries were the difference.
     let stopping = tokio::spawn(async move { fleet_stop(&view, "ghost-1").await });

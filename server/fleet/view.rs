@@ -54,6 +54,12 @@ pub enum StopFailed {
         "{0} did not confirm the stop within 5 s: it may be offline or not reachable; stop it at its console or on the robot"
     )]
     NoAnswer(String),
+    /// No answer bound to the Stop within [`STOP_DEADLINE`], but one that could not be taken
+    /// was heard (unsigned, badly signed, from another robot or topic).
+    #[error(
+        "{0} did not confirm the stop within 5 s; an answer not signed with this view's operator credential was heard (a forgery, or a robot with another operator credential): stop it at its console or on the robot"
+    )]
+    Unbound(String),
     /// The robot answered with an `error` frame.
     #[error("{robot} refused the stop: {message} ({code})")]
     Refused {
@@ -309,9 +315,12 @@ impl FleetView {
             return Err(StopFailed::LinkDown(e.to_string()));
         }
         let answer = tokio::time::timeout(STOP_DEADLINE, rx).await;
-        lock(&self.waiting).remove(&reference);
+        let left = lock(&self.waiting).remove(&reference);
         let Ok(Ok(answer)) = answer else {
-            return Err(StopFailed::NoAnswer(robot.to_owned()));
+            return Err(match left {
+                Some(entry) if entry.warned => StopFailed::Unbound(robot.to_owned()),
+                _ => StopFailed::NoAnswer(robot.to_owned()),
+            });
         };
         if answer.get("type").and_then(Value::as_str) == Some("error") {
             let text = |key: &str| {
