@@ -154,6 +154,12 @@ async fn a_forged_stopped_answer_is_never_taken_for_a_stop() {
             "docent/ghost-1/reply",
             json!({"robot": "ghost-1", "ref": reference, "frame": stopped.to_string()}),
         ),
+        // An unsigned refusal, as a robot whose clock is off answers: told as a hint only.
+        (
+            "docent/ghost-1/reply",
+            json!({"robot": "ghost-1", "ref": reference,
+                "frame": json!({"type": "error", "code": "stale-command"}).to_string()}),
+        ),
         // A guessed ref.
         (
             "docent/ghost-1/reply",

@@ -192,7 +192,7 @@ async fn stop(
                 StopFailed::Unknown(_) => (StatusCode::NOT_FOUND, ErrorCode::NotFound),
                 StopFailed::Refused { .. } => (StatusCode::BAD_GATEWAY, ErrorCode::RobotRefused),
                 StopFailed::LinkDown(_) => (StatusCode::SERVICE_UNAVAILABLE, ErrorCode::BrokerDown),
-                StopFailed::NoAnswer(_) | StopFailed::Unbound(_) => {
+                StopFailed::NoAnswer(_) | StopFailed::Unbound { .. } => {
                     (StatusCode::GATEWAY_TIMEOUT, ErrorCode::RobotSilent)
                 }
                 StopFailed::NoCredential => (StatusCode::CONFLICT, ErrorCode::NoCredential),

@@ -57,9 +57,14 @@ pub enum StopFailed {
     /// No answer bound to the Stop within [`STOP_DEADLINE`], but one that could not be taken
     /// was heard (unsigned, badly signed, from another robot or topic).
     #[error(
-        "{0} did not confirm the stop within 5 s; an answer not signed with this view's operator credential was heard (a forgery, or a robot with another operator credential): stop it at its console or on the robot"
+        "{robot} did not confirm the stop within 5 s; an answer not signed with this view's operator credential was heard{hint} (a forgery, a robot with another operator credential, or clocks more than 30 s apart): stop it at its console or on the robot"
     )]
-    Unbound(String),
+    Unbound {
+        /// The robot.
+        robot: String,
+        /// What an unsigned answer from the robot's topic said, if one did.
+        hint: String,
+    },
     /// The robot answered with an `error` frame.
     #[error("{robot} refused the stop: {message} ({code})")]
     Refused {
@@ -88,6 +93,9 @@ struct Waiting {
     answer: oneshot::Sender<Value>,
     /// Whether an answer that could not be taken was logged already (once per Stop).
     warned: bool,
+    /// The `code` of an unsigned `error` heard on the asked robot's topic: not taken (anyone
+    /// may have sent it), but told as a hint (`stale-command`: the clocks differ).
+    hint: Option<String>,
 }
 
 /// The fleet as heard over the broker.
@@ -264,6 +272,15 @@ impl FleetView {
                 .zip(self.token.as_ref())
                 .is_some_and(|(mac, key)| signed::verifies(key, &text, mac));
         let frame = serde_json::from_str::<Value>(&reply.frame);
+        if let Ok(frame) = &frame
+            && !bound
+            && entry.robot == robot
+            && reply.robot == robot
+        {
+            if let Some(code) = frame.get("code").and_then(Value::as_str) {
+                entry.hint = Some(code.chars().take(64).collect());
+            }
+        }
         match frame {
             Ok(frame) if bound => {
                 if let Some(entry) = waiting.remove(reference) {
@@ -303,6 +320,7 @@ impl FleetView {
             robot: robot.to_owned(),
             answer: tx,
             warned: false,
+            hint: None,
         };
         lock(&self.waiting).insert(reference.clone(), waiting);
         let command = signed_stop(key, robot, &reference);
@@ -318,7 +336,12 @@ impl FleetView {
         let left = lock(&self.waiting).remove(&reference);
         let Ok(Ok(answer)) = answer else {
             return Err(match left {
-                Some(entry) if entry.warned => StopFailed::Unbound(robot.to_owned()),
+                Some(entry) if entry.warned => StopFailed::Unbound {
+                    robot: robot.to_owned(),
+                    hint: (entry.hint)
+                        .map(|code| format!(" (an unsigned one said {code})"))
+                        .unwrap_or_default(),
+                },
                 _ => StopFailed::NoAnswer(robot.to_owned()),
             });
         };
