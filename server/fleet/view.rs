@@ -276,10 +276,9 @@ impl FleetView {
             && !bound
             && entry.robot == robot
             && reply.robot == robot
+            && let Some(code) = frame.get("code").and_then(Value::as_str)
         {
-            if let Some(code) = frame.get("code").and_then(Value::as_str) {
-                entry.hint = Some(code.chars().take(64).collect());
-            }
+            entry.hint = Some(code.chars().take(64).collect());
         }
         match frame {
             Ok(frame) if bound => {
