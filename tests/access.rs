@@ -1,5 +1,5 @@
 //! Access control: operator and dialog-manager credentials over HTTP and the websocket, the
-//! lockout after wrong ones, an `--open` development server, and a kiosk limited to the acts
+//! wait after wrong ones (never for the right one), an `--open` development server, and a kiosk limited to the acts
 //! its pages offer at a limited rate. Credentials never reach the corpus.
 
 mod common;
@@ -64,36 +64,50 @@ async fn the_http_trigger_stop_and_context_endpoints_need_a_credential() {
 }
 
 #[tokio::test]
-async fn five_wrong_credentials_lock_the_address_out_even_for_the_right_one() {
+async fn after_five_wrong_credentials_only_wrong_ones_wait_and_stop_with_the_right_one_works() {
     let server = fig4().await;
     let trigger = "/api/acts/WELCOME/trigger";
     for attempt in 1..5 {
         let (status, _) = server.post_with(trigger, None, Some("guess-guess")).await;
         assert_eq!(status, 401, "attempt {attempt}");
     }
-    let (status, body) = server.post_with(trigger, None, Some("guess-guess")).await;
-    assert_eq!(
-        (status, body["code"].as_str()),
-        (429, Some("too-many-attempts"))
-    );
-    let r = reqwest::Client::new()
-        .post(server.url(trigger))
-        .bearer_auth(OPERATOR_TOKEN)
-        .send()
-        .await
-        .unwrap();
-    assert_eq!(r.status().as_u16(), 429);
-    let retry: u64 = r.headers()["retry-after"]
-        .to_str()
-        .unwrap()
-        .parse()
-        .unwrap();
-    assert!((1..=60).contains(&retry), "{retry}");
-    // The websocket is locked too.
+    for _ in 0..3 {
+        let r = reqwest::Client::new()
+            .post(server.url(trigger))
+            .bearer_auth("guess-guess")
+            .send()
+            .await
+            .unwrap();
+        assert_eq!(r.status().as_u16(), 429);
+        let retry: u64 = r.headers()["retry-after"]
+            .to_str()
+            .unwrap()
+            .parse()
+            .unwrap();
+        assert!((1..=60).contains(&retry), "{retry}");
+        let body: Value = r.json().await.unwrap();
+        assert_eq!(body["code"], "too-many-attempts");
+    }
+    // The holder of the credential, at the same address, is never made to wait: Stop first.
+    let (status, body) = server
+        .post_with("/api/stop", None, Some(OPERATOR_TOKEN))
+        .await;
+    assert_eq!(status, 202, "{body}");
+    let (status, body) = server.post_with(trigger, None, Some(DM_TOKEN)).await;
+    assert_eq!(status, 202, "{body}");
+    // The websocket: a wrong hello waits, the right one is welcomed and may stop.
+    let frames = refused_hello(
+        &server,
+        json!({"type": "hello", "role": "operator", "token": "guess-guess"}),
+    )
+    .await;
+    assert_eq!(frames[0]["code"], "too-many-attempts", "{frames:?}");
     let mut op = server.connect().await;
     op.send(json!({"type": "hello", "role": "operator", "token": OPERATOR_TOKEN}))
         .await;
-    assert_eq!(op.recv_type("error").await["code"], "too-many-attempts");
+    op.recv_type("welcome").await;
+    op.send(json!({"type": "stop", "ref": "s1"})).await;
+    assert_eq!(op.recv_type("stopped").await["ref"], "s1");
     server.stop().await;
 }
 

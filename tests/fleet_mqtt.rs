@@ -1,6 +1,7 @@
 //! A fleet over a real mosquitto: two `docent serve --mqtt` processes on one broker appear in
-//! one fleet view; a command over MQTT reaches the right robot only and is answered on its
-//! reply topic with the websocket's own error codes; a kiosk role and a wrong credential are
+//! one fleet view; a signed command over MQTT reaches the right robot only and is answered on
+//! its reply topic, signed, with the websocket's own error codes; a kiosk role, a wrong
+//! signature, a raw credential, a command for another robot, a stale and a replayed one are
 //! refused; the fleet view's Stop stops the right robot; the last will says offline after
 //! `kill -9`, and a robot that stops says so itself; a Docent without a broker says so.
 
@@ -9,69 +10,12 @@ mod fleet_support;
 
 use std::time::Duration;
 
-use common::{DEADLINE, OPERATOR_TOKEN, bundle};
-use fleet_support::{Mosquitto, Robot, TestClient, logged};
+use common::{DM_TOKEN, OPERATOR_TOKEN, bundle};
+use fleet_support::{
+    Mosquitto, Robot, TestClient, fleet_until, fresh_ref, logged, online, reply_frame, signed,
+    signed_at,
+};
 use serde_json::{Value, json};
-
-/// Reads the fleet view's live stream on `robot` until `done` accepts the robots it lists.
-async fn fleet_until(robot: &Robot, done: impl Fn(&[Value]) -> bool) -> Vec<Value> {
-    let mut response = reqwest::Client::new()
-        .get(robot.url("/api/fleet/updates"))
-        .bearer_auth(OPERATOR_TOKEN)
-        .send()
-        .await
-        .expect("the fleet stream answers");
-    assert_eq!(response.status(), 200);
-    let mut robots: std::collections::BTreeMap<String, Value> = Default::default();
-    let mut buffer = String::new();
-    let read = async {
-        loop {
-            let chunk = response
-                .chunk()
-                .await
-                .expect("stream readable")
-                .expect("stream open");
-            buffer.push_str(std::str::from_utf8(&chunk).expect("UTF-8"));
-            while let Some(end) = buffer.find("\n\n") {
-                let message: String = buffer.drain(..end + 2).collect();
-                let Some(data) = message.lines().find_map(|l| l.strip_prefix("data: ")) else {
-                    continue;
-                };
-                let data: Value = serde_json::from_str(data).expect("JSON update");
-                if let Some(all) = data["robots"].as_array() {
-                    robots = all
-                        .iter()
-                        .map(|r| {
-                            (
-                                r["robot"].as_str().unwrap_or_default().to_owned(),
-                                r.clone(),
-                            )
-                        })
-                        .collect();
-                } else if data["robot"].is_object() {
-                    let entry = data["robot"].clone();
-                    robots.insert(
-                        entry["robot"].as_str().unwrap_or_default().to_owned(),
-                        entry,
-                    );
-                }
-                let listed: Vec<Value> = robots.values().cloned().collect();
-                if done(&listed) {
-                    return listed;
-                }
-            }
-        }
-    };
-    tokio::time::timeout(DEADLINE, read)
-        .await
-        .expect("the fleet view shows it within the deadline")
-}
-
-fn online(robots: &[Value], id: &str) -> bool {
-    robots
-        .iter()
-        .any(|r| r["robot"] == id && r["online"] == true && r["state"]["page"].is_string())
-}
 
 #[tokio::test]
 async fn two_robots_on_one_broker_are_one_fleet_and_commands_reach_the_right_one_only() {
@@ -98,16 +42,18 @@ async fn two_robots_on_one_broker_are_one_fleet_and_commands_reach_the_right_one
         .expect("answers");
     assert_eq!(unsigned.status(), 401);
 
-    // A trigger over MQTT reaches hall-1 only.
+    // A trigger over MQTT reaches hall-1 only; a context reaches hall-2 (as the dm).
     let mut mqtt = TestClient::connect(&broker, "fleet-test", &["docent/+/reply"]);
-    let command =
-        json!({"type": "trigger", "label": "WELCOME", "ref": "t1", "token": OPERATOR_TOKEN});
-    let answer = mqtt.ask("hall-1", "t1", command).await;
+    let answer = mqtt
+        .ask("hall-1", json!({"type": "trigger", "label": "WELCOME"}))
+        .await;
     assert_eq!(answer["type"], "triggered", "{answer}");
-    let context =
-        json!({"type": "context", "context": "Text", "ref": "c2", "token": OPERATOR_TOKEN});
-    let answer = mqtt.ask("hall-2", "c2", context).await;
-    assert_eq!(answer["type"], "context", "{answer}");
+    let context = json!({"type": "context", "context": "Text", "ref": "c2"});
+    let reference = fresh_ref();
+    let as_dm = signed("hall-2", ("dm", DM_TOKEN), &reference, &context);
+    let reply = mqtt.ask_envelope("hall-2", &reference, as_dm).await;
+    assert!(fleet_support::reply_signed(&reply, DM_TOKEN), "{reply}");
+    assert_eq!(reply_frame(&reply)["type"], "context", "{reply}");
     let triggered = |robot: &Robot| logged(&robot.corpus, "act.triggered");
     assert_eq!(triggered(&first).len(), 1);
     assert_eq!(triggered(&first)[0]["label"], "WELCOME");
@@ -119,46 +65,84 @@ async fn two_robots_on_one_broker_are_one_fleet_and_commands_reach_the_right_one
             .any(|e| e["name"] == "mqtt" && e["role"] == "operator")
     );
 
-    // A wrong credential: the websocket's code and wording, the command's ref, logged.
-    let wrong =
-        json!({"type": "trigger", "label": "WELCOME", "ref": "w1", "token": "not-the-credential"});
-    let answer = mqtt.ask("hall-1", "w1", wrong).await;
-    assert_eq!(answer["type"], "error");
-    assert_eq!(answer["code"], "unauthorized");
+    // Refusals are answered unsigned, with the command's ref, and run nothing.
+    let trigger = json!({"type": "trigger", "label": "WELCOME"});
+    let refused = async |mqtt: &mut TestClient, robot: &str, command: Value| {
+        let reference = command["ref"].as_str().expect("a ref").to_owned();
+        let reply = mqtt.ask_envelope(robot, &reference, command).await;
+        assert!(reply["mac"].is_null(), "{reply}");
+        reply_frame(&reply)
+    };
+    // Signed with a wrong credential: logged once as `client.refused`.
+    let wrong = signed(
+        "hall-1",
+        ("operator", "not-the-credential"),
+        &fresh_ref(),
+        &trigger,
+    );
+    let answer = refused(&mut mqtt, "hall-1", wrong).await;
+    assert_eq!(answer["code"], "bad-signature", "{answer}");
     assert_eq!(
         answer["message"],
-        "that is not the operator credential (DOCENT_OPERATOR_TOKEN)"
+        "the command's mac is not signed with the operator credential (DOCENT_OPERATOR_TOKEN)"
     );
-    assert!(!answer.to_string().contains("not-the-credential"));
-    // A refusal is answered at once; an acknowledged command after it is answered once the
-    // log holds everything before it, the refusal's `client.refused` too.
-    let context =
-        json!({"type": "context", "context": "Text", "ref": "c3", "token": OPERATOR_TOKEN});
-    assert_eq!(mqtt.ask("hall-1", "c3", context).await["type"], "context");
+    // The raw credential of the first fleet commands: refused unread, never echoed.
+    let raw =
+        json!({"type": "trigger", "label": "WELCOME", "ref": fresh_ref(), "token": OPERATOR_TOKEN});
+    let answer = refused(&mut mqtt, "hall-1", raw).await;
+    assert_eq!(answer["code"], "unsigned-command", "{answer}");
+    assert!(!answer.to_string().contains(OPERATOR_TOKEN));
+    // Signed for hall-2 but published on hall-1's topic; too old; replayed.
+    let elsewhere = signed(
+        "hall-2",
+        ("operator", OPERATOR_TOKEN),
+        &fresh_ref(),
+        &trigger,
+    );
+    let answer = refused(&mut mqtt, "hall-1", elsewhere).await;
+    assert_eq!(answer["code"], "bad-signature", "{answer}");
+    let old_ts = fleet_support::now_ms() - 60_000;
+    let old = signed_at(
+        "hall-1",
+        ("operator", OPERATOR_TOKEN),
+        &fresh_ref(),
+        &trigger,
+        old_ts,
+    );
+    assert_eq!(
+        refused(&mut mqtt, "hall-1", old).await["code"],
+        "stale-command"
+    );
+    let once = signed(
+        "hall-1",
+        ("operator", OPERATOR_TOKEN),
+        &fresh_ref(),
+        &json!({"type": "context", "context": "Text"}),
+    );
+    let reference = once["ref"].as_str().expect("ref").to_owned();
+    let reply = mqtt.ask_envelope("hall-1", &reference, once.clone()).await;
+    assert_eq!(reply_frame(&reply)["type"], "context", "{reply}");
+    assert_eq!(
+        refused(&mut mqtt, "hall-1", once).await["code"],
+        "replayed-command"
+    );
     assert_eq!(logged(&first.corpus, "client.refused").len(), 1);
     // A kiosk needs no credential on the websocket; over a broker it is refused.
-    let kiosk = json!({"type": "trigger", "label": "WELCOME", "ref": "k1", "role": "kiosk"});
-    let answer = mqtt.ask("hall-1", "k1", kiosk).await;
+    let kiosk = signed("hall-1", ("kiosk", OPERATOR_TOKEN), &fresh_ref(), &trigger);
+    let answer = refused(&mut mqtt, "hall-1", kiosk).await;
     assert_eq!(
         (answer["type"].as_str(), answer["code"].as_str()),
         (Some("error"), Some("forbidden"))
     );
     // Not JSON, an unknown frame: the websocket's reading of it.
     mqtt.command("hall-1", json!("{oops")).await;
-    let bad = json!({"type": "dance", "ref": "u1", "token": OPERATOR_TOKEN});
-    let answer = mqtt.ask("hall-1", "u1", bad).await;
+    let answer = mqtt.ask("hall-1", json!({"type": "dance"})).await;
     assert_eq!(answer["code"], "unknown-type", "{answer}");
     assert_eq!(triggered(&first).len(), 1, "nothing refused was triggered");
 
     // Stop from hall-1's fleet view stops hall-2, and only it.
-    let stopped = reqwest::Client::new()
-        .post(first.url("/api/fleet/robots/hall-2/stop"))
-        .bearer_auth(OPERATOR_TOKEN)
-        .send()
-        .await
-        .expect("answers");
-    assert_eq!(stopped.status(), 200);
-    let stopped: Value = stopped.json().await.expect("JSON");
+    let (status, stopped) = fleet_support::fleet_stop(&first, "hall-2").await;
+    assert_eq!(status, 200, "{stopped}");
     assert_eq!(stopped["answer"]["type"], "stopped", "{stopped}");
     assert_eq!(logged(&second.corpus, "stop").len(), 1);
     assert_eq!(logged(&second.corpus, "stop")[0]["source"], "operator");

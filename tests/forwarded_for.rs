@@ -49,9 +49,12 @@ async fn a_new_x_forwarded_for_with_each_guess_does_not_escape_the_wait() {
         statuses.push(attempt(&server, &attacker, "wrong-guess-0000", Some(&forwarded)).await);
     }
     assert_eq!(statuses, [401, 401, 401, 401, 429, 429]);
-    // The attacker's own address waits, even with the right credential ...
+    // The attacker's own address waits, whatever it names ...
+    let wrong = attempt(&server, &attacker, "wrong-guess-0001", Some("203.0.113.99")).await;
+    assert_eq!(wrong, 429);
+    // ... though the right credential is always taken ...
     let right = attempt(&server, &attacker, OPERATOR_TOKEN, Some("203.0.113.99")).await;
-    assert_eq!(right, 429);
+    assert_eq!(right, 202);
     // ... and the addresses it named were never charged.
     let corpus = server.stop().await;
     let refused = events(&corpus, "request.refused");
@@ -74,10 +77,15 @@ async fn guesses_claiming_to_be_127_0_0_1_do_not_lock_out_the_local_operator() {
         attempt(&server, &attacker, "wrong-guess-0000", Some("127.0.0.1")).await;
     }
     assert_eq!(
-        attempt(&server, &attacker, OPERATOR_TOKEN, Some("127.0.0.1")).await,
+        attempt(&server, &attacker, "wrong-guess-0001", Some("127.0.0.1")).await,
         429
     );
+    // 127.0.0.1 was not charged: a wrong credential from it is not made to wait.
     let operator = client_from("127.0.0.1");
+    assert_eq!(
+        attempt(&server, &operator, "wrong-guess-0002", None).await,
+        401
+    );
     assert_eq!(attempt(&server, &operator, OPERATOR_TOKEN, None).await, 202);
     server.stop().await;
 }
@@ -99,16 +107,28 @@ async fn a_proxy_listed_in_docent_yaml_is_believed_for_the_client_it_names() {
         .await;
     }
     assert_eq!(
-        attempt(&server, &proxy, OPERATOR_TOKEN, Some("192.0.2.7")).await,
+        attempt(&server, &proxy, "wrong-guess-0001", Some("192.0.2.7")).await,
         429,
         "192.0.2.7 waits"
     );
     // Another client behind the same proxy, and the proxy's machine itself, do not.
+    let other = Some("192.0.2.8");
     assert_eq!(
-        attempt(&server, &proxy, OPERATOR_TOKEN, Some("192.0.2.8")).await,
-        202
+        attempt(&server, &proxy, "wrong-guess-0002", other).await,
+        401
     );
     let local = client_from("127.0.0.1");
+    assert_eq!(
+        attempt(&server, &local, "wrong-guess-0003", None).await,
+        401
+    );
+    // The right credential is always taken, from the one that waits too.
+    for forwarded in [Some("192.0.2.7"), Some("192.0.2.8")] {
+        assert_eq!(
+            attempt(&server, &proxy, OPERATOR_TOKEN, forwarded).await,
+            202
+        );
+    }
     assert_eq!(attempt(&server, &local, OPERATOR_TOKEN, None).await, 202);
     // An unlisted peer sending the same header is counted under its own address.
     let stranger = client_from("127.0.0.4");
@@ -124,7 +144,7 @@ async fn a_proxy_listed_in_docent_yaml_is_believed_for_the_client_it_names() {
         ["192.0.2.7"; 5]
             .iter()
             .copied()
-            .chain(["127.0.0.4"])
+            .chain(["192.0.2.8", "127.0.0.1", "127.0.0.4"])
             .collect::<Vec<_>>()
     );
 }

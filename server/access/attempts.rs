@@ -1,9 +1,13 @@
-//! Slowing down wrong credentials: each client address (an IPv6 /64 counts as one, since one
-//! machine can hold all of it) has a bucket of [`MAX_FAILURES`] failures that refills one
-//! every [`REFILL`]. Once it is empty every attempt from there is refused, even with the right
-//! credential, until a failure has refilled. Credentials are long (16+ characters, generated
-//! ones about 190 bits), so this bounds guessing to nothing useful, while an operator who
-//! shares an address with a misconfigured client waits seconds, not minutes.
+//! Slowing down wrong credentials, never the right one. Each counted key (a client address,
+//! an IPv6 /64 counting as one since one machine can hold all of it, or the MQTT commands all
+//! together) has a bucket of [`MAX_FAILURES`] failures that refills one every [`REFILL`]. Once
+//! it is empty, wrong or missing credentials from there are refused with `too-many-attempts`
+//! until a failure has refilled; the right credential is compared first and always admitted
+//! (`Access::check`), so nobody who can reach the server (or publish to the broker on the
+//! robot's own machine) can lock the holder of the credential out of Stop. What bounds
+//! guessing is the credential's length (16+ characters, generated ones about 190 bits); the
+//! bucket bounds what wrong attempts cost the server (logging, work), and tells a
+//! misconfigured client plainly to stop.
 
 use std::collections::HashMap;
 use std::net::IpAddr;
@@ -13,18 +17,36 @@ use std::time::{Duration, Instant};
 use crate::access::TokenBucket;
 use crate::sync::lock;
 
-/// Wrong or missing credentials tolerated from one address in a row.
+/// Wrong or missing credentials tolerated from one key in a row.
 pub const MAX_FAILURES: u32 = 5;
 /// How long until one more failure is tolerated.
 pub const REFILL: Duration = Duration::from_secs(10);
-/// Addresses remembered at most; beyond it those with a full bucket are forgotten first, so a
+/// Keys remembered at most; beyond it those with a full bucket are forgotten first, so a
 /// flood of addresses cannot grow memory without bound.
 const MAX_ADDRESSES: usize = 10_000;
 
-/// Failed attempts per client address.
+/// What failures are counted under.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub enum Counted {
+    /// A client address, as [`counted_as`] gives it.
+    Address(IpAddr),
+    /// Commands over MQTT. The broker does not say who published a message, and its address
+    /// may be this machine's (127.0.0.1): counted under it, a flood of bad commands through
+    /// the broker would make the local console wait. Kept apart, it reaches nothing else.
+    Mqtt,
+}
+
+impl Counted {
+    /// The key `peer`'s failures count under.
+    pub fn address(peer: IpAddr) -> Self {
+        Counted::Address(counted_as(peer))
+    }
+}
+
+/// Failed attempts per counted key.
 #[derive(Debug, Default)]
 pub struct Attempts {
-    buckets: Mutex<HashMap<IpAddr, TokenBucket>>,
+    buckets: Mutex<HashMap<Counted, TokenBucket>>,
 }
 
 /// The key an address is counted under: IPv4 as is, IPv6 by its /64 network (one machine can
@@ -44,17 +66,16 @@ fn bucket(now: Instant) -> TokenBucket {
 }
 
 impl Attempts {
-    /// How long `peer` must still wait, if its failures are used up.
-    pub fn locked(&self, peer: IpAddr, now: Instant) -> Option<Duration> {
+    /// How long `key` must still wait, if its failures are used up.
+    pub fn locked(&self, key: Counted, now: Instant) -> Option<Duration> {
         let mut buckets = lock(&self.buckets);
-        buckets.get_mut(&counted_as(peer))?.peek(now).err()
+        buckets.get_mut(&key)?.peek(now).err()
     }
 
-    /// Records a wrong or missing credential from `peer`; returns how long it must wait when
-    /// this one used up its failures.
-    pub fn failed(&self, peer: IpAddr, now: Instant) -> Option<Duration> {
+    /// Records a wrong or missing credential counted under `key`; returns how long it must
+    /// wait when this one used up its failures.
+    pub fn failed(&self, key: Counted, now: Instant) -> Option<Duration> {
         let mut buckets = lock(&self.buckets);
-        let key = counted_as(peer);
         if buckets.len() >= MAX_ADDRESSES && !buckets.contains_key(&key) {
             buckets.retain(|_, b| !b.is_full(now));
             if buckets.len() >= MAX_ADDRESSES {
@@ -75,8 +96,8 @@ impl Attempts {
 mod tests {
     use super::*;
 
-    const PEER: IpAddr = IpAddr::V4(std::net::Ipv4Addr::new(10, 0, 0, 7));
-    const OTHER: IpAddr = IpAddr::V4(std::net::Ipv4Addr::new(10, 0, 0, 8));
+    const PEER: Counted = Counted::Address(IpAddr::V4(std::net::Ipv4Addr::new(10, 0, 0, 7)));
+    const OTHER: Counted = Counted::Address(IpAddr::V4(std::net::Ipv4Addr::new(10, 0, 0, 8)));
 
     #[test]
     fn the_fifth_failure_in_a_row_makes_the_address_wait() {
@@ -107,17 +128,29 @@ mod tests {
     }
 
     #[test]
+    fn failures_over_mqtt_never_count_against_this_machine() {
+        let attempts = Attempts::default();
+        let now = Instant::now();
+        for _ in 0..(2 * MAX_FAILURES) {
+            attempts.failed(Counted::Mqtt, now);
+        }
+        assert!(attempts.locked(Counted::Mqtt, now).is_some());
+        let local = Counted::address(IpAddr::V4(std::net::Ipv4Addr::LOCALHOST));
+        assert_eq!(attempts.locked(local, now), None);
+    }
+
+    #[test]
     fn an_ipv6_network_counts_as_one_address() {
         let attempts = Attempts::default();
         let now = Instant::now();
         for i in 0..MAX_FAILURES {
             let peer: IpAddr = format!("2001:db8:1:2::{i:x}").parse().unwrap();
-            attempts.failed(peer, now);
+            attempts.failed(Counted::address(peer), now);
         }
         let fresh: IpAddr = "2001:db8:1:2:ffff::1".parse().unwrap();
-        assert!(attempts.locked(fresh, now).is_some());
+        assert!(attempts.locked(Counted::address(fresh), now).is_some());
         let elsewhere: IpAddr = "2001:db8:1:3::1".parse().unwrap();
-        assert_eq!(attempts.locked(elsewhere, now), None);
+        assert_eq!(attempts.locked(Counted::address(elsewhere), now), None);
     }
 
     #[test]
@@ -125,7 +158,7 @@ mod tests {
         let attempts = Attempts::default();
         let now = Instant::now();
         for i in 0..(MAX_ADDRESSES as u32 + 50) {
-            attempts.failed(IpAddr::V4(i.into()), now);
+            attempts.failed(Counted::Address(IpAddr::V4(i.into())), now);
         }
         assert!(lock(&attempts.buckets).len() <= MAX_ADDRESSES);
     }

@@ -5,7 +5,8 @@
 //! with `--open` on loopback needs no credentials at all.
 //!
 //! - `secret`: [`Secret`], a credential that never prints and compares in constant time.
-//! - `attempts`: [`Attempts`], the wait after repeated wrong credentials from one address.
+//! - `attempts`: [`Attempts`], the wait after repeated wrong credentials from one address
+//!   (never for the right credential).
 //! - `proxies`: [`TrustedProxies`] and [`ClientAddress`]: who a request really comes from.
 //! - `refusals`: [`RefusalLog`], the shared allowance of logged credential refusals.
 //! - `rate`: [`TokenBucket`], the allowance behind the wait and the signalling relay.
@@ -29,7 +30,7 @@ use crate::wire::ErrorCode;
 /// Kiosk addresses whose allowance is remembered at most (full ones are forgotten first).
 const MAX_KIOSK_ADDRESSES: usize = 10_000;
 
-pub use attempts::{Attempts, MAX_FAILURES, REFILL, counted_as};
+pub use attempts::{Attempts, Counted, MAX_FAILURES, REFILL, counted_as};
 pub use proxies::{ClientAddress, TrustedProxies};
 pub use rate::{KIOSK_BURST, KIOSK_PER_SECOND, TokenBucket};
 pub use refusals::{REFUSALS_LOGGED_AT_ONCE, REFUSALS_LOGGED_PER_SECOND, RefusalLog};
@@ -72,9 +73,10 @@ pub enum Refusal {
     Missing,
     /// The one given is wrong.
     Wrong,
-    /// This attempt used up the address's failures; it may try again after this long.
+    /// This wrong attempt used up the address's failures; it may try again after this long.
     TooManyAttempts(Duration),
-    /// The address had used up its failures already; not counted, not worth logging again.
+    /// A wrong attempt from an address that had used up its failures already; not counted,
+    /// not worth logging again. (The right credential is never refused so.)
     Locked(Duration),
 }
 
@@ -98,7 +100,8 @@ impl Refusal {
             Refusal::Missing => format!("this needs {which}"),
             Refusal::Wrong => format!("that is not {which}"),
             Refusal::TooManyAttempts(wait) | Refusal::Locked(wait) => format!(
-                "too many wrong or missing credentials from this address; try again in {} s",
+                "too many wrong or missing credentials from this address; try again in {} s \
+                 (the right credential is always taken)",
                 whole_seconds(wait)
             ),
         }
@@ -180,7 +183,22 @@ impl Access {
         matches!(self.mode, AccessMode::Open)
     }
 
-    /// Checks a credential presented by `client`; its failures count against `client.ip`.
+    /// The credential `needed` is checked against (`None` on an `--open` server, or for
+    /// [`Needed::Either`], which is two). Fleet commands are signed with it.
+    pub fn credential(&self, needed: Needed) -> Option<&Secret> {
+        let AccessMode::Guarded(credentials) = &self.mode else {
+            return None;
+        };
+        match needed {
+            Needed::Operator => Some(&credentials.operator),
+            Needed::Dm => Some(&credentials.dm),
+            Needed::Either => None,
+        }
+    }
+
+    /// Checks a credential presented by `client`. The right credential is always taken,
+    /// whatever wrong ones came before from the same address: only wrong or missing ones are
+    /// counted against `client.ip`, and only they are refused once its failures are used up.
     pub fn check(
         &self,
         client: ClientAddress,
@@ -195,10 +213,6 @@ impl Access {
                 _ => Ok(()),
             };
         };
-        let now = Instant::now();
-        if let Some(wait) = peer.and_then(|p| self.attempts.locked(p, now)) {
-            return Err(Refusal::Locked(wait));
-        }
         let token = token.filter(|t| !t.is_empty());
         // Both comparisons always run, so timing does not tell which role a token was near.
         let operator = token.is_some_and(|t| credentials.operator.matches(t));
@@ -211,18 +225,36 @@ impl Access {
         if ok {
             return Ok(());
         }
-        // A missing credential counts too: asking without one, again and again, is a flood.
-        if let Some(peer) = peer
-            && let Some(wait) = self.attempts.failed(peer, now)
-        {
-            tracing::warn!(%peer, "too many wrong credentials; this address waits {}s", wait.as_secs());
-            return Err(Refusal::TooManyAttempts(wait));
-        }
-        Err(if token.is_some() {
+        let given = if token.is_some() {
             Refusal::Wrong
         } else {
             Refusal::Missing
-        })
+        };
+        // A missing credential counts too: asking without one, again and again, is a flood.
+        match peer {
+            Some(peer) => Err(self.failed(Counted::address(peer), given)),
+            None => Err(given),
+        }
+    }
+
+    /// Counts a failed attempt (`given`: [`Refusal::Wrong`] or [`Refusal::Missing`]) under
+    /// `key`: the refusal to answer with, `too-many-attempts` once its failures are used up.
+    pub fn failed(&self, key: Counted, given: Refusal) -> Refusal {
+        let now = Instant::now();
+        if let Some(wait) = self.attempts.locked(key, now) {
+            return Refusal::Locked(wait);
+        }
+        match self.attempts.failed(key, now) {
+            Some(wait) => {
+                tracing::warn!(
+                    ?key,
+                    "too many wrong credentials; wrong ones from there wait {}s",
+                    wait.as_secs()
+                );
+                Refusal::TooManyAttempts(wait)
+            }
+            None => given,
+        }
     }
 }
 

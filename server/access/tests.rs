@@ -58,34 +58,56 @@ fn each_role_needs_its_own_credential() {
 }
 
 #[test]
-fn repeated_wrong_credentials_lock_out_even_the_right_one() {
+fn repeated_wrong_credentials_make_only_wrong_ones_wait() {
     let access = guarded();
+    let client = ClientAddress::direct(PEER);
     for _ in 1..MAX_FAILURES {
         assert_eq!(
-            access.check(ClientAddress::direct(PEER), Needed::Operator, Some("guess")),
+            access.check(client, Needed::Operator, Some("guess")),
             Err(Refusal::Wrong)
         );
     }
     assert!(matches!(
-        access.check(ClientAddress::direct(PEER), Needed::Operator, None),
+        access.check(client, Needed::Operator, None),
         Err(Refusal::TooManyAttempts(_))
     ));
     assert!(matches!(
-        access.check(
-            ClientAddress::direct(PEER),
-            Needed::Operator,
-            Some("operator-credential-1")
-        ),
+        access.check(client, Needed::Operator, Some("guess")),
         Err(Refusal::Locked(_))
     ));
+    // The holder of the credential is never locked out by someone else's guesses, nor by
+    // its own earlier mistakes: the right credential is compared first.
+    for _ in 0..3 {
+        assert_eq!(
+            access.check(client, Needed::Operator, Some("operator-credential-1")),
+            Ok(())
+        );
+        assert!(matches!(
+            access.check(client, Needed::Operator, Some("guess")),
+            Err(Refusal::Locked(_))
+        ));
+    }
     let elsewhere = Some(IpAddr::V4(std::net::Ipv4Addr::new(192, 168, 1, 21)));
     assert_eq!(
-        access.check(
-            ClientAddress::direct(elsewhere),
-            Needed::Operator,
-            Some("operator-credential-1")
-        ),
-        Ok(())
+        access.check(ClientAddress::direct(elsewhere), Needed::Dm, Some("nope")),
+        Err(Refusal::Wrong)
+    );
+}
+
+#[test]
+fn failures_counted_under_mqtt_never_reach_a_local_client() {
+    let access = guarded();
+    for _ in 0..(2 * MAX_FAILURES) {
+        access.failed(Counted::Mqtt, Refusal::Wrong);
+    }
+    assert!(matches!(
+        access.failed(Counted::Mqtt, Refusal::Wrong),
+        Refusal::Locked(_)
+    ));
+    let local = ClientAddress::direct(Some(IpAddr::V4(Ipv4Addr::LOCALHOST)));
+    assert_eq!(
+        access.check(local, Needed::Operator, Some("guess")),
+        Err(Refusal::Wrong)
     );
 }
 

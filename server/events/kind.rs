@@ -428,14 +428,15 @@ pub enum EventKind {
         /// What happened and what to do, in plain words.
         message: String,
     },
-    /// A websocket client's credential was refused; the connection was closed.
+    /// A websocket client's credential was refused (the connection was closed), or a command
+    /// over MQTT was badly signed.
     #[serde(rename = "client.refused")]
     ClientRefused {
         /// The role it asked for.
         role: ClientRole,
-        /// `unauthorized` or `too-many-attempts`.
+        /// `unauthorized`, `bad-signature` (MQTT) or `too-many-attempts`.
         code: ErrorCode,
-        /// Its network address, when known.
+        /// Its network address, when known (never for MQTT: the broker does not say).
         address: Option<String>,
         /// Credential refusals (websocket and HTTP) left out of the log just before this one,
         /// because refusals from many addresses came faster than they are logged.

@@ -3,7 +3,9 @@
 //! saying offline, which the broker publishes when the process dies), a retained `state`
 //! (`robot_state`, re-published on change at most every [`STATE_INTERVAL`]) and every hub
 //! event on `events` at QoS 1 (its corpus line); and takes commands on `cmd` (`commands`),
-//! answered on `reply`. After a broker restart the link subscribes again and re-publishes
+//! answered on `reply`. Each command's signature is checked as it arrives, in the bridge's
+//! loop, and a refusal answered at once; only verified commands queue to run (one at a time),
+//! so a flood of bad commands through the broker cannot push a signed Stop out of the queue. After a broker restart the link subscribes again and re-publishes
 //! both retained messages. Operators learn of the link's changes as `fleet.link` events and
 //! in `/api/state`'s `fleet`.
 
@@ -18,9 +20,10 @@ use tokio::sync::mpsc;
 use tokio::time::Instant;
 
 use super::broker::{Broker, LinkStatus, topic};
-use super::commands;
+use super::commands::{self, Verified};
 use super::link::{LinkNote, run_link};
 use super::robot_state::{self, Battery, Identity};
+use super::signed::Replays;
 use crate::events::EventKind;
 use crate::state::AppState;
 
@@ -28,8 +31,11 @@ use crate::state::AppState;
 pub const STATE_INTERVAL: Duration = Duration::from_millis(250);
 /// Requests (publications) waiting for the link at most; more events are dropped, counted.
 const REQUEST_CAPACITY: usize = 1024;
-/// Commands waiting to be handled at most.
+/// Verified commands waiting to run at most.
 const COMMAND_QUEUE: usize = 32;
+/// Messages from the link waiting for the bridge's loop at most (each is checked at once, so
+/// this is headroom for a burst, beyond which the link drops messages with a warning).
+const NOTES: usize = 1024;
 /// How long a stopping server keeps the link to say it is going offline.
 const GOODBYE: Duration = Duration::from_secs(2);
 
@@ -56,7 +62,7 @@ pub fn start_bridge(state: &AppState, settings: BridgeSettings) -> Arc<LinkStatu
     );
     let options = broker.options(&format!("docent-{robot}"), Some(will));
     let (client, events) = AsyncClient::new(options, REQUEST_CAPACITY);
-    let (notes_tx, notes) = mpsc::channel(COMMAND_QUEUE);
+    let (notes_tx, notes) = mpsc::channel(NOTES);
     let life = &state.life;
     life.spawn(run_link(
         events,
@@ -70,7 +76,7 @@ pub fn start_bridge(state: &AppState, settings: BridgeSettings) -> Arc<LinkStatu
     life.spawn(run_commands(
         state.clone(),
         client.clone(),
-        host,
+        host.clone(),
         robot.clone(),
         commands_rx,
     ));
@@ -78,6 +84,8 @@ pub fn start_bridge(state: &AppState, settings: BridgeSettings) -> Arc<LinkStatu
         state: state.clone(),
         client,
         identity,
+        broker_host: host,
+        replays: Replays::default(),
         link: Arc::clone(&link),
         battery: None,
         published: None,
@@ -91,6 +99,10 @@ struct Bridge {
     state: AppState,
     client: AsyncClient,
     identity: Identity,
+    /// The broker's host, named in the log as where refused commands came through.
+    broker_host: String,
+    /// The references of the commands taken (no replay).
+    replays: Replays,
     link: Arc<LinkStatus>,
     battery: Option<Battery>,
     /// The state document last published since the link came up.
@@ -100,7 +112,7 @@ struct Bridge {
 }
 
 impl Bridge {
-    async fn run(mut self, mut notes: mpsc::Receiver<LinkNote>, commands: mpsc::Sender<Vec<u8>>) {
+    async fn run(mut self, mut notes: mpsc::Receiver<LinkNote>, commands: mpsc::Sender<Verified>) {
         let mut events = self.state.hub.subscribe();
         let shutdown = self.state.life.shutdown.clone();
         let cmd_topic = topic(&self.identity.robot, "cmd");
@@ -117,9 +129,7 @@ impl Bridge {
                     }
                     Some(LinkNote::Down(reason)) => self.announce(Some(reason)),
                     Some(LinkNote::Message { topic, payload }) if topic == cmd_topic => {
-                        if commands.try_send(payload).is_err() {
-                            tracing::warn!("an MQTT command was dropped: too many waiting");
-                        }
+                        self.command(&payload, &commands);
                     }
                     Some(LinkNote::Message { .. }) => {}
                     None => break,
@@ -146,6 +156,26 @@ impl Bridge {
             }
         }
         self.goodbye().await;
+    }
+
+    /// A command from `cmd`: refused at once, or queued to run.
+    fn command(&mut self, payload: &[u8], commands: &mpsc::Sender<Verified>) {
+        let from = (self.broker_host.as_str(), self.identity.robot.as_str());
+        match commands::check(&self.state, from, &mut self.replays, payload) {
+            Ok(verified) => {
+                if commands.try_send(verified).is_err() {
+                    tracing::warn!("a signed MQTT command was dropped: too many waiting");
+                }
+            }
+            Err(reply) => {
+                let topic = topic(&self.identity.robot, "reply");
+                // Not waited for: a flood of refusals must not hold up the loop.
+                let sent = (self.client).try_publish(&topic, QoS::AtLeastOnce, false, reply);
+                if sent.is_err() {
+                    tracing::debug!("a refusal on {topic} was not sent: the link is busy");
+                }
+            }
+        }
     }
 
     /// The link is up: subscribe to commands, say online, publish the state afresh.
@@ -222,22 +252,22 @@ impl Bridge {
     }
 }
 
-/// Handles commands one at a time and publishes their answers on `reply`.
+/// Runs verified commands one at a time and publishes their signed answers on `reply`.
 async fn run_commands(
     state: AppState,
     client: AsyncClient,
     host: String,
     robot: String,
-    mut commands: mpsc::Receiver<Vec<u8>>,
+    mut commands: mpsc::Receiver<Verified>,
 ) {
     let reply = topic(&robot, "reply");
     let mut broker_ip: Option<IpAddr> = None;
     let shutdown = state.life.shutdown.clone();
     loop {
-        let payload = tokio::select! {
+        let command = tokio::select! {
             () = shutdown.cancelled() => return,
-            payload = commands.recv() => match payload {
-                Some(payload) => payload,
+            command = commands.recv() => match command {
+                Some(command) => command,
                 None => return,
             },
         };
@@ -249,7 +279,7 @@ async fn run_commands(
                 found.unwrap_or(IpAddr::V4(std::net::Ipv4Addr::UNSPECIFIED))
             }
         };
-        for frame in commands::answer(&state, ip, &payload).await {
+        for frame in commands::run(&state, (ip, &robot), command).await {
             if let Err(e) = client.publish(&reply, QoS::AtLeastOnce, false, frame).await {
                 tracing::warn!("could not publish an answer on {reply}: {e}");
             }
@@ -257,7 +287,7 @@ async fn run_commands(
     }
 }
 
-/// The broker's address, which failed credentials count against.
+/// The broker's address, named in the corpus as where the commands came through.
 async fn resolve(host: &str) -> Option<IpAddr> {
     if let Ok(ip) = host.parse() {
         return Some(ip);

@@ -1,28 +1,35 @@
-//! Commands over MQTT: a message on `docent/ID/cmd` is a websocket client frame (`trigger`,
-//! `stop`, `context`, `mark`, `accept`, `dismiss`) with two more fields, `role` (`operator`,
-//! the default, or `dm`) and `token`, the credential that role shows in a websocket `hello`.
-//! Each answer frame is published on `docent/ID/reply`, carrying the command's `ref`.
+//! Commands over MQTT: a message on `docent/ID/cmd` is a signed envelope (`signed`) around a
+//! websocket client frame (`trigger`, `stop`, `context`, `mark`, `accept`, `dismiss`), signed
+//! with the credential of its `role` (`operator` or `dm`). Each answer frame is published on
+//! `docent/ID/reply` in a signed reply envelope carrying the command's `ref`.
 //!
-//! Why an embedded session rather than a second reading of the frames: the command is handed
-//! to [`EmbeddedSession`] (`ws::embedded`), which runs the websocket's own `hello` (credential,
-//! `Attempts` lockout, refusal logging as `client.refused`) and the websocket's own parsing and
-//! handlers, so an MQTT command is checked exactly as a websocket frame is, gets the same
-//! `error` codes and wording, and leaves the same events in the corpus (`client.connected`
-//! and `client.left` named `mqtt` around what it did). What is MQTT's own is only the
-//! envelope: who may send over a broker. A kiosk or projector role needs no credential on the
-//! websocket (it is a touchscreen on the robot's own network); anyone who can publish to the
-//! broker could claim it, so over MQTT only the roles with a credential are taken.
+//! Before anything runs, the robot checks the envelope: its MAC (with the role's credential),
+//! that it names this robot, that its `ts` is within [`signed::FRESHNESS`] of this robot's
+//! clock and that its `ref` was not taken already (a command read off the broker and
+//! published again is refused). A command carrying a raw `token`, as the first fleet commands
+//! did, is refused with `unsigned-command` and never compared: whoever reads the broker has
+//! seen that credential, and the site should change it.
 //!
-//! The broker does not say who published a message, so failed credentials count against the
-//! broker's address, as a reverse proxy's would without `trusted_proxies`: a flood of wrong
-//! credentials through the broker makes every MQTT command wait, and nothing else.
+//! Why an embedded session rather than a second reading of the frames: the verified frame is
+//! handed to [`EmbeddedSession`] (`ws::embedded`), which runs the websocket's own parsing and
+//! handlers, so an MQTT command gets the same `error` codes and wording as a websocket frame,
+//! and leaves the same events in the corpus (`client.connected` and `client.left` named
+//! `mqtt` around what it did). A kiosk or projector role needs no credential on the websocket
+//! (it is a touchscreen on the robot's own network); anyone who can publish to the broker
+//! could claim it, so over MQTT only the roles with a credential are taken.
+//!
+//! The broker does not say who published a message, and it may run on this machine: bad
+//! signatures are counted under their own key (`Counted::Mqtt`), never the broker's address,
+//! so a flood of them through the broker never makes a local console or HTTP client wait, and
+//! a rightly signed command is always taken, whatever came before it.
 
 use std::net::IpAddr;
 
 use serde_json::{Map, Value};
 
-use crate::access::ClientAddress;
-use crate::events::ClientRole;
+use super::signed::{self, Replays, SignedCommand, SignedReply, Unfresh};
+use crate::access::{ClientAddress, Counted, Needed, Refusal, Secret, whole_seconds};
+use crate::events::{ClientRole, EventKind};
 use crate::state::AppState;
 use crate::wire::ErrorCode;
 use crate::ws::EmbeddedSession;
@@ -31,77 +38,200 @@ use crate::ws::protocol::error_frame;
 /// The name an MQTT command's session has in `client.connected` events.
 pub const CLIENT_NAME: &str = "mqtt";
 
-/// The answer frames to one command `payload` that came through the broker at `broker`, each
-/// with the command's `ref` (when it had one).
-pub async fn answer(state: &AppState, broker: IpAddr, payload: &[u8]) -> Vec<String> {
+/// A command refused before it ran: answered without a MAC.
+#[derive(Debug)]
+struct Refused {
+    reference: Option<String>,
+    code: ErrorCode,
+    message: String,
+}
+
+/// A command whose envelope checked out, to run.
+pub struct Verified {
+    role: ClientRole,
+    key: Secret,
+    reference: String,
+    frame: String,
+}
+
+/// Checks a command `payload` for robot `robot`, which came through the broker at `broker`
+/// (its address or host name, for the log): the command to run, or the reply envelope (JSON
+/// text, unsigned) refusing it. Quick and never waiting, so that the bridge checks every
+/// command as it arrives and only verified ones queue to run: a flood of bad commands through
+/// the broker cannot crowd a rightly signed Stop out of the queue.
+pub fn check(
+    state: &AppState,
+    (broker, robot): (&str, &str),
+    replays: &mut Replays,
+    payload: &[u8],
+) -> Result<Verified, String> {
+    verify(state, (broker, robot), replays, payload).map_err(|refused| {
+        let frame = error_frame(refused.code, &refused.message, None, None);
+        json_text(&SignedReply {
+            robot: robot.to_owned(),
+            reference: refused.reference,
+            frame,
+            mac: None,
+        })
+    })
+}
+
+/// Runs a verified `command` for robot `robot` through the websocket's own session code;
+/// the reply envelopes (JSON text), each signed with the command's credential.
+pub async fn run(
+    state: &AppState,
+    (broker, robot): (IpAddr, &str),
+    command: Verified,
+) -> Vec<String> {
     // Never local: an `--open` server takes no commands from a broker anybody may reach.
     let address = ClientAddress {
         ip: Some(broker),
         local: false,
     };
-    let Ok(text) = std::str::from_utf8(payload) else {
-        let message = "a command is a JSON object in UTF-8 text";
-        return vec![error_frame(ErrorCode::MalformedJson, message, None, None)];
-    };
     let mut session = EmbeddedSession::open(state, address);
-    let Ok(Value::Object(mut fields)) = serde_json::from_str::<Value>(text) else {
-        // Not an object: the websocket's reading says what is wrong with it, in its words.
-        session.frame(text);
-        let frames = session.answers().await;
-        session.leave("mqtt command answered");
-        return frames;
-    };
-    let reference = fields.get("ref").and_then(Value::as_str).map(str::to_owned);
-    let (role, token) = match envelope(&mut fields) {
-        Ok(found) => found,
-        Err((code, message)) => {
-            tracing::warn!(code = code.as_str(), "MQTT command refused: {message}");
-            return vec![error_frame(code, &message, reference.as_deref(), None)];
-        }
-    };
-    let frames = if session.hello(role, token, CLIENT_NAME) {
+    let frames = if session.hello_signed(command.role, CLIENT_NAME) {
         // The welcome is the websocket's business; the command's answers follow it.
         drop(session.answers().await);
-        session.frame(&Value::Object(fields).to_string());
+        session.frame(&command.frame);
         let frames = session.answers().await;
         session.leave("mqtt command answered");
         frames
     } else {
         session.answers().await
     };
-    frames
-        .into_iter()
-        .map(|frame| with_reference(frame, reference.as_deref()))
+    (frames.into_iter())
+        .map(|frame| {
+            let text = signed::reply_text(robot, &command.reference, &frame);
+            json_text(&SignedReply {
+                robot: robot.to_owned(),
+                reference: Some(command.reference.clone()),
+                mac: Some(signed::mac(&command.key, &text)),
+                frame,
+            })
+        })
         .collect()
 }
 
-/// Takes `role` and `token` out of a command: the role, if one allowed over MQTT, and the
-/// credential; otherwise the `error` code and message.
-fn envelope(
-    fields: &mut Map<String, Value>,
-) -> Result<(ClientRole, Option<String>), (ErrorCode, String)> {
-    let token = match fields.remove("token") {
-        None | Some(Value::Null) => None,
-        Some(Value::String(token)) => Some(token),
-        // Not echoed: it may be a credential written wrong.
-        Some(_) => {
-            let message = "\"token\" is the operator's or dialog manager's credential, as text";
-            return Err((ErrorCode::BadFrame, message.into()));
+fn json_text(reply: &SignedReply) -> String {
+    serde_json::to_string(reply).unwrap_or_else(|_| unreachable!("strings serialize"))
+}
+
+/// Reads and checks a command's envelope.
+fn verify(
+    state: &AppState,
+    (broker, robot): (&str, &str),
+    replays: &mut Replays,
+    payload: &[u8],
+) -> Result<Verified, Refused> {
+    let fields = match serde_json::from_slice::<Value>(payload) {
+        Ok(Value::Object(fields)) => fields,
+        _ => {
+            let message = "a command is a signed envelope, a JSON object (docs/FLEET.md)";
+            return Err(refused(None, ErrorCode::MalformedJson, message));
         }
     };
-    let role = match fields.remove("role") {
-        None => ClientRole::Operator,
-        Some(role) => serde_json::from_value(role).map_err(|_| {
-            let message = "\"role\" is operator (the default) or dm";
-            (ErrorCode::BadFrame, message.to_owned())
-        })?,
+    let reference = (fields.get("ref").and_then(Value::as_str))
+        .filter(|r| signed::reference_problem(r).is_none())
+        .map(str::to_owned);
+    let command = envelope(fields).map_err(|(code, message)| {
+        // Within the shared allowance: anyone who can publish could flood the log.
+        if let Some(unlogged) = state.access.admit_refusal_log() {
+            tracing::warn!(
+                code = code.as_str(),
+                unlogged,
+                "MQTT command refused: {message}"
+            );
+        }
+        refused(reference.clone(), code, &message)
+    })?;
+    let role = role_of(&command.role).map_err(|(c, m)| refused(reference.clone(), c, &m))?;
+    let needed = match role {
+        ClientRole::Dm => Needed::Dm,
+        _ => Needed::Operator,
     };
+    let Some(key) = state.access.credential(needed).cloned() else {
+        let message = "an --open server takes no commands over MQTT: start it with credentials";
+        return Err(refused(reference, ErrorCode::Unauthorized, message));
+    };
+    let text = signed::command_text(
+        &command.robot,
+        &command.role,
+        &command.reference,
+        command.ts,
+        &command.frame,
+    );
+    if !signed::verifies(&key, &text, &command.mac) {
+        let refusal = state.access.failed(Counted::Mqtt, Refusal::Wrong);
+        log_refusal(state, broker, role, refusal);
+        return Err(bad_signature(reference, refusal, needed));
+    }
+    if command.robot != robot {
+        let message = format!(
+            "this command was signed for robot {:?}, not {robot:?}: it is not run here",
+            command.robot
+        );
+        return Err(refused(reference, ErrorCode::BadSignature, &message));
+    }
+    if let Err(unfresh) = replays.take(&command.reference, command.ts, signed::now_ms()) {
+        return Err(unfresh_refusal(reference, unfresh));
+    }
+    Ok(Verified {
+        role,
+        key,
+        reference: command.reference,
+        frame: command.frame,
+    })
+}
+
+fn refused(reference: Option<String>, code: ErrorCode, message: &str) -> Refused {
+    Refused {
+        reference,
+        code,
+        message: message.to_owned(),
+    }
+}
+
+/// The envelope's fields, or why they are not one.
+fn envelope(mut fields: Map<String, Value>) -> Result<SignedCommand, (ErrorCode, String)> {
+    if fields.remove("token").is_some() {
+        // Never compared nor echoed: whoever reads the broker has it already.
+        let message = "a command never carries a credential (\"token\"): everyone who reads \
+                       the broker sees it. This one was not run; change that credential, and \
+                       sign commands with HMAC-SHA256 instead (docs/FLEET.md, Signed commands)";
+        return Err((ErrorCode::UnsignedCommand, message.into()));
+    }
+    if !fields.contains_key("mac") {
+        let message = "a command is signed: {robot, role, ref, ts, frame, mac} with an \
+                       HMAC-SHA256 keyed by the role's credential (docs/FLEET.md, Signed \
+                       commands); this one was not run";
+        return Err((ErrorCode::UnsignedCommand, message.into()));
+    }
+    let command: SignedCommand = serde_json::from_value(Value::Object(fields)).map_err(|e| {
+        let message = format!(
+            "a signed command is {{robot, role, ref, ts, frame, mac}}, ts in milliseconds and \
+             frame the command frame as JSON text (docs/FLEET.md): {e}"
+        );
+        (ErrorCode::BadFrame, message)
+    })?;
+    if let Some(problem) = signed::reference_problem(&command.reference) {
+        return Err((ErrorCode::BadFrame, problem));
+    }
+    Ok(command)
+}
+
+/// The role a command is signed for, if one allowed over MQTT.
+fn role_of(role: &str) -> Result<ClientRole, (ErrorCode, String)> {
+    let role: ClientRole =
+        serde_json::from_value(Value::String(role.to_owned())).map_err(|_| {
+            let message = "\"role\" is operator or dm";
+            (ErrorCode::BadFrame, message.to_owned())
+        })?;
     match role {
-        ClientRole::Operator | ClientRole::Dm => Ok((role, token)),
+        ClientRole::Operator | ClientRole::Dm => Ok(role),
         ClientRole::Kiosk | ClientRole::Projector | ClientRole::Adapter => {
             let message = format!(
                 "a client with role {role:?} may not send commands over MQTT: only operator \
-                 and dm, which show their credential in \"token\""
+                 and dm, which sign them with their credential"
             )
             .to_lowercase();
             Err((ErrorCode::Forbidden, message))
@@ -109,19 +239,77 @@ fn envelope(
     }
 }
 
-/// `frame` with `"ref": reference` when it has none (a refused credential's `error` frame
-/// does not on the websocket, where the connection says whose it is; a reply topic does not).
-fn with_reference(frame: String, reference: Option<&str>) -> String {
-    let Some(reference) = reference else {
-        return frame;
+fn bad_signature(reference: Option<String>, refusal: Refusal, needed: Needed) -> Refused {
+    let which = match needed {
+        Needed::Dm => "the dialog-manager credential (DOCENT_DM_TOKEN)",
+        _ => "the operator credential (DOCENT_OPERATOR_TOKEN)",
     };
-    match serde_json::from_str::<Value>(&frame) {
-        Ok(Value::Object(mut fields)) if fields.get("ref").is_none_or(Value::is_null) => {
-            fields.insert("ref".into(), Value::String(reference.to_owned()));
-            Value::Object(fields).to_string()
+    match refusal {
+        Refusal::TooManyAttempts(wait) | Refusal::Locked(wait) => {
+            let message = format!(
+                "too many badly signed commands over MQTT; try again in {} s (a rightly signed \
+                 command is always taken)",
+                whole_seconds(wait)
+            );
+            refused(reference, ErrorCode::TooManyAttempts, &message)
         }
-        _ => frame,
+        Refusal::Wrong | Refusal::Missing => {
+            let message = format!("the command's mac is not signed with {which}");
+            refused(reference, ErrorCode::BadSignature, &message)
+        }
     }
+}
+
+fn unfresh_refusal(reference: Option<String>, unfresh: Unfresh) -> Refused {
+    let seconds = signed::FRESHNESS.as_secs();
+    let (code, message) = match unfresh {
+        Unfresh::Stale => (
+            ErrorCode::StaleCommand,
+            format!(
+                "the command's ts is more than {seconds} s from this robot's clock: sign each \
+                 command as it is sent, and keep the clocks set (NTP)"
+            ),
+        ),
+        Unfresh::Replayed => (
+            ErrorCode::ReplayedCommand,
+            "a command with this ref was taken already: each command needs a fresh random ref"
+                .to_owned(),
+        ),
+        Unfresh::TooMany => (
+            ErrorCode::RateLimited,
+            format!("too many commands within {seconds} s: try again shortly"),
+        ),
+    };
+    refused(reference, code, &message)
+}
+
+/// Logs a counted bad signature, within the shared allowance of logged refusals; one that
+/// only waits (`Locked`) is not logged again, so a flood cannot flood the log.
+fn log_refusal(state: &AppState, broker: &str, role: ClientRole, refusal: Refusal) {
+    if matches!(refusal, Refusal::Locked(_)) {
+        return;
+    }
+    let Some(unlogged) = state.access.admit_refusal_log() else {
+        return;
+    };
+    let code = match refusal {
+        Refusal::Wrong | Refusal::Missing => ErrorCode::BadSignature,
+        _ => ErrorCode::TooManyAttempts,
+    };
+    let address = Some(format!("mqtt via {broker}"));
+    tracing::warn!(
+        ?role,
+        address,
+        code = code.as_str(),
+        unlogged,
+        "MQTT command refused"
+    );
+    state.hub.publish(EventKind::ClientRefused {
+        role,
+        code,
+        address,
+        unlogged,
+    });
 }
 
 #[cfg(test)]
@@ -137,35 +325,32 @@ mod tests {
     }
 
     #[test]
-    fn the_envelope_takes_credentialed_roles_only() {
-        let mut command = fields(json!({"type": "stop", "token": "t", "ref": "a"}));
-        let (role, token) = envelope(&mut command).expect("operator by default");
-        assert_eq!((role, token.as_deref()), (ClientRole::Operator, Some("t")));
-        assert_eq!(command, fields(json!({"type": "stop", "ref": "a"})));
-        let mut dm = fields(json!({"type": "stop", "role": "dm"}));
-        assert_eq!(envelope(&mut dm).expect("dm").0, ClientRole::Dm);
-        for role in ["kiosk", "projector", "adapter"] {
-            let mut command = fields(json!({"type": "trigger", "label": "X", "role": role}));
-            let (code, message) = envelope(&mut command).unwrap_err();
-            assert_eq!(code, ErrorCode::Forbidden, "{role}");
-            assert!(message.contains(role), "{message}");
-        }
-        let mut odd = fields(json!({"type": "stop", "role": "boss"}));
-        assert_eq!(envelope(&mut odd).unwrap_err().0, ErrorCode::BadFrame);
-        let mut number = fields(json!({"type": "stop", "token": 12345}));
-        let (_, message) = envelope(&mut number).unwrap_err();
-        assert!(!message.contains("12345"));
+    fn a_raw_credential_is_refused_unread() {
+        let command = fields(json!({"type": "stop", "token": "secret-secret-1", "ref": "a"}));
+        let (code, message) = envelope(command).unwrap_err();
+        assert_eq!(code, ErrorCode::UnsignedCommand);
+        assert!(!message.contains("secret-secret-1"), "{message}");
+        let unsigned = fields(json!({"type": "stop"}));
+        assert_eq!(
+            envelope(unsigned).unwrap_err().0,
+            ErrorCode::UnsignedCommand
+        );
+        let short = fields(
+            json!({"robot": "r", "role": "operator", "ref": "1", "ts": 1,
+            "frame": "{}", "mac": "00"}),
+        );
+        assert_eq!(envelope(short).unwrap_err().0, ErrorCode::BadFrame);
     }
 
     #[test]
-    fn answers_carry_the_commands_ref() {
-        let frame = r#"{"type":"error","code":"unauthorized","message":"m"}"#.to_owned();
-        let with = with_reference(frame, Some("r1"));
-        assert_eq!(
-            serde_json::from_str::<Value>(&with).expect("json")["ref"],
-            "r1"
-        );
-        let own = r#"{"type":"stopped","ref":"mine"}"#.to_owned();
-        assert_eq!(with_reference(own.clone(), Some("r1")), own);
+    fn only_credentialed_roles_may_send_commands() {
+        assert_eq!(role_of("operator").ok(), Some(ClientRole::Operator));
+        assert_eq!(role_of("dm").ok(), Some(ClientRole::Dm));
+        for role in ["kiosk", "projector", "adapter"] {
+            let (code, message) = role_of(role).unwrap_err();
+            assert_eq!(code, ErrorCode::Forbidden, "{role}");
+            assert!(message.contains(role), "{message}");
+        }
+        assert_eq!(role_of("boss").unwrap_err().0, ErrorCode::BadFrame);
     }
 }

@@ -192,7 +192,10 @@ async fn stop(
                 StopFailed::Unknown(_) => (StatusCode::NOT_FOUND, ErrorCode::NotFound),
                 StopFailed::Refused { .. } => (StatusCode::BAD_GATEWAY, ErrorCode::RobotRefused),
                 StopFailed::LinkDown(_) => (StatusCode::SERVICE_UNAVAILABLE, ErrorCode::BrokerDown),
-                StopFailed::NoAnswer(_) => (StatusCode::GATEWAY_TIMEOUT, ErrorCode::RobotSilent),
+                StopFailed::NoAnswer(_) | StopFailed::Unbound { .. } => {
+                    (StatusCode::GATEWAY_TIMEOUT, ErrorCode::RobotSilent)
+                }
+                StopFailed::NoCredential => (StatusCode::CONFLICT, ErrorCode::NoCredential),
             };
             tracing::warn!(robot, "a fleet stop failed: {failed}");
             Err(AppError::new(status, code, failed.to_string()))

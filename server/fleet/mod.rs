@@ -7,7 +7,10 @@
 //! - `bridge`: the robot's side: retained `status` (with the last will) and `state`, every
 //!   event on `events`, commands from `cmd` answered on `reply`.
 //! - `robot_state`: the `state` document, and the battery level read from robot events.
-//! - `commands`: a command handed to the websocket's own session code (`ws::embedded`).
+//! - `signed`: the signed envelopes of commands and replies (HMAC-SHA256 keyed by the role's
+//!   credential), and the memory of references taken (no replay).
+//! - `commands`: a verified command handed to the websocket's own session code
+//!   (`ws::embedded`).
 //! - `view`: the fleet view's model: every robot's state heard, and Stop.
 //! - `http`: `/fleet`, `/api/fleet...`, on a Docent and on `docent fleet`.
 //! - `setup`: flags over `docent.yaml`'s `mqtt:`; starting the bridge and the view.
@@ -23,6 +26,7 @@ mod http;
 mod link;
 mod robot_state;
 mod setup;
+mod signed;
 mod standalone;
 mod tls;
 mod view;

@@ -1,14 +1,17 @@
 //! The fleet view's model: its own MQTT connection subscribed to every robot's `state`,
 //! `status` and `reply` (`docent/+/...`), the robots as last heard of, the link's state, and
 //! Stop. Each change goes to the page's live streams as one JSON update ([`FleetView::watch`]);
-//! a Stop is published on the robot's `cmd` with this server's operator credential and
-//! resolved by the robot's own answer on `reply`, or by a clear failure (link down, no answer
-//! in time): the page never shows a stop that did not happen.
+//! a Stop is published on the robot's `cmd` signed with this server's operator credential
+//! (`signed`; the credential itself never goes to the broker) under a fresh random `ref`, and
+//! resolved only by an answer bound to it: on `docent/ROBOT/reply` of the robot asked, with
+//! that `ref`, naming that robot and signed with the same credential. Anything else (another
+//! topic, another robot, an unsigned or badly signed answer) is ignored, so a forged `stopped`
+//! is never taken for a stop; without a bound answer the Stop fails clearly (link down, no
+//! answer in time): the page never shows a stop that did not happen.
 
 use std::collections::{BTreeMap, HashMap};
 use std::sync::Arc;
 use std::sync::Mutex;
-use std::sync::atomic::{AtomicU64, Ordering};
 use std::time::Duration;
 
 use rumqttc::{AsyncClient, QoS};
@@ -17,6 +20,7 @@ use tokio::sync::{broadcast, mpsc, oneshot};
 
 use super::broker::{Broker, LinkState, LinkStatus, LinkView, TOPIC_ROOT, split_topic, topic};
 use super::link::{LinkNote, run_link};
+use super::signed::{self, SignedCommand, SignedReply};
 use crate::access::Secret;
 use crate::lifecycle::Lifecycle;
 use crate::sync::lock;
@@ -50,6 +54,17 @@ pub enum StopFailed {
         "{0} did not confirm the stop within 5 s: it may be offline or not reachable; stop it at its console or on the robot"
     )]
     NoAnswer(String),
+    /// No answer bound to the Stop within [`STOP_DEADLINE`], but one that could not be taken
+    /// was heard (unsigned, badly signed, from another robot or topic).
+    #[error(
+        "{robot} did not confirm the stop within 5 s; an answer not signed with this view's operator credential was heard{hint} (a forgery, a robot with another operator credential, or clocks more than 30 s apart): stop it at its console or on the robot"
+    )]
+    Unbound {
+        /// The robot.
+        robot: String,
+        /// What an unsigned answer from the robot's topic said, if one did.
+        hint: String,
+    },
     /// The robot answered with an `error` frame.
     #[error("{robot} refused the stop: {message} ({code})")]
     Refused {
@@ -63,6 +78,24 @@ pub enum StopFailed {
     /// No such robot has been heard of.
     #[error("no robot {0} is known to this fleet view")]
     Unknown(String),
+    /// This fleet view has no operator credential to sign with (an `--open` server).
+    #[error(
+        "this fleet view has no operator credential to sign the stop with (an --open server): start it with DOCENT_OPERATOR_TOKEN set to the fleet's operator credential"
+    )]
+    NoCredential,
+}
+
+/// A Stop waiting for its answer.
+struct Waiting {
+    /// The robot asked: only its `reply` topic may answer.
+    robot: String,
+    /// Gets the answer frame.
+    answer: oneshot::Sender<Value>,
+    /// Whether an answer that could not be taken was logged already (once per Stop).
+    warned: bool,
+    /// The `code` of an unsigned `error` heard on the asked robot's topic: not taken (anyone
+    /// may have sent it), but told as a hint (`stale-command`: the clocks differ).
+    hint: Option<String>,
 }
 
 /// The fleet as heard over the broker.
@@ -72,9 +105,9 @@ pub struct FleetView {
     link: Arc<LinkStatus>,
     client: AsyncClient,
     /// Stops waiting for their answer, by `ref`.
-    waiting: Mutex<HashMap<String, oneshot::Sender<Value>>>,
-    next_ref: AtomicU64,
-    /// The credential a Stop shows: this server's operator credential (`None` on `--open`).
+    waiting: Mutex<HashMap<String, Waiting>>,
+    /// The credential a Stop is signed with: this server's operator credential (`None` on
+    /// `--open`).
     token: Option<Secret>,
 }
 
@@ -103,7 +136,6 @@ impl FleetView {
             link,
             client,
             waiting: Mutex::default(),
-            next_ref: AtomicU64::new(1),
             token,
         });
         life.spawn(Arc::clone(&view).follow(notes, life.shutdown.clone()));
@@ -178,10 +210,7 @@ impl FleetView {
             }
         };
         if leaf == "reply" {
-            let reference = value.get("ref").and_then(Value::as_str);
-            if let Some(tx) = reference.and_then(|r| lock(&self.waiting).remove(r)) {
-                let _ = tx.send(value);
-            }
+            self.answered(robot, value);
             return;
         }
         let entry = {
@@ -224,43 +253,96 @@ impl FleetView {
         let _ = self.updates.send(update.to_string());
     }
 
+    /// An answer on `robot`'s `reply` topic: taken only when it is bound to a waiting Stop.
+    fn answered(&self, robot: &str, value: Value) {
+        let Ok(reply) = serde_json::from_value::<SignedReply>(value) else {
+            return;
+        };
+        let Some(reference) = reply.reference.as_deref() else {
+            return;
+        };
+        let mut waiting = lock(&self.waiting);
+        let Some(entry) = waiting.get_mut(reference) else {
+            return;
+        };
+        let text = signed::reply_text(&reply.robot, reference, &reply.frame);
+        let bound = entry.robot == robot
+            && reply.robot == robot
+            && (reply.mac.as_deref())
+                .zip(self.token.as_ref())
+                .is_some_and(|(mac, key)| signed::verifies(key, &text, mac));
+        let frame = serde_json::from_str::<Value>(&reply.frame);
+        if let Ok(frame) = &frame
+            && !bound
+            && entry.robot == robot
+            && reply.robot == robot
+            && let Some(code) = frame.get("code").and_then(Value::as_str)
+        {
+            entry.hint = Some(code.chars().take(64).collect());
+        }
+        match frame {
+            Ok(frame) if bound => {
+                if let Some(entry) = waiting.remove(reference) {
+                    let _ = entry.answer.send(frame);
+                }
+            }
+            _ if !entry.warned => {
+                entry.warned = true;
+                tracing::warn!(
+                    topic_robot = robot,
+                    asked = entry.robot,
+                    "an answer to a fleet stop was not taken: not signed with the operator \
+                     credential, or not from the robot asked (a forgery, or robots that do \
+                     not share this credential)"
+                );
+            }
+            _ => {}
+        }
+    }
+
     /// Stops robot `robot`: publishes `stop` on its `cmd` and waits for its answer.
     pub async fn stop(&self, robot: &str) -> Result<Value, StopFailed> {
         if !lock(&self.robots).contains_key(robot) {
             return Err(StopFailed::Unknown(robot.to_owned()));
         }
+        let Some(key) = &self.token else {
+            return Err(StopFailed::NoCredential);
+        };
         let link = self.link.view();
         if link.state != LinkState::Up {
             let reason = link.reason.unwrap_or_else(|| "not connected yet".into());
             return Err(StopFailed::LinkDown(reason));
         }
-        let reference = format!(
-            "fleet-stop-{}",
-            self.next_ref.fetch_add(1, Ordering::Relaxed)
-        );
+        let reference = signed::fresh_reference();
         let (tx, rx) = oneshot::channel();
-        lock(&self.waiting).insert(reference.clone(), tx);
-        let mut command = json!({ "type": "stop", "role": "operator", "ref": reference });
-        if let Some(token) = &self.token {
-            command["token"] = Value::String(token.expose().to_owned());
-        }
+        let waiting = Waiting {
+            robot: robot.to_owned(),
+            answer: tx,
+            warned: false,
+            hint: None,
+        };
+        lock(&self.waiting).insert(reference.clone(), waiting);
+        let command = signed_stop(key, robot, &reference);
         let sent = self
             .client
-            .publish(
-                topic(robot, "cmd"),
-                QoS::AtLeastOnce,
-                false,
-                command.to_string(),
-            )
+            .publish(topic(robot, "cmd"), QoS::AtLeastOnce, false, command)
             .await;
         if let Err(e) = sent {
             lock(&self.waiting).remove(&reference);
             return Err(StopFailed::LinkDown(e.to_string()));
         }
         let answer = tokio::time::timeout(STOP_DEADLINE, rx).await;
-        lock(&self.waiting).remove(&reference);
+        let left = lock(&self.waiting).remove(&reference);
         let Ok(Ok(answer)) = answer else {
-            return Err(StopFailed::NoAnswer(robot.to_owned()));
+            return Err(match left {
+                Some(entry) if entry.warned => StopFailed::Unbound {
+                    robot: robot.to_owned(),
+                    hint: (entry.hint)
+                        .map(|code| format!(" (an unsigned one said {code})"))
+                        .unwrap_or_default(),
+                },
+                _ => StopFailed::NoAnswer(robot.to_owned()),
+            });
         };
         if answer.get("type").and_then(Value::as_str) == Some("error") {
             let text = |key: &str| {
@@ -278,4 +360,20 @@ impl FleetView {
         }
         Ok(answer)
     }
+}
+
+/// The signed envelope of a `stop` for `robot`.
+fn signed_stop(key: &crate::access::Secret, robot: &str, reference: &str) -> String {
+    let frame = json!({ "type": "stop" }).to_string();
+    let (role, ts) = ("operator", signed::now_ms());
+    let text = signed::command_text(robot, role, reference, ts, &frame);
+    let command = SignedCommand {
+        robot: robot.to_owned(),
+        role: role.to_owned(),
+        reference: reference.to_owned(),
+        ts,
+        mac: signed::mac(key, &text),
+        frame,
+    };
+    serde_json::to_string(&command).unwrap_or_else(|_| unreachable!("strings serialize"))
 }

@@ -114,11 +114,21 @@ pub enum ErrorCode {
     RobotSilent,
     /// `robot-refused`: A robot answered a fleet command with an error (its code in the message).
     RobotRefused,
+    /// `unsigned-command`: A fleet command over MQTT that is not signed (or carries a raw credential).
+    UnsignedCommand,
+    /// `bad-signature`: A fleet command whose MAC is not the role's credential's, or that names another robot.
+    BadSignature,
+    /// `stale-command`: A fleet command signed more than 30 s from the robot's clock.
+    StaleCommand,
+    /// `replayed-command`: A fleet command whose `ref` was taken already.
+    ReplayedCommand,
+    /// `no-credential`: The fleet view has no operator credential to sign a command with.
+    NoCredential,
 }
 
 impl ErrorCode {
     /// Every code, for tests and documentation checks.
-    pub const ALL: [ErrorCode; 53] = [
+    pub const ALL: &[ErrorCode] = &[
         ErrorCode::BadRequest,
         ErrorCode::BodyNotObject,
         ErrorCode::ConflictingLength,
@@ -172,6 +182,11 @@ impl ErrorCode {
         ErrorCode::BrokerDown,
         ErrorCode::RobotSilent,
         ErrorCode::RobotRefused,
+        ErrorCode::UnsignedCommand,
+        ErrorCode::BadSignature,
+        ErrorCode::StaleCommand,
+        ErrorCode::ReplayedCommand,
+        ErrorCode::NoCredential,
     ];
 
     /// The code as sent (the same string serde writes), for events and logs.
@@ -230,6 +245,11 @@ impl ErrorCode {
             ErrorCode::BrokerDown => "broker-down",
             ErrorCode::RobotSilent => "robot-silent",
             ErrorCode::RobotRefused => "robot-refused",
+            ErrorCode::UnsignedCommand => "unsigned-command",
+            ErrorCode::BadSignature => "bad-signature",
+            ErrorCode::StaleCommand => "stale-command",
+            ErrorCode::ReplayedCommand => "replayed-command",
+            ErrorCode::NoCredential => "no-credential",
         }
     }
 }

@@ -1,11 +1,12 @@
 //! A session with no websocket under it: how another transport (the MQTT bridge,
 //! `fleet::commands`) hands Docent a client's frame so that it is parsed, checked and handled
 //! by exactly the code that handles the websocket's (`session` and its handlers), with the same
-//! roles, credentials, `Attempts` lockout, refusal logging, corpus events and `error` frames.
+//! roles, corpus events and `error` frames.
 //! There is no second copy of the protocol's validation anywhere.
 //!
 //! A transport opens one [`EmbeddedSession`] per request, introduces it with
-//! [`EmbeddedSession::hello`] (the credential checked as a websocket `hello` is), hands it one
+//! [`EmbeddedSession::hello_signed`] (the role's signature verified by the transport; the
+//! rest of the `hello` as a websocket's), hands it one
 //! frame ([`EmbeddedSession::frame`]) and takes the frames the session answered with
 //! ([`EmbeddedSession::answers`]; an acknowledgement only once the corpus log holds what it
 //! acknowledges, as the websocket writer sends it), then [`EmbeddedSession::leave`]s. Frames
@@ -22,7 +23,7 @@ use crate::state::AppState;
 use crate::wire::ErrorCode;
 use crate::wire::outbox::{OUTBOX_CAPACITY, Outbox, Queued};
 use crate::ws::client::Client;
-use crate::ws::hello::Hello;
+use crate::ws::hello::{Credential, Hello};
 use crate::ws::protocol::ClientFrame;
 use crate::ws::session::Session;
 use crate::ws::writer::release;
@@ -54,15 +55,17 @@ impl EmbeddedSession {
         }
     }
 
-    /// Says `hello` as `role` with `token`, without the event stream. True when admitted;
-    /// otherwise the refusal (an `error` frame) waits in [`EmbeddedSession::answers`].
-    pub fn hello(&mut self, role: ClientRole, token: Option<String>, name: &str) -> bool {
+    /// Says `hello` as `role`, without the event stream, for a command the transport has
+    /// verified to be signed with `role`'s credential (`fleet::signed`): no credential is
+    /// checked here, since none travelled. True when admitted; otherwise the refusal (an
+    /// `error` frame) waits in [`EmbeddedSession::answers`].
+    pub fn hello_signed(&mut self, role: ClientRole, name: &str) -> bool {
         self.session.hello(Hello {
             role,
             verbs: Vec::new(),
             robot_events: Vec::new(),
             name: Some(name.to_owned()),
-            token,
+            credential: Credential::Signed,
             events: false,
             page: None,
             language: None,
@@ -115,9 +118,9 @@ fn needs_connection(frame: &ClientFrame) -> Option<&'static str> {
         | ClientFrame::Accept { .. }
         | ClientFrame::Dismiss { .. }
         | ClientFrame::Mark { .. } => None,
-        ClientFrame::Hello { .. } => Some(
-            "a command says who sends it in its own role and token fields; send no hello frame",
-        ),
+        ClientFrame::Hello { .. } => {
+            Some("a command says who sends it in its signed envelope's role; send no hello frame")
+        }
         ClientFrame::Propose { .. } => Some(
             "a proposal lives as long as its dialog manager's connection: propose over the \
              websocket",

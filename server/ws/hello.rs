@@ -29,12 +29,21 @@ pub(super) struct Hello {
     pub(super) verbs: Vec<String>,
     pub(super) robot_events: Vec<String>,
     pub(super) name: Option<String>,
-    pub(super) token: Option<String>,
+    pub(super) credential: Credential,
     pub(super) events: bool,
     /// The page a reconnecting kiosk shows.
     pub(super) page: Option<String>,
     /// The language a reconnecting kiosk shows its pages in.
     pub(super) language: Option<String>,
+}
+
+/// How a client proves its role.
+pub(super) enum Credential {
+    /// The credential itself (`hello.token`), checked by `Access::check`.
+    Token(Option<String>),
+    /// A signature made with the role's credential, verified by the transport that carried the
+    /// frame (a fleet command over MQTT, `fleet::signed`): the credential never travelled.
+    Signed,
 }
 
 /// A client whose `hello` was accepted: the session records its role.
@@ -81,13 +90,19 @@ pub(super) fn admit(client: &Client, hello: Hello) -> Result<Admitted, Refused> 
         verbs,
         robot_events,
         name,
-        token,
+        credential,
         events,
         page,
         language,
     } = hello;
+    let checked = |needed| match &credential {
+        Credential::Token(token) => {
+            (client.state.access).check(client.address, needed, token.as_deref())
+        }
+        Credential::Signed => Ok(()),
+    };
     if let Some(needed) = needed(role, client.address.local)
-        && let Err(refusal) = (client.state.access).check(client.address, needed, token.as_deref())
+        && let Err(refusal) = checked(needed)
     {
         log_refusal(client, role, refusal);
         client.reply_error(refusal.code(), &refusal.message(needed), None, None);

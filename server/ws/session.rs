@@ -16,7 +16,7 @@ use crate::events::{ClientRole, EventKind};
 use crate::wire::ErrorCode;
 use crate::ws::client::Client;
 use crate::ws::diagnose::diagnose;
-use crate::ws::hello::{self, Hello, Refused};
+use crate::ws::hello::{self, Credential, Hello, Refused};
 use crate::ws::protocol::{ClientFrame, MAX_FRAME_BYTES};
 use crate::ws::triggers::{self, RefusedRun, Trigger};
 use crate::ws::writer::Feed;
@@ -125,7 +125,7 @@ impl Session {
                 verbs,
                 robot_events,
                 name,
-                token,
+                credential: Credential::Token(token),
                 events,
                 page,
                 language,

@@ -1,9 +1,10 @@
 // access.js: signing in and staying signed in. Opens the connection (connection.js) with the
 // credential from the sign-in form, or the one this tab kept, or none on an `--open` server;
 // keeps it for this tab once the server accepts it, and forgets it when it is refused: then the
-// form asks again. A lockout (too many wrong or missing credentials from this computer, maybe
-// not this console's) is waited out with a countdown banner and the credential kept, with no
-// form over the console so that Stop stays in reach. The link indicator says which of these
+// form asks again. A lockout (too many wrong or missing credentials from this computer; the
+// server always takes the right one, so only a credential it never accepted meets one) is
+// waited out with a countdown banner and the credential kept, with no form over the console,
+// and tried once more after the wait. The link indicator says which of these
 // states the console is in.
 
 import { connect } from "./connection.js";
@@ -69,12 +70,11 @@ export function createAccess({ path, open, link, banner, signout, form, onFrame,
     } else if (status.state === "offline") {
       link.textContent = "offline: reconnecting…";
     } else if (status.state === "locked") {
-      // Too many wrong or missing credentials from this computer (maybe not this console's): the
-      // server refuses every one for a while. The credential is kept and tried again after the
-      // wait, with no sign-in form over the console (Stop stays in reach). Only a credential the
-      // server never accepted and that is refused again right after the wait is given up: the
-      // server then answers a wrong one with `too-many-attempts` as well, and retrying it would
-      // keep this computer locked out for good.
+      // Too many wrong or missing credentials from this computer: the server refuses wrong ones
+      // for a while (never the right one). The credential is kept and tried again after the
+      // wait, with no sign-in form over the console. One refused again right after the wait is
+      // given up: the server answers a wrong one with `too-many-attempts` then as well, and
+      // retrying it would keep this computer waiting for good.
       lockouts += 1;
       if (!verified && lockouts >= 2) {
         connection?.close();
@@ -116,7 +116,7 @@ export function createAccess({ path, open, link, banner, signout, form, onFrame,
       banner.dataset.seconds = String(left);
       banner.textContent =
         left > 0
-          ? `Too many wrong or missing credentials from this computer: Docent refuses every sign-in from it for ${left} s more. The console keeps its credential and signs in again by itself then. Stop tries the server all the same.`
+          ? `Too many wrong or missing credentials from this computer: Docent refuses wrong ones from it for ${left} s more (the right credential is always taken). The console tries this one once more then. Stop tries the server all the same.`
           : "Signing in again…";
     };
     show();

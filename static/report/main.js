@@ -43,7 +43,7 @@ async function load(token) {
   if (res.status === 429) {
     const seconds = retryAfter(res);
     const lockout = byId("lockout");
-    lockout.textContent = `Too many wrong or missing credentials from this computer: Docent refuses every sign-in from it for ${seconds} s. Try again then.`;
+    lockout.textContent = `Too many wrong or missing credentials from this computer: Docent refuses wrong ones from it (the right credential is always taken) for ${seconds} s. Try again then.`;
     lockout.hidden = false;
     setState("signed-out", "Locked out for now.");
     setTimeout(() => {

@@ -45,7 +45,7 @@ function refused(error) {
     dialog.ask("That credential was refused. Check it and try again.");
   } else if (error.status === 429) {
     const lockout = byId("lockout");
-    lockout.textContent = `Too many wrong or missing credentials from this computer: Docent refuses every sign-in from it for ${error.retryAfterS} s. Try again then.`;
+    lockout.textContent = `Too many wrong or missing credentials from this computer: Docent refuses wrong ones from it (the right credential is always taken) for ${error.retryAfterS} s. Try again then.`;
     lockout.hidden = false;
     setState("signed-out", "Locked out for now.");
     setTimeout(() => {

@@ -1,6 +1,7 @@
 // The operator console (`GET /operator`) in headless Chromium: who may use it. Signing in (and
 // being refused, without retrying), the credential kept for the tab and never put in a URL,
-// signing out, a lockout waited out with a countdown while Stop stays in reach, an `--open`
+// signing out, someone else's wrong credentials never keeping a signed-in console from Stop, a
+// wrong credential's wait counted down, an `--open`
 // development server and a restarted one, and the state fetched after signing in, asked with the
 // credential and never undoing newer events. Each test runs the real `docent` binary with
 // operator and dialog-manager credentials; observers on the websocket read the server's events,
@@ -91,10 +92,11 @@ test('the console needs the operator credential: none shows only the form, a wro
   }
 });
 
-test('a lockout is waited out with a countdown, the credential kept and Stop in reach; a new credential refused again after the wait is asked for again', { timeout: 120_000 }, async () => {
+test('someone else\'s wrong credentials never lock a signed-in console out of Stop; a new credential met with the wait is waited out with a countdown and, refused again after it, asked for again', { timeout: 120_000 }, async () => {
   const bundle = museumTour();
   try {
-    // A signed-in console whose computer is locked out by someone else's wrong credentials.
+    // A signed-in console on a computer from which someone sends five wrong credentials: the
+    // server always takes the right one, so the console signs in again at once and stops.
     await withServer(bundle, async ({ server, observer, newPage }) => {
       const page = await newPage();
       const socket = await routeConsoleSocket(page);
@@ -104,29 +106,15 @@ test('a lockout is waited out with a countdown, the credential kept and Stop in 
       for (let i = 0; i < 5; i++) {
         answer = await fetch(`${server.base}/api/stop`, { method: 'POST', headers: { authorization: 'Bearer someone-elses-wrong-guess' } });
       }
-      assert.equal(answer.status, 429, 'five wrong credentials did not lock this address out');
-      const wait = Number(answer.headers.get('retry-after'));
-      // The console's connection drops; signing in again is refused for the rest of the wait.
+      assert.equal(answer.status, 429, 'five wrong credentials did not make this address wait');
+      // The console's connection drops; it signs in again with the credential it kept.
       socket.closeAll();
-      await page.locator('#lockout:not([hidden])').waitFor();
-      const refusedAt = Date.now();
-      assert.equal(await page.locator('#link').getAttribute('data-state'), 'locked');
-      assert.equal(await page.locator('#signin').evaluate((d) => d.open), false, 'a sign-in form covers the console');
-      assert.equal(await page.evaluate(() => sessionStorage.getItem('docent.operator.token')), operatorToken(server), 'the credential was forgotten');
-      assert.match(await page.locator('#lockout').textContent(), /refuses every sign-in from it for \d+ s more/);
-      // The countdown runs, from no more than the server's wait (plus the second it adds).
-      const first = Number(await page.locator('#lockout').getAttribute('data-seconds'));
-      assert.ok(first >= 1 && first <= wait + 1, `countdown from ${first} s for a wait of ${wait} s`);
-      await page.waitForFunction((s) => Number(document.querySelector('#lockout').dataset.seconds) < s, first);
-      // Stop is in reach (nothing over it) and still tries the server, which refuses for now.
-      await page.click('#stop');
-      await page.locator('#notice', { hasText: 'locked out' }).waitFor();
-      // After the wait the console signs in again by itself, with the credential it kept.
-      const again = await observer.waitForEvent((e) => e.type === 'client.connected' && e.name === 'Ada' && e.client > joined.client, { timeout: (wait + 10) * 1000 });
+      const again = await observer.waitForEvent((e) => e.type === 'client.connected' && e.name === 'Ada' && e.client > joined.client);
       await page.locator('#link[data-state="online"]').waitFor();
-      await page.locator('#lockout').waitFor({ state: 'hidden' });
-      const retried = socket.sockets.at(-1);
-      assert.ok(retried.at - refusedAt >= (first - 1) * 1000, `signed in again ${retried.at - refusedAt} ms after the refusal; the wait was ${first} s`);
+      assert.equal(await page.locator('#lockout').isVisible(), false, 'the console was told to wait');
+      await page.click('#stop');
+      const stopped = await observer.waitForEvent((e) => e.type === 'stop');
+      assert.equal(stopped.source, 'operator');
       assert.ok(again.client > joined.client);
     });
 

@@ -1,6 +1,8 @@
 //! What the fleet tests share: a real mosquitto on a free loopback port (killed on drop), a
-//! `docent serve --mqtt` child process per robot (killed on drop), and an MQTT test client
-//! whose messages are awaited with a deadline, never slept for.
+//! `docent serve --mqtt` child process per robot (killed on drop), an MQTT test client
+//! whose messages are awaited with a deadline, never slept for, and the signing of fleet
+//! commands written from docs/FLEET.md (HMAC-SHA256 with the `hmac` crate, not Docent's code),
+//! so that the format as documented is what the robots take.
 
 #![allow(dead_code)] // Each test binary uses a different part.
 
@@ -14,6 +16,15 @@ use serde_json::Value;
 use tokio::sync::mpsc;
 
 use crate::common::{DEADLINE, DM_TOKEN, OPERATOR_TOKEN, process};
+
+mod signing;
+mod view;
+
+// Each test binary uses a different part (as `dead_code` above).
+#[allow(unused_imports)]
+pub use signing::*;
+#[allow(unused_imports)]
+pub use view::*;
 
 /// A mosquitto broker on 127.0.0.1, killed when dropped.
 pub struct Mosquitto {
@@ -266,8 +277,10 @@ impl Drop for Robot {
 pub struct Message {
     /// Its topic.
     pub topic: String,
-    /// Its payload as JSON.
+    /// Its payload as JSON (null if it is not).
     pub json: Value,
+    /// Its payload as text (bytes not UTF-8 replaced).
+    pub text: String,
 }
 
 /// An MQTT client of the test: subscribes to `filters` (again after each reconnection).
@@ -296,13 +309,13 @@ impl TestClient {
                     }
                     Ok(Event::Incoming(Incoming::Publish(p))) => {
                         let json = serde_json::from_slice(&p.payload).unwrap_or(Value::Null);
-                        if tx
-                            .send(Message {
-                                topic: p.topic,
-                                json,
-                            })
-                            .is_err()
-                        {
+                        let text = String::from_utf8_lossy(&p.payload).into_owned();
+                        let message = Message {
+                            topic: p.topic,
+                            json,
+                            text,
+                        };
+                        if tx.send(message).is_err() {
                             return;
                         }
                     }
@@ -329,24 +342,43 @@ impl TestClient {
         found.unwrap_or_else(|_| panic!("no wanted message on {topic} within the deadline"))
     }
 
+    /// The next message on any topic, within the deadline.
+    pub async fn recv(&mut self) -> Message {
+        let message = tokio::time::timeout(DEADLINE, self.messages.recv()).await;
+        let message = message.expect("a message within the deadline");
+        message.expect("the client runs")
+    }
+
     /// Publishes `command` on robot `robot`'s `cmd` topic.
     pub async fn command(&self, robot: &str, command: Value) {
+        self.publish(&format!("docent/{robot}/cmd"), &command).await;
+    }
+
+    /// Publishes `payload` on `topic`.
+    pub async fn publish(&self, topic: &str, payload: &Value) {
         (self.client)
-            .publish(
-                format!("docent/{robot}/cmd"),
-                QoS::AtLeastOnce,
-                false,
-                command.to_string(),
-            )
+            .publish(topic, QoS::AtLeastOnce, false, payload.to_string())
             .await
             .expect("published");
     }
 
-    /// Publishes `command` on `robot`'s `cmd` and returns its answer with `reference`.
-    pub async fn ask(&mut self, robot: &str, reference: &str, command: Value) -> Value {
+    /// Publishes the envelope `command` (whose `ref` is `reference`) on `robot`'s `cmd` and
+    /// returns the reply envelope with that `ref`, as it came.
+    pub async fn ask_envelope(&mut self, robot: &str, reference: &str, command: Value) -> Value {
         self.command(robot, command).await;
         let topic = format!("docent/{robot}/reply");
         self.next(&topic, |answer| answer["ref"] == reference).await
+    }
+
+    /// Sends `frame` to `robot` signed with the operator credential and returns the answer
+    /// frame, after checking the reply is signed too.
+    pub async fn ask(&mut self, robot: &str, frame: Value) -> Value {
+        let reference = fresh_ref();
+        let command = signed(robot, ("operator", OPERATOR_TOKEN), &reference, &frame);
+        let reply = self.ask_envelope(robot, &reference, command).await;
+        assert!(reply_signed(&reply, OPERATOR_TOKEN), "{reply}");
+        assert_eq!(reply["robot"], robot);
+        reply_frame(&reply)
     }
 }
 
