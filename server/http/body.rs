@@ -33,12 +33,13 @@ impl<S: Send + Sync> FromRequest<S> for RequestBody {
                 ))
             }
             Ok(Err(rejection)) => Err(AppError::bad_request(rejection.body_text())),
-            Err(_) => Err(timed_out(limit)),
+            Err(_) => Err(body_timed_out(limit)),
         }
     }
 }
 
-fn timed_out(limit: Duration) -> AppError {
+/// `408 body-timeout`: the body did not arrive within `limit` of its headers.
+pub(crate) fn body_timed_out(limit: Duration) -> AppError {
     let message = format!(
         "the request body did not arrive within {} s of its headers",
         limit.as_secs_f64()

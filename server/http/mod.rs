@@ -20,6 +20,7 @@ mod act_timers;
 mod api;
 pub(crate) mod auth;
 mod body;
+pub(crate) use body::body_timed_out;
 mod connections;
 mod error;
 mod files;
@@ -89,16 +90,11 @@ pub fn app(state: AppState) -> Router {
         .fallback(api::not_found)
         .method_not_allowed_fallback(api::method_not_allowed)
         .layer(RequestBodyLimitLayer::new(MAX_BODY_BYTES))
-        // After the layer above: recording chunks have their own, larger limit.
-        .merge(
-            Router::new()
-                .route(
-                    "/api/recordings/{recording}/chunks/{seq}",
-                    put(crate::recording::put_chunk),
-                )
-                .layer(RequestBodyLimitLayer::new(
-                    crate::recording::MAX_CHUNK_BYTES,
-                )),
+        // After the layer above: a recording chunk is read by its handler, after its token
+        // was checked, with its own limits (`recording::MAX_CHUNK_BYTES`, the body time limit).
+        .route(
+            "/api/recordings/{recording}/chunks/{seq}",
+            put(crate::recording::put_chunk),
         )
         .layer(TraceLayer::new_for_http())
         .with_state(state)
