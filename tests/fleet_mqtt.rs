@@ -2,7 +2,8 @@
 //! one fleet view; a command over MQTT reaches the right robot only and is answered on its
 //! reply topic with the websocket's own error codes; a kiosk role and a wrong credential are
 //! refused; the fleet view's Stop stops the right robot; the last will says offline after
-//! `kill -9`, and a robot that stops says so itself; a Docent without a broker says so.
+//! `kill -9`, and a robot that stops says so itself; a Docent without a broker says so; a
+//! retained message over the message limit is dropped and the links stay up.
 
 mod common;
 mod fleet_support;
@@ -11,6 +12,7 @@ use std::time::Duration;
 
 use common::{DEADLINE, OPERATOR_TOKEN, bundle};
 use fleet_support::{Mosquitto, Robot, TestClient, logged};
+use rumqttc::{AsyncClient, Event, Incoming, MqttOptions, QoS};
 use serde_json::{Value, json};
 
 /// Reads the fleet view's live stream on `robot` until `done` accepts the robots it lists.
@@ -243,4 +245,69 @@ async fn a_battery_robot_event_shows_in_the_state() {
         .await;
     assert_eq!(state["battery"]["percent"], 42.0, "{state}");
     assert_eq!(state["battery"]["event"], "battery.state");
+}
+
+/// Publishes `size` bytes, retained, on `topic`, with a client allowed to send that much;
+/// returns once the broker has it.
+async fn publish_retained(broker: &Mosquitto, topic: &str, size: usize) {
+    let mut options = MqttOptions::new(format!("big-{topic}"), "127.0.0.1", broker.port);
+    options.set_max_packet_size(size + 1024, size + 1024);
+    let (client, mut events) = AsyncClient::new(options, 8);
+    (client.publish(topic, QoS::AtLeastOnce, true, vec![b'x'; size]))
+        .await
+        .expect("queued");
+    let acked = async {
+        loop {
+            match events.poll().await.expect("the broker takes it") {
+                Event::Incoming(Incoming::PubAck(_)) => return,
+                _ => continue,
+            }
+        }
+    };
+    tokio::time::timeout(DEADLINE, acked)
+        .await
+        .expect("acknowledged within the deadline");
+}
+
+#[tokio::test]
+async fn a_retained_message_over_the_limit_is_dropped_and_the_links_stay_up() {
+    let broker = Mosquitto::start();
+    let bundle = bundle("dialogs/info-terminal");
+    let mut first = Robot::start(&bundle, &broker, "hall-1");
+    let mut second = Robot::start(&bundle, &broker, "hall-2");
+    fleet_until(&first, |r| online(r, "hall-1") && online(r, "hall-2")).await;
+
+    // 300 KiB, retained: where every fleet view reads states, and on hall-1's command topic.
+    publish_retained(&broker, "docent/ghost/state", 300 * 1024).await;
+    publish_retained(&broker, "docent/hall-1/cmd", 300 * 1024).await;
+
+    // hall-1 still takes commands after it, and its fleet view still stops hall-2.
+    let mut mqtt = TestClient::connect(&broker, "fleet-test", &["docent/+/reply"]);
+    let context =
+        json!({"type": "context", "context": "Text", "ref": "c1", "token": OPERATOR_TOKEN});
+    assert_eq!(mqtt.ask("hall-1", "c1", context).await["type"], "context");
+    let stopped = reqwest::Client::new()
+        .post(first.url("/api/fleet/robots/hall-2/stop"))
+        .bearer_auth(OPERATOR_TOKEN)
+        .send()
+        .await
+        .expect("answers");
+    assert_eq!(stopped.status(), 200);
+    let stopped: Value = stopped.json().await.expect("JSON");
+    assert_eq!(stopped["answer"]["type"], "stopped", "{stopped}");
+    // A robot that connects now gets the retained messages at once, and stays up too.
+    let third = Robot::start(&bundle, &broker, "hall-3");
+    let robots = fleet_until(&third, |r| online(r, "hall-1") && online(r, "hall-3")).await;
+    assert!(!robots.iter().any(|r| r["robot"] == "ghost"), "{robots:?}");
+    let context =
+        json!({"type": "context", "context": "Text", "ref": "c2", "token": OPERATOR_TOKEN});
+    assert_eq!(mqtt.ask("hall-1", "c2", context).await["type"], "context");
+
+    first.terminate();
+    second.terminate();
+    for robot in [&first, &second, &third] {
+        let links = logged(&robot.corpus, "fleet.link");
+        let down: Vec<&Value> = links.iter().filter(|e| e["state"] == "down").collect();
+        assert!(down.is_empty(), "{down:?}");
+    }
 }
