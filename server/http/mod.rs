@@ -48,7 +48,7 @@ use crate::state::AppState;
 use crate::ws::ws_upgrade;
 
 /// Largest request body accepted (trigger and context bodies are tiny).
-const MAX_BODY_BYTES: usize = 64 * 1024;
+pub const MAX_BODY_BYTES: usize = 64 * 1024;
 
 /// The whole route table.
 pub fn app(state: AppState) -> Router {

@@ -36,6 +36,7 @@ mod triggers;
 mod violation;
 mod writer;
 
+pub use allowance::{FRAME_BURST, FRAMES_PER_SECOND, PING_BURST, PINGS_PER_SECOND};
 pub use captions::Captions;
 pub use connection::ws_upgrade;
 pub use embedded::EmbeddedSession;
