@@ -301,3 +301,25 @@ async fn three_hundred_half_open_connections_leave_the_operator_served_at_the_de
     drop(held);
     server.stop().await;
 }
+
+#[tokio::test]
+async fn a_body_no_route_reads_does_not_hold_its_connection() {
+    let server = server_with(ConnectionLimits {
+        body_timeout: Duration::from_millis(300),
+        header_timeout: Duration::from_millis(300),
+        ..ConnectionLimits::default()
+    })
+    .await;
+    // Answered without its body; a body that never completes cannot keep the place.
+    for path in ["GET /healthz", "POST /api/stop", "GET /report"] {
+        let mut tcp = connect_from("127.0.0.1", server.addr).await;
+        let head = format!(
+            "{path} HTTP/1.1\r\nHost: x\r\nAuthorization: Bearer {OPERATOR_TOKEN}\r\n\
+             Content-Length: 1000\r\n\r\nonly a little"
+        );
+        tcp.write_all(head.as_bytes()).await.unwrap();
+        let answer = read_to_close(&mut tcp).await;
+        assert!(answer.starts_with("HTTP/1.1 2"), "{path}: {answer:?}");
+    }
+    server.stop().await;
+}
