@@ -129,6 +129,25 @@ async fn frames_beyond_a_connections_allowance_are_dropped_and_the_first_answere
     };
     assert_eq!(refusal["code"], "rate-limited", "{refusal}");
     assert!((400..flood).contains(&answered), "{answered} answered");
+    // A connection that never said hello is held to it too: answered `hello-first`, then
+    // one `rate-limited`.
+    let mut stranger = server.connect().await;
+    for _ in 0..flood {
+        stranger.send(json!({"type": "stop"})).await;
+    }
+    let mut first_refused = 0;
+    let refusal = loop {
+        let frame = stranger.recv_type("error").await;
+        if frame["code"] != "hello-first" {
+            break frame;
+        }
+        first_refused += 1;
+    };
+    assert_eq!(refusal["code"], "rate-limited", "{refusal}");
+    assert!(
+        (400..flood).contains(&first_refused),
+        "{first_refused} answered"
+    );
     // An operator, with a credential, is not held to it: every frame is answered.
     let mut op = server.operator().await;
     for _ in 0..flood {
