@@ -8,7 +8,9 @@
 // `record-stop` it stops, uploads what is left and says `recording-stopped`. Whatever fails
 // (permission, device, recorder, uploads past the retry budget, a full queue) is reported at
 // once in `recording-failed`, which the operators see. A page reload ends the recording: the
-// next one is a new file with its own WebM header.
+// next one is a new file with its own WebM header. A piece of recording larger than the chunk
+// limit the `record` frame gives (`max_chunk_bytes`) goes up as consecutive chunks: the file is
+// their concatenation, so nothing is lost.
 
 const CHUNK_MS = 1000;
 const CLOCK_SAMPLES = 5;
@@ -17,6 +19,21 @@ const MAX_QUEUED_CHUNKS = 120; // two minutes of chunks waiting for the network
 const RETRY_FIRST_MS = 250;
 const RETRY_MAX_MS = 4000;
 const RETRY_BUDGET_MS = 60_000; // failing this long without one chunk stored: reported
+const DEFAULT_MAX_CHUNK_BYTES = 8 * 1024 * 1024; // a server that does not say its limit
+
+/**
+ * `blob` cut into consecutive pieces of at most `max` bytes (one piece when it fits; none
+ * when it is empty): uploaded in order, they make the same file as `blob` in one.
+ * @param {Blob} blob
+ * @param {number} max
+ * @returns {Blob[]}
+ */
+export function splitChunk(blob, max) {
+  if (!(max > 0)) throw new RangeError(`a chunk limit must be positive, not ${max}`);
+  const pieces = [];
+  for (let at = 0; at < blob.size; at += max) pieces.push(blob.slice(at, Math.min(at + max, blob.size)));
+  return pieces;
+}
 
 /**
  * Starts answering `record` and `record-stop` frames.
@@ -71,6 +88,7 @@ export function answerRecordRequests({ send, on }) {
 
 function record(frame, { send, syncClock }) {
   const id = frame.recording;
+  const maxChunkBytes = frame.max_chunk_bytes > 0 ? frame.max_chunk_bytes : DEFAULT_MAX_CHUNK_BYTES;
   const queue = []; // {seq, blob}, oldest first, not yet acknowledged
   let recorder = null;
   let stream = null;
@@ -189,10 +207,12 @@ function record(frame, { send, syncClock }) {
     }
     recorder.ondataavailable = (event) => {
       if (ended || event.data.size === 0) return;
-      if (queue.length >= MAX_QUEUED_CHUNKS) {
-        return fail("queue-full", `${MAX_QUEUED_CHUNKS} chunks are waiting for upload; later sound is not recorded`);
+      for (const blob of splitChunk(event.data, maxChunkBytes)) {
+        if (queue.length >= MAX_QUEUED_CHUNKS) {
+          return fail("queue-full", `${MAX_QUEUED_CHUNKS} chunks are waiting for upload; later sound is not recorded`);
+        }
+        queue.push({ seq: nextSeq++, blob });
       }
-      queue.push({ seq: nextSeq++, blob: event.data });
       pump();
     };
     recorder.onerror = (event) => fail("recorder-error", String(event.error?.message ?? "MediaRecorder failed"));

@@ -3,18 +3,20 @@
 //! its reply topic, signed, with the websocket's own error codes; a kiosk role, a wrong
 //! signature, a raw credential, a command for another robot, a stale and a replayed one are
 //! refused; the fleet view's Stop stops the right robot; the last will says offline after
-//! `kill -9`, and a robot that stops says so itself; a Docent without a broker says so.
+//! `kill -9`, and a robot that stops says so itself; a Docent without a broker says so; a
+//! retained message over the message limit is dropped and the links stay up.
 
 mod common;
 mod fleet_support;
 
 use std::time::Duration;
 
-use common::{DM_TOKEN, OPERATOR_TOKEN, bundle};
+use common::{DEADLINE, DM_TOKEN, OPERATOR_TOKEN, bundle};
 use fleet_support::{
     Mosquitto, Robot, TestClient, fleet_until, fresh_ref, logged, online, reply_frame, signed,
     signed_at,
 };
+use rumqttc::{AsyncClient, Event, Incoming, MqttOptions, QoS};
 use serde_json::{Value, json};
 
 #[tokio::test]
@@ -227,4 +229,60 @@ async fn a_battery_robot_event_shows_in_the_state() {
         .await;
     assert_eq!(state["battery"]["percent"], 42.0, "{state}");
     assert_eq!(state["battery"]["event"], "battery.state");
+}
+
+/// Publishes `size` bytes, retained, on `topic`, with a client allowed to send that much;
+/// returns once the broker has it.
+async fn publish_retained(broker: &Mosquitto, topic: &str, size: usize) {
+    let mut options = MqttOptions::new(format!("big-{topic}"), "127.0.0.1", broker.port);
+    options.set_max_packet_size(size + 1024, size + 1024);
+    let (client, mut events) = AsyncClient::new(options, 8);
+    (client.publish(topic, QoS::AtLeastOnce, true, vec![b'x'; size]))
+        .await
+        .expect("queued");
+    let acked = async {
+        loop {
+            match events.poll().await.expect("the broker takes it") {
+                Event::Incoming(Incoming::PubAck(_)) => return,
+                _ => continue,
+            }
+        }
+    };
+    tokio::time::timeout(DEADLINE, acked)
+        .await
+        .expect("acknowledged within the deadline");
+}
+
+#[tokio::test]
+async fn a_retained_message_over_the_limit_is_dropped_and_the_links_stay_up() {
+    let broker = Mosquitto::start();
+    let bundle = bundle("dialogs/info-terminal");
+    let mut first = Robot::start(&bundle, &broker, "hall-1");
+    let mut second = Robot::start(&bundle, &broker, "hall-2");
+    fleet_until(&first, |r| online(r, "hall-1") && online(r, "hall-2")).await;
+
+    // 300 KiB, retained: where every fleet view reads states, and on hall-1's command topic.
+    publish_retained(&broker, "docent/ghost/state", 300 * 1024).await;
+    publish_retained(&broker, "docent/hall-1/cmd", 300 * 1024).await;
+
+    // hall-1 still takes commands after it, and its fleet view still stops hall-2.
+    let mut mqtt = TestClient::connect(&broker, "fleet-test", &["docent/+/reply"]);
+    let context = json!({"type": "context", "context": "Text"});
+    assert_eq!(mqtt.ask("hall-1", context.clone()).await["type"], "context");
+    let (status, stopped) = fleet_support::fleet_stop(&first, "hall-2").await;
+    assert_eq!(status, 200, "{stopped}");
+    assert_eq!(stopped["answer"]["type"], "stopped", "{stopped}");
+    // A robot that connects now gets the retained messages at once, and stays up too.
+    let third = Robot::start(&bundle, &broker, "hall-3");
+    let robots = fleet_until(&third, |r| online(r, "hall-1") && online(r, "hall-3")).await;
+    assert!(!robots.iter().any(|r| r["robot"] == "ghost"), "{robots:?}");
+    assert_eq!(mqtt.ask("hall-1", context).await["type"], "context");
+
+    first.terminate();
+    second.terminate();
+    for robot in [&first, &second, &third] {
+        let links = logged(&robot.corpus, "fleet.link");
+        let down: Vec<&Value> = links.iter().filter(|e| e["state"] == "down").collect();
+        assert!(down.is_empty(), "{down:?}");
+    }
 }

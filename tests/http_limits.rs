@@ -301,3 +301,65 @@ async fn three_hundred_half_open_connections_leave_the_operator_served_at_the_de
     drop(held);
     server.stop().await;
 }
+
+#[tokio::test]
+async fn a_body_no_route_reads_does_not_hold_its_connection() {
+    let server = server_with(ConnectionLimits {
+        body_timeout: Duration::from_millis(300),
+        header_timeout: Duration::from_millis(300),
+        ..ConnectionLimits::default()
+    })
+    .await;
+    // Answered without its body; a body that never completes cannot keep the place.
+    for path in ["GET /healthz", "POST /api/stop", "GET /report"] {
+        let mut tcp = connect_from("127.0.0.1", server.addr).await;
+        let head = format!(
+            "{path} HTTP/1.1\r\nHost: x\r\nAuthorization: Bearer {OPERATOR_TOKEN}\r\n\
+             Content-Length: 1000\r\n\r\nonly a little"
+        );
+        tcp.write_all(head.as_bytes()).await.unwrap();
+        let answer = read_to_close(&mut tcp).await;
+        assert!(answer.starts_with("HTTP/1.1 2"), "{path}: {answer:?}");
+    }
+    server.stop().await;
+}
+
+#[tokio::test]
+async fn a_body_over_the_limit_is_a_json_413_whether_its_length_is_said_or_not() {
+    let server = TestServer::start(&bundle("tests/fixtures/fig4-verbatim")).await;
+    let limit = docent::http::MAX_BODY_BYTES;
+    // Said by Content-Length: the body never comes; the answer cannot wait for it.
+    let said = format!(
+        "POST {TRIGGER} HTTP/1.1\r\nHost: x\r\nAuthorization: Bearer {OPERATOR_TOKEN}\r\n\
+         Content-Length: {}\r\nConnection: close\r\n\r\n",
+        limit + 1
+    );
+    let (status, body) = raw(server.addr, &said).await;
+    assert_eq!(
+        (status, body["code"].as_str()),
+        (413, Some("body-too-large")),
+        "{body}"
+    );
+    assert!(
+        body["error"].as_str().is_some_and(|e| !e.is_empty()),
+        "{body}"
+    );
+    // Chunked: refused once the bytes pass the limit.
+    let mut chunked = format!(
+        "POST {TRIGGER} HTTP/1.1\r\nHost: x\r\nAuthorization: Bearer {OPERATOR_TOKEN}\r\n\
+         Transfer-Encoding: chunked\r\nConnection: close\r\n\r\n"
+    );
+    let piece = " ".repeat(1024);
+    for _ in 0..=limit / 1024 {
+        chunked.push_str(&format!("400\r\n{piece}\r\n"));
+    }
+    chunked.push_str("0\r\n\r\n");
+    let (status, body) = raw(server.addr, &chunked).await;
+    assert_eq!(
+        (status, body["code"].as_str()),
+        (413, Some("body-too-large")),
+        "{body}"
+    );
+    let corpus = server.stop().await;
+    assert!(!corpus.iter().any(|e| e["type"] == "act.triggered"));
+}

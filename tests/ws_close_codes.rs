@@ -1,6 +1,7 @@
 //! Websocket protocol violations are answered with their RFC 6455 close code before the
 //! server closes: 1007 for a text message that is not UTF-8, 1002 for a reserved opcode or
-//! reserved bits, 1009 for a message over 1 MiB. Frames are written by hand over raw TCP,
+//! reserved bits, 1009 for a message over 1 MiB, 1008 for a client without a credential that
+//! pings beyond its allowance (and never reads the pongs). Frames are written by hand over raw TCP,
 //! since a websocket library will not send broken ones.
 
 mod common;
@@ -126,4 +127,44 @@ async fn a_message_over_one_mebibyte_is_closed_with_1009_and_logged() {
         .collect();
     assert_eq!(left.len(), 1);
     assert_eq!(left[0]["reason"], "message too big");
+}
+
+/// Writes `count` pings of 100 bytes each, never reading the pongs they ask for. (Just one
+/// over the allowance: pings the server never read would make its close a reset, which can
+/// lose the close frame on the way.)
+/// The pings a client without a credential may send at once (docs/PROTOCOL.md, "Limits").
+const PINGS_AT_ONCE: usize = 20;
+
+async fn ping_without_reading(tcp: &mut TcpStream, count: usize) {
+    let ping = frame(0x89, 100, &[b'p'; 100]);
+    for _ in 0..count {
+        if tcp.write_all(&ping).await.is_err() {
+            return; // closed meanwhile: what the test waits for
+        }
+    }
+}
+
+#[tokio::test]
+async fn a_client_that_pings_and_never_reads_is_closed_with_1008_and_logged() {
+    let server = TestServer::start(&bundle("tests/fixtures/fig4-verbatim")).await;
+    // One that never said hello.
+    let mut silent = handshake(&server).await;
+    ping_without_reading(&mut silent, PINGS_AT_ONCE + 1).await;
+    assert_eq!(close_code(&mut silent).await, 1008);
+    // A kiosk, whose leaving is logged with the reason.
+    let mut kiosk = handshake(&server).await;
+    let hello = br#"{"type":"hello","role":"kiosk"}"#;
+    kiosk
+        .write_all(&frame(0x81, hello.len() as u64, hello))
+        .await
+        .unwrap();
+    ping_without_reading(&mut kiosk, PINGS_AT_ONCE + 1).await;
+    assert_eq!(close_code(&mut kiosk).await, 1008);
+    let corpus = server.stop().await;
+    let left: Vec<&Value> = corpus
+        .iter()
+        .filter(|e| e["type"] == "client.left")
+        .collect();
+    assert_eq!(left.len(), 1);
+    assert_eq!(left[0]["reason"], "too many pings");
 }

@@ -32,7 +32,7 @@ const MAX_KIOSK_ADDRESSES: usize = 10_000;
 
 pub use attempts::{Attempts, Counted, MAX_FAILURES, REFILL, counted_as};
 pub use proxies::{ClientAddress, TrustedProxies};
-pub use rate::{KIOSK_BURST, KIOSK_PER_SECOND, TokenBucket};
+pub use rate::{KIOSK_BURST, KIOSK_PER_SECOND, RECORDING_BURST, RECORDING_PER_SECOND, TokenBucket};
 pub use refusals::{REFUSALS_LOGGED_AT_ONCE, REFUSALS_LOGGED_PER_SECOND, RefusalLog};
 pub use secret::Secret;
 pub use setup::{AccessSetup, DM_TOKEN_ENV, OPERATOR_TOKEN_ENV, Origin, SetupError, decide_access};
@@ -127,6 +127,9 @@ pub enum KioskAllowance {
     /// schedule or the idle return. Kept apart so that the shell cannot spend the visitor's
     /// taps (a loop cycling fast would otherwise refuse the touch that ends it).
     Shell,
+    /// Recording reports (`recording-started`, `recording-failed`): each is logged and shown
+    /// to the operators, so a faulty or hostile kiosk must not send them at will.
+    Recording,
 }
 
 impl Access {
@@ -174,6 +177,7 @@ impl Access {
             .or_insert_with(|| match which {
                 KioskAllowance::Visitor => TokenBucket::kiosk(now),
                 KioskAllowance::Shell => TokenBucket::shell(now),
+                KioskAllowance::Recording => TokenBucket::recording(now),
             })
             .take(now)
     }

@@ -14,6 +14,11 @@ pub const KIOSK_PER_SECOND: f64 = 4.0;
 pub const SHELL_BURST: f64 = 8.0;
 /// Reports of the shell's own doing per second a kiosk may keep up.
 pub const SHELL_PER_SECOND: f64 = 2.0;
+/// Recording reports (`recording-started`, `recording-failed`) a kiosk may send at once: a
+/// recording needs one or two, and each is logged and shown on every console.
+pub const RECORDING_BURST: f64 = 10.0;
+/// Recording reports per second a kiosk may keep up.
+pub const RECORDING_PER_SECOND: f64 = 1.0;
 /// Signalling frames a client may relay at once.
 pub const SIGNAL_BURST: f64 = 200.0;
 /// Signalling frames per second a client may keep up.
@@ -47,6 +52,11 @@ impl TokenBucket {
     /// The allowance of one kiosk address for reports of the shell's own doing.
     pub fn shell(now: Instant) -> Self {
         Self::new(SHELL_BURST, SHELL_PER_SECOND, now)
+    }
+
+    /// The allowance of one kiosk address for its recording reports.
+    pub fn recording(now: Instant) -> Self {
+        Self::new(RECORDING_BURST, RECORDING_PER_SECOND, now)
     }
 
     /// The allowance of relayed WebRTC signalling frames of one connection: a call needs a

@@ -150,6 +150,23 @@ fn kiosks_at_one_address_share_one_allowance() {
 }
 
 #[test]
+fn recording_reports_have_an_allowance_of_their_own() {
+    let access = guarded();
+    let now = Instant::now();
+    for _ in 0..10 {
+        let taken = access.kiosk_allowance(PEER, KioskAllowance::Recording, now);
+        assert_eq!(taken, Ok(()));
+    }
+    let refused = access.kiosk_allowance(PEER, KioskAllowance::Recording, now);
+    assert_eq!(refused, Err(Duration::from_secs(1)));
+    // The visitor's taps are untouched.
+    assert_eq!(
+        access.kiosk_allowance(PEER, KioskAllowance::Visitor, now),
+        Ok(())
+    );
+}
+
+#[test]
 fn the_shells_own_reports_never_spend_the_visitors_taps() {
     let access = guarded();
     let now = Instant::now();

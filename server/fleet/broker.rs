@@ -8,6 +8,7 @@ use std::time::Duration;
 use rumqttc::{LastWill, MqttOptions, TlsConfiguration, Transport};
 use serde::Serialize;
 
+use super::link::{MAX_MESSAGE_BYTES, MAX_PACKET_BYTES};
 use crate::access::Secret;
 use crate::sync::lock;
 
@@ -119,7 +120,9 @@ impl Broker {
         options.set_keep_alive(KEEP_ALIVE);
         // A reconnecting client subscribes again itself; old sessions are not kept around.
         options.set_clean_session(true);
-        options.set_max_packet_size(256 * 1024, 256 * 1024);
+        // Any packet is read, so a message over the limit is dropped (`link`) rather than
+        // breaking the connection; Docent's own stay within the message limit.
+        options.set_max_packet_size(MAX_PACKET_BYTES, MAX_MESSAGE_BYTES);
         if let Some(username) = &self.username {
             let password = self.password.as_ref().map_or("", |p| p.expose());
             options.set_credentials(username.clone(), password);

@@ -4,10 +4,19 @@
 //! (subscribe again and re-publish retained state: the broker forgot a clean session), it is
 //! down and why, a message arrived. The owner publishes through the `AsyncClient`; keeping the
 //! polling in its own task means a publish waiting for room never stops the link.
+//!
+//! A message over [`MAX_MESSAGE_BYTES`] is dropped, with one warning (then at most one a
+//! minute, saying how many more were dropped), and the link stays up. rumqttc cannot skip a
+//! packet it refuses to read: the connection would fail, and a retained message would come
+//! again at every reconnection, for ever. So the packet limit rumqttc reads with is MQTT's
+//! own maximum ([`MAX_PACKET_BYTES`]) and the message limit is kept here; a site bounds the
+//! memory a message may take with its broker's `message_size_limit` (docs/FLEET.md).
 
 use std::pin::pin;
 use std::sync::Arc;
 use std::time::Duration;
+
+use tokio::time::Instant;
 
 use rumqttc::{ConnectionError, Event, EventLoop, Incoming, Outgoing};
 use tokio::sync::mpsc;
@@ -31,6 +40,15 @@ pub enum LinkNote {
     },
 }
 
+/// The largest message taken from the broker; a larger one is dropped with a warning. The
+/// largest Docent publishes (a state, an event, a reply) is far smaller.
+pub const MAX_MESSAGE_BYTES: usize = 256 * 1024;
+/// The largest packet read from the broker: MQTT's own maximum (its remaining length is at
+/// most 268,435,455 bytes), so that no message breaks the connection.
+pub const MAX_PACKET_BYTES: usize = 268_435_455;
+/// After a warning about a dropped message, the next comes no sooner than this.
+const WARN_AGAIN_AFTER: Duration = Duration::from_secs(60);
+
 /// The first wait after a failed attempt; doubled up to [`MAX_RETRY`].
 const FIRST_RETRY: Duration = Duration::from_millis(100);
 
@@ -47,6 +65,7 @@ pub async fn run_link(
     let mut retry = FIRST_RETRY;
     let mut deadline = None;
     let mut stopping = pin!(stop.cancelled());
+    let mut oversized = Oversized::default();
     loop {
         // A poll is never dropped half-way for the stop (it may be writing a packet, and a
         // packet cut short breaks the connection before the owner's goodbye): the same poll is
@@ -67,6 +86,19 @@ pub async fn run_link(
                 retry = FIRST_RETRY;
                 link.set(LinkState::Up, None);
                 let _ = notes.send(LinkNote::Up).await;
+            }
+            Ok(Event::Incoming(Incoming::Publish(message)))
+                if message.payload.len() > MAX_MESSAGE_BYTES =>
+            {
+                let size = message.payload.len();
+                if let Some(unwarned) = oversized.warn(Instant::now()) {
+                    tracing::warn!(
+                        topic = message.topic,
+                        size,
+                        more_dropped = unwarned,
+                        "an MQTT message over {MAX_MESSAGE_BYTES} bytes was dropped"
+                    );
+                }
             }
             Ok(Event::Incoming(Incoming::Publish(message))) => {
                 let note = LinkNote::Message {
@@ -103,6 +135,27 @@ pub async fn run_link(
     }
 }
 
+/// The warnings about messages dropped for their size: the first at once, then at most one
+/// in [`WARN_AGAIN_AFTER`], with the number dropped meanwhile.
+#[derive(Debug, Default)]
+struct Oversized {
+    warned: Option<Instant>,
+    unwarned: u64,
+}
+
+impl Oversized {
+    /// One more dropped at `now`: `Some(n)` to warn now, `n` the ones dropped unwarned since
+    /// the last warning; `None` to count it silently.
+    fn warn(&mut self, now: Instant) -> Option<u64> {
+        if self.warned.is_some_and(|at| now < at + WARN_AGAIN_AFTER) {
+            self.unwarned += 1;
+            return None;
+        }
+        self.warned = Some(now);
+        Some(std::mem::take(&mut self.unwarned))
+    }
+}
+
 async fn sleep_until(deadline: Option<tokio::time::Instant>) {
     match deadline {
         Some(at) => tokio::time::sleep_until(at).await,
@@ -120,5 +173,22 @@ fn describe(error: &ConnectionError) -> String {
         ConnectionError::Io(io) => format!("cannot reach the broker: {io}"),
         ConnectionError::NetworkTimeout => "the broker did not answer in time".into(),
         other => format!("the broker link failed: {other}"),
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn a_run_of_oversized_messages_is_warned_about_once_a_minute_with_the_count() {
+        let start = Instant::now();
+        let mut oversized = Oversized::default();
+        assert_eq!(oversized.warn(start), Some(0));
+        for n in 1..=296 {
+            assert_eq!(oversized.warn(start + Duration::from_millis(n)), None);
+        }
+        assert_eq!(oversized.warn(start + WARN_AGAIN_AFTER), Some(296));
+        assert_eq!(oversized.warn(start + WARN_AGAIN_AFTER), None);
     }
 }

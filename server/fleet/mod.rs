@@ -36,6 +36,7 @@ use std::sync::{Arc, OnceLock};
 pub use bridge::{BridgeSettings, STATE_INTERVAL, start_bridge};
 pub use broker::{Broker, BrokerUrl, LinkState, LinkStatus, LinkView, robot_id_problem};
 pub use http::{FleetHttp, FleetPage, routes};
+pub use link::MAX_MESSAGE_BYTES;
 pub use robot_state::{Battery, Identity};
 pub use setup::{FleetFlags, MQTT_PASSWORD_ENV, decide_bridge, join_fleet, tls_for};
 pub use standalone::{FleetOptions, serve_fleet};

@@ -6,39 +6,56 @@ use std::time::Duration;
 
 use axum::body::Bytes;
 use axum::extract::{FromRequest, Request};
-use axum::http::StatusCode;
+use axum::http::{StatusCode, header};
 use serde::de::DeserializeOwned;
 
-use crate::http::AppError;
 use crate::http::connections::ConnectionLimits;
+use crate::http::{AppError, MAX_BODY_BYTES};
 use crate::wire::ErrorCode;
 
 /// A request body read in whole, within the time limit (`408 body-timeout` otherwise) and
-/// the size limit (`413 body-too-large`).
+/// the size limit, [`MAX_BODY_BYTES`] (`413 body-too-large`: at once when `Content-Length`
+/// says so, otherwise once the bytes pass it).
 pub struct RequestBody(pub Bytes);
 
 impl<S: Send + Sync> FromRequest<S> for RequestBody {
     type Rejection = AppError;
 
     async fn from_request(request: Request, state: &S) -> Result<Self, AppError> {
+        let said = (request.headers().get(header::CONTENT_LENGTH))
+            .and_then(|v| v.to_str().ok())
+            .and_then(|v| v.parse::<u64>().ok());
+        if said.is_some_and(|n| n > MAX_BODY_BYTES as u64) {
+            return Err(too_large());
+        }
         let limit = (request.extensions().get::<ConnectionLimits>())
             .map_or(ConnectionLimits::default().body_timeout, |l| l.body_timeout);
         match tokio::time::timeout(limit, Bytes::from_request(request, state)).await {
             Ok(Ok(bytes)) => Ok(RequestBody(bytes)),
             Ok(Err(rejection)) if rejection.status() == StatusCode::PAYLOAD_TOO_LARGE => {
-                Err(AppError::new(
-                    StatusCode::PAYLOAD_TOO_LARGE,
-                    ErrorCode::BodyTooLarge,
-                    rejection.body_text(),
-                ))
+                Err(too_large())
             }
             Ok(Err(rejection)) => Err(AppError::bad_request(rejection.body_text())),
-            Err(_) => Err(timed_out(limit)),
+            Err(_) => Err(body_timed_out(limit)),
         }
     }
 }
 
-fn timed_out(limit: Duration) -> AppError {
+/// `413 body-too-large`, with the limit in words.
+fn too_large() -> AppError {
+    let message = format!(
+        "a request body is at most {} KiB ({MAX_BODY_BYTES} bytes)",
+        MAX_BODY_BYTES / 1024
+    );
+    AppError::new(
+        StatusCode::PAYLOAD_TOO_LARGE,
+        ErrorCode::BodyTooLarge,
+        message,
+    )
+}
+
+/// `408 body-timeout`: the body did not arrive within `limit` of its headers.
+pub(crate) fn body_timed_out(limit: Duration) -> AppError {
     let message = format!(
         "the request body did not arrive within {} s of its headers",
         limit.as_secs_f64()

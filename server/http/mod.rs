@@ -20,6 +20,7 @@ mod act_timers;
 mod api;
 pub(crate) mod auth;
 mod body;
+pub(crate) use body::body_timed_out;
 mod connections;
 mod error;
 mod files;
@@ -34,8 +35,8 @@ mod shells;
 pub(crate) mod static_files;
 
 use axum::Router;
+use axum::extract::DefaultBodyLimit;
 use axum::routing::{get, post, put};
-use tower_http::limit::RequestBodyLimitLayer;
 use tower_http::trace::TraceLayer;
 
 pub use connections::{ConnectionLimits, ConnectionSlot, serve_connections};
@@ -46,8 +47,9 @@ pub use sessions_media::Replay;
 use crate::state::AppState;
 use crate::ws::ws_upgrade;
 
-/// Largest request body accepted (trigger and context bodies are tiny).
-const MAX_BODY_BYTES: usize = 64 * 1024;
+/// Largest request body accepted (trigger and context bodies are tiny): read by `body`'s
+/// `RequestBody`, which answers a larger one `413 body-too-large` in JSON.
+pub const MAX_BODY_BYTES: usize = 64 * 1024;
 
 /// The whole route table.
 pub fn app(state: AppState) -> Router {
@@ -88,17 +90,12 @@ pub fn app(state: AppState) -> Router {
         .merge(crate::fleet::routes::<AppState>())
         .fallback(api::not_found)
         .method_not_allowed_fallback(api::method_not_allowed)
-        .layer(RequestBodyLimitLayer::new(MAX_BODY_BYTES))
-        // After the layer above: recording chunks have their own, larger limit.
-        .merge(
-            Router::new()
-                .route(
-                    "/api/recordings/{recording}/chunks/{seq}",
-                    put(crate::recording::put_chunk),
-                )
-                .layer(RequestBodyLimitLayer::new(
-                    crate::recording::MAX_CHUNK_BYTES,
-                )),
+        .layer(DefaultBodyLimit::max(MAX_BODY_BYTES))
+        // After the layer above: a recording chunk is read by its handler, after its token
+        // was checked, with its own limits (`recording::MAX_CHUNK_BYTES`, the body time limit).
+        .route(
+            "/api/recordings/{recording}/chunks/{seq}",
+            put(crate::recording::put_chunk),
         )
         .layer(TraceLayer::new_for_http())
         .with_state(state)

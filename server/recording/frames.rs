@@ -5,12 +5,12 @@
 use serde_json::json;
 
 use super::Recording;
-use super::upload::chunk_path;
+use super::upload::{MAX_CHUNK_BYTES, chunk_path};
 use crate::content::config::RecordTracks;
 use crate::events::StopReason;
 
 /// `record`: record `tracks` into `recording`, uploading each chunk to its address with its
-/// token.
+/// token, no chunk larger than `max_chunk_bytes` (the kiosk splits a larger piece).
 pub(super) fn record_frame(recording: &Recording, tracks: &RecordTracks) -> String {
     let mime = if tracks.video {
         if tracks.audio {
@@ -30,6 +30,7 @@ pub(super) fn record_frame(recording: &Recording, tracks: &RecordTracks) -> Stri
         "mime": mime,
         "upload": chunk_path(recording.id),
         "token": recording.token.expose(),
+        "max_chunk_bytes": MAX_CHUNK_BYTES,
     })
     .to_string()
 }

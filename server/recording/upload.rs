@@ -4,23 +4,34 @@
 //! next}` once on disk; a chunk stored before is answered the same without being appended
 //! again; a chunk after a gap is refused 409 with the `next` one the server expects; a
 //! recording that is closed (stopped, consent declined or withdrawn) or unknown is 410.
+//!
+//! The token is checked from the headers before a byte of the body is read, so that nobody
+//! without it can make the server hold a body (or wait for one); the body is then read as it
+//! arrives, at most [`MAX_CHUNK_BYTES`] (`413 body-too-large`, as soon as `Content-Length`
+//! or the bytes so far say so) and within the connection's body time limit (`408
+//! body-timeout`).
+
+use std::time::Duration;
 
 use axum::Json;
-use axum::body::Bytes;
-use axum::extract::{Path, State};
-use axum::http::{HeaderMap, StatusCode};
+use axum::body::{Body, Bytes};
+use axum::extract::{Path, Request, State};
+use axum::http::{HeaderMap, StatusCode, header};
 use axum::response::{IntoResponse, Response};
+use futures_util::StreamExt;
 use serde_json::json;
 
 use super::Appending;
 use super::chunks::Appended;
 use crate::events::FailureCode;
-use crate::http::AppError;
 use crate::http::auth::bearer;
+use crate::http::{AppError, ConnectionLimits};
 use crate::state::AppState;
 use crate::wire::ErrorCode;
 
-/// The largest chunk accepted: a second of 1080p VP8 with Opus is well below it.
+/// The largest chunk accepted: a second of 1080p VP8 with Opus is well below it. The
+/// `record` frame tells the kiosk, which splits a larger piece of its recording into
+/// consecutive chunks (`static/recorder.js`).
 pub const MAX_CHUNK_BYTES: usize = 8 * 1024 * 1024;
 
 /// Why an upload is refused before its bytes are looked at.
@@ -41,8 +52,7 @@ pub(super) fn chunk_path(recording: u64) -> String {
 pub async fn put_chunk(
     State(state): State<AppState>,
     Path((id, seq)): Path<(String, String)>,
-    headers: HeaderMap,
-    body: Bytes,
+    request: Request,
 ) -> Result<Response, AppError> {
     // Read here, so that a bad number is a JSON `bad-request` like every other error.
     let (Ok(id), Ok(seq)) = (id.parse::<u64>(), seq.parse::<u64>()) else {
@@ -51,7 +61,7 @@ pub async fn put_chunk(
         ));
     };
     let recordings = &state.recordings;
-    let token = bearer(&headers).unwrap_or_default();
+    let token = bearer(request.headers()).unwrap_or_default();
     let recording = match recordings.authorised(id, token) {
         Ok(recording) => recording,
         Err(Refusal::Gone) => return Ok(gone(id)),
@@ -63,6 +73,10 @@ pub async fn put_chunk(
             ));
         }
     };
+    let (head, body) = request.into_parts();
+    let limit = (head.extensions.get::<ConnectionLimits>())
+        .map_or(ConnectionLimits::default().body_timeout, |l| l.body_timeout);
+    let body = read_chunk(&head.headers, body, limit).await?;
     let all = std::sync::Arc::clone(recordings);
     let (session, client) = (recording.session, recording.client);
     let stored = tokio::task::spawn_blocking(move || all.append(&recording, seq, &body))
@@ -101,6 +115,49 @@ pub async fn put_chunk(
             Err(AppError::internal(message))
         }
     }
+}
+
+/// The chunk's bytes, read as they arrive: refused as soon as `Content-Length` or the bytes
+/// so far are over [`MAX_CHUNK_BYTES`], or when the whole body has not come within `limit`.
+async fn read_chunk(headers: &HeaderMap, body: Body, limit: Duration) -> Result<Bytes, AppError> {
+    let announced = (headers.get(header::CONTENT_LENGTH))
+        .and_then(|v| v.to_str().ok())
+        .and_then(|v| v.parse::<u64>().ok());
+    if announced.is_some_and(|n| n > MAX_CHUNK_BYTES as u64) {
+        return Err(too_large());
+    }
+    let capacity = announced.map_or(0, |n| usize::try_from(n).unwrap_or(0));
+    let read = async move {
+        let mut bytes = Vec::with_capacity(capacity);
+        let mut stream = body.into_data_stream();
+        while let Some(piece) = stream.next().await {
+            let piece =
+                piece.map_err(|e| AppError::bad_request(format!("body unreadable: {e}")))?;
+            if bytes.len() + piece.len() > MAX_CHUNK_BYTES {
+                return Err(too_large());
+            }
+            bytes.extend_from_slice(&piece);
+        }
+        Ok(Bytes::from(bytes))
+    };
+    match tokio::time::timeout(limit, read).await {
+        Ok(read) => read,
+        Err(_) => Err(crate::http::body_timed_out(limit)),
+    }
+}
+
+/// 413 `body-too-large`, saying the limit in words so the kiosk's author knows what to send.
+fn too_large() -> AppError {
+    let message = format!(
+        "a recording chunk is at most {} MiB ({MAX_CHUNK_BYTES} bytes); split a larger one \
+         into consecutive chunks",
+        MAX_CHUNK_BYTES / (1024 * 1024)
+    );
+    AppError::new(
+        StatusCode::PAYLOAD_TOO_LARGE,
+        ErrorCode::BodyTooLarge,
+        message,
+    )
 }
 
 /// 410 `recording-gone`: the kiosk stops uploading this recording.

@@ -4,12 +4,13 @@
 //! refused credential ends it, or a websocket protocol violation (closed with its RFC 6455
 //! code, see `violation`), silence, a full outbox or shutdown.
 
+use std::net::IpAddr;
 use std::pin::pin;
-use std::time::Duration;
+use std::time::{Duration, Instant};
 
 use axum::Extension;
 use axum::extract::State;
-use axum::extract::ws::{Message, WebSocket, WebSocketUpgrade};
+use axum::extract::ws::{Message, WebSocket, WebSocketUpgrade, close_code};
 use axum::http::HeaderMap;
 use axum::response::{IntoResponse, Response};
 use futures_util::StreamExt;
@@ -21,10 +22,12 @@ use crate::http::ConnectionSlot;
 use crate::http::auth::{Peer, same_origin};
 use crate::state::AppState;
 use crate::sync::lock;
+use crate::wire::ErrorCode;
 use crate::wire::outbox::{OUTBOX_CAPACITY, Outbox};
+use crate::ws::allowance::{self, Allowance, Verdict};
 use crate::ws::client::Client;
 use crate::ws::session::Session;
-use crate::ws::violation::{Violation, violation};
+use crate::ws::violation::{Violation, closed, violation};
 use crate::ws::writer::{CloseWith, PING_INTERVAL, run_writer};
 
 /// Frames beyond this size end the connection at the websocket layer; frames between
@@ -34,6 +37,15 @@ const MAX_MESSAGE_BYTES: usize = 1024 * 1024;
 const READ_BUFFER_BYTES: usize = 4 * 1024;
 /// A client silent for this long (not even answering pings) is dropped.
 const IDLE_TIMEOUT: Duration = Duration::from_secs(3 * PING_INTERVAL.as_secs());
+
+/// Bytes of outgoing frames (pongs included) the websocket layer holds for a client that does
+/// not read; beyond them it holds none, and the writer's next frame fails.
+const MAX_WRITE_BUFFER_BYTES: usize = 256 * 1024;
+/// Bytes the websocket layer gathers before writing them out.
+const WRITE_BUFFER_BYTES: usize = 16 * 1024;
+
+/// The `client.left` reason of a client whose outgoing queue overflowed.
+const TOO_SLOW: &str = "too slow: its outgoing queue was full";
 
 /// The reader's reason when the writer ended first (the writer then has the real reason).
 const WRITER_ENDED: &str = "writer ended";
@@ -55,6 +67,9 @@ pub async fn ws_upgrade(
         // tungstenite reads into a 128 KiB buffer per connection by default; protocol frames
         // are small and a kiosk fleet is many idle connections.
         .read_buffer_size(READ_BUFFER_BYTES)
+        // The pongs a client that pings and never reads makes the server owe stay bounded.
+        .write_buffer_size(WRITE_BUFFER_BYTES)
+        .max_write_buffer_size(MAX_WRITE_BUFFER_BYTES)
         .on_upgrade(move |socket| {
             // axum spawns this itself; tracking it lets shutdown wait for the client.left event.
             let tracker = state.life.tracker.clone();
@@ -83,6 +98,7 @@ async fn serve(socket: WebSocket, state: AppState, address: ClientAddress) {
         stop.clone(),
         close_with.clone(),
     ));
+    let peer = address.ip;
     let client = Client {
         id,
         address,
@@ -98,6 +114,7 @@ async fn serve(socket: WebSocket, state: AppState, address: ClientAddress) {
     let mut shutdown = pin!(shutdown.cancelled());
     let mut stopped = pin!(stop.cancelled());
     let mut idle = pin!(tokio::time::sleep(IDLE_TIMEOUT));
+    let mut allowance = Allowance::new(Instant::now());
     let reason = loop {
         let next = tokio::select! {
             // The client's frames first; the budget of tokio's cooperative scheduling still
@@ -109,7 +126,13 @@ async fn serve(socket: WebSocket, state: AppState, address: ClientAddress) {
                 stream.next().await
             } => next,
             () = &mut idle => break "idle timeout",
-            () = &mut kicked => break "too slow: its outgoing queue was full",
+            () = &mut kicked => {
+                let words = "too slow: the outgoing queue was full";
+                let Violation { reason, close } = closed(TOO_SLOW, close_code::POLICY, words);
+                *lock(&close_with) = close;
+                logged(&state, id, peer, reason);
+                break reason;
+            }
             () = &mut shutdown => break "server shutting down",
             () = &mut stopped => break WRITER_ENDED,
         };
@@ -124,14 +147,30 @@ async fn serve(socket: WebSocket, state: AppState, address: ClientAddress) {
                 *lock(&close_with) = close;
                 break reason;
             }
-            Some(Ok(Message::Text(text))) => {
-                session.on_text(text.as_str());
-                if let Some(reason) = session.closing() {
+            Some(Ok(Message::Ping(_) | Message::Pong(_))) => {
+                if allowance.ping(session.role(), Instant::now()) == Verdict::Close {
+                    let Violation { reason, close } = allowance::too_many_pings();
+                    *lock(&close_with) = close;
+                    logged(&state, id, peer, reason);
                     break reason;
                 }
             }
-            Some(Ok(Message::Binary(_))) => session.on_binary(),
-            Some(Ok(_)) => {} // pings and pongs
+            Some(Ok(message)) => match allowance.frame(session.role(), Instant::now()) {
+                Verdict::Take => match message {
+                    Message::Text(text) => {
+                        session.on_text(text.as_str());
+                        if let Some(reason) = session.closing() {
+                            break reason;
+                        }
+                    }
+                    _ => session.on_binary(),
+                },
+                Verdict::Drop(Some(wait)) => {
+                    let message = allowance::dropped_message(wait);
+                    (session.client()).reply_error(ErrorCode::RateLimited, &message, None, None);
+                }
+                Verdict::Drop(None) | Verdict::Close => {}
+            },
         }
     };
     if session.closing().is_some() {
@@ -149,4 +188,12 @@ async fn serve(socket: WebSocket, state: AppState, address: ClientAddress) {
     session.leave(reason);
     stop.cancel();
     let _ = writer.await;
+}
+
+/// Logs a connection closed for a limit, within the shared allowance of logged refusals (so
+/// that many connections closed at once cannot flood the server log).
+fn logged(state: &AppState, client: u64, peer: Option<IpAddr>, reason: &str) {
+    if let Some(unlogged) = state.access.admit_refusal_log() {
+        tracing::warn!(client, address = ?peer, unlogged, "websocket closed: {reason}");
+    }
 }

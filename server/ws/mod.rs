@@ -10,11 +10,13 @@
 //! the kiosk rules), `initiative` (proposals and corpus marks), `signal` (WebRTC signalling
 //! relay), `reports` (devices' reports on their commands) and `recording` (a kiosk's clock
 //! and its recordings' reports). Handlers return what the session must remember.
-//! `violation` maps a broken websocket frame to its RFC 6455 close code.
+//! `violation` maps a broken websocket frame to its RFC 6455 close code; `allowance` is what a
+//! connection without a credential may send (frames, pings), per connection.
 //! `notices` tells a client what became of its commands and kiosks who is speaking;
 //! `captions` tells the screens and consoles what is being said, while it is said.
 //! `embedded` is the same session without a websocket, for other transports (MQTT).
 
+mod allowance;
 mod attract;
 mod captions;
 mod client;
@@ -34,6 +36,7 @@ mod triggers;
 mod violation;
 mod writer;
 
+pub use allowance::{FRAME_BURST, FRAMES_PER_SECOND, PING_BURST, PINGS_PER_SECOND};
 pub use captions::Captions;
 pub use connection::ws_upgrade;
 pub use embedded::EmbeddedSession;

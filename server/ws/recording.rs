@@ -1,11 +1,17 @@
 //! A kiosk's frames about recording (`docs/PROTOCOL.md`, "Recording"): `clock`, answered at
 //! once with the hub's clock so the kiosk can place its recordings' first samples on it, and
 //! its reports on the recordings it was asked for (`recording-started`, `-stopped`,
-//! `-failed`), handed to [`crate::recording::Recordings`].
+//! `-failed`), handed to [`crate::recording::Recordings`]. The reports that are logged and
+//! shown on every console (`recording-started`, `recording-failed`) take from the kiosk
+//! address's recording allowance; `recording-stopped` only ever closes the kiosk's own open
+//! recording, so it is never refused.
 
+use crate::access::KioskAllowance;
 use crate::events::{ClientRole, FailureCode};
 use crate::recording::clock_frame;
+use crate::wire::ErrorCode;
 use crate::ws::client::Client;
+use crate::ws::triggers::kiosk_allowance;
 
 const KIOSK: [ClientRole; 1] = [ClientRole::Kiosk];
 
@@ -25,7 +31,7 @@ pub(super) fn started(
     mono_us: u64,
     clock_error_us: u64,
 ) {
-    if client.allowed(role, &KIOSK, None).is_none() {
+    if !allowed(client, role) {
         return;
     }
     let recordings = &client.state.recordings;
@@ -50,7 +56,7 @@ pub(super) fn failed(
     code: FailureCode,
     message: &str,
 ) {
-    if client.allowed(role, &KIOSK, None).is_some() {
+    if allowed(client, role) {
         let message = if message.is_empty() {
             "the kiosk gave no details"
         } else {
@@ -60,5 +66,20 @@ pub(super) fn failed(
             .state
             .recordings
             .failed(client.id, recording, code, message);
+    }
+}
+
+/// Whether a kiosk may send a logged recording report now: its role, then its address's
+/// recording allowance (`rate-limited` beyond it).
+fn allowed(client: &Client, role: Option<ClientRole>) -> bool {
+    if client.allowed(role, &KIOSK, None).is_none() {
+        return false;
+    }
+    match kiosk_allowance(client, KioskAllowance::Recording) {
+        Ok(()) => true,
+        Err(message) => {
+            client.reply_error(ErrorCode::RateLimited, &message, None, None);
+            false
+        }
     }
 }

@@ -176,6 +176,11 @@ fn log_refused(client: &Client, role: ClientRole, label: String, code: ErrorCode
 pub(super) fn stop(client: &Client, role: Option<ClientRole>, reference: Option<String>) {
     // A visitor may stop the speech visitors started, never anyone else's.
     if role == Some(ClientRole::Kiosk) {
+        // A visitor's tap, logged as a `stop`: from the visitor's allowance like any other.
+        if let Err(message) = kiosk_allowance(client, KioskAllowance::Visitor) {
+            let code = ErrorCode::RateLimited;
+            return client.reply_error(code, &message, reference.as_deref(), None);
+        }
         client.state.dispatcher.stop_visitor_speech(client.id);
         return client.send(stopped_frame(reference.as_deref()));
     }

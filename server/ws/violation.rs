@@ -43,7 +43,8 @@ pub(super) fn violation(error: axum::Error) -> Violation {
     }
 }
 
-fn closed(reason: &'static str, code: u16, words: &'static str) -> Violation {
+/// A violation closed with `code`, the close frame saying `words`.
+pub(super) fn closed(reason: &'static str, code: u16, words: &'static str) -> Violation {
     Violation {
         reason,
         close: Some(CloseFrame {
