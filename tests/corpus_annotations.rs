@@ -11,8 +11,8 @@ mod common;
 use std::path::{Path, PathBuf};
 
 use common::{OPERATOR_TOKEN, TempBundle, TestServer, json_lines};
-use docent::corpus::annotations::{ANNOTATIONS_FILE, read_annotations};
-use docent::corpus::export::{ExportFormat, export_session};
+use docent::corpus::annotations::{ANNOTATIONS_FILE, Draft, Edit, append, read_annotations};
+use docent::corpus::export::{ExportFormat, ExportWarning, export_session};
 use docent::corpus::layout::{SESSION_EVENTS, SESSION_MANIFEST};
 use serde_json::{Value, json};
 
@@ -404,9 +404,27 @@ async fn an_annotation_past_the_sessions_end_or_now_is_refused() {
     assert_eq!(status, 201, "{answer}");
     let lines = json_lines(&dir.join(ANNOTATIONS_FILE));
     assert_eq!(lines.len(), 2, "nothing refused was written: {lines:?}");
+    // One written before the check (by the library, as an older server did): left out of
+    // the exports, with a warning, rather than stretching their tiers.
+    let draft = Draft {
+        tier: "situation".into(),
+        code: "laughter".into(),
+        start_us: 0,
+        end_us: far,
+        annotator: None,
+    };
+    append(&dir, Edit::Add(draft), "2026-11-24T12:00:00Z".into()).unwrap();
 
     let out = tempfile::tempdir().unwrap();
-    export_session(&dir, ExportFormat::TextGrid, out.path()).unwrap();
+    let exported = export_session(&dir, ExportFormat::TextGrid, out.path()).unwrap();
+    assert_eq!(
+        exported.warnings,
+        [ExportWarning::AnnotationPastEnd {
+            id: "a3".into(),
+            end_s: "10000000000".into(),
+            session_end_s: format!("{}", length as f64 / 1e6),
+        }]
+    );
     let grid = std::fs::read_to_string(out.path().join(format!("{name}.TextGrid"))).unwrap();
     let xmax = grid
         .lines()
