@@ -384,3 +384,36 @@ Written: acts.yaml.
         assert!(again.contains(row), "{row:?} in {again}");
     }
 }
+
+/// Regression (issue 24): deep nesting made the XLIFF reader's time grow with the square of
+/// the file. A file nested deeper than 64 elements is refused whole, by its line, and nothing
+/// is written.
+#[test]
+fn an_xliff_file_nested_too_deep_is_refused_by_its_line() {
+    let bundle = bundle();
+    let mut xliff = String::from(
+        "<?xml version=\"1.0\"?>\n<xliff version=\"1.2\"><file source-language=\"en\" \
+         target-language=\"de\"><body><trans-unit id=\"BYE/Text/1\"><source>Good bye</source>\
+         <target>",
+    );
+    let depth = 100_000;
+    xliff.push_str(&"<g>Tschüss\n".repeat(depth));
+    xliff.push_str(&"</g>".repeat(depth));
+    xliff.push_str("</target></trans-unit></body></file></xliff>\n");
+    let (code, out, err) = import(&bundle, "deep.xlf", xliff.as_bytes(), &[]);
+    let file = bundle.path().join("deep.xlf");
+    assert_eq!(
+        (code, out.as_str(), err),
+        (
+            1,
+            "",
+            format!(
+                "docent: {}: line 61: elements are nested more than 64 deep, which no XLIFF file \
+                 of translations needs (Docent's nest 5 deep); export the table again and fill \
+                 that in; nothing was imported\n",
+                file.display()
+            )
+        )
+    );
+    assert_eq!(acts(&bundle), ACTS);
+}
