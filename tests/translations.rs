@@ -275,7 +275,7 @@ const AWKWARD: [&str; 40] = [
     "[brackets]",
     "}close {open",
     "a, b",
-    "@at",
+    "+plus",
     "`tick`",
     "%percent",
     "!bang",

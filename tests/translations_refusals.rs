@@ -313,3 +313,107 @@ fn a_bundle_of_one_language_is_told_how_to_add_another() {
         )
     );
 }
+
+/// Regression (issue 24): formula cells went raw into the translations CSV and came back raw
+/// from it. Now every cell that starts with `=`, `+`, `-`, `@`, a tab or a carriage return is
+/// written with a `'` before it; read back, that `'` goes; a translation that still starts
+/// with `=`, `@`, a tab or a carriage return is refused by its row, one with `-` or `+` is a
+/// text like any other.
+#[test]
+fn formula_cells_are_neutralised_in_the_csv_and_refused_on_import() {
+    let acts = "\
+- Label: SALE
+  Text: '-20 % for members'
+  Text@de: '=HYPERLINK(\"http://attacker.invalid\",\"Rabatt\")'
+- Label: PLUS
+  Text: '+1 more room upstairs'
+- Label: MORE
+  Text: Two more rooms
+- Label: BYE
+  Text: Good bye
+- Label: THANKS
+  Text: Thank you
+";
+    let bundle = TempBundle::new(acts).with_file("docent.yaml", "languages: [en, de]\n");
+    let dir = path(bundle.path());
+    let export = || {
+        let args = ["translations", "export", dir, "--language", "de"];
+        let (code, out, err) = run_docent(&args);
+        assert_eq!(code, 0, "{err}");
+        out
+    };
+    let table = export();
+    for row in [
+        "SALE/Text/1,'-20 % for members,\"'=HYPERLINK(\"\"http://attacker.invalid\"\",\"\"Rabatt\"\")\",acts.yaml:2\r\n",
+        "PLUS/Text/1,'+1 more room upstairs,,acts.yaml:5\r\n",
+    ] {
+        assert!(table.contains(row), "{row:?} in {table}");
+    }
+
+    let filled = "key,en,de\r\n\
+                  SALE/Text/1,'-20 % for members,'-20 % für Mitglieder\r\n\
+                  PLUS/Text/1,'+1 more room upstairs,\"=HYPERLINK(\"\"http://attacker.invalid\"\",\"\"x\"\")\"\r\n\
+                  MORE/Text/1,Two more rooms,+2 Räume oben\r\n\
+                  BYE/Text/1,Good bye,@SUM(1+1)\r\n\
+                  THANKS/Text/1,Thank you,\"\tDanke\"\r\n";
+    let (code, out, err) = import(&bundle, "t.csv", filled.as_bytes(), &[]);
+    let file = bundle.path().join("t.csv");
+    assert_eq!((code, err.as_str()), (3, ""), "{out}");
+    assert_eq!(
+        out,
+        format!(
+            "German (de) from {}: 1 translation(s) added, 1 replaced, 0 unchanged.
+Written: acts.yaml.
+3 problem(s):
+  row 3: the German translation of PLUS/Text/1 starts with `=`, which a spreadsheet runs as a formula (a spoken text never starts so); it is not imported. Write the text without it.
+  row 5: the German translation of BYE/Text/1 starts with `@`, which a spreadsheet runs as a formula (a spoken text never starts so); it is not imported. Write the text without it.
+  row 6: the German translation of THANKS/Text/1 starts with a tab, which a spreadsheet runs as a formula (a spoken text never starts so); it is not imported. Write the text without it.
+",
+            file.display()
+        )
+    );
+    std::fs::remove_file(&file).expect("table removed");
+    let again = export();
+    for row in [
+        "SALE/Text/1,'-20 % for members,'-20 % für Mitglieder,acts.yaml:2\r\n",
+        "PLUS/Text/1,'+1 more room upstairs,,acts.yaml:5\r\n",
+        "MORE/Text/1,Two more rooms,'+2 Räume oben,acts.yaml:7\r\n",
+        "BYE/Text/1,Good bye,,acts.yaml:10\r\n",
+        "THANKS/Text/1,Thank you,,acts.yaml:12\r\n",
+    ] {
+        assert!(again.contains(row), "{row:?} in {again}");
+    }
+}
+
+/// Regression (issue 24): deep nesting made the XLIFF reader's time grow with the square of
+/// the file. A file nested deeper than 64 elements is refused whole, by its line, and nothing
+/// is written.
+#[test]
+fn an_xliff_file_nested_too_deep_is_refused_by_its_line() {
+    let bundle = bundle();
+    let mut xliff = String::from(
+        "<?xml version=\"1.0\"?>\n<xliff version=\"1.2\"><file source-language=\"en\" \
+         target-language=\"de\"><body><trans-unit id=\"BYE/Text/1\"><source>Good bye</source>\
+         <target>",
+    );
+    let depth = 100_000;
+    xliff.push_str(&"<g>Tschüss\n".repeat(depth));
+    xliff.push_str(&"</g>".repeat(depth));
+    xliff.push_str("</target></trans-unit></body></file></xliff>\n");
+    let (code, out, err) = import(&bundle, "deep.xlf", xliff.as_bytes(), &[]);
+    let file = bundle.path().join("deep.xlf");
+    assert_eq!(
+        (code, out.as_str(), err),
+        (
+            1,
+            "",
+            format!(
+                "docent: {}: line 61: elements are nested more than 64 deep, which no XLIFF file \
+                 of translations needs (Docent's nest 5 deep); export the table again and fill \
+                 that in; nothing was imported\n",
+                file.display()
+            )
+        )
+    );
+    assert_eq!(acts(&bundle), ACTS);
+}

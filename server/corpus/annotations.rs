@@ -175,8 +175,28 @@ pub struct Draft {
     pub annotator: Option<String>,
 }
 
-/// Checks `draft` against the codebook and the session's length.
-pub fn validate(codebook: &Codebook, length_us: u64, draft: &Draft) -> Result<(), AnnotationError> {
+/// How far a session goes on its clock: what an annotation must lie within. Without it an
+/// annotation could end anywhere, and every exported tier would stretch to it.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum SessionSpan {
+    /// A session over (ended, or cut off by a crash): up to its last line.
+    Ended {
+        /// Its end, µs on its clock.
+        end_us: u64,
+    },
+    /// A session being recorded: up to now.
+    Running {
+        /// Now, µs on its clock.
+        now_us: u64,
+    },
+}
+
+/// Checks `draft` against the codebook and the session's span.
+pub fn validate(
+    codebook: &Codebook,
+    span: SessionSpan,
+    draft: &Draft,
+) -> Result<(), AnnotationError> {
     let names = |items: Vec<&str>| items.join(", ");
     let Some(tier) = codebook.tier(&draft.tier) else {
         let known = names(codebook.tiers.iter().map(|t| t.name.as_str()).collect());
@@ -194,9 +214,13 @@ pub fn validate(codebook: &Codebook, length_us: u64, draft: &Draft) -> Result<()
             draft.end_us, draft.start_us
         )));
     }
-    if draft.end_us > length_us {
+    let (limit, what) = match span {
+        SessionSpan::Ended { end_us } => (end_us, "after the session's end at"),
+        SessionSpan::Running { now_us } => (now_us, "after now: the session is still running, at"),
+    };
+    if draft.end_us > limit {
         return Err(AnnotationError::BadTime(format!(
-            "the annotation ends at {} µs, after the session's end at {length_us} µs",
+            "the annotation ends at {} µs, {what} {limit} µs",
             draft.end_us
         )));
     }
@@ -362,24 +386,40 @@ mod tests {
     #[test]
     fn tiers_codes_and_times_are_checked() {
         let book = codebook();
-        assert!(validate(&book, 10, &draft("question", 2, 10)).is_ok());
+        let ten = SessionSpan::Ended { end_us: 10 };
+        assert!(validate(&book, ten, &draft("question", 2, 10)).is_ok());
         let bad_tier = Draft {
             tier: "mood".into(),
             ..draft("question", 1, 2)
         };
         assert!(matches!(
-            validate(&book, 10, &bad_tier),
+            validate(&book, ten, &bad_tier),
             Err(AnnotationError::UnknownTier { .. })
         ));
         assert!(matches!(
-            validate(&book, 10, &draft("yawn", 1, 2)),
+            validate(&book, ten, &draft("yawn", 1, 2)),
             Err(AnnotationError::UnknownCode { .. })
         ));
         for (start, end) in [(5, 4), (9, 11)] {
             assert!(matches!(
-                validate(&book, 10, &draft("question", start, end)),
+                validate(&book, ten, &draft("question", start, end)),
                 Err(AnnotationError::BadTime(_))
             ));
         }
+        let running = SessionSpan::Running { now_us: 10 };
+        assert!(validate(&book, running, &draft("question", 10, 10)).is_ok());
+        let e = validate(
+            &book,
+            running,
+            &draft("question", 0, 10_000_000_000_000_000),
+        );
+        assert_eq!(
+            e.map_err(|e| e.to_string()),
+            Err(
+                "the annotation ends at 10000000000000000 µs, after now: the session is still \
+                 running, at 10 µs"
+                    .to_owned()
+            )
+        );
     }
 }

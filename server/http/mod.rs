@@ -9,7 +9,8 @@
 //! - `operator`: the operator console (`/operator`) and its settings (`/api/operator`).
 //! - `report`: the content report (`/report`) and its data (`/api/report`).
 //! - `sessions`: the replay and annotation page (`/sessions`) and its data (`/api/sessions`);
-//!   `sessions_annotate`: annotations saved; `sessions_media`: recordings by media ticket.
+//!   `sessions_annotate`: annotations saved; `sessions_media`: recordings by media ticket;
+//!   `session_name`: a session named in a URL, checked before it reaches the file system.
 //! - `auth`: who is asking ([`auth::Peer`]) and whether they may ([`auth::Authorized`]).
 //! - `body`: request bodies, JSON objects only, read within a time limit.
 //! - `connections`: the accept loop: header and body time limits, connection caps.
@@ -28,6 +29,7 @@ mod framing;
 mod missing_page;
 mod operator;
 mod report;
+mod session_name;
 mod sessions;
 mod sessions_annotate;
 mod sessions_media;

@@ -5,25 +5,25 @@
 //! `GET /api/sessions/{name}` (one session: manifest, media, its log read into a timeline on
 //! the session clock by the exports' own reader, the codebook and the annotations). Changing
 //! annotations: `sessions_annotate.rs`; media: `sessions_media.rs`. A session is named only
-//! through `corpus::catalog::find_session`, so no request reaches outside `sessions/NAME`.
-
-use std::path::{Path, PathBuf};
+//! through `session_name.rs` (`corpus::catalog::find_session`), so no request reaches outside
+//! `sessions/NAME`.
 
 use askama::Template;
 use axum::Json;
-use axum::extract::{Path as UrlPath, State};
+use axum::extract::State;
 use axum::http::StatusCode;
 use axum::response::{IntoResponse, Response};
 use serde_json::{Value, json};
 
 use crate::content::{BundleArea, resolve_in_bundle};
 use crate::corpus::annotations::read_annotations;
-use crate::corpus::catalog::{Catalog, CorpusError, find_session};
+use crate::corpus::catalog::Catalog;
 use crate::corpus::export::timeline::{Marked, Outcome, Timeline, Touched};
 use crate::corpus::export::{ExportError, SessionExport};
 use crate::corpus::layout::SESSION_MANIFEST;
 use crate::http::AppError;
 use crate::http::auth::Authorized;
+use crate::http::session_name::{SessionName, session_dir};
 use crate::http::sessions_media::media_list;
 use crate::http::shells::html;
 use crate::state::AppState;
@@ -46,33 +46,6 @@ pub async fn sessions_page(State(state): State<AppState>) -> Response {
         needs_credential: !state.access.is_open(),
     };
     html(page.render())
-}
-
-/// The folder of session `name` in `corpus`; `404 unknown-session` for anything that is not
-/// the name of a session folder directly in `sessions/` (a path, `..`, a link).
-pub fn session_dir(corpus: &Path, name: &str) -> Result<(String, PathBuf), AppError> {
-    let is_name = !name.is_empty() && !name.contains(['/', '\\']) && name != "..";
-    let found = if is_name {
-        find_session(corpus, name)
-    } else {
-        Err(CorpusError::NotASession {
-            arg: name.to_owned(),
-            corpus: corpus.to_owned(),
-        })
-    };
-    found.map_err(|e| match e {
-        CorpusError::Unreadable { .. } => AppError::internal(e),
-        CorpusError::UnknownSession { .. } => AppError::new(
-            StatusCode::NOT_FOUND,
-            ErrorCode::UnknownSession,
-            format!("there is no session {name} in the corpus"),
-        ),
-        _ => AppError::new(
-            StatusCode::NOT_FOUND,
-            ErrorCode::UnknownSession,
-            format!("`{name}` is not the name of a session of the corpus"),
-        ),
-    })
 }
 
 /// Runs `work` off the async runtime (it reads files).
@@ -118,7 +91,7 @@ pub async fn list_sessions(_: Authorized, State(state): State<AppState>) -> Resp
 pub async fn get_session(
     _: Authorized,
     State(state): State<AppState>,
-    UrlPath(name): UrlPath<String>,
+    SessionName(name): SessionName,
 ) -> Result<Response, AppError> {
     let corpus = state.replay.corpus.clone();
     let bundle = state.dispatcher.bundle();
@@ -247,36 +220,6 @@ fn timeline_view(t: &Timeline, page_url: impl Fn(&str) -> Option<String>) -> Val
 #[cfg(test)]
 mod tests {
     use super::*;
-
-    #[test]
-    fn only_the_name_of_a_session_folder_names_a_session() {
-        let corpus = tempfile::tempdir().unwrap();
-        let sessions = corpus.path().join("sessions");
-        std::fs::create_dir_all(sessions.join("2026-11-24T10-15-02Z")).unwrap();
-        std::fs::create_dir_all(corpus.path().join("days")).unwrap();
-        std::os::unix::fs::symlink(corpus.path().join("days"), sessions.join("linked")).unwrap();
-        let (name, dir) = session_dir(corpus.path(), "2026-11-24T10-15-02Z").unwrap();
-        assert_eq!(
-            (name.as_str(), dir),
-            ("2026-11-24T10-15-02Z", sessions.join(&name))
-        );
-        let refused = [
-            "..",
-            ".",
-            "",
-            "../days",
-            "sessions/2026-11-24T10-15-02Z",
-            "a\\b",
-        ];
-        for name in refused
-            .into_iter()
-            .chain(["linked", "2026-11-24T10-15-03Z", "/etc"])
-        {
-            let error = session_dir(corpus.path(), name).unwrap_err();
-            let text = format!("{error:?}");
-            assert!(text.contains("UnknownSession"), "{name}: {text}");
-        }
-    }
 
     #[test]
     fn the_sessions_page_carries_its_contract_and_no_session() {

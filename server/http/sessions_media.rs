@@ -28,7 +28,7 @@ use crate::corpus::layout::SESSION_MANIFEST;
 use crate::corpus::manifest::media_allowed;
 use crate::http::AppError;
 use crate::http::auth::Authorized;
-use crate::http::sessions::session_dir;
+use crate::http::session_name::{SessionName, session_dir};
 use crate::state::AppState;
 use crate::sync::lock;
 use crate::wire::ErrorCode;
@@ -154,7 +154,7 @@ fn plain_media_path(file: &str) -> Option<Vec<&str>> {
 pub async fn media_ticket(
     _: Authorized,
     State(state): State<AppState>,
-    UrlPath(name): UrlPath<String>,
+    SessionName(name): SessionName,
 ) -> Result<Response, AppError> {
     let corpus = state.replay.corpus.clone();
     let (name, _) = session_dir(&corpus, &name)?;

@@ -6,10 +6,16 @@
 //! Read back, the columns are found by their headings in any order (a translator may add a
 //! column for remarks), and a table saved with `;` or tabs between cells (Excel in many
 //! locales) is read too.
+//!
+//! A cell a spreadsheet would run as a formula (one that starts with `=`, `+`, `-`, `@`, a tab
+//! or a carriage return) is written with a `'` before it (`crate::spreadsheet`), and that `'`
+//! is taken away again when the table is read back. A translation that still starts with
+//! `=`, `@`, a tab or a carriage return is refused by the import (`import.rs`).
 
 use std::io::{self, Write};
 
 use crate::content::Language;
+use crate::spreadsheet::{neutralise, restore};
 
 use super::table::Row;
 use super::{Entry, Place, ReadError, ReadTable, line_of};
@@ -36,7 +42,8 @@ pub fn write_csv(
     for row in rows {
         let key = row.key.to_string();
         let translation = row.translation.as_deref().unwrap_or_default();
-        writer.write_record([key.as_str(), &row.source, translation, &row.place])?;
+        let cells = [key.as_str(), &row.source, translation, &row.place];
+        writer.write_record(cells.map(|cell| neutralise(cell).into_owned()))?;
     }
     writer.flush()
 }
@@ -85,7 +92,7 @@ pub fn read_csv(
         if record.iter().all(|cell| cell.trim().is_empty()) {
             continue; // a blank row a spreadsheet kept at the end
         }
-        let cell = |i: usize| record.get(i).unwrap_or_default().to_owned();
+        let cell = |i: usize| restore(record.get(i).unwrap_or_default()).to_owned();
         table.entries.push(Entry {
             place: Place::Row(row),
             key: cell(columns.key).trim().to_owned(),

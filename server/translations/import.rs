@@ -2,11 +2,17 @@
 //! changed since the table was made, and which variants the table translates completely.
 //! A translation must have as many texts as its original, so a variant with a text missing
 //! keeps what it has (never a half list); every row left out is reported in words.
+//!
+//! A translation that starts with `=`, `@`, a tab or a carriage return is refused: a
+//! spreadsheet runs such a cell as a formula (CSV injection), and a spoken text never starts
+//! so. The `'` Docent's own CSV puts before such a cell is already gone (`csv.rs`); a text
+//! starting with `-` or `+` (`-20 % today`) is a text and is imported.
 
 use std::collections::BTreeMap;
 
 use crate::content::language::LANGUAGE_USAGE;
 use crate::content::{Bundle, Language, Languages};
+use crate::spreadsheet::formula_start;
 
 use super::table::TextKey;
 use super::{Place, ReadTable};
@@ -191,6 +197,14 @@ pub fn plan(bundle: &Bundle, language: &Language, table: &ReadTable) -> Plan {
             ));
             continue;
         }
+        if let Some(start) = refused_start(&entry.translation) {
+            plan.problems.push(format!(
+                "{at}: the {target} translation of {key} starts with {start}, which a \
+                 spreadsheet runs as a formula (a spoken text never starts so); it is not \
+                 imported. Write the text without it."
+            ));
+            continue;
+        }
         match &slot.texts[key.number - 1] {
             Some((first, first_at)) => {
                 let differs = *first != entry.translation;
@@ -218,6 +232,18 @@ pub fn plan(bundle: &Bundle, language: &Language, table: &ReadTable) -> Plan {
         );
     }
     plan
+}
+
+/// The start of `translation` that makes it a formula to a spreadsheet, in words, unless it
+/// is `-` or `+`, with which a text may start.
+fn refused_start(translation: &str) -> Option<&'static str> {
+    match formula_start(translation)? {
+        '=' => Some("`=`"),
+        '@' => Some("`@`"),
+        '\t' => Some("a tab"),
+        '\r' => Some("a carriage return"),
+        _ => None,
+    }
 }
 
 /// One variant's slots become a change, an unchanged translation or a problem.

@@ -113,6 +113,9 @@ mod tests {
             ("back\\slash, too", r#""back\\slash, too""#),
             ("bell\u{7}", r#""bell\u0007""#),
             ("ends with:", r#""ends with:""#),
+            // Not from a translations table any more (refused as a formula), but quoted all
+            // the same if it came.
+            ("@at", r#""@at""#),
         ] {
             assert_eq!(yaml_text(text, Context::Flow), written, "{text:?}");
         }

@@ -6,7 +6,13 @@
 //! Read back, only each unit's own `<source>` and `<target>` count (not those of
 //! `<alt-trans>` suggestions); a target holding inline markup (`<g>`, `<x/>`) is reported,
 //! since a spoken text cannot carry it.
+//!
+//! Reading takes time in proportion to the file's size: each byte's line is counted once, as
+//! the reader goes (`Lines`), never from the start again for every element (which made a
+//! 2 MB file take 49 s), and elements nest at most [`MAX_DEPTH`] deep, so the walk's look at
+//! the open elements stays short (a file nested deeper is refused, not read).
 
+use std::cell::Cell;
 use std::io::{self, Write};
 
 use quick_xml::events::{BytesDecl, BytesStart, BytesText, Event};
@@ -16,6 +22,10 @@ use crate::content::Language;
 
 use super::table::Row;
 use super::{Entry, Place, ReadError, ReadTable, line_of};
+
+/// How deep elements may nest. A file Docent writes nests 5 deep (`xliff`, `file`, `body`,
+/// `trans-unit`, `target`); CAT tools add `group`s and inline markup, never dozens.
+pub const MAX_DEPTH: usize = 64;
 
 /// XLIFF 1.2's namespace.
 const NAMESPACE: &str = "urn:oasis:names:tc:xliff:document:1.2";
@@ -98,29 +108,91 @@ pub fn read_xliff(
     default: &Language,
     wanted: Option<&Language>,
 ) -> Result<ReadTable, ReadError> {
+    read_counting(bytes, default, wanted, &mut 0)
+}
+
+/// [`read_xliff`], adding to `work` the bytes and open elements it looked at (what its time
+/// grows with), so a test can tell linear from quadratic without a clock.
+fn read_counting(
+    bytes: &[u8],
+    default: &Language,
+    wanted: Option<&Language>,
+    work: &mut u64,
+) -> Result<ReadTable, ReadError> {
     let text = std::str::from_utf8(bytes).map_err(|e| ReadError::NotUtf8 {
         line: line_of(bytes, e.valid_up_to()),
     })?;
     let mut reader = Reader::from_str(text);
     let mut walk = Walk::default();
-    loop {
+    let mut lines = Lines::new(bytes);
+    let result = loop {
         let at = usize::try_from(reader.buffer_position()).unwrap_or(usize::MAX);
-        let event = reader.read_event().map_err(|e| {
-            let line = line_of(bytes, at);
-            ReadError::Shape(format!(
-                "the XLIFF file is not well-formed XML at line {line}: {e}"
-            ))
-        })?;
-        let line = line_of(bytes, at);
-        match event {
-            Event::Start(e) => walk.open(&e, line)?,
-            Event::Empty(e) => {
-                walk.open(&e, line)?;
-                walk.close();
+        let line = lines.at(at);
+        let event = match reader.read_event() {
+            Ok(event) => event,
+            Err(e) => {
+                break Err(ReadError::Shape(format!(
+                    "the XLIFF file is not well-formed XML at line {line}: {e}"
+                )));
             }
-            Event::End(_) => walk.close(),
-            Event::Text(t) => walk.text(&t.xml10_content()),
-            Event::CData(t) => walk.text(&t.xml10_content()),
+        };
+        if let Err(e) = walk.event(event, line) {
+            break Err(e);
+        }
+        if walk.ended {
+            break Ok(());
+        }
+    };
+    *work += lines.scanned + walk.looked.get();
+    result?;
+    walk.finish(default, wanted)
+}
+
+/// The line of a byte offset, counted as the reader goes: offsets asked for never go back,
+/// so each byte is looked at once.
+struct Lines<'a> {
+    bytes: &'a [u8],
+    offset: usize,
+    line: usize,
+    /// Bytes counted so far.
+    scanned: u64,
+}
+
+impl<'a> Lines<'a> {
+    fn new(bytes: &'a [u8]) -> Lines<'a> {
+        Lines {
+            bytes,
+            offset: 0,
+            line: 1,
+            scanned: 0,
+        }
+    }
+
+    /// The 1-based line of byte `offset` (at or after the last one asked for).
+    fn at(&mut self, offset: usize) -> usize {
+        let end = offset.min(self.bytes.len());
+        if end > self.offset {
+            let new = &self.bytes[self.offset..end];
+            self.line += new.iter().filter(|&&b| b == b'\n').count();
+            self.scanned += new.len() as u64;
+            self.offset = end;
+        }
+        self.line
+    }
+}
+
+impl Walk {
+    /// Takes one event of the document at `line`.
+    fn event(&mut self, event: Event<'_>, line: usize) -> Result<(), ReadError> {
+        match event {
+            Event::Start(e) => self.open(&e, line)?,
+            Event::Empty(e) => {
+                self.open(&e, line)?;
+                self.close();
+            }
+            Event::End(_) => self.close(),
+            Event::Text(t) => self.text(&t.xml10_content()),
+            Event::CData(t) => self.text(&t.xml10_content()),
             Event::GeneralRef(r) => {
                 let resolved = match r.resolve_char_ref() {
                     Ok(Some(c)) => Some(c.to_string()),
@@ -132,13 +204,13 @@ pub fn read_xliff(
                         &*r
                     )));
                 };
-                walk.text(&resolved);
+                self.text(&resolved);
             }
-            Event::Eof => break,
+            Event::Eof => self.ended = true,
             _ => {}
         }
+        Ok(())
     }
-    walk.finish(default, wanted)
 }
 
 /// The state of the walk through the document.
@@ -152,6 +224,10 @@ struct Walk {
     unit: Option<Unit>,
     table: Vec<Entry>,
     notes: Vec<String>,
+    /// The end of the document was read.
+    ended: bool,
+    /// Open elements looked at, for [`read_counting`].
+    looked: Cell<u64>,
 }
 
 /// A `<trans-unit>` being read.
@@ -166,9 +242,18 @@ struct Unit {
 
 impl Walk {
     fn open(&mut self, e: &BytesStart<'_>, line: usize) -> Result<(), ReadError> {
+        if self.open.len() >= MAX_DEPTH {
+            return Err(ReadError::Shape(format!(
+                "line {line}: elements are nested more than {MAX_DEPTH} deep, which no XLIFF \
+                 file of translations needs (Docent's nest 5 deep); export the table again and \
+                 fill that in"
+            )));
+        }
         let name = e.local_name().as_ref().to_owned();
+        // Without quick-xml's duplicate check, which compares every attribute with every
+        // other: an element with very many attributes would take the square of their number.
         let attribute = |wanted: &str| {
-            e.attributes().flatten().find_map(|a| {
+            e.attributes().with_checks(false).flatten().find_map(|a| {
                 (a.key.local_name().as_ref() == wanted)
                     .then(|| a.normalized_value(XmlVersion::Implicit1_0).ok())
                     .flatten()
@@ -223,6 +308,7 @@ impl Walk {
     /// Whether the innermost open `part` (`source`, `target`) is the unit's own.
     fn in_unit_part(&self, part: &str) -> bool {
         let n = self.open.len();
+        self.looked.set(self.looked.get() + n as u64);
         let found = self.open.iter().rposition(|name| name == part);
         found.is_some_and(|i| i > 0 && self.open[i - 1] == "trans-unit" && i < n)
     }
@@ -300,3 +386,7 @@ impl Walk {
         })
     }
 }
+
+#[cfg(test)]
+#[path = "xliff_tests.rs"]
+mod tests;

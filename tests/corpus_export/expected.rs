@@ -270,7 +270,9 @@ pub fn assert_reads_back(log: &[Value], coded: &Coded, read: &Value) -> Expected
     // The researchers' annotations, in both.
     coded.assert_read(read);
 
-    // The spreadsheet, through Python's csv module.
+    // The spreadsheet, through Python's csv module: a cell that starts like a formula has a
+    // `'` before it (`docent::spreadsheet`).
+    let cell = |text: &str| docent::spreadsheet::neutralise(text).into_owned();
     let csv = &read["csv"];
     let header = "start_s end_s source act variant alternative text kind";
     assert_eq!(csv["header"], json!(header.split(' ').collect::<Vec<_>>()));
@@ -285,10 +287,10 @@ pub fn assert_reads_back(log: &[Value], coded: &Coded, read: &Value) -> Expected
                 s(u.start),
                 s(u.end),
                 u.source,
-                u.label,
+                cell(&u.label),
                 variant,
                 alternative,
-                u.text,
+                cell(&u.text),
                 "utterance"
             ]);
             (u.start, row)
@@ -301,7 +303,16 @@ pub fn assert_reads_back(log: &[Value], coded: &Coded, read: &Value) -> Expected
         };
         rows.push((
             *t,
-            json!([s(*t), s(*t), "kiosk", act, "", "", text, "touch"]),
+            json!([
+                s(*t),
+                s(*t),
+                "kiosk",
+                cell(act),
+                "",
+                "",
+                cell(text),
+                "touch"
+            ]),
         ));
     }
     rows.extend(coded.csv_rows());

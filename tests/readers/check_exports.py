@@ -335,6 +335,10 @@ def read_csv(path):
     for n, row in enumerate(rows[1:], 2):
         if len(row) != len(rows[0]):
             problem(f"CSV line {n} has {len(row)} fields, the header {len(rows[0])}")
+    for n, row in enumerate(rows, 1):
+        for cell in row:
+            if cell[:1] in ("=", "+", "-", "@", "\t", "\r"):
+                problem(f"CSV line {n}: a spreadsheet would run the cell {cell!r} as a formula")
     starts = [float(r[0]) for r in rows[1:]]
     if starts != sorted(starts):
         problem("CSV rows are not sorted by start")

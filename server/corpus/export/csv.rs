@@ -4,11 +4,14 @@
 //! researchers' annotations are rows too: source `annotation`, the code as `text`, the
 //! codebook tier as `kind` (a point's end is its start). RFC 4180:
 //! UTF-8 without a byte-order mark, lines ended by CRLF, a field with a comma, a quote or a
-//! line break in double quotes with each `"` doubled.
+//! line break in double quotes with each `"` doubled. A cell that a spreadsheet would run as a
+//! formula (a kiosk's refused label `=HYPERLINK(...)`) is written with a `'` before it
+//! (`crate::spreadsheet`).
 
 use crate::corpus::annotations::Annotation;
 use crate::corpus::export::textgrid::seconds;
 use crate::corpus::export::timeline::{Timeline, Touched};
+use crate::spreadsheet::neutralise;
 
 /// The header row.
 pub const HEADER: [&str; 8] = [
@@ -86,12 +89,13 @@ fn push_row<'a>(out: &mut String, fields: impl Iterator<Item = &'a str>) {
         if n > 0 {
             out.push(',');
         }
+        let field = neutralise(field);
         if field.contains([',', '"', '\n', '\r']) {
             out.push('"');
             out.push_str(&field.replace('"', "\"\""));
             out.push('"');
         } else {
-            out.push_str(field);
+            out.push_str(&field);
         }
     }
     out.push_str("\r\n");

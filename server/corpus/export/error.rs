@@ -132,6 +132,20 @@ pub enum ExportWarning {
         /// Media files left in the session's folder or listed in its manifest.
         files: usize,
     },
+    /// An annotation ends after its session's end (written before the server checked that):
+    /// left out, so that it cannot stretch every tier past the session.
+    #[error(
+        "annotations.jsonl: annotation {id} ends at {end_s} s, after the session's end at \
+         {session_end_s} s, and was left out of the export"
+    )]
+    AnnotationPastEnd {
+        /// The annotation's id.
+        id: String,
+        /// Its end, seconds on the session clock.
+        end_s: String,
+        /// The session's end, seconds on its clock.
+        session_end_s: String,
+    },
     /// The manifest lists a media file the session's folder does not have.
     #[error(
         "session.json lists the media file {file:?}, which is not a file in the session's \

@@ -200,7 +200,20 @@ impl SessionExport {
                 problem,
             });
         }
-        let annotations = annotated.annotations;
+        let mut annotations = annotated.annotations;
+        if timeline.ended {
+            annotations.retain(|a| {
+                let within = a.end_us <= timeline.end_us;
+                if !within {
+                    warnings.push(ExportWarning::AnnotationPastEnd {
+                        id: a.id.clone(),
+                        end_s: textgrid::seconds(a.end_us),
+                        session_end_s: textgrid::seconds(timeline.end_us),
+                    });
+                }
+                within
+            });
+        }
         let tiers = Tiers::of(&timeline).with_annotations(&codebook, &annotations);
         Ok(SessionExport {
             name,
