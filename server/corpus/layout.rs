@@ -22,6 +22,8 @@ pub const SESSIONS_DIR: &str = "sessions";
 pub const SESSION_EVENTS: &str = "events.jsonl";
 /// A session's manifest, inside its folder.
 pub const SESSION_MANIFEST: &str = "session.json";
+/// The folder of a session's recordings, inside its folder (`media/audio-1.webm`).
+pub const MEDIA_DIR: &str = "media";
 
 /// The UTC date of `time`, `2026-11-24`: every time in the corpus is UTC.
 pub fn utc_date(time: SystemTime) -> String {

@@ -46,8 +46,8 @@ pub use quota::{OverLimit, SessionQuota, available_bytes};
 pub use recover::{Cut, cut_unacknowledged, remove_unconsented};
 pub use upload::{MAX_CHUNK_BYTES, put_chunk};
 
-/// The folder of a session's recordings, inside its folder.
-pub const MEDIA_DIR: &str = "media";
+/// The folder of a session's recordings, inside its folder (the corpus layout's).
+pub use crate::corpus::layout::MEDIA_DIR;
 
 /// What a kiosk's recording is doing, as operators see it (`/api/state`'s `recording`).
 #[derive(Clone, Debug, Serialize)]

@@ -169,7 +169,7 @@ impl SessionExport {
         // Consent is read here, once, for every format: without it no recording is copied,
         // linked or named, whatever files a crash or an older Docent left behind.
         if !manifest.media_allowed() {
-            let left = std::fs::read_dir(dir.join(crate::recording::MEDIA_DIR))
+            let left = std::fs::read_dir(dir.join(crate::corpus::layout::MEDIA_DIR))
                 .map_or(0, |entries| entries.count());
             warnings.push(ExportWarning::MediaWithheld {
                 consent: manifest.consent.clone(),
