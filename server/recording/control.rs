@@ -18,9 +18,7 @@ use super::quota::SessionQuota;
 use super::{ChunkFile, Inner, KioskRecording, MEDIA_DIR, Recorded, Recording, Recordings};
 use crate::access::Secret;
 use crate::content::config::{CorpusSettings, RecordTracks};
-use crate::events::{
-    ClientRole, Consent, Event, EventKind, FailureCode, RecordingEvent, StopReason, Track,
-};
+use crate::events::{ClientRole, Consent, Event, EventKind, FailureCode, StopReason, Track};
 use crate::sync::lock;
 use crate::wire::outbox::Frame;
 
@@ -255,61 +253,6 @@ impl Recordings {
             }
         });
     }
-
-    /// The visitors of session `number` declined or withdrew consent: its recordings stop and
-    /// close now (later chunks are refused: 410), each kiosk is told, and the session's media
-    /// files are removed (`recording.deleted`), all before the caller answers the mark.
-    /// Nothing when the session is not being recorded (nothing of it was kept).
-    pub(super) fn refuse(&self, number: u64, consent: Consent) {
-        let (dir, told) = {
-            let mut inner = lock(&self.inner);
-            let dir = match &inner.session {
-                Some(s) if s.number == number => Some(s.dir.clone()),
-                _ => None,
-            };
-            if dir.is_some() {
-                inner.session = None;
-            }
-            let told: Vec<(u64, u64)> = (inner.open.values())
-                .filter(|(r, _)| r.session == number)
-                .map(|(r, _)| (r.client, r.id))
-                .collect();
-            (dir, told)
-        };
-        for (client, id) in told {
-            let frame = record_stop_frame(id, StopReason::Consent);
-            self.links.send_to(client, &Frame::from(frame));
-            self.close(id, StopReason::Consent);
-        }
-        let Some(dir) = dir else { return };
-        // On this thread, not a blocking task: the mark is answered only once the files
-        // are gone (a session's media are a few files, one per recording).
-        match remove_media(&dir.join(MEDIA_DIR)) {
-            Ok(files) => {
-                self.hub
-                    .publish(EventKind::Recording(RecordingEvent::Deleted {
-                        session: number,
-                        files,
-                        consent,
-                    }));
-            }
-            Err(e) => {
-                tracing::error!(error = %e, "could not remove a session's media after consent");
-                self.hub
-                    .publish(EventKind::Recording(RecordingEvent::Failed {
-                        session: Some(number),
-                        recording: None,
-                        client: 0,
-                        code: FailureCode::DiskError,
-                        message: format!(
-                            "the session's recordings could not all be removed after its \
-                             consent was {}: {e}; remove its media folder by hand",
-                            consent.as_str()
-                        ),
-                    }));
-            }
-        }
-    }
 }
 
 /// The events the controller acts on: sessions, consents, kiosks coming and going, shutdown.
@@ -381,31 +324,4 @@ fn off(client: u64) -> KioskRecording {
         code: None,
         message: None,
     }
-}
-
-/// Removes every file in a session's `media/` folder (the server made them all), then the
-/// folder; returns the files removed, relative to the session folder, sorted.
-fn remove_media(media: &Path) -> std::io::Result<Vec<String>> {
-    let entries = match std::fs::read_dir(media) {
-        Ok(entries) => entries,
-        Err(e) if e.kind() == std::io::ErrorKind::NotFound => return Ok(Vec::new()),
-        Err(e) => return Err(e),
-    };
-    let mut removed = Vec::new();
-    for entry in entries {
-        let entry = entry?;
-        std::fs::remove_file(entry.path())?;
-        removed.push(format!(
-            "{MEDIA_DIR}/{}",
-            entry.file_name().to_string_lossy()
-        ));
-    }
-    match std::fs::remove_dir(media) {
-        // A recording being opened this moment made a file; it removes it itself when it
-        // finds the session no longer recorded.
-        Err(e) if e.kind() == std::io::ErrorKind::DirectoryNotEmpty => {}
-        other => other?,
-    }
-    removed.sort();
-    Ok(removed)
 }

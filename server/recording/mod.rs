@@ -5,17 +5,22 @@
 //!
 //! - `mod.rs`: [`Recordings`], the open recordings and what each kiosk is doing, changed
 //!   under one lock; the kiosk's reports (`recording-started`, `-stopped`, `-failed`).
-//! - `control.rs`: follows the hub: a session that starts (or gets consent) starts a recording
-//!   on every kiosk, one that ends stops them, a consent declined or withdrawn stops them and
-//!   removes the session's media.
+//! - `control.rs`: follows the hub without loss: a session that starts (or gets consent)
+//!   starts a recording on every kiosk, one that ends stops them.
+//! - `consent.rs`: consent carried out: `note_consent`, the one way it changes; a refusal
+//!   closes the session's recordings and removes its media before the mark is answered;
+//!   `may_keep`, what every start and chunk asks.
+//! - `quota.rs`: `corpus: record_limits`, counted per chunk before it is stored.
 //! - `chunks.rs`: [`chunks::ChunkFile`], one file grown chunk by chunk, acknowledged only
 //!   once synced, cut back to what was acknowledged after a crash.
 //! - `upload.rs`: `PUT /api/recordings/{recording}/chunks/{seq}`, each recording's own
 //!   upload token as its Bearer credential.
 //! - `frames.rs`: the frames to the kiosk (`record`, `record-stop`, `clock`).
-//! - `recover.rs`: at start-up, recordings a crash left with unacknowledged bytes cut back.
+//! - `recover.rs`: at start-up, recordings a crash left with unacknowledged bytes cut back,
+//!   and media a refused consent left behind removed.
 
 pub mod chunks;
+mod consent;
 mod control;
 mod frames;
 mod quota;
@@ -31,11 +36,9 @@ use serde::Serialize;
 use crate::access::Secret;
 use crate::content::config::RecordTracks;
 use crate::corpus::SessionFolders;
-use crate::events::{
-    Consent, EventKind, FailureCode, Hub, RecordingEvent, Source, StopReason, Track,
-};
+use crate::events::{EventKind, FailureCode, Hub, RecordingEvent, StopReason, Track};
 use crate::lifecycle::Lifecycle;
-use crate::operator::{ConsentRefused, Visits};
+use crate::operator::Visits;
 use crate::state::ClientLinks;
 use crate::sync::lock;
 
@@ -250,28 +253,6 @@ impl Recordings {
             }
         };
         self.close(id, reason);
-    }
-
-    /// Notes what the running session's visitors agreed to (see [`Visits::set_consent`]) and
-    /// carries it out before returning: a consent declined or withdrawn has stopped and closed
-    /// the session's recordings and removed its media by then, so the mark's answer never
-    /// precedes it. The only way consent changes.
-    pub fn note_consent(
-        &self,
-        consent: Consent,
-        source: Source,
-        client: u64,
-    ) -> Result<u64, ConsentRefused> {
-        let session = self.visits.set_consent(consent, source, client)?;
-        if consent != Consent::Recorded {
-            self.refuse(session, consent);
-        }
-        Ok(session)
-    }
-
-    /// Whether session `number`'s media may be kept: its consent, as it stands, is `recorded`.
-    fn may_keep(&self, number: u64) -> bool {
-        self.visits.consent_of(number) == Some(Consent::Recorded)
     }
 
     /// The open recording `id`, if `token` is its upload token and its session's consent
