@@ -2,7 +2,7 @@
 //! wait after wrong ones (never for the right one), an `--open` development server, and a kiosk limited to the acts
 //! its pages offer at a limited rate. Credentials never reach the corpus.
 
-mod common;
+use crate::common;
 
 use common::{DM_TOKEN, OPERATOR_TOKEN, TempBundle, TestServer, bundle};
 use docent::access::AccessMode;

@@ -2,7 +2,7 @@
 //! static files, the page script added to bundle HTML pages (and nothing added to other
 //! files), and the `kiosk:` / `projector:` settings reaching the shells.
 
-mod common;
+use crate::common;
 
 use common::{TempBundle, TestServer};
 use docent::content::load_bundle;

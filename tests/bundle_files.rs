@@ -2,7 +2,7 @@
 //! `..`, encoded dots and slashes, absolute paths, backslashes and symlinks all answer 404.
 //! Requests are written by hand because HTTP client libraries normalise such paths away.
 
-mod common;
+use crate::common;
 
 use common::{TempBundle, TestServer};
 use tokio::io::{AsyncReadExt, AsyncWriteExt};

@@ -1,7 +1,7 @@
 //! The `docent` command line: `check` exit codes and JSON output, `serve` refusing a broken
 //! bundle, and every shipped bundle passing the check.
 
-mod common;
+use crate::common;
 
 use std::process::Command;
 

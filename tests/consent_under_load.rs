@@ -9,7 +9,7 @@
 //!   chunk sent after it is acknowledged, while operators flood triggers and the kiosk uploads.
 //! - What is left is exported without the visitors' recordings.
 
-mod common;
+use crate::common;
 
 use std::sync::atomic::{AtomicBool, Ordering};
 use std::sync::{Arc, Mutex};

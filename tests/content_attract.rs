@@ -2,7 +2,7 @@
 //! `docent.yaml`: one broken bundle per check, each problem at its exact file, line and
 //! column, and a good one loaded into its parsed form.
 
-mod common;
+use crate::common;
 
 use std::time::Duration;
 

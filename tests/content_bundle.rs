@@ -1,7 +1,7 @@
 //! What `docent check` reports about the bundle as a whole (no acts, no home page, not a
 //! bundle, an empty file) and about files it will not read: too large, or nested too deep.
 
-mod common;
+use crate::common;
 
 use std::fs;
 

@@ -4,7 +4,7 @@
 //! `docs/AUTHORING.md`. Commands: `content_commands.rs`; the bundle as a whole and files too
 //! large or deep: `content_bundle.rs`; paths, pages and settings: `content_paths.rs`.
 
-mod common;
+use crate::common;
 
 use std::fs;
 

@@ -2,7 +2,7 @@
 //! highlight areas number by number, site verbs' argument rules and waypoints outside the
 //! drive's bounds, each at its exact file, line and column.
 
-mod common;
+use crate::common;
 
 use common::check::{assert_plain, bundle, check, places, yaml};
 

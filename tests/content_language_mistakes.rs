@@ -4,7 +4,7 @@
 //! for a language not declared, a declared language no page offers. One fixture per mistake,
 //! each at its exact code, file, line and column, with the words of its hint.
 
-mod common;
+use crate::common;
 
 use common::check::{bundle, check, places, yaml};
 use common::languages::{GERMAN_HOME, HOME, TWO};

@@ -2,7 +2,7 @@
 //! `pages/de/`, `data-language`, `speech: voices:`): one fixture per problem, each at its
 //! exact code, file, line and column; and the translations as the loaded model holds them.
 
-mod common;
+use crate::common;
 
 use common::check::{bundle, check, loaded, places, yaml};
 use common::languages::{GERMAN_HOME, HOME, TWO};

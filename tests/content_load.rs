@@ -1,7 +1,7 @@
 //! Loading bundles into the model: the paper's Fig. 4 sample unchanged, every position kept,
 //! acts files merged in name order, site settings applied, and the shipped dialogs clean.
 
-mod common;
+use crate::common;
 
 use std::fs;
 use std::path::{Path, PathBuf};

@@ -3,7 +3,7 @@
 //! that converts them; names that do not match the content are reported. Headers are built
 //! byte-exact from the format specifications; the playable samples are the shipped ones.
 
-mod common;
+use crate::common;
 
 use std::path::Path;
 

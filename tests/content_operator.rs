@@ -2,7 +2,7 @@
 //! file, line and column; and everything the shipped museum tour gives the console. The
 //! `access:` and `operator:` sections of `docent.yaml`: `content_operator_settings.rs`.
 
-mod common;
+use crate::common;
 
 use std::fs;
 use std::path::Path;

@@ -2,7 +2,7 @@
 //! visitor groups) and `access:` (credentials, checked and never shown), with every problem at
 //! its file, line and column.
 
-mod common;
+use crate::common;
 
 use common::check::{assert_plain, bundle, check, groups, loaded, places, yaml};
 use docent::content::config::Credential;

@@ -1,7 +1,7 @@
 //! What `docent check` reports about touchscreen pages: one broken page per check, with the
 //! exact code, file, line and column; and the legal variants that must pass.
 
-mod common;
+use crate::common;
 
 use common::check::{bundle, check, loaded, only, places, yaml};
 use docent::content::Severity;

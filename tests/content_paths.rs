@@ -1,7 +1,7 @@
 //! What `docent check` reports about files, pages and settings, and the path gate it shares
 //! with the HTTP file routes: no path leaves the bundle, file names match exactly.
 
-mod common;
+use crate::common;
 
 use std::fs;
 

@@ -3,7 +3,7 @@
 //! and the message quoting what the robot would say. Legal variants (byte-order mark, CRLF,
 //! quoted `#`, block texts) pass.
 
-mod common;
+use crate::common;
 
 use common::check::{assert_plain, bundle, check, check_all, loaded, places, yaml};
 use docent::content::Severity;

@@ -6,7 +6,7 @@
 //! the recordings are served by ticket with range requests and nothing else is; the exports
 //! carry the annotations as their own tiers.
 
-mod common;
+use crate::common;
 
 use std::path::{Path, PathBuf};
 

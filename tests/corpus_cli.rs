@@ -5,7 +5,6 @@
 //! left behind are checked; nothing is mocked. The corpus is made in `corpus_cli/recorded.rs`;
 //! the purge cases are in `corpus_cli/purge_cases.rs`.
 
-mod common;
 #[path = "corpus_cli/purge_cases.rs"]
 mod purge_cases;
 #[path = "corpus_cli/recorded.rs"]

@@ -6,7 +6,7 @@
 //! from the exporter's model. Also: what a researcher is told about a session that cannot be
 //! exported as it is.
 
-mod common;
+use crate::common;
 
 #[path = "corpus_export/coded.rs"]
 mod coded;

@@ -5,7 +5,7 @@
 //! last unacknowledged one is whole JSON in sequence without gaps, and the logs of the earlier
 //! runs are byte for byte as they were.
 
-mod common;
+use crate::common;
 
 use std::collections::BTreeMap;
 use std::path::{Path, PathBuf};

@@ -1,7 +1,7 @@
 //! The corpus log: every event with its fields, in sequence, flushed as it happens, so that a
 //! crash of Docent loses nothing already logged; a graceful shutdown (SIGTERM) ends it cleanly.
 
-mod common;
+use crate::common;
 
 use std::io::{BufRead, BufReader};
 use std::process::{Child, Command, Stdio};

@@ -5,7 +5,7 @@
 //! records nothing, a withdrawn one removes the media and refuses later chunks; bytes beyond
 //! what was acknowledged are cut before the next chunk.
 
-mod common;
+use crate::common;
 
 use std::io::Write;
 use std::path::PathBuf;

@@ -4,7 +4,7 @@
 //! `adapter`) before its own line, so the session begins when the robot notices its visitors.
 //! Against a real server on 127.0.0.1:0, with protocol clients in the adapter's place.
 
-mod common;
+use crate::common;
 
 use common::{TempBundle, TestServer, WsClient, json_lines, session_dirs};
 use docent::corpus::layout::SESSION_EVENTS;

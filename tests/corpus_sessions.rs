@@ -2,7 +2,7 @@
 //! manifest, and carry the session clock; every other event goes to the run's day log. Read
 //! back as a researcher would: from the files alone.
 
-mod common;
+use crate::common;
 
 use common::process::spawn_docent;
 use common::{TempBundle, TestServer, WsClient, json_lines, read_corpus, session_dirs};

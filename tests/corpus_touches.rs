@@ -3,7 +3,7 @@
 //! and starts nothing. The session's manifest names the content it was recorded with. Read back
 //! from the corpus files, as a researcher would.
 
-mod common;
+use crate::common;
 
 use common::{TempBundle, TestServer, json_lines, session_dirs};
 use docent::corpus::layout::SESSION_EVENTS;

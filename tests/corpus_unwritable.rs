@@ -5,7 +5,7 @@
 //! is carried out but not confirmed; the next is refused); then every trigger it answered `202`
 //! is in the log, every line written is whole, and the run ends with exit status 1.
 
-mod common;
+use crate::common;
 
 use std::process::Command;
 

@@ -1,7 +1,7 @@
 //! Speech and drive run side by side; `WAIT` sequences them; stop, `DRIVE_STOP` and interrupting
 //! triggers preempt. Observed through an operator's event stream on a real server.
 
-mod common;
+use crate::common;
 
 use common::{TempBundle, TestServer};
 use serde_json::{Value, json};

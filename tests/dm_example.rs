@@ -5,7 +5,7 @@
 //! triggering in mixed-initiative mode, and stops at once, saying why, on a wrong credential
 //! or an act the bundle lacks.
 
-mod common;
+use crate::common;
 
 use std::process::{Child, Command, Stdio};
 

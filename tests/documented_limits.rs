@@ -3,7 +3,7 @@
 //! client can see it, against a running server (the HTTP body limit, which routes need a
 //! credential and which roles it opens them to, `/report` and `/api/report` among them).
 
-mod common;
+use crate::common;
 
 use std::fs;
 

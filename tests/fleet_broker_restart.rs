@@ -3,8 +3,8 @@
 //! back by itself, re-publishes its retained state (the broker kept nothing) and takes
 //! commands again.
 
-mod common;
-mod fleet_support;
+use crate::common;
+use crate::fleet_support;
 
 use std::time::Instant;
 

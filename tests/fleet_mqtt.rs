@@ -6,8 +6,8 @@
 //! `kill -9`, and a robot that stops says so itself; a Docent without a broker says so; a
 //! retained message over the message limit is dropped and the links stay up.
 
-mod common;
-mod fleet_support;
+use crate::common;
+use crate::fleet_support;
 
 use std::time::Duration;
 

@@ -4,8 +4,8 @@
 //! unsigned, badly signed, a guessed ref) is never taken for a stop; and nothing published on
 //! the broker contains a credential.
 
-mod common;
-mod fleet_support;
+use crate::common;
+use crate::fleet_support;
 
 use common::{DM_TOKEN, OPERATOR_TOKEN, WsClient, bundle};
 use fleet_support::{

@@ -2,8 +2,8 @@
 //! for, and publishes its retained state through it; with the system's CAs instead (which do
 //! not know the test CA) the link stays down and operators are told why.
 
-mod common;
-mod fleet_support;
+use crate::common;
+use crate::fleet_support;
 
 use common::{WsClient, bundle};
 use fleet_support::{Mosquitto, Robot, TestClient};

@@ -3,7 +3,7 @@
 //! loopback addresses (127.0.0.2, 127.0.0.3, ...) so that one test can play the attacker, the
 //! local operator and the proxy side by side. Refused HTTP credentials are logged.
 
-mod common;
+use crate::common;
 
 use std::net::IpAddr;
 

@@ -2,7 +2,7 @@
 //! state keeps the areas for projectors that connect later, a `PROJECT` or an empty
 //! `HIGHLIGHT` clears them, and every change is a `display.changed` event.
 
-mod common;
+use crate::common;
 
 use common::{TempBundle, TestServer, WsClient};
 use serde_json::{Value, json};

@@ -1,7 +1,7 @@
 //! The HTTP trigger API against a real server: the paper's Fig. 4 bundle resolves, choices never
 //! repeat back to back, contexts fall back to `Text`, unknown labels get a suggestion.
 
-mod common;
+use crate::common;
 
 use common::{TestServer, bundle};
 use serde_json::{Value, json};

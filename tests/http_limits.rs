@@ -3,7 +3,7 @@
 //! address and in all, and no request with both `Content-Length` and `Transfer-Encoding`.
 //! Raw TCP clients, so that the tests can be as slow and as wrong as an attacker.
 
-mod common;
+use crate::common;
 
 use std::net::SocketAddr;
 use std::time::{Duration, Instant};

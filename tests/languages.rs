@@ -5,7 +5,7 @@
 //! language is refused with `unknown-language`; a kiosk may switch only to a language its
 //! page offers; a session's end brings the default language back.
 
-mod common;
+use crate::common;
 
 use std::process::Command;
 

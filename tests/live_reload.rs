@@ -3,7 +3,7 @@
 //! clients triggering all the while (HTTP and websocket) get every answer they would have got
 //! without a reload. Every wait is for an event or a frame, never a pause.
 
-mod common;
+use crate::common;
 
 use std::path::Path;
 use std::sync::Arc;

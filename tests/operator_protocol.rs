@@ -3,7 +3,7 @@
 //! WebRTC signalling relay between an operator and a kiosk, and the recent history a console
 //! gets when it joins.
 
-mod common;
+use crate::common;
 
 use common::{TempBundle, TestServer, WsClient};
 use serde_json::{Value, json};

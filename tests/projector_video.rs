@@ -4,7 +4,7 @@
 //! owed; a report missing after `adapters: timeout` fails it (paused clock). The display state
 //! follows the reports: a film that ended is black (or held), never replayed.
 
-mod common;
+use crate::common;
 
 use common::{TempBundle, TestServer, WsClient};
 use serde_json::{Value, json};

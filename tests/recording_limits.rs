@@ -5,7 +5,7 @@
 //! is a JSON `413 body-too-large` saying the limit, and a body that trickles is cut off at the
 //! body time limit (`408 body-timeout`). Raw TCP where a client must be slow or wrong.
 
-mod common;
+use crate::common;
 
 use std::time::Duration;
 

@@ -3,7 +3,7 @@
 //! acts it offers and the acts that show it, every media file with the acts that project it
 //! and the pages naming it, and the live bundle's warnings. `GET /report` is the public shell.
 
-mod common;
+use crate::common;
 
 use common::{OPERATOR_TOKEN, TempBundle, TestServer};
 use serde_json::{Value, json};

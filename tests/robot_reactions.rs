@@ -4,7 +4,7 @@
 //! told as `reaction.failed`. Against a real server on 127.0.0.1:0, with a protocol client
 //! as the robot's sensor adapter and another as the dialog manager.
 
-mod common;
+use crate::common;
 
 use common::{TempBundle, TestServer, WsClient};
 use serde_json::{Value, json};

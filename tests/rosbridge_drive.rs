@@ -5,9 +5,8 @@
 //! with its subscriptions; a drive that gets nowhere fails (`rosbridge_events.rs` has the topics).
 //! Run with `--nocapture` to see the measured times.
 
-mod common;
-#[path = "ros/harness.rs"]
-mod ros;
+use crate::common;
+use crate::ros;
 
 use std::time::{Duration, Instant};
 

@@ -3,9 +3,8 @@
 //! with its `topic` in the corpus; one too large is told once as `topic.refused`; and the
 //! site's `reactions:` trigger the act a topic's message is mapped to.
 
-mod common;
-#[path = "ros/harness.rs"]
-mod ros;
+use crate::common;
+use crate::ros;
 
 use std::time::Duration;
 

@@ -4,7 +4,7 @@
 //! The schemas themselves are checked by an independent validator in
 //! `tests/e2e/schema.test.mjs` (ajv).
 
-mod common;
+use crate::common;
 
 use std::process::Command;
 

@@ -1,6 +1,6 @@
 //! A client that stops reading is dropped; everyone else keeps getting their frames.
 
-mod common;
+use crate::common;
 
 use common::{TempBundle, TestServer, WsClient};
 use serde_json::json;

@@ -2,7 +2,7 @@
 //! through its WAV output: one utterance at a time, in order, each with real audio whose length
 //! follows its text. espeak-ng must be installed (the test script installs it).
 
-mod common;
+use crate::common;
 
 use common::{TempBundle, TestServer};
 use serde_json::{Value, json};

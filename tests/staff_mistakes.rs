@@ -5,7 +5,7 @@
 //! real place and plain words; the legal variants (byte-order mark, CRLF, spaces in file names)
 //! must pass without a word. The bundle itself also serves.
 
-mod common;
+use crate::common;
 
 #[path = "staff_mistakes/acts_cases.rs"]
 mod acts_cases;

@@ -3,7 +3,7 @@
 //! a `failed` report fails it, a later page replaces it, a kiosk leaving fails what it owed, and
 //! a report missing after `adapters: timeout` fails it (paused clock).
 
-mod common;
+use crate::common;
 
 use common::{TempBundle, TestServer, WsClient};
 use serde_json::{Value, json};

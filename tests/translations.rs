@@ -3,7 +3,7 @@
 //! for a CAT tool), imported, and the bundle serving the new German text; an import that
 //! changes nothing but the translations, byte for byte; awkward texts that read back exactly.
 
-mod common;
+use crate::common;
 
 use std::path::{Path, PathBuf};
 use std::process::Command;

@@ -5,7 +5,7 @@
 //! markup (status 3, the rest written). A translation the loader refuses is told by its row
 //! in `translations_rows.rs`.
 
-mod common;
+use crate::common;
 
 use std::path::Path;
 

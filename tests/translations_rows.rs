@@ -4,7 +4,7 @@
 //! table's row (CSV) or unit line (XLIFF) and key with the problem's own words, the rest is
 //! written and loads, exit status 3. A warning a new text brings is told the same way.
 
-mod common;
+use crate::common;
 
 use std::path::Path;
 use std::process::Command;

@@ -1,7 +1,7 @@
 //! External adapters over the websocket: they declare verbs, receive commands in order, answer
 //! done or failed; no adapter, a silent one or one that leaves gives `command.failed`.
 
-mod common;
+use crate::common;
 
 use common::{TempBundle, TestServer, WsClient};
 use serde_json::{Value, json};

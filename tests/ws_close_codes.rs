@@ -4,7 +4,7 @@
 //! pings beyond its allowance (and never reads the pongs). Frames are written by hand over raw TCP,
 //! since a websocket library will not send broken ones.
 
-mod common;
+use crate::common;
 
 use common::{DEADLINE, TestServer, bundle};
 use serde_json::Value;

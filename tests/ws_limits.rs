@@ -4,7 +4,7 @@
 //! first frame beyond answered `rate-limited`. Real server on 127.0.0.1:0, real clients;
 //! each flood is a bounded loop, and the tests wait for answers, never for time.
 
-mod common;
+use crate::common;
 
 use std::time::Instant;
 

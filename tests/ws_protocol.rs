@@ -2,7 +2,7 @@
 //! display clients fed with commands and the current state, and bad frames answered while the
 //! connection stays usable.
 
-mod common;
+use crate::common;
 
 use common::{TestServer, WsClient, bundle};
 use serde_json::json;

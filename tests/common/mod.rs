@@ -2,14 +2,15 @@
 //! bundles, and reading the corpus log. Waiting is always for an event, with a generous
 //! deadline only so that a broken build fails instead of hanging.
 
-#![allow(dead_code)] // Each test binary uses a different part of the helpers.
+#![allow(dead_code)] // `tests/flood.rs`, a binary of its own, uses a small part of them.
 
+pub mod channels;
 pub mod check;
 pub mod corpus;
 pub mod languages;
 pub mod process;
 
-#[allow(unused_imports)] // As `dead_code` above: each test binary uses a different part.
+#[allow(unused_imports)] // As `dead_code` above.
 pub use corpus::{corpus_text, json_lines, read_corpus, session_dirs};
 
 use std::path::{Path, PathBuf};

@@ -4,7 +4,7 @@
 
 use std::path::PathBuf;
 
-use crate::recorded::{
+use crate::corpus_cli::recorded::{
     corpus_cmd, recorded_run, recording_server, sessions_by_number, snapshot, tour,
 };
 

@@ -11,7 +11,7 @@ use std::time::UNIX_EPOCH;
 use serde_json::{Value, json};
 
 use crate::common::repo;
-use crate::expected::{at, expected};
+use crate::corpus_export::expected::{at, expected};
 
 /// What check_mcap.py read from `file`; its `problems` must be empty.
 pub fn read_mcap(file: &Path) -> Value {

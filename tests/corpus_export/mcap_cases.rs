@@ -8,8 +8,8 @@ use docent::corpus::export::{ExportError, ExportFormat, ExportWarning, export_se
 use docent::corpus::layout::{SESSION_EVENTS, SESSION_MANIFEST, SESSIONS_DIR};
 use serde_json::{Value, json};
 
-use crate::generated;
-use crate::mcap::{read_mcap, zero_ns};
+use crate::corpus_export::generated;
+use crate::corpus_export::mcap::{read_mcap, zero_ns};
 
 /// A generated session of `seconds` in a temporary corpus.
 fn generated_session(seconds: u64) -> (tempfile::TempDir, PathBuf) {

@@ -13,7 +13,7 @@ use docent::corpus::manifest::{MANIFEST_FORMAT, MediaFile, SessionManifest, Sess
 use serde_json::json;
 
 use crate::common::repo;
-use crate::read_back;
+use crate::corpus_export::read_back;
 
 const NAME: &str = "2026-11-24T12-30-29Z";
 

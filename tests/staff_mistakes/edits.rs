@@ -35,8 +35,6 @@ pub enum Edit {
         from: &'static str,
         to: &'static str,
     },
-    /// Deletes a file of the bundle.
-    Remove { file: &'static str },
     /// Saves `file` again as Windows-1252 ("ANSI" in Notepad).
     SaveAsWindows1252 { file: &'static str },
     /// Saves `file` again as UTF-16 little-endian with a byte-order mark ("Unicode" in Notepad).
@@ -90,7 +88,6 @@ pub fn apply(root: &Path, edit: &Edit) {
             fs::copy(root.join(from), root.join(to)).expect("copy");
         }
         Edit::Rename { from, to } => fs::rename(root.join(from), root.join(to)).expect("rename"),
-        Edit::Remove { file } => fs::remove_file(root.join(file)).expect("remove"),
         Edit::SaveAsWindows1252 { file } => {
             let text = read_text(root, file);
             assert!(!text.is_ascii(), "{file} has a letter Windows-1252 changes");
