@@ -4,7 +4,8 @@
 //!
 //! Module map (see `ARCHITECTURE.md` for the whole picture):
 //! - [`access`]: credentials, failed-attempt lockout and the kiosk trigger allowance.
-//! - [`content`]: loading and checking content bundles (acts files, `docent.yaml`, pages, media).
+//! - [`content`]: the `docent-content` crate (`server/content/`), re-exported: loading and
+//!   checking content bundles (acts files, `docent.yaml`, pages, media).
 //! - [`dispatch`]: the dialog act dispatcher, the only path from a trigger to a device.
 //! - [`adapters`]: speech, display, drive and external (websocket) adapters, and the router.
 //! - [`events`]: the event types and the hub that stamps and fans them out.
@@ -26,7 +27,7 @@
 
 pub mod access;
 pub mod adapters;
-pub mod content;
+pub use docent_content as content;
 pub mod corpus;
 pub mod dispatch;
 pub mod events;

@@ -219,3 +219,90 @@ fn a_file_left_out_of_the_map_or_gone_from_the_repo_is_reported() {
         );
     }
 }
+
+/// The packages of the workspace's dependency graph that `package` depends on, directly or
+/// not (normal dependencies, as built for the target), read from `cargo metadata`.
+fn dependency_closure(package: &str) -> Vec<String> {
+    let cargo = std::env::var("CARGO").unwrap_or_else(|_| "cargo".into());
+    let out = std::process::Command::new(cargo)
+        .args(["metadata", "--format-version", "1", "--locked"])
+        .current_dir(repo())
+        .output()
+        .expect("running cargo metadata");
+    assert!(
+        out.status.success(),
+        "cargo metadata: {}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    let meta: serde_json::Value = serde_json::from_slice(&out.stdout).expect("metadata JSON");
+    let name_of = |id: &str| -> String {
+        meta["packages"]
+            .as_array()
+            .into_iter()
+            .flatten()
+            .find(|p| p["id"] == id)
+            .and_then(|p| p["name"].as_str())
+            .unwrap_or(id)
+            .to_string()
+    };
+    let nodes = meta["resolve"]["nodes"].as_array().expect("resolve nodes");
+    let start = nodes
+        .iter()
+        .find(|n| name_of(n["id"].as_str().unwrap_or_default()) == package)
+        .unwrap_or_else(|| panic!("{package} is not in the workspace"));
+    let mut seen: Vec<String> = Vec::new();
+    let mut pending = vec![start];
+    while let Some(node) = pending.pop() {
+        for dep in node["deps"].as_array().into_iter().flatten() {
+            let normal = dep["dep_kinds"]
+                .as_array()
+                .into_iter()
+                .flatten()
+                .any(|k| k["kind"].is_null());
+            let id = dep["pkg"].as_str().unwrap_or_default();
+            if !normal || seen.iter().any(|s| s == id) {
+                continue;
+            }
+            seen.push(id.to_string());
+            if let Some(next) = nodes.iter().find(|n| n["id"] == id) {
+                pending.push(next);
+            }
+        }
+    }
+    let mut names: Vec<String> = seen.iter().map(|id| name_of(id)).collect();
+    names.sort();
+    names.dedup();
+    names
+}
+
+#[test]
+fn the_content_crate_has_no_async_runtime_http_mqtt_or_workspace_dependency() {
+    let closure = dependency_closure("docent-content");
+    // The scan must see real dependencies, or this test would pass on nothing.
+    assert!(
+        closure.iter().any(|n| n == "serde-saphyr"),
+        "docent-content's dependencies were not read: {closure:?}"
+    );
+    let forbidden: Vec<&String> = closure
+        .iter()
+        .filter(|n| {
+            n.starts_with("docent")
+                || [
+                    "tokio",
+                    "axum",
+                    "hyper",
+                    "rumqttc",
+                    "tungstenite",
+                    "tower",
+                    "mio",
+                ]
+                .iter()
+                .any(|f| n.as_str() == *f || n.starts_with(&format!("{f}-")))
+        })
+        .collect();
+    assert!(
+        forbidden.is_empty(),
+        "docent-content loads content with no network I/O and depends on nothing else in the \
+         workspace (ARCHITECTURE.md), but its dependencies now include {forbidden:?}"
+    );
+}

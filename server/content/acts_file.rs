@@ -8,16 +8,16 @@
 
 use std::sync::Arc;
 
-use crate::content::commands::WrittenCommand;
-use crate::content::config::{Languages, SpeechConfig};
-use crate::content::diagnostic::Diagnostic;
-use crate::content::model::{DEFAULT_VARIANT, Located, Pos, Variant};
-use crate::content::suggest::closest;
+use crate::commands::WrittenCommand;
+use crate::config::{Languages, SpeechConfig};
+use crate::diagnostic::Diagnostic;
+use crate::model::{DEFAULT_VARIANT, Located, Pos, Variant};
+use crate::suggest::closest;
 
 mod texts;
 mod translations;
 mod values;
-pub(in crate::content) mod yaml;
+pub(crate) mod yaml;
 
 use values::{read_alternatives, read_commands, read_group, read_key, read_label};
 use yaml::{Kind, Node, Recovery};
@@ -339,7 +339,7 @@ mod tests {
     use super::*;
 
     fn read(text: &str) -> ActsFile {
-        let config = crate::content::config::SiteConfig::default();
+        let config = crate::config::SiteConfig::default();
         read_acts_file(
             &Arc::from("acts.yaml"),
             text.as_bytes(),

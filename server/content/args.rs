@@ -7,10 +7,10 @@ use std::time::Duration;
 
 use serde::{Serialize, Serializer};
 
-use crate::content::duration::parse_duration;
-use crate::content::highlight::{Area, parse_highlight};
-use crate::content::language::Language;
-use crate::content::model::Verb;
+use crate::duration::parse_duration;
+use crate::highlight::{Area, parse_highlight};
+use crate::language::Language;
+use crate::model::Verb;
 
 /// What the projector does with a `PROJECT` file, decided by its name's ending (the media
 /// check makes sure the content matches).
@@ -173,7 +173,7 @@ fn seconds<S: Serializer>(pause: &Option<Duration>, serializer: S) -> Result<S::
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::content::highlight::Shape;
+    use crate::highlight::Shape;
 
     #[test]
     fn each_verb_gets_its_typed_argument() {

@@ -6,21 +6,21 @@ use std::collections::BTreeMap;
 use std::fmt;
 use std::time::Duration;
 
-use crate::content::model::Located;
+use crate::model::Located;
 
-pub use crate::content::config_corpus::{CorpusSettings, RecordLimits, RecordTracks, SessionStart};
-pub use crate::content::config_file::captions::CaptionSettings;
-pub use crate::content::config_file::codebook::{Code, Codebook, CodebookTier};
-pub use crate::content::config_file::mqtt::{MqttPassword, MqttSettings};
-pub use crate::content::config_file::rosbridge::{PoseMessage, RosbridgeConfig, TopicEvent};
-pub use crate::content::config_policy::{
+pub use crate::config_corpus::{CorpusSettings, RecordLimits, RecordTracks, SessionStart};
+pub use crate::config_file::captions::CaptionSettings;
+pub use crate::config_file::codebook::{Code, Codebook, CodebookTier};
+pub use crate::config_file::mqtt::{MqttPassword, MqttSettings};
+pub use crate::config_file::rosbridge::{PoseMessage, RosbridgeConfig, TopicEvent};
+pub use crate::config_policy::{
     Channel, ChannelPolicies, ChannelPolicy, MAX_PRIORITY, MAX_QUEUE_LIMIT, Priorities, WhenBusy,
 };
-pub use crate::content::language::{Language, Languages};
-pub use crate::content::reaction::Reaction;
-pub use crate::content::schedule::Schedule;
+pub use crate::language::{Language, Languages};
+pub use crate::reaction::Reaction;
+pub use crate::schedule::Schedule;
 
-use crate::content::attract::AttractLoop;
+use crate::attract::AttractLoop;
 
 /// Which adapter serves a verb. The route table is built from these, never from `match` arms
 /// spread over the code.

@@ -5,7 +5,7 @@
 
 use std::time::Duration;
 
-use crate::events::Consent;
+use crate::Consent;
 
 /// What starts a visitor session (`corpus: session_start:`).
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]

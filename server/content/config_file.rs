@@ -5,11 +5,11 @@
 
 use std::sync::Arc;
 
-use crate::content::acts_file::yaml::{self, Kind, Node, Recovery};
-use crate::content::config::{AdapterKind, SiteConfig};
-use crate::content::diagnostic::Diagnostic;
-use crate::content::duration::parse_duration;
-use crate::content::model::Located;
+use crate::acts_file::yaml::{self, Kind, Node, Recovery};
+use crate::config::{AdapterKind, SiteConfig};
+use crate::diagnostic::Diagnostic;
+use crate::duration::parse_duration;
+use crate::model::Located;
 
 mod access;
 pub(crate) mod attract;

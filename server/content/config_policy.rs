@@ -6,7 +6,7 @@
 use std::collections::BTreeMap;
 use std::fmt;
 
-use crate::content::Verb;
+use crate::Verb;
 
 /// The longest queue a channel may be given: every queue stays small and bounded.
 pub const MAX_QUEUE_LIMIT: usize = 20;

@@ -6,10 +6,10 @@
 
 use std::collections::{BTreeMap, BTreeSet};
 
-use crate::content::config::SiteConfig;
-use crate::content::diagnostic::Diagnostic;
-use crate::content::model::{Act, DEFAULT_VARIANT, Pos, Variant};
-use crate::content::suggest::{closest, did_you_mean};
+use crate::config::SiteConfig;
+use crate::diagnostic::Diagnostic;
+use crate::model::{Act, DEFAULT_VARIANT, Pos, Variant};
+use crate::suggest::{closest, did_you_mean};
 
 /// `Text`, then the declared contexts, or else every variant name found, sorted.
 pub(crate) fn contexts(config: &SiteConfig, acts: &[Act]) -> Vec<String> {

@@ -5,7 +5,7 @@ use std::fmt;
 
 use serde::Serialize;
 
-use crate::content::model::Pos;
+use crate::model::Pos;
 
 /// How bad a problem is: errors stop `docent serve`, warnings do not.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, PartialOrd, Ord, Serialize)]

@@ -13,7 +13,7 @@ use std::path::{Path, PathBuf};
 
 use sha2::{Digest, Sha256};
 
-use crate::content::BundleArea;
+use crate::BundleArea;
 
 /// `sha256:` and 64 hex digits over the bundle folder `root` (see the module's notes); the
 /// error names the file that could not be read.

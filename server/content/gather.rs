@@ -12,14 +12,14 @@ use std::path::Path;
 use std::sync::Arc;
 use std::sync::atomic::{AtomicUsize, Ordering};
 
-use crate::content::acts_file::{WrittenAct, read_acts_file, yaml::MAX_FILE_BYTES};
-use crate::content::commands::CommandChecker;
-use crate::content::config::SiteConfig;
-use crate::content::contexts::check_declared;
-use crate::content::diagnostic::Diagnostic;
-use crate::content::load::ActsReplacements;
-use crate::content::model::{CommandSpec, Located, Pos, Variant};
-use crate::content::pages::{PageLabels, check_pages};
+use crate::acts_file::{WrittenAct, read_acts_file, yaml::MAX_FILE_BYTES};
+use crate::commands::CommandChecker;
+use crate::config::SiteConfig;
+use crate::contexts::check_declared;
+use crate::diagnostic::Diagnostic;
+use crate::load::ActsReplacements;
+use crate::model::{CommandSpec, Located, Pos, Variant};
+use crate::pages::{PageLabels, check_pages};
 
 /// Stack of each thread reading YAML: room for nesting up to the parsers' depth limit.
 const READING_STACK_BYTES: usize = 32 << 20;

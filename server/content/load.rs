@@ -6,19 +6,19 @@ use std::collections::{BTreeMap, BTreeSet, HashMap, HashSet};
 use std::path::Path;
 use std::sync::Arc;
 
-use crate::content::commands::{CommandChecker, path_error_code};
-use crate::content::config::{Language, SiteConfig};
-use crate::content::config_file::attract::check_screen_refs;
-use crate::content::config_file::{ConfigFile, parse_config};
-use crate::content::contexts::{check_undeclared, contexts};
-use crate::content::diagnostic::Diagnostic;
-use crate::content::gather::{CheckedAct, CheckedFile, gather, on_reading_stack, read_limited};
-use crate::content::model::{Act, Bundle, Located, Pos};
-use crate::content::operator_check::{KeyBindings, check_map, visitor_groups};
-use crate::content::pages::{PageLabels, check_reachable_languages};
-use crate::content::paths::{BundleArea, PathError};
-use crate::content::suggest::did_you_mean;
-use crate::content::unused::check_unused;
+use crate::commands::{CommandChecker, path_error_code};
+use crate::config::{Language, SiteConfig};
+use crate::config_file::attract::check_screen_refs;
+use crate::config_file::{ConfigFile, parse_config};
+use crate::contexts::{check_undeclared, contexts};
+use crate::diagnostic::Diagnostic;
+use crate::gather::{CheckedAct, CheckedFile, gather, on_reading_stack, read_limited};
+use crate::model::{Act, Bundle, Located, Pos};
+use crate::operator_check::{KeyBindings, check_map, visitor_groups};
+use crate::pages::{PageLabels, check_reachable_languages};
+use crate::paths::{BundleArea, PathError};
+use crate::suggest::did_you_mean;
+use crate::unused::check_unused;
 
 /// The name of the settings file at the top of a bundle.
 const CONFIG_FILE: &str = "docent.yaml";

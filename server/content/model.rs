@@ -7,10 +7,10 @@ use std::fmt;
 use std::path::PathBuf;
 use std::sync::Arc;
 
-use crate::content::args::Args;
-use crate::content::config::SiteConfig;
-use crate::content::diagnostic::Diagnostic;
-use crate::content::language::Language;
+use crate::args::Args;
+use crate::config::SiteConfig;
+use crate::diagnostic::Diagnostic;
+use crate::language::Language;
 
 /// Where something was written: a file relative to the bundle root, 1-based line and column.
 #[derive(Clone, Debug, PartialEq, Eq, Hash, PartialOrd, Ord, serde::Serialize)]

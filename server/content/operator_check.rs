@@ -4,13 +4,13 @@
 
 use std::collections::{BTreeMap, HashMap};
 
-use crate::content::commands::{CommandChecker, path_error_code};
-use crate::content::config::SiteConfig;
-use crate::content::config_file::operator::{VISITOR_GROUPS, default_context};
-use crate::content::diagnostic::Diagnostic;
-use crate::content::model::{Located, Pos};
-use crate::content::paths::BundleArea;
-use crate::content::suggest::did_you_mean;
+use crate::commands::{CommandChecker, path_error_code};
+use crate::config::SiteConfig;
+use crate::config_file::operator::{VISITOR_GROUPS, default_context};
+use crate::diagnostic::Diagnostic;
+use crate::model::{Located, Pos};
+use crate::paths::BundleArea;
+use crate::suggest::did_you_mean;
 
 /// The acts' `Key`s seen so far, in loading order, each with the first act that took it.
 #[derive(Default)]

@@ -10,9 +10,9 @@ use std::path::Path;
 
 use serde::Serialize;
 
-use crate::content::diagnostic::Diagnostic;
-use crate::content::model::{Bundle, Verb};
-use crate::content::paths::{BundleArea, list_files, resolve_in_bundle};
+use crate::diagnostic::Diagnostic;
+use crate::model::{Bundle, Verb};
+use crate::paths::{BundleArea, list_files, resolve_in_bundle};
 
 /// Pages larger than this are not searched for media names (as `pages.rs` does for acts).
 const MAX_PAGE_BYTES: u64 = 8 * 1024 * 1024;

@@ -12,8 +12,8 @@ use std::fmt;
 
 use serde::{Serialize, Serializer};
 
-use crate::content::attract::AttractLoop;
-use crate::content::config::SiteConfig;
+use crate::attract::AttractLoop;
+use crate::config::SiteConfig;
 
 /// Minutes in a day: the end of a range that closes at midnight (`24:00`).
 pub const DAY_MINUTES: u16 = 24 * 60;

@@ -6,8 +6,8 @@
 
 use std::collections::HashSet;
 
-use crate::content::diagnostic::Diagnostic;
-use crate::content::model::Act;
+use crate::diagnostic::Diagnostic;
+use crate::model::Act;
 
 /// Warns about each act that no page, idle timer or console group or key reaches.
 /// `referenced` holds every label something in the bundle triggers.

@@ -3,10 +3,10 @@
 //! warning, at the place the voice or the language was written). The installed voices are
 //! handed in (the caller runs `espeak-ng --voices`): content loading itself runs nothing.
 
-use crate::content::config::{SiteConfig, SpeechConfig};
-use crate::content::diagnostic::Diagnostic;
-use crate::content::language::Language;
-use crate::content::model::Pos;
+use crate::config::{SiteConfig, SpeechConfig};
+use crate::diagnostic::Diagnostic;
+use crate::language::Language;
+use crate::model::Pos;
 
 /// Each language whose espeak-ng voice (`speech: voices:`, or its default) is not among
 /// `installed`, with that voice.
@@ -54,7 +54,7 @@ pub fn no_voice_diagnostics(config: &SiteConfig, installed: &[String]) -> Vec<Di
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::content::config_file::test_support::parse;
+    use crate::config_file::test_support::parse;
 
     #[test]
     fn a_voice_not_installed_is_reported_where_it_was_written() {

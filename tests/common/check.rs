@@ -6,7 +6,7 @@ use std::collections::BTreeMap;
 use std::fs;
 use std::path::Path;
 
-use docent::content::{Bundle, Diagnostic, LoadReport, load_bundle};
+use docent_content::{Bundle, Diagnostic, LoadReport, load_bundle};
 
 /// Lines joined into a file, one element a line: line numbers in assertions are indexes + 1.
 pub fn yaml(lines: &[&str]) -> String {

@@ -246,7 +246,7 @@ impl TestServer {
             let _ = tx.send(());
         }
         if let Some(task) = self.task.take() {
-            tokio::time::timeout(DEADLINE, task)
+            within(DEADLINE, task)
                 .await
                 .expect("shutdown in time")
                 .expect("join")
@@ -255,6 +255,21 @@ impl TestServer {
         read_corpus(&self.corpus)
     }
 }
+
+/// `fut`'s output, or `Err` after `limit` of real time. Not `tokio::time::timeout`: under a
+/// paused clock (`start_paused`), tokio moves time on whenever the runtime waits, also while
+/// it waits on a thread it cannot see (the corpus writer), so a tokio deadline can pass in no
+/// real time at all. A real-time deadline leaves the paused clock to the server's own timers.
+pub async fn within<F: Future>(limit: Duration, fut: F) -> Result<F::Output, Elapsed> {
+    tokio::select! {
+        out = fut => Ok(out),
+        () = futures_timer::Delay::new(limit) => Err(Elapsed(limit)),
+    }
+}
+
+/// A real-time deadline passed ([`within`]).
+#[derive(Debug)]
+pub struct Elapsed(pub Duration);
 
 /// A raw websocket client speaking JSON frames.
 pub struct WsClient {
@@ -299,7 +314,7 @@ impl WsClient {
     /// The next JSON frame.
     pub async fn recv(&mut self) -> Value {
         loop {
-            let msg = tokio::time::timeout(DEADLINE, self.stream.next())
+            let msg = within(DEADLINE, self.stream.next())
                 .await
                 .expect("a frame within the deadline")
                 .expect("connection open")
@@ -316,7 +331,7 @@ impl WsClient {
     pub async fn frames_until_closed(&mut self) -> Vec<Value> {
         let mut frames = Vec::new();
         loop {
-            let next = tokio::time::timeout(DEADLINE, self.stream.next())
+            let next = within(DEADLINE, self.stream.next())
                 .await
                 .expect("the server closes within the deadline");
             match next {

@@ -4,8 +4,8 @@
 //! quotes are not YAML's `-` and `"`. These checks compare what was written (the source bytes
 //! of the text) with what YAML made of it, and quote what the robot will really say.
 
-use crate::content::diagnostic::Diagnostic;
-use crate::content::model::Pos;
+use crate::diagnostic::Diagnostic;
+use crate::model::Pos;
 
 use super::yaml::Node;
 

@@ -5,10 +5,10 @@
 
 use std::collections::BTreeMap;
 
-use crate::content::config::Languages;
-use crate::content::diagnostic::Diagnostic;
-use crate::content::language::{LANGUAGE_USAGE, Language};
-use crate::content::model::{Located, Pos, Translation, Variant};
+use crate::config::Languages;
+use crate::diagnostic::Diagnostic;
+use crate::language::{LANGUAGE_USAGE, Language};
+use crate::model::{Located, Pos, Translation, Variant};
 
 /// What the `@` of a text key names.
 pub(super) enum Suffix {

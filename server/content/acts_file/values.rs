@@ -2,11 +2,11 @@
 //! surprises are caught here: a text with `: ` that became a mapping, an unquoted `yes` that
 //! became a boolean, an empty list item that became null.
 
-use crate::content::commands::WrittenCommand;
-use crate::content::diagnostic::Diagnostic;
-use crate::content::model::Located;
+use crate::commands::WrittenCommand;
+use crate::diagnostic::Diagnostic;
+use crate::model::Located;
 
-use crate::content::speech::{SpokenText, check_spoken};
+use crate::speech::{SpokenText, check_spoken};
 
 use super::Reading;
 use super::texts::check_written;

@@ -14,9 +14,9 @@ use std::sync::Arc;
 
 use serde_saphyr::{DuplicateKeyPolicy, NonFiniteFloatPolicy, Options, Spanned};
 
-use crate::content::diagnostic::Diagnostic;
-use crate::content::encoding::not_utf8;
-use crate::content::model::Pos;
+use crate::diagnostic::Diagnostic;
+use crate::encoding::not_utf8;
+use crate::model::Pos;
 
 mod fast;
 mod layout;

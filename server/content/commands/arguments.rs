@@ -2,13 +2,13 @@
 //! the drive's bounds, highlight areas, lengths of time, and the site verbs' declared rules.
 //! Separate from `mod.rs`, which splits a command into verb and argument and parses it.
 
-use crate::content::config::ArgRule;
-use crate::content::diagnostic::Diagnostic;
-use crate::content::duration::parse_duration;
-use crate::content::highlight::{parse_highlight, words_with_offsets};
-use crate::content::model::{Pos, Verb};
-use crate::content::paths::BundleArea;
-use crate::content::speech::{SpokenText, check_spoken};
+use crate::config::ArgRule;
+use crate::diagnostic::Diagnostic;
+use crate::duration::parse_duration;
+use crate::highlight::{parse_highlight, words_with_offsets};
+use crate::model::{Pos, Verb};
+use crate::paths::BundleArea;
+use crate::speech::{SpokenText, check_spoken};
 
 use super::{CommandChecker, WrittenCommand, offset_pos};
 

@@ -3,13 +3,11 @@
 
 use std::path::{Path, PathBuf};
 
-use crate::content::diagnostic::Diagnostic;
-use crate::content::media::ShownBy;
-use crate::content::model::Pos;
-use crate::content::paths::{
-    BundleArea, Listing, PathError, list_files, read_listing, resolve_listed,
-};
-use crate::content::suggest::did_you_mean;
+use crate::diagnostic::Diagnostic;
+use crate::media::ShownBy;
+use crate::model::Pos;
+use crate::paths::{BundleArea, Listing, PathError, list_files, read_listing, resolve_listed};
+use crate::suggest::did_you_mean;
 
 use super::{CommandChecker, PathProblem};
 

@@ -14,13 +14,13 @@ mod files;
 
 pub(crate) use files::path_error_code;
 
-use crate::content::args::Args;
-use crate::content::config::SiteConfig;
-use crate::content::diagnostic::Diagnostic;
-use crate::content::media::MediaSniffs;
-use crate::content::model::{CommandSpec, Located, Pos, Verb};
-use crate::content::paths::{BundleArea, Listing, PathError};
-use crate::content::suggest::closest;
+use crate::args::Args;
+use crate::config::SiteConfig;
+use crate::diagnostic::Diagnostic;
+use crate::media::MediaSniffs;
+use crate::model::{CommandSpec, Located, Pos, Verb};
+use crate::paths::{BundleArea, Listing, PathError};
+use crate::suggest::closest;
 
 /// A command string as written in an acts file.
 #[derive(Debug)]
@@ -74,7 +74,7 @@ impl<'a> CommandChecker<'a> {
     }
 
     /// The bundle's languages (pages in `pages/de/` fall back to `pages/`).
-    pub fn languages(&self) -> &crate::content::config::Languages {
+    pub fn languages(&self) -> &crate::config::Languages {
         &self.config.languages
     }
 

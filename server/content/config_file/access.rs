@@ -2,9 +2,9 @@
 //! A token is never repeated in a message (messages end up in logs and terminals); the
 //! environment variables named here take precedence over the file at serve time.
 
-use crate::content::acts_file::yaml::{Kind, Node};
-use crate::content::config::{AccessSettings, Credential};
-use crate::content::diagnostic::Diagnostic;
+use crate::acts_file::yaml::{Kind, Node};
+use crate::config::{AccessSettings, Credential};
+use crate::diagnostic::Diagnostic;
 
 use super::Reader;
 
@@ -74,7 +74,7 @@ impl Reader {
 
 #[cfg(test)]
 mod tests {
-    use crate::content::config_file::test_support::parse;
+    use crate::config_file::test_support::parse;
 
     #[test]
     fn tokens_are_read_and_kept_out_of_debug_output() {

@@ -5,14 +5,14 @@
 
 use std::time::Duration;
 
-use crate::content::acts_file::yaml::{Kind, Node};
-use crate::content::attract::AttractLoop;
-use crate::content::commands::{CommandChecker, path_error_code};
-use crate::content::diagnostic::Diagnostic;
-use crate::content::duration::parse_duration;
-use crate::content::model::Located;
-use crate::content::paths::BundleArea;
-use crate::content::suggest::did_you_mean;
+use crate::acts_file::yaml::{Kind, Node};
+use crate::attract::AttractLoop;
+use crate::commands::{CommandChecker, path_error_code};
+use crate::diagnostic::Diagnostic;
+use crate::duration::parse_duration;
+use crate::model::Located;
+use crate::paths::BundleArea;
+use crate::suggest::did_you_mean;
 
 use super::Reader;
 

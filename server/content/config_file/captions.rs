@@ -2,9 +2,9 @@
 //! while it is said. The touchscreen shows captions unless the bundle turns them off (a page
 //! may still opt out, docs/AUTHORING.md); the projector only when the bundle asks for them.
 
-use crate::content::acts_file::yaml::Node;
-use crate::content::config::SiteConfig;
-use crate::content::config_file::reader::Reader;
+use crate::acts_file::yaml::Node;
+use crate::config::SiteConfig;
+use crate::config_file::reader::Reader;
 
 /// The keys of `captions:`.
 pub(crate) const KEYS: &[&str] = &["kiosk", "projector"];
@@ -45,7 +45,7 @@ impl Reader {
 
 #[cfg(test)]
 mod tests {
-    use crate::content::config_file::test_support::{parse, problems};
+    use crate::config_file::test_support::{parse, problems};
 
     #[test]
     fn captions_are_on_the_touchscreen_and_off_the_projector_by_default() {

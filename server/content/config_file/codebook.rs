@@ -15,9 +15,9 @@
 
 use serde::Serialize;
 
-use crate::content::acts_file::yaml::{Kind, Node};
-use crate::content::diagnostic::Diagnostic;
-use crate::content::model::Pos;
+use crate::acts_file::yaml::{Kind, Node};
+use crate::diagnostic::Diagnostic;
+use crate::model::Pos;
 
 use super::Reader;
 
@@ -260,7 +260,7 @@ impl Reader {
 
 #[cfg(test)]
 mod tests {
-    use crate::content::config_file::test_support::parse;
+    use crate::config_file::test_support::parse;
 
     use super::*;
 

@@ -2,9 +2,9 @@
 //! `drive:` (adapter, speed, pose rate, bounds). Separate from the top level because each
 //! value here has its own range and wording for the author.
 
-use crate::content::acts_file::yaml::{Kind, Node};
-use crate::content::config::{AdapterKind, Bounds, Language, SiteConfig};
-use crate::content::model::Located;
+use crate::acts_file::yaml::{Kind, Node};
+use crate::config::{AdapterKind, Bounds, Language, SiteConfig};
+use crate::model::Located;
 
 use super::Reader;
 

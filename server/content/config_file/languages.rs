@@ -5,11 +5,11 @@
 
 use std::collections::BTreeMap;
 
-use crate::content::acts_file::yaml::{Kind, Node};
-use crate::content::config::{Language, Languages, SiteConfig};
-use crate::content::diagnostic::Diagnostic;
-use crate::content::language::LANGUAGE_USAGE;
-use crate::content::model::Located;
+use crate::acts_file::yaml::{Kind, Node};
+use crate::config::{Language, Languages, SiteConfig};
+use crate::diagnostic::Diagnostic;
+use crate::language::LANGUAGE_USAGE;
+use crate::model::Located;
 
 use super::Reader;
 
@@ -211,7 +211,7 @@ impl Reader {
 
 #[cfg(test)]
 mod tests {
-    use crate::content::config_file::test_support::{parse, problems};
+    use crate::config_file::test_support::{parse, problems};
 
     fn voices(text: &str) -> Vec<(String, String)> {
         let config = parse(text).config;

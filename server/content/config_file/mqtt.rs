@@ -6,9 +6,9 @@
 
 use std::fmt;
 
-use crate::content::acts_file::yaml::Node;
-use crate::content::diagnostic::Diagnostic;
-use crate::fleet::{BrokerUrl, robot_id_problem};
+use crate::acts_file::yaml::Node;
+use crate::diagnostic::Diagnostic;
+use crate::names::{BrokerUrl, robot_id_problem};
 
 use super::Reader;
 
@@ -138,7 +138,7 @@ impl Reader {
 
 #[cfg(test)]
 mod tests {
-    use crate::content::config_file::test_support::{parse, problems};
+    use crate::config_file::test_support::{parse, problems};
 
     #[test]
     fn the_mqtt_section_is_read_and_keeps_its_password_out_of_debug_output() {

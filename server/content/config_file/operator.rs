@@ -3,10 +3,10 @@
 //! which contexts the visitor groups may name are checked later, with the whole bundle
 //! (`content/operator_check.rs`).
 
-use crate::content::acts_file::yaml::{Kind, Node};
-use crate::content::config::Camera;
-use crate::content::model::Located;
-use crate::content::suggest::did_you_mean;
+use crate::acts_file::yaml::{Kind, Node};
+use crate::config::Camera;
+use crate::model::Located;
+use crate::suggest::did_you_mean;
 
 use super::{ConfigFile, Reader};
 
@@ -188,10 +188,10 @@ pub(crate) fn default_context(group: &str) -> &'static str {
 
 #[cfg(test)]
 mod tests {
-    use crate::content::config_file::test_support::parse;
+    use crate::config_file::test_support::parse;
 
     use super::*;
-    use crate::content::config::OperatorConfig;
+    use crate::config::OperatorConfig;
 
     fn located(file: &ConfigFile) -> Vec<(&'static str, u32, u32)> {
         file.diagnostics

@@ -2,11 +2,9 @@
 //! with a command that arrives while another runs, and which trigger source wins. Read after
 //! `verbs:`, so a site verb's channel can be checked to exist wherever it is written.
 
-use crate::content::acts_file::yaml::{Kind, Node};
-use crate::content::config::{
-    Channel, ChannelPolicy, MAX_PRIORITY, MAX_QUEUE_LIMIT, SiteConfig, WhenBusy,
-};
-use crate::content::suggest::did_you_mean;
+use crate::acts_file::yaml::{Kind, Node};
+use crate::config::{Channel, ChannelPolicy, MAX_PRIORITY, MAX_QUEUE_LIMIT, SiteConfig, WhenBusy};
+use crate::suggest::did_you_mean;
 
 use super::Reader;
 
@@ -109,9 +107,9 @@ impl Reader {
 
 #[cfg(test)]
 mod tests {
-    use crate::content::config_file::test_support::{parse, problems};
+    use crate::config_file::test_support::{parse, problems};
 
-    use crate::content::config::{Channel, ChannelPolicy, Priorities, WhenBusy};
+    use crate::config::{Channel, ChannelPolicy, Priorities, WhenBusy};
 
     #[test]
     fn channel_policies_and_priorities_are_read() {

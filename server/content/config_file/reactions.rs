@@ -9,12 +9,12 @@
 //!     cooldown: 2m
 //! ```
 
-use crate::content::acts_file::yaml::{Kind, Node};
-use crate::content::diagnostic::Diagnostic;
-use crate::content::duration::parse_duration;
-use crate::content::model::{Located, Pos};
-use crate::content::reaction::{Condition, DEFAULT_COOLDOWN, Reaction};
-use crate::events::robot_event_name_problem;
+use crate::acts_file::yaml::{Kind, Node};
+use crate::diagnostic::Diagnostic;
+use crate::duration::parse_duration;
+use crate::model::{Located, Pos};
+use crate::names::robot_event_name_problem;
+use crate::reaction::{Condition, DEFAULT_COOLDOWN, Reaction};
 
 use super::Reader;
 
@@ -155,7 +155,7 @@ impl Reader {
 mod tests {
     use std::time::Duration;
 
-    use crate::content::config_file::{ConfigFile, parse_config};
+    use crate::config_file::{ConfigFile, parse_config};
 
     fn parse(text: &str) -> ConfigFile {
         parse_config(&"docent.yaml".into(), text.as_bytes())

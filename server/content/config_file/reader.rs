@@ -2,10 +2,10 @@
 //! with suggestions), a value parsed from text, a choice among fixed words. Each reports a
 //! located, plain-language problem and returns `None` so the default stays in force.
 
-use crate::content::acts_file::yaml::{Kind, Node};
-use crate::content::diagnostic::Diagnostic;
-use crate::content::model::Pos;
-use crate::content::suggest::did_you_mean;
+use crate::acts_file::yaml::{Kind, Node};
+use crate::diagnostic::Diagnostic;
+use crate::model::Pos;
+use crate::suggest::did_you_mean;
 
 /// Collects the problems found while reading `docent.yaml`.
 pub(super) struct Reader {

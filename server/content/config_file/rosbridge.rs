@@ -5,10 +5,10 @@
 //! `drive: adapter: rosbridge` or a `rosbridge:` section without a `url` is
 //! `rosbridge-url-missing`.
 
-use crate::content::acts_file::yaml::{Kind, Node};
-use crate::content::config::{AdapterKind, SiteConfig};
-use crate::content::diagnostic::Diagnostic;
-use crate::events::robot_event_name_problem;
+use crate::acts_file::yaml::{Kind, Node};
+use crate::config::{AdapterKind, SiteConfig};
+use crate::diagnostic::Diagnostic;
+use crate::names::robot_event_name_problem;
 
 use super::Reader;
 
@@ -212,7 +212,7 @@ impl Reader {
                     }
                 }
                 "stall" => {
-                    let parse = |t: &str| match crate::content::parse_duration(t) {
+                    let parse = |t: &str| match crate::parse_duration(t) {
                         Some(d) if d.is_zero() => Some(None),
                         Some(d) if d.as_secs_f64() >= 1.0 => Some(Some(d)),
                         _ => None,

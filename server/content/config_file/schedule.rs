@@ -6,10 +6,10 @@
 
 use std::collections::BTreeMap;
 
-use crate::content::acts_file::yaml::{Kind, Node};
-use crate::content::diagnostic::Diagnostic;
-use crate::content::model::Pos;
-use crate::content::schedule::{CalendarDate, DAY_MINUTES, OpenHours, Schedule, WEEKDAYS};
+use crate::acts_file::yaml::{Kind, Node};
+use crate::diagnostic::Diagnostic;
+use crate::model::Pos;
+use crate::schedule::{CalendarDate, DAY_MINUTES, OpenHours, Schedule, WEEKDAYS};
 
 use super::Reader;
 
@@ -278,7 +278,7 @@ impl Reader {
 #[derive(Default)]
 struct Extras {
     home: Option<String>,
-    attract: Option<crate::content::attract::AttractLoop>,
+    attract: Option<crate::attract::AttractLoop>,
 }
 
 impl Extras {

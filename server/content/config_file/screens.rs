@@ -3,13 +3,14 @@
 //! highlights) and how visitors' touches cut the corpus into sessions. Whether the idle act
 //! exists is checked later, with the acts (`load.rs`); `attract:` is read by `attract.rs`.
 
-use crate::content::acts_file::yaml::{Kind, Node};
-use crate::content::config::{AfterVideo, RecordLimits, RecordTracks, SessionStart, SiteConfig};
-use crate::content::duration::parse_duration;
-use crate::content::model::Located;
-use crate::content::size::parse_size;
-use crate::content::suggest::did_you_mean;
-use crate::events::{Consent, robot_event_name_problem};
+use crate::Consent;
+use crate::acts_file::yaml::{Kind, Node};
+use crate::config::{AfterVideo, RecordLimits, RecordTracks, SessionStart, SiteConfig};
+use crate::duration::parse_duration;
+use crate::model::Located;
+use crate::names::robot_event_name_problem;
+use crate::size::parse_size;
+use crate::suggest::did_you_mean;
 
 use super::Reader;
 
@@ -219,11 +220,11 @@ impl Reader {
 
 #[cfg(test)]
 mod tests {
-    use crate::content::config_file::test_support::parse;
+    use crate::config_file::test_support::parse;
 
     use std::time::Duration;
 
-    use crate::content::config::{AfterVideo, RecordLimits, RecordTracks};
+    use crate::config::{AfterVideo, RecordLimits, RecordTracks};
 
     #[test]
     fn kiosk_and_projector_settings_are_read() {

@@ -4,8 +4,8 @@
 
 use std::net::IpAddr;
 
-use crate::content::acts_file::yaml::{Kind, Node};
-use crate::content::config::ServerSettings;
+use crate::acts_file::yaml::{Kind, Node};
+use crate::config::ServerSettings;
 
 use super::Reader;
 
@@ -49,7 +49,7 @@ impl Reader {
 
 #[cfg(test)]
 mod tests {
-    use crate::content::config_file::test_support::parse;
+    use crate::config_file::test_support::parse;
 
     #[test]
     fn trusted_proxies_are_read_as_addresses() {

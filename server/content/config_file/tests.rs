@@ -3,7 +3,7 @@
 
 use std::time::Duration;
 
-use crate::content::config::{AdapterKind, ArgRule, Bounds, SiteConfig};
+use crate::config::{AdapterKind, ArgRule, Bounds, SiteConfig};
 
 use super::test_support::{parse, problems};
 
@@ -156,7 +156,7 @@ fn syntax_errors_and_duplicates_are_reported() {
 
 #[test]
 fn a_rosbridge_section_is_read_with_its_events() {
-    use crate::content::config::{PoseMessage, TopicEvent};
+    use crate::config::{PoseMessage, TopicEvent};
     let text = "drive: {adapter: rosbridge}\nrosbridge:\n  url: ws://robot.local:9090\n  \
         goal_topic: /goal_pose\n  frame: map\n  action: /navigate_to_pose\n  \
         pose_topic: /odom\n  pose_type: nav_msgs/msg/Odometry\n  stop_topic: /docent/stop\n  \

@@ -2,10 +2,10 @@
 //! name with its adapter, argument rule and description. Separate because a site verb is
 //! checked against the built-in verbs and the other declarations, not just read.
 
-use crate::content::acts_file::yaml::{Kind, Node};
-use crate::content::config::{AdapterKind, ArgRule, SiteConfig, SiteVerb};
-use crate::content::diagnostic::Diagnostic;
-use crate::content::model::Verb;
+use crate::acts_file::yaml::{Kind, Node};
+use crate::config::{AdapterKind, ArgRule, SiteConfig, SiteVerb};
+use crate::diagnostic::Diagnostic;
+use crate::model::Verb;
 
 use super::Reader;
 

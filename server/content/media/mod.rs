@@ -11,9 +11,9 @@ use std::collections::HashMap;
 use std::io::Read;
 use std::path::{Path, PathBuf};
 
-use crate::content::args::{PROJECTOR_IMAGES, PROJECTOR_VIDEOS};
-use crate::content::diagnostic::Diagnostic;
-use crate::content::model::Pos;
+use crate::args::{PROJECTOR_IMAGES, PROJECTOR_VIDEOS};
+use crate::diagnostic::Diagnostic;
+use crate::model::Pos;
 use sniff::{Format, Kind, SNIFF_BYTES, by_extension};
 
 /// Where a file is shown, which decides what it must be.

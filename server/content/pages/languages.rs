@@ -7,12 +7,12 @@
 
 use std::collections::BTreeSet;
 
-use crate::content::commands::CommandChecker;
-use crate::content::config::SiteConfig;
-use crate::content::diagnostic::Diagnostic;
-use crate::content::language::{LANGUAGE_USAGE, Language};
-use crate::content::model::{Located, Pos};
-use crate::content::paths::BundleArea;
+use crate::commands::CommandChecker;
+use crate::config::SiteConfig;
+use crate::diagnostic::Diagnostic;
+use crate::language::{LANGUAGE_USAGE, Language};
+use crate::model::{Located, Pos};
+use crate::paths::BundleArea;
 
 /// Warns about each page of the default language (`pages/*.html` outside the language
 /// folders) that has no version in one of the bundle's other languages.

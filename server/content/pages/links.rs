@@ -2,7 +2,7 @@
 //! own folder under `/pages/`, or absolute (`/pages/...`, `/media/...`); fragments and query
 //! strings play no part. Also splits `srcset` lists and finds CSS `url()`s.
 
-use crate::content::paths::BundleArea;
+use crate::paths::BundleArea;
 
 /// Where a link leads.
 #[derive(Debug, PartialEq, Eq)]

@@ -15,12 +15,12 @@ mod text;
 
 use std::sync::Arc;
 
-use crate::content::commands::CommandChecker;
-use crate::content::diagnostic::Diagnostic;
-use crate::content::language::Language;
-use crate::content::media::ShownBy;
-use crate::content::model::Located;
-use crate::content::paths::{BundleArea, list_files};
+use crate::commands::CommandChecker;
+use crate::diagnostic::Diagnostic;
+use crate::language::Language;
+use crate::media::ShownBy;
+use crate::model::Located;
+use crate::paths::{BundleArea, list_files};
 use links::{Target, css_urls, resolve, srcset_urls};
 use scan::{LinkUse, PageScan, Unclosed, Value};
 use text::SourceText;

@@ -3,9 +3,9 @@
 
 use std::sync::Arc;
 
-use crate::content::diagnostic::Diagnostic;
-use crate::content::encoding::not_utf8;
-use crate::content::model::Pos;
+use crate::diagnostic::Diagnostic;
+use crate::encoding::not_utf8;
+use crate::model::Pos;
 
 /// The text of a file, with the byte-order mark removed, and how to find positions in it.
 pub(crate) struct SourceText {

@@ -4,7 +4,7 @@
 use std::time::Duration;
 
 use super::*;
-use crate::content::config_file::test_support::parse;
+use crate::config_file::test_support::parse;
 
 const SITE: &str = "\
 home: index.html

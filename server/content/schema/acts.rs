@@ -4,8 +4,8 @@
 use serde_json::{Value, json};
 
 use super::{DRAFT, words};
-use crate::content::acts_file::KEYS;
-use crate::content::model::{DEFAULT_VARIANT, Verb};
+use crate::acts_file::KEYS;
+use crate::model::{DEFAULT_VARIANT, Verb};
 
 /// A variant key other than `Text` itself (which has its own entry): `Text` then letters,
 /// digits or `_` in any alphabet, as the loader's `is_variant_key` accepts. `\p{...}` needs the

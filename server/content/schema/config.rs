@@ -4,14 +4,14 @@
 use serde_json::{Value, json};
 
 use super::{DRAFT, choice, duration, section, words};
-use crate::content::config::{Channel, MAX_PRIORITY, MAX_QUEUE_LIMIT};
-use crate::content::config_file::TOP_KEYS;
-use crate::content::config_file::mqtt::KEYS as MQTT_KEYS;
-use crate::content::config_file::operator::KEYS as OPERATOR_KEYS;
-use crate::content::config_file::policy::{CHANNEL_KEYS, PRIORITY_KEYS};
-use crate::content::config_file::reactions::REACTION_KEYS;
-use crate::content::config_file::screens::{CORPUS_KEYS, RECORD_LIMITS_KEYS};
-use crate::content::config_file::server::KEYS as SERVER_KEYS;
+use crate::config::{Channel, MAX_PRIORITY, MAX_QUEUE_LIMIT};
+use crate::config_file::TOP_KEYS;
+use crate::config_file::mqtt::KEYS as MQTT_KEYS;
+use crate::config_file::operator::KEYS as OPERATOR_KEYS;
+use crate::config_file::policy::{CHANNEL_KEYS, PRIORITY_KEYS};
+use crate::config_file::reactions::REACTION_KEYS;
+use crate::config_file::screens::{CORPUS_KEYS, RECORD_LIMITS_KEYS};
+use crate::config_file::server::KEYS as SERVER_KEYS;
 
 mod rosbridge;
 mod screens;

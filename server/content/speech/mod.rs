@@ -15,9 +15,9 @@ mod suspects;
 use finders::{find_address, find_markup, find_placeholder, is_emoji};
 use suspects::Suspects;
 
-use crate::content::config::SpeechConfig;
-use crate::content::diagnostic::Diagnostic;
-use crate::content::model::Pos;
+use crate::config::SpeechConfig;
+use crate::diagnostic::Diagnostic;
+use crate::model::Pos;
 
 /// Texts over this many times `speech.max_seconds` are errors, not warnings.
 const FAR_ABOVE: u32 = 4;
@@ -198,7 +198,7 @@ mod tests {
         let mut out = Vec::new();
         check_spoken(
             &spoken,
-            &crate::content::config::SiteConfig::default().speech,
+            &crate::config::SiteConfig::default().speech,
             &mut out,
         );
         out.iter().map(|d| (d.code, d.column)).collect()
@@ -262,7 +262,7 @@ mod tests {
         let mut out = Vec::new();
         check_spoken(
             &spoken,
-            &crate::content::config::SiteConfig::default().speech,
+            &crate::config::SiteConfig::default().speech,
             &mut out,
         );
         assert!(out[0].is_error());

@@ -14,7 +14,7 @@ use granit_parser::{Event, Parser, ScalarStyle, Span, StrInput};
 
 use super::raw::{self, Raw};
 use super::{Kind, Node};
-use crate::content::model::Pos;
+use crate::model::Pos;
 
 /// Deeper nesting is left to serde-saphyr, whose budget refuses more than 64 levels.
 const MAX_DEPTH: usize = 60;

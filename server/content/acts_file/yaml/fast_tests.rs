@@ -46,7 +46,8 @@ fn yaml_files(dir: &Path, out: &mut Vec<std::path::PathBuf>) {
 
 #[test]
 fn every_bundled_and_fixture_file_reads_the_same() {
-    let root = Path::new(env!("CARGO_MANIFEST_DIR"));
+    // This crate is `server/content/`; the bundles are the repository's.
+    let root = Path::new(env!("CARGO_MANIFEST_DIR")).join("../..");
     let mut files = Vec::new();
     yaml_files(&root.join("dialogs"), &mut files);
     yaml_files(&root.join("tests/fixtures"), &mut files);

@@ -3,8 +3,8 @@
 
 use std::sync::Arc;
 
-use crate::content::diagnostic::Diagnostic;
-use crate::content::model::Pos;
+use crate::diagnostic::Diagnostic;
+use crate::model::Pos;
 
 /// One top-level list item: its 1-based lines (end exclusive) and bytes.
 pub(super) struct Item {

@@ -9,7 +9,7 @@ use serde::de::{self, Deserialize, Deserializer, MapAccess, SeqAccess, Visitor};
 use serde_saphyr::{Location, Spanned};
 
 use super::{Kind, Node};
-use crate::content::model::Pos;
+use crate::model::Pos;
 
 /// A node as serde-saphyr hands it over.
 pub(super) enum Raw {

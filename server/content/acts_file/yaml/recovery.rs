@@ -8,8 +8,8 @@ use serde_saphyr::Spanned;
 
 use super::layout::{Item, unclosed_bracket_before};
 use super::{Kind, Node, YamlFile, options, raw, wording};
-use crate::content::diagnostic::Diagnostic;
-use crate::content::model::Pos;
+use crate::diagnostic::Diagnostic;
+use crate::model::Pos;
 
 /// Parses each top-level item on its own, so an error (even an unclosed bracket) stays
 /// inside its item and every other act is read.

@@ -123,10 +123,7 @@ fn a_tab_in_indentation_is_reported_at_the_tab_and_the_rest_still_parses() {
 fn a_tab_yaml_accepts_is_only_a_warning() {
     let parsed = parse_acts("- Label: A\n  Text: |\n    line\n    \tindented text\n");
     assert_eq!(parsed.diagnostics.len(), 1);
-    assert_eq!(
-        parsed.diagnostics[0].severity,
-        crate::content::Severity::Warning
-    );
+    assert_eq!(parsed.diagnostics[0].severity, crate::Severity::Warning);
 }
 
 #[test]

@@ -3,11 +3,11 @@
 //! `weekdays`, a word processor's `–`) recognised so that the hint is the whole fix, never a
 //! part of it (`Did you mean Mon?` for `Mon to Fri` would open on Mondays only).
 
-use crate::content::acts_file::yaml::{Kind, Node};
-use crate::content::diagnostic::Diagnostic;
-use crate::content::model::Pos;
-use crate::content::schedule::WEEKDAYS;
-use crate::content::suggest::did_you_mean;
+use crate::acts_file::yaml::{Kind, Node};
+use crate::diagnostic::Diagnostic;
+use crate::model::Pos;
+use crate::schedule::WEEKDAYS;
+use crate::suggest::did_you_mean;
 
 use super::{DAYS_USAGE, Reader, split_at_commas};
 

@@ -4,9 +4,9 @@
 
 use serde_json::{Value, json};
 
-use crate::content::config::PoseMessage;
-use crate::content::config_file::rosbridge::{EVENT_KEYS, KEYS};
-use crate::content::schema::{choice, duration, section};
+use crate::config::PoseMessage;
+use crate::config_file::rosbridge::{EVENT_KEYS, KEYS};
+use crate::schema::{choice, duration, section};
 
 const ROS_NAME: &str = r"^/?[A-Za-z][A-Za-z0-9_]*(/[A-Za-z][A-Za-z0-9_]*)*$";
 

@@ -4,9 +4,9 @@
 
 use serde_json::{Value, json};
 
-use crate::content::config_file::attract::ATTRACT_KEYS;
-use crate::content::config_file::schedule::{OPEN_KEYS, SCHEDULE_KEYS, SPECIAL_DAY_KEYS};
-use crate::content::schema::{duration, section, words};
+use crate::config_file::attract::ATTRACT_KEYS;
+use crate::config_file::schedule::{OPEN_KEYS, SCHEDULE_KEYS, SPECIAL_DAY_KEYS};
+use crate::schema::{duration, section, words};
 
 const DAY: &str = r"([Mm][Oo][Nn]|[Tt][Uu][Ee]|[Ww][Ee][Dd]|[Tt][Hh][Uu]|[Ff][Rr][Ii]|[Ss][Aa][Tt]|[Ss][Uu][Nn])[A-Za-z]*";
 const TIME: &str = r"\d{1,2}:\d\d";

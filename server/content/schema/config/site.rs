@@ -6,11 +6,11 @@
 use serde_json::{Value, json};
 
 use super::SITE_VERB_KEYS;
-use crate::content::config::Credential;
-use crate::content::config_file::captions::KEYS as CAPTION_KEYS;
-use crate::content::config_file::operator::{MAP_FORMATS, VISITOR_GROUPS};
-use crate::content::model::Verb;
-use crate::content::schema::{VARIANT_KEY_PATTERN, any_case, choice, section, words};
+use crate::config::Credential;
+use crate::config_file::captions::KEYS as CAPTION_KEYS;
+use crate::config_file::operator::{MAP_FORMATS, VISITOR_GROUPS};
+use crate::model::Verb;
+use crate::schema::{VARIANT_KEY_PATTERN, any_case, choice, section, words};
 
 pub(super) fn verbs() -> Value {
     let built_in: Vec<&str> = Verb::BUILT_IN.iter().map(Verb::as_str).collect();

@@ -4,7 +4,7 @@
 use std::sync::Arc;
 
 use super::*;
-use crate::content::config_file::parse_config;
+use crate::config_file::parse_config;
 
 /// The loader's key list at `path`, read from its unknown-key message (which lists every
 /// key it knows there): the loader's own inline lists, without copying them.

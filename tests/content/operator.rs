@@ -8,7 +8,7 @@ use std::fs;
 use std::path::Path;
 
 use common::check::{assert_plain, bundle, check, groups, loaded, only, places, yaml};
-use docent::content::config::Camera;
+use docent_content::config::Camera;
 
 #[test]
 fn groups_and_keys_reach_the_acts() {
@@ -162,7 +162,7 @@ fn png_size(path: &Path) -> (u32, u32) {
 
 #[test]
 fn the_museum_tour_gives_the_console_a_map_keys_and_situations() {
-    let root = Path::new(env!("CARGO_MANIFEST_DIR")).join("dialogs/museum-tour");
+    let root = common::repo().join("dialogs/museum-tour");
     let bundle = loaded(check(&root));
     let operator = &bundle.config.operator;
     assert_eq!(operator.map.as_deref(), Some("pages/images/map.png"));

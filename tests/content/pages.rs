@@ -4,7 +4,7 @@
 use crate::common;
 
 use common::check::{bundle, check, loaded, only, places, yaml};
-use docent::content::Severity;
+use docent_content::Severity;
 
 const ACTS: &str = "- Label: WELCOME\n  Text: Hello\n- Label: MAP\n  Text: The map\n\
                     - Label: SLIDE\n  Text: Next\n- Label: SECRET\n  Text: Psst\n";
@@ -21,7 +21,7 @@ fn write_bytes(dir: &tempfile::TempDir, files: &[(&str, &[u8])]) {
     }
 }
 
-fn page_report(page: &str) -> docent::content::LoadReport {
+fn page_report(page: &str) -> docent_content::LoadReport {
     let dir = bundle(&[("acts.yaml", ACTS), ("pages/start.html", page)]);
     check(dir.path())
 }

@@ -6,7 +6,7 @@ use crate::common;
 use std::fs;
 
 use common::check::{bundle, check, only, places, yaml};
-use docent::content::{BundleArea, PathError, Severity, resolve_in_bundle};
+use docent_content::{BundleArea, PathError, Severity, resolve_in_bundle};
 
 #[test]
 fn file_arguments_are_checked_through_the_bundle_gate() {

@@ -5,7 +5,7 @@
 use crate::common;
 
 use common::check::{assert_plain, bundle, check, groups, loaded, places, yaml};
-use docent::content::config::Credential;
+use docent_content::config::Credential;
 
 const BOUNDS: &str = "drive: { bounds: { min_x: 0, min_y: 0, max_x: 20, max_y: 12 } }";
 

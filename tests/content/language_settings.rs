@@ -6,7 +6,7 @@ use crate::common;
 
 use common::check::{bundle, check, loaded, places, yaml};
 use common::languages::{GERMAN_HOME, HOME, TWO};
-use docent::content::{Language, Severity};
+use docent_content::{Language, Severity};
 
 fn de() -> Language {
     Language::parse("de").expect("a tag")

@@ -4,14 +4,14 @@
 use crate::common;
 
 use std::fs;
-use std::path::{Path, PathBuf};
+use std::path::PathBuf;
 
 use common::check::loaded;
-use docent::content::config::{AccessSettings, AdapterKind, ArgRule};
-use docent::content::{Args, Bundle, CommandSpec, MediaKind, Pos, Severity, Verb, load_bundle};
+use docent_content::config::{AccessSettings, AdapterKind, ArgRule};
+use docent_content::{Args, Bundle, CommandSpec, MediaKind, Pos, Severity, Verb, load_bundle};
 
 fn repo(rel: &str) -> PathBuf {
-    Path::new(env!("CARGO_MANIFEST_DIR")).join(rel)
+    common::repo().join(rel)
 }
 
 /// Lines joined into a file, one element a line: line numbers in assertions are indexes + 1.

@@ -6,7 +6,7 @@
 use crate::common;
 
 use common::check::{assert_plain, bundle, check, check_all, loaded, places, yaml};
-use docent::content::Severity;
+use docent_content::Severity;
 
 fn place(code: &'static str, at: &str) -> (&'static str, String) {
     (code, at.to_owned())

@@ -1,8 +1,10 @@
-//! Content bundles: loading a bundle folder (acts files, `docent.yaml`, `pages/`, `media/`)
+//! `docent-content`: content bundles: loading a bundle folder (acts files, `docent.yaml`, `pages/`, `media/`)
 //! into a [`Bundle`], and reporting every problem found with its place.
 //!
-//! This is the only module that reads YAML (with `serde-saphyr`) and the only place that
-//! decides whether a path stays inside a bundle. Loading does no network I/O.
+//! This is the only crate that reads YAML (with `serde-saphyr`) and the only place that
+//! decides whether a path stays inside a bundle. It depends on nothing else in the workspace and
+//! has no async runtime, no HTTP and no MQTT in its dependencies (its manifest says so, and
+//! `tests/architecture_map.rs` holds it to that): loading does no network I/O.
 //!
 //! Map:
 //! - `args`: a command's argument as a typed value, parsed once at load.
@@ -31,6 +33,9 @@
 //! - `gather`: reading the acts files and pages on every core.
 //! - `load`: putting it together: `load_bundle`.
 //! - `schema`: JSON Schemas of the acts file and `docent.yaml`, for editors.
+//! - `consent`: what a session's visitors agreed to (`corpus: consent`, manifests, marks).
+//! - `names`: robot event names, robot ids and the broker's address, as `docent.yaml` writes
+//!   them and the runtime reads them.
 //! - `report`: the content report (acts, pages, media, problems) behind `/report`.
 
 pub mod args;
@@ -39,6 +44,7 @@ pub mod config;
 pub mod diagnostic;
 pub mod language;
 pub mod model;
+pub mod names;
 pub mod reaction;
 pub mod report;
 pub mod schedule;
@@ -49,6 +55,7 @@ mod commands;
 mod config_corpus;
 mod config_file;
 mod config_policy;
+mod consent;
 mod contexts;
 mod duration;
 mod encoding;
@@ -68,6 +75,7 @@ mod unused;
 mod voices;
 
 pub use args::{Args, MediaKind};
+pub use consent::Consent;
 pub use diagnostic::{Diagnostic, Severity};
 pub use duration::parse_duration;
 pub use fingerprint::{bundle_fingerprint, corpus_fingerprint};

@@ -5,10 +5,8 @@
 
 use crate::common;
 
-use std::path::Path;
-
 use common::check::{bundle, check, loaded, places, yaml};
-use docent::content::Severity;
+use docent_content::Severity;
 
 /// An ISO base media `ftyp` box: major brand, minor version 0, compatible brands.
 fn ftyp(major: &[u8; 4], compatible: &[&[u8; 4]]) -> Vec<u8> {
@@ -25,12 +23,12 @@ fn ftyp(major: &[u8; 4], compatible: &[&[u8; 4]]) -> Vec<u8> {
 }
 
 fn shipped(rel: &str) -> Vec<u8> {
-    let root = Path::new(env!("CARGO_MANIFEST_DIR")).join("dialogs");
+    let root = common::repo().join("dialogs");
     std::fs::read(root.join(rel)).expect("shipped sample")
 }
 
 /// A bundle projecting each file in turn (one `PROJECT` a line, from line 3), with the files.
-fn projecting(files: &[(&str, Vec<u8>)]) -> docent::content::LoadReport {
+fn projecting(files: &[(&str, Vec<u8>)]) -> docent_content::LoadReport {
     let mut lines = vec!["- Label: SHOW".to_owned(), "  Cmds:".to_owned()];
     lines.extend(
         files

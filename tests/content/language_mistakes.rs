@@ -8,7 +8,7 @@ use crate::common;
 
 use common::check::{bundle, check, places, yaml};
 use common::languages::{GERMAN_HOME, HOME, TWO};
-use docent::content::Severity;
+use docent_content::Severity;
 
 #[test]
 fn a_translation_with_fewer_texts_than_its_original_is_a_warning_at_its_key() {

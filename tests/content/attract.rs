@@ -7,7 +7,7 @@ use crate::common;
 use std::time::Duration;
 
 use common::check::{assert_plain, bundle, check, loaded, places, yaml};
-use docent::content::{Colour, render_diagnostics};
+use docent_content::{Colour, render_diagnostics};
 
 const ACTS: (&str, &str) = ("acts.yaml", "- Label: INVITE\n  Text: Come closer!\n");
 
