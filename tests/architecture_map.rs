@@ -275,34 +275,62 @@ fn dependency_closure(package: &str) -> Vec<String> {
     names
 }
 
-#[test]
-fn the_content_crate_has_no_async_runtime_http_mqtt_or_workspace_dependency() {
-    let closure = dependency_closure("docent-content");
+/// The async runtime, HTTP and MQTT: what the runtime crate alone may bring in.
+const RUNTIME_STACK: [&str; 7] = [
+    "tokio",
+    "axum",
+    "hyper",
+    "rumqttc",
+    "tungstenite",
+    "tower",
+    "mio",
+];
+
+/// What of the runtime stack, and which workspace crates beyond `allowed`, `package` depends
+/// on (directly or not).
+fn forbidden_dependencies(package: &str, allowed: &[&str]) -> Vec<String> {
+    let closure = dependency_closure(package);
     // The scan must see real dependencies, or this test would pass on nothing.
     assert!(
-        closure.iter().any(|n| n == "serde-saphyr"),
-        "docent-content's dependencies were not read: {closure:?}"
+        closure.iter().any(|n| n == "serde"),
+        "{package}'s dependencies were not read: {closure:?}"
     );
-    let forbidden: Vec<&String> = closure
-        .iter()
+    closure
+        .into_iter()
         .filter(|n| {
-            n.starts_with("docent")
-                || [
-                    "tokio",
-                    "axum",
-                    "hyper",
-                    "rumqttc",
-                    "tungstenite",
-                    "tower",
-                    "mio",
-                ]
-                .iter()
-                .any(|f| n.as_str() == *f || n.starts_with(&format!("{f}-")))
+            (n.starts_with("docent") && !allowed.contains(&n.as_str()))
+                || RUNTIME_STACK
+                    .iter()
+                    .any(|f| n == f || n.starts_with(&format!("{f}-")))
         })
-        .collect();
-    assert!(
-        forbidden.is_empty(),
-        "docent-content loads content with no network I/O and depends on nothing else in the \
-         workspace (ARCHITECTURE.md), but its dependencies now include {forbidden:?}"
-    );
+        .collect()
+}
+
+#[test]
+fn the_format_crates_have_no_async_runtime_and_depend_only_downward() {
+    // ARCHITECTURE.md: docent-content depends on nothing in the workspace, docent-protocol
+    // only on docent-content; neither loads with network I/O or an async runtime.
+    for (package, allowed) in [
+        ("docent-content", &[][..]),
+        ("docent-protocol", &["docent-content"][..]),
+    ] {
+        let forbidden = forbidden_dependencies(package, allowed);
+        assert!(
+            forbidden.is_empty(),
+            "{package} may depend on {allowed:?} in the workspace and on no async runtime, HTTP \
+             or MQTT (ARCHITECTURE.md), but its dependencies now include {forbidden:?}"
+        );
+    }
+}
+
+#[test]
+fn a_runtime_dependency_of_a_format_crate_would_be_reported() {
+    // The root crate has them all: the check must see them.
+    let found = forbidden_dependencies("docent", &["docent-content", "docent-protocol"]);
+    for expected in ["tokio", "axum", "rumqttc"] {
+        assert!(
+            found.iter().any(|f| f == expected),
+            "{expected} not seen in docent's dependencies: {found:?}"
+        );
+    }
 }

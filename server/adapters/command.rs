@@ -2,6 +2,7 @@
 //! Every outcome becomes an event; a reply dropped without an outcome reports a failure, so no
 //! command can vanish silently.
 
+use docent_protocol::frames::{CommandFrame, command_frame};
 use std::sync::Arc;
 
 use tokio::sync::oneshot;
@@ -25,6 +26,19 @@ pub struct Command {
 }
 
 impl Command {
+    /// The `command` frame that sends it to a screen or an adapter process.
+    pub fn frame(&self) -> String {
+        command_frame(&CommandFrame {
+            id: self.id,
+            trigger: self.act.trigger,
+            reference: self.act.reference.as_deref(),
+            label: &self.act.label,
+            verb: self.verb.as_str(),
+            arg: self.arg.as_deref(),
+            args: &self.args,
+        })
+    }
+
     /// `VERB argument`, for status displays and messages.
     pub fn describe(&self) -> String {
         match &self.arg {

@@ -23,6 +23,7 @@ mod adapter;
 mod adopt;
 mod books;
 
+pub use docent_protocol::ProjectorState;
 use std::sync::{Arc, Mutex, Weak};
 use std::time::Duration;
 
@@ -36,31 +37,14 @@ use crate::content::{Area, MediaKind};
 use crate::events::{ClientRole, EventKind, Hub};
 use crate::lifecycle::Lifecycle;
 use crate::sync::lock;
-use crate::wire::frames::cancel_frame;
 use crate::wire::outbox::Frame;
+use docent_protocol::frames::cancel_frame;
 
 pub use adapter::DisplayAdapter;
 use books::{Awaiting, Books, Showing};
 
 /// How many display frames a slow client may fall behind before it is resynchronised.
 const DISPLAY_CHANNEL_CAPACITY: usize = 256;
-
-/// What the projector is doing with what the display state names, as it reported.
-#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize)]
-#[serde(rename_all = "snake_case")]
-pub enum ProjectorState {
-    /// Nothing on screen.
-    #[default]
-    Black,
-    /// Sent; no projector has reported it shown yet.
-    Loading,
-    /// A picture, or highlight areas, painted.
-    Shown,
-    /// A film playing.
-    Playing,
-    /// A film ended, its last frame held on screen.
-    Held,
-}
 
 /// What the touchscreen and projector show.
 #[derive(Clone, Debug, Default, PartialEq, Serialize)]

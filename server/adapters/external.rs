@@ -23,8 +23,8 @@ use tokio_util::sync::CancellationToken;
 use crate::adapters::{Adapter, AdapterStatus, CancelScope, Command, Outcome, Reply};
 use crate::lifecycle::Lifecycle;
 use crate::sync::lock;
-use crate::wire::frames::{cancel_frame, command_frame};
 use crate::wire::outbox::{Frame, Outbox};
+use docent_protocol::frames::cancel_frame;
 
 /// How many settled command ids are remembered for late answers.
 const RECENTLY_SETTLED: usize = 1024;
@@ -300,7 +300,7 @@ impl Adapter for ExternalAdapters {
         }
         // On the books before the frame goes out, so that a fast answer, a stop or a
         // disconnect always finds it.
-        let frame = Frame::from(command_frame(&command));
+        let frame = Frame::from(command.frame());
         registry.pending.insert(
             id,
             Pending {

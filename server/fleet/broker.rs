@@ -6,9 +6,9 @@ use std::sync::{Arc, Mutex};
 use std::time::Duration;
 
 use rumqttc::{LastWill, MqttOptions, TlsConfiguration, Transport};
-use serde::Serialize;
 
 pub use docent_content::names::{BrokerUrl, robot_id_problem};
+pub use docent_protocol::fleet_link::{LinkState, LinkView};
 
 use super::link::{MAX_MESSAGE_BYTES, MAX_PACKET_BYTES};
 use crate::access::Secret;
@@ -69,30 +69,6 @@ pub fn topic(robot: &str, leaf: &str) -> String {
 pub fn split_topic(topic: &str) -> Option<(&str, &str)> {
     let rest = topic.strip_prefix(TOPIC_ROOT)?.strip_prefix('/')?;
     rest.split_once('/')
-}
-
-/// Whether the link to the broker is up, as operators are shown it.
-#[derive(Clone, Debug, Serialize, PartialEq, Eq)]
-pub struct LinkView {
-    /// The broker, without any login.
-    pub broker: String,
-    /// `connecting`, `up` or `down`.
-    pub state: LinkState,
-    /// Why it is down.
-    #[serde(skip_serializing_if = "Option::is_none")]
-    pub reason: Option<String>,
-}
-
-/// The state of a broker link.
-#[derive(Clone, Copy, Debug, Serialize, PartialEq, Eq)]
-#[serde(rename_all = "lowercase")]
-pub enum LinkState {
-    /// Not connected yet.
-    Connecting,
-    /// Connected (the broker acknowledged).
-    Up,
-    /// Lost or refused; reconnecting.
-    Down,
 }
 
 /// A link's state, shared between its task and whoever shows it.

@@ -1,6 +1,6 @@
 //! The websocket protocol's frames (JSON text, tagged by `type`). A compatibility boundary:
 //! documented in `docs/PROTOCOL.md`; change it only with a version bump. The frames adapters
-//! send (`command`, `cancel`) are built in `wire::frames`. This file holds what clients send;
+//! send (`command`, `cancel`) are built in `docent_protocol::frames`. This file holds what clients send;
 //! `to_client.rs` what Docent sends them.
 
 use serde::{Deserialize, Serialize};
@@ -9,8 +9,7 @@ use crate::adapters::{Display, Pose};
 use crate::events::{AttractEnd, AttractState, ClientRole, KioskCause};
 use crate::reload::ReloadView;
 
-/// The protocol version sent in `welcome`. 4: `command` frames carry the parsed `args`.
-pub const PROTOCOL_VERSION: u32 = 4;
+pub use docent_protocol::PROTOCOL_VERSION;
 
 /// Largest text frame Docent reads; larger ones are answered with an error.
 pub const MAX_FRAME_BYTES: usize = 16 * 1024;

@@ -13,7 +13,6 @@ use crate::adapters::display::{
 use crate::adapters::{Adapter, AdapterStatus, CancelScope, Command, Outcome, Reply};
 use crate::content::{Args, MediaKind, Verb};
 use crate::sync::lock;
-use crate::wire::frames::command_frame;
 use crate::wire::outbox::Frame;
 
 /// The built-in display adapter.
@@ -94,7 +93,7 @@ impl DisplayState {
             Screen::Projector => &self.projector,
         };
         // No client may be listening at this instant (one just left): its leaving fails it.
-        let _ = channel.send(Frame::from(command_frame(&command)));
+        let _ = channel.send(Frame::from(command.frame()));
         // Logged under the display lock, so the log's order of changes is the clients' order.
         self.hub.publish(display_changed(&current.display));
         drop(current);

@@ -332,7 +332,7 @@ mod tests {
     /// `code` | when |`, code in the second column) and websocket error table (`| `code` |
     /// cause |`).
     fn documented_codes() -> BTreeSet<String> {
-        let path = concat!(env!("CARGO_MANIFEST_DIR"), "/docs/PROTOCOL.md");
+        let path = concat!(env!("CARGO_MANIFEST_DIR"), "/../../docs/PROTOCOL.md");
         let doc = std::fs::read_to_string(path).expect("docs/PROTOCOL.md is readable");
         let mut codes = BTreeSet::new();
         let mut column = None;

@@ -1,5 +1,5 @@
 //! The corpus events of recordings: the kiosk device's microphone (and camera) recorded in the
-//! browser and uploaded into the session's `media/` folder (`crate::recording`). Their own
+//! browser and uploaded into the session's `media/` folder (the runtime's `recording`). Their own
 //! enum, carried by [`super::EventKind::Recording`] and serialized with its own `type` tag, so
 //! that the format of these four lines is read in one place. Documented in `docs/CORPUS.md`,
 //! "Recording".

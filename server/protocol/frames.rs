@@ -1,11 +1,10 @@
 //! The server→client frames adapters send: `command` (to a screen or an external adapter
 //! process) and `cancel`. Part of the websocket protocol, a compatibility boundary documented
-//! in `docs/PROTOCOL.md`; the other frames are built in `ws::protocol`.
+//! in `docs/PROTOCOL.md`; the other frames are built in the runtime's `ws::protocol`.
 
 use serde::Serialize;
 
-use crate::adapters::Command;
-use crate::content::Args;
+use docent_content::Args;
 
 #[derive(Serialize)]
 #[serde(tag = "type", rename_all = "lowercase")]
@@ -31,16 +30,35 @@ fn encode(frame: &AdapterFrame<'_>) -> String {
     serde_json::to_string(frame).unwrap_or_default()
 }
 
+/// What a `command` frame says of one command.
+#[derive(Clone, Copy, Debug)]
+pub struct CommandFrame<'a> {
+    /// The command's id, which its reports name.
+    pub id: u64,
+    /// The trigger that resolved its act.
+    pub trigger: u64,
+    /// The trigger's `ref`, as its sender gave it.
+    pub reference: Option<&'a str>,
+    /// The act's label.
+    pub label: &'a str,
+    /// The verb (`SAY`, `PROJECT`, a site's own).
+    pub verb: &'a str,
+    /// The argument as written.
+    pub arg: Option<&'a str>,
+    /// The argument, parsed.
+    pub args: &'a Args,
+}
+
 /// `command`: a command for an adapter or a display client.
-pub fn command_frame(c: &Command) -> String {
+pub fn command_frame(c: &CommandFrame<'_>) -> String {
     encode(&AdapterFrame::Command {
         id: c.id,
-        trigger: c.act.trigger,
-        reference: c.act.reference.as_deref(),
-        label: &c.act.label,
-        verb: c.verb.as_str(),
-        arg: c.arg.as_deref(),
-        args: &c.args,
+        trigger: c.trigger,
+        reference: c.reference,
+        label: c.label,
+        verb: c.verb,
+        arg: c.arg,
+        args: c.args,
     })
 }
 

@@ -6,7 +6,7 @@ use std::sync::OnceLock;
 use std::time::SystemTime;
 
 use super::EventKind;
-use crate::events::EVENT_FORMAT_VERSION;
+use crate::EVENT_FORMAT_VERSION;
 
 /// An event stamped by the hub.
 #[derive(Debug)]

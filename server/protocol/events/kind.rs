@@ -9,8 +9,8 @@ use serde::Serialize;
 use super::origin::{ActRef, ClientRole, Source};
 use super::recording::RecordingEvent;
 use super::session::{Consent, SessionEnd};
-use crate::content::{Args, Language};
-use crate::wire::ErrorCode;
+use crate::ErrorCode;
+use docent_content::{Args, Language};
 
 /// One thing that happened. Serialized with `type` as the tag.
 #[derive(Debug, Serialize)]
@@ -145,7 +145,7 @@ pub enum EventKind {
         /// The `HIGHLIGHT` areas lit on the projector, as written; `None` when cleared.
         highlight: Option<String>,
         /// What the projector reported about `projector` or `highlight`.
-        projector_state: crate::adapters::ProjectorState,
+        projector_state: crate::ProjectorState,
     },
     /// A browser asked for a page that is not in the bundle (a broken link or `DISPLAY_PAGE`);
     /// it was shown the friendly "not available" page.
@@ -413,7 +413,7 @@ pub enum EventKind {
     #[serde(rename = "bundle.refused")]
     BundleRefused {
         /// Every problem found, errors and warnings, as `docent check --format json` gives them.
-        diagnostics: Vec<crate::content::Diagnostic>,
+        diagnostics: Vec<docent_content::Diagnostic>,
         /// Files changed since the last bundle went live, relative to the bundle folder.
         changed: Vec<String>,
         /// Milliseconds the check took.
@@ -484,7 +484,7 @@ pub enum EventKind {
     },
     /// The robot's link to the fleet's MQTT broker came up or went down (`docs/FLEET.md`).
     #[serde(rename = "fleet.link")]
-    FleetLink(crate::fleet::LinkView),
+    FleetLink(crate::fleet_link::LinkView),
     /// The link to the robot's rosbridge server went up or down.
     #[serde(rename = "robot.link")]
     RobotLink(super::RobotLinkEvent),

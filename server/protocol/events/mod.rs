@@ -1,0 +1,26 @@
+//! Events: everything that happens (act triggered, command sent/started/done/failed, display
+//! changed, pose, context changed, stop, proposals, corpus marks, clients coming and going) as
+//! one [`EventKind`] enum, and the [`Event`] the runtime's hub stamps it into.
+//!
+//! The serialized form is a compatibility boundary: it is both the corpus log line and the
+//! `event` frame sent to operator and dialog-manager clients (see `docs/CORPUS.md`).
+
+mod attract;
+mod kind;
+mod origin;
+mod recording;
+mod robot;
+mod robot_link;
+mod session;
+mod stamped;
+mod touch;
+
+pub use attract::{AttractEnd, AttractState};
+pub use kind::EventKind;
+pub use origin::{ActRef, ClientRole, Source};
+pub use recording::{FailureCode, RecordingEvent, StopReason, Track};
+pub use robot::{ROBOT_EVENT_NAME_CHARS, RobotEvent, robot_event_name_problem};
+pub use robot_link::{LinkState, RobotLinkEvent};
+pub use session::{Consent, SessionEnd};
+pub use stamped::Event;
+pub use touch::{ELEMENT_CHARS, KioskCause, element_description};

@@ -1,0 +1,37 @@
+//! `docent-protocol`: every format Docent writes for another program to read, and only those:
+//! the events (each corpus line and each `event` frame, [`events`]), the codes of `error`
+//! frames and HTTP error bodies ([`ErrorCode`]), the frames adapters are sent
+//! ([`frames`]), what the projector and a fleet link report, and the versions of both formats.
+//! A compatibility boundary: change a shape only with a version bump (`docs/PROTOCOL.md`,
+//! `docs/CORPUS.md`).
+//!
+//! Depends on `docent-content` (an event carries a command's parsed `Args`, a `Language`, a
+//! reload's `Diagnostic`s) and on no async runtime: the corpus reads these types without one.
+//!
+//! Map:
+//! - `events/`: [`events::EventKind`] and its parts, one file per family (`origin.rs`: who
+//!   triggered; `session.rs`: why a session ended; `recording.rs`; `robot.rs`;
+//!   `robot_link.rs`; `touch.rs`; `attract.rs`), and `stamped.rs`, the [`events::Event`] line.
+//! - `error_code.rs`: [`ErrorCode`], every code an `error` frame or an HTTP error body carries.
+//! - `frames.rs`: the `command` and `cancel` frames adapters and screens are sent.
+//! - `projector.rs`: [`ProjectorState`]; `fleet_link.rs`: a robot's broker link as shown.
+
+pub mod events;
+pub mod fleet_link;
+pub mod frames;
+
+mod error_code;
+mod projector;
+
+pub use error_code::ErrorCode;
+pub use projector::ProjectorState;
+
+/// The protocol version sent in `welcome`. 4: `command` frames carry the parsed `args`.
+pub const PROTOCOL_VERSION: u32 = 4;
+
+/// Version of the event format, written into every corpus line as `v`. 2: `command.sent`
+/// carries the parsed `args`. 3: a session's events are in its own log, with `session_us`;
+/// `session.ended` says why, and its `client` is left out when the server ended it. 4: a
+/// visitor's touch is a `touch` event; a kiosk's `act.triggered` or page change may be its
+/// timer's, idle return's or script's doing, so readers no longer take them for touches.
+pub const EVENT_FORMAT_VERSION: u32 = 4;
