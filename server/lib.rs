@@ -9,7 +9,9 @@
 //! - [`dispatch`]: the dialog act dispatcher, the only path from a trigger to a device.
 //! - [`adapters`]: speech, display, drive and external (websocket) adapters, and the router.
 //! - [`events`]: the event types and the hub that stamps and fans them out.
-//! - [`corpus`]: the JSON Lines corpus writer, and `docent corpus` reading it back.
+//! - [`corpus`]: the `docent-corpus` crate (`server/corpus/`), re-exported: the JSON Lines
+//!   corpus writer, reading it back, recordings' files and every export.
+//! - [`cli`]: `docent corpus`, printed for people.
 //! - [`http`]: the route table and HTTP handlers; [`ws`]: the websocket protocol.
 //! - [`wire`]: what goes to a client, shared by [`ws`] and [`adapters`]: the bounded outbox,
 //!   the frames adapters send and [`wire::ErrorCode`].
@@ -22,13 +24,13 @@
 //! - [`reload`]: live reload: watching the bundle folder, swapping in a good save, refusing a
 //!   broken one.
 //! - [`serve`]: wiring it together and running with graceful shutdown.
-//! - [`spreadsheet`]: CSV cells a spreadsheet would run as formulas, neutralised in every CSV.
 //! - [`state`], [`lifecycle`], [`sync`]: shared handles and small helpers.
 
 pub mod access;
 pub mod adapters;
 pub use docent_content as content;
-pub mod corpus;
+pub mod cli;
+pub use docent_corpus as corpus;
 pub mod dispatch;
 pub mod events;
 pub mod fleet;
@@ -39,7 +41,6 @@ pub mod recording;
 pub mod reload;
 pub mod robot;
 pub mod serve;
-pub mod spreadsheet;
 pub mod state;
 pub mod sync;
 pub mod translations;

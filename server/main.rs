@@ -1,5 +1,5 @@
 //! The `docent` command: parses the command line, sets up logging and calls into the library.
-//! `docent corpus` (`corpus/cli.rs`) leaves room for `export` beside `list`, `show` and `purge`.
+//! `docent corpus` (`cli/corpus.rs`) leaves room for `export` beside `list`, `show` and `purge`.
 
 use std::io::{IsTerminal, Write};
 use std::net::SocketAddr;
@@ -10,11 +10,11 @@ use anyhow::Context;
 use clap::{Parser, Subcommand, ValueEnum};
 use docent::access::{AccessMode, AccessSetup, Origin, decide_access};
 use docent::adapters::{espeak_available, espeak_voices};
+use docent::cli::corpus as corpus_cli;
 use docent::content::config::AdapterKind;
 use docent::content::{
     Colour, Diagnostic, load_bundle, no_voice_diagnostics, render_diagnostics, schema,
 };
-use docent::corpus::cli as corpus_cli;
 use docent::fleet::cli as fleet_cli;
 use docent::http::ConnectionLimits;
 use docent::reload::ReloadOptions;

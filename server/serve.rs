@@ -269,7 +269,9 @@ pub async fn run(
     // After every client left, so that their leaving is in the session's log.
     visits.end(Source::Server, None, SessionEnd::ServerStopping);
     hub.close_corpus();
-    let logged = corpus.finish().await?;
+    let logged = tokio::task::spawn_blocking(move || corpus.finish())
+        .await
+        .map_err(|e| io::Error::other(format!("corpus writer: {e}")))??;
     tracing::info!(events = logged, "corpus log flushed");
     Ok(())
 }

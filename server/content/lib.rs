@@ -36,6 +36,8 @@
 //! - `consent`: what a session's visitors agreed to (`corpus: consent`, manifests, marks).
 //! - `names`: robot event names, robot ids and the broker's address, as `docent.yaml` writes
 //!   them and the runtime reads them.
+//! - `spreadsheet`: CSV cells a spreadsheet would run as formulas, neutralised in every CSV
+//!   Docent writes (translations, corpus exports).
 //! - `report`: the content report (acts, pages, media, problems) behind `/report`.
 
 pub mod args;
@@ -70,6 +72,7 @@ mod paths;
 mod render;
 pub mod size;
 mod speech;
+pub mod spreadsheet;
 mod suggest;
 mod unused;
 mod voices;

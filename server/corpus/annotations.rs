@@ -14,8 +14,8 @@ use std::sync::Mutex;
 
 use serde::{Deserialize, Serialize};
 
-use crate::content::config::Codebook;
-use crate::sync::lock;
+use crate::lock;
+use docent_content::config::Codebook;
 
 /// The annotations file in a session's folder.
 pub const ANNOTATIONS_FILE: &str = "annotations.jsonl";

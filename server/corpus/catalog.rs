@@ -6,9 +6,9 @@
 use std::io;
 use std::path::{Component, Path, PathBuf};
 
-use crate::content::closest;
-use crate::corpus::layout::{SESSIONS_DIR, day_logs};
-use crate::corpus::session_folder::SessionFolder;
+use crate::layout::{SESSIONS_DIR, day_logs};
+use crate::session_folder::SessionFolder;
+use docent_content::closest;
 
 /// Why `docent corpus` cannot do what it was asked; each says what to do about it.
 #[derive(Debug, thiserror::Error)]

@@ -7,7 +7,7 @@ use std::io::{self, Read, Seek, SeekFrom, Write};
 use std::path::{Path, PathBuf};
 use std::time::Duration;
 
-use crate::corpus::sync::Syncer;
+use crate::sync::Syncer;
 
 /// Where the writer's lines go: the file they belong in, opened on demand.
 pub(super) trait Sink {

@@ -9,8 +9,8 @@ use std::path::Path;
 
 use serde::{Deserialize, Serialize};
 
-use crate::corpus::layout::SESSION_MANIFEST;
-use crate::events::Consent;
+use crate::layout::SESSION_MANIFEST;
+use docent_protocol::events::Consent;
 
 /// The manifest's format version: fields change meaning only with a new one.
 pub const MANIFEST_FORMAT: u32 = 1;

@@ -9,10 +9,10 @@
 use std::io;
 use std::path::{Path, PathBuf};
 
-use crate::corpus::catalog::{CorpusError, FolderContents, find_session, folder_contents};
-use crate::corpus::layout::{SESSION_EVENTS, SESSIONS_DIR};
-use crate::corpus::log_lock::LogLock;
-use crate::corpus::session_folder::SessionFolder;
+use crate::catalog::{CorpusError, FolderContents, find_session, folder_contents};
+use crate::layout::{SESSION_EVENTS, SESSIONS_DIR};
+use crate::log_lock::LogLock;
+use crate::session_folder::SessionFolder;
 
 /// Why a purge did not (completely) happen.
 #[derive(Debug, thiserror::Error)]

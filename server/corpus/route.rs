@@ -7,10 +7,10 @@ use std::collections::HashSet;
 use std::path::PathBuf;
 use std::sync::{Arc, Mutex};
 
-use crate::content::DEFAULT_VARIANT;
-use crate::corpus::layout::{SESSION_EVENTS, new_day_log, new_session_dir, utc_date};
-use crate::corpus::manifest::{MANIFEST_FORMAT, MediaFile, SessionManifest, SessionMark};
-use crate::events::{Event, EventKind, RecordingEvent};
+use crate::layout::{SESSION_EVENTS, new_day_log, new_session_dir, utc_date};
+use crate::manifest::{MANIFEST_FORMAT, MediaFile, SessionManifest, SessionMark};
+use docent_content::DEFAULT_VARIANT;
+use docent_protocol::events::{Event, EventKind, RecordingEvent};
 
 /// Where one event goes.
 pub(super) struct Place {
@@ -32,14 +32,14 @@ pub struct SessionFolders(Arc<Mutex<Option<(u64, PathBuf)>>>);
 impl SessionFolders {
     /// The folder of the session that `session.started` number `seq` began, while it runs.
     pub fn folder(&self, seq: u64) -> Option<PathBuf> {
-        let open = crate::sync::lock(&self.0);
+        let open = crate::lock(&self.0);
         open.as_ref()
             .filter(|(started, _)| *started == seq)
             .map(|(_, dir)| dir.clone())
     }
 
     fn set(&self, open: Option<(u64, PathBuf)>) {
-        *crate::sync::lock(&self.0) = open;
+        *crate::lock(&self.0) = open;
     }
 }
 
@@ -246,7 +246,7 @@ mod tests {
     use std::time::{Duration, UNIX_EPOCH};
 
     use super::*;
-    use crate::events::{Consent, SessionEnd, Source};
+    use docent_protocol::events::{Consent, SessionEnd, Source};
 
     fn at(seq: u64, kind: EventKind) -> Event {
         let time = UNIX_EPOCH + Duration::from_secs(1_795_000_000 + seq);

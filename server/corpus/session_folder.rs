@@ -8,10 +8,10 @@ use std::fs::File;
 use std::io::{self, BufReader};
 use std::path::{Path, PathBuf};
 
-use crate::corpus::layout::{SESSION_EVENTS, SESSION_MANIFEST};
-use crate::corpus::log_lock::{LogLock, log_lock};
-use crate::corpus::log_scan::LogScan;
-use crate::corpus::manifest::SessionManifest;
+use crate::layout::{SESSION_EVENTS, SESSION_MANIFEST};
+use crate::log_lock::{LogLock, log_lock};
+use crate::log_scan::LogScan;
+use crate::manifest::SessionManifest;
 
 /// What a session is now, as `docent corpus list` says it.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -50,7 +50,7 @@ pub enum Damage {
     /// `events.jsonl` cannot be read.
     UnreadableLog(String),
     /// A line of `events.jsonl` (not an incomplete last one) is not an event.
-    BadLine(crate::corpus::log_scan::BadLine),
+    BadLine(crate::log_scan::BadLine),
     /// More bad lines than are listed one by one.
     MoreBadLines(u64),
     /// The session's folder is a symbolic link, which is not followed.
@@ -229,7 +229,7 @@ impl SessionFolder {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::corpus::manifest::{MANIFEST_FORMAT, SessionMark};
+    use crate::manifest::{MANIFEST_FORMAT, SessionMark};
 
     const NAME: &str = "2026-11-24T10-15-02Z";
 

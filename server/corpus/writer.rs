@@ -12,12 +12,52 @@ use std::path::PathBuf;
 use std::sync::{Arc, Mutex};
 use std::time::Duration;
 
-use crate::corpus::failures::Failures;
-use crate::corpus::files::{Files, Sink};
-use crate::corpus::manifest::SessionManifest;
-use crate::corpus::route::{Place, Route};
-use crate::events::{Committer, CorpusFeed, Event, Logged};
-use crate::sync::lock;
+use crate::failures::Failures;
+use crate::files::{Files, Sink};
+use crate::manifest::SessionManifest;
+use crate::route::{Place, Route};
+use docent_protocol::events::Event;
+
+use crate::lock;
+
+/// How far the corpus log is written, as the writer last reported it.
+#[derive(Clone, Debug, Default)]
+pub struct Logged {
+    /// Every event up to this `seq` has been handed to the operating system (`write(2)`
+    /// returned), so it survives a crash or `kill -9` of Docent.
+    pub through: u64,
+    /// Why the log cannot be written now (a full disk, an I/O error); `None` while it can.
+    pub failure: Option<Arc<str>>,
+    /// The writer has stopped: nothing published later will be written.
+    pub ended: bool,
+}
+
+/// The writer's end of whoever publishes events (the runtime's hub): where it takes events
+/// from, waits for them, and reports how far they are written.
+pub trait Feed: Send + Sync + 'static {
+    /// Makes the calling thread the writer that publishing wakes. Called once, from it.
+    fn attach_current_thread(&self);
+    /// Sleeps for up to `tick`, or until an acknowledgement asks for a write or the feed
+    /// closes.
+    fn wait(&self, tick: Duration);
+    /// Moves every pending event into `batch` (which should be empty), without waiting.
+    fn take_now(&self, batch: &mut Vec<Arc<Event>>);
+    /// Whether the writer is asked to stop.
+    fn closed(&self) -> bool;
+    /// Lets acknowledgements write the log themselves through `committer` (`None`: no more).
+    fn set_committer(&self, committer: Option<Arc<dyn Committer>>);
+    /// After a quiet spell: sleeps until the next event, an acknowledgement or a close.
+    fn sleep_until_published(&self);
+    /// Reports how far the log is written.
+    fn report(&self, logged: Logged);
+}
+
+/// Writes the pending events at once, on the caller's thread, if no one else is writing:
+/// an acknowledgement that does so spares the writer thread a wake-up and itself the wait.
+pub trait Committer: Send + Sync {
+    /// False when the log is busy or failing (then the writer thread is asked instead).
+    fn try_commit(&self) -> bool;
+}
 
 /// How often the writer takes the events no acknowledgement wrote (a command's outcome, a
 /// pose) while they come. Publishing does not wake it: a wake-up per event cost more CPU than
@@ -38,12 +78,12 @@ const QUIET_TICKS: u32 = 16;
 const MAX_UNWRITTEN: usize = 64 * 1024 * 1024;
 
 /// Runs until the hub closes the corpus; returns the number of events written.
-pub(super) fn run(route: Route, feed: CorpusFeed, sync_interval: Duration) -> io::Result<u64> {
+pub(super) fn run<F: Feed>(route: Route, feed: F, sync_interval: Duration) -> io::Result<u64> {
     run_into(Files::new(sync_interval), route, feed)
 }
 
 /// Runs with `files` for the files (a test's failing disk).
-fn run_into<S: Sink + Send + 'static>(files: S, route: Route, feed: CorpusFeed) -> io::Result<u64> {
+fn run_into<S: Sink + Send + 'static, F: Feed>(files: S, route: Route, feed: F) -> io::Result<u64> {
     feed.attach_current_thread();
     let shared = Arc::new(Shared {
         log: Mutex::new(Log {
@@ -77,12 +117,12 @@ fn run_into<S: Sink + Send + 'static>(files: S, route: Route, feed: CorpusFeed) 
 }
 
 /// The log, written by the writer thread or, to spare a wake-up, by an acknowledgement itself.
-struct Shared<S> {
+struct Shared<S, F> {
     log: Mutex<Log<S>>,
-    feed: CorpusFeed,
+    feed: F,
 }
 
-impl<S: Sink + Send> Committer for Shared<S> {
+impl<S: Sink + Send, F: Feed> Committer for Shared<S, F> {
     fn try_commit(&self) -> bool {
         let Ok(mut log) = self.log.try_lock() else {
             return false;
@@ -107,7 +147,7 @@ struct Log<S> {
 impl<S: Sink> Log<S> {
     /// Takes every pending event and writes it with what still waits; returns the number of
     /// events taken.
-    fn commit(&mut self, feed: &CorpusFeed) -> usize {
+    fn commit(&mut self, feed: &impl Feed) -> usize {
         feed.take_now(&mut self.batch);
         let took = self.batch.len();
         for event in self.batch.drain(..) {
@@ -131,7 +171,7 @@ impl<S: Sink> Log<S> {
     }
 
     /// The last write, the last sync, and the run's verdict.
-    fn finish(&mut self, feed: &CorpusFeed) -> io::Result<u64> {
+    fn finish(&mut self, feed: &impl Feed) -> io::Result<u64> {
         if !self.out.is_empty()
             && let Err(error) = self.out.write_to(&mut self.files)
         {
@@ -261,7 +301,7 @@ mod tests {
     use std::io::Write;
 
     use super::*;
-    use crate::events::{EventKind, Hub, Source};
+    use docent_protocol::events::{EventKind, Source};
 
     fn event(seq: u64) -> Event {
         let kind = EventKind::ContextChanged {
@@ -348,32 +388,46 @@ mod tests {
         assert_eq!((out.logged(None).through, out.lines), (2, 2));
     }
 
-    #[tokio::test]
-    async fn a_full_disk_refuses_acknowledgements_and_ends_the_run_with_an_error() {
+    /// A feed of the events given, recording every report, closed once they are taken.
+    #[derive(Default)]
+    struct TestFeed {
+        pending: Mutex<Vec<Arc<Event>>>,
+        reports: Mutex<Vec<Logged>>,
+    }
+
+    impl Feed for Arc<TestFeed> {
+        fn attach_current_thread(&self) {}
+        fn wait(&self, _: Duration) {}
+        fn take_now(&self, batch: &mut Vec<Arc<Event>>) {
+            std::mem::swap(&mut *lock(&self.pending), batch);
+        }
+        fn closed(&self) -> bool {
+            lock(&self.pending).is_empty()
+        }
+        fn set_committer(&self, _: Option<Arc<dyn Committer>>) {}
+        fn sleep_until_published(&self) {}
+        fn report(&self, logged: Logged) {
+            lock(&self.reports).push(logged);
+        }
+    }
+
+    #[test]
+    fn a_full_disk_is_reported_and_ends_the_run_with_an_error() {
         let file = std::fs::File::options()
             .append(true)
             .open("/dev/full")
             .unwrap();
-        let (hub, feed) = Hub::new();
+        let feed = Arc::new(TestFeed::default());
+        lock(&feed.pending).push(Arc::new(event(1)));
         let corpus = tempfile::tempdir().unwrap().path().to_owned();
-        let writer = std::thread::spawn(move || run_into(FullDisk(file), Route::new(corpus), feed));
-        let e = hub.publish(EventKind::ContextChanged {
-            source: Source::Http,
-            context: "Text".into(),
-        });
-        let refused = hub.logged(e.seq).await.unwrap_err();
-        assert!(
-            refused.to_string().contains("No space left on device"),
-            "{refused}"
-        );
-        let failure = hub.log_failure().expect("triggers are refused");
-        assert!(
-            failure
-                .refusal()
-                .starts_with("not triggered: the corpus log cannot be written")
-        );
-        hub.close_corpus();
-        let end = writer.join().unwrap().unwrap_err();
+        let end = run_into(FullDisk(file), Route::new(corpus), Arc::clone(&feed)).unwrap_err();
         assert!(end.to_string().contains("corpus writes failed"), "{end}");
+        let reports = lock(&feed.reports);
+        let failure = reports
+            .iter()
+            .find_map(|r| r.failure.clone())
+            .expect("the failure is reported");
+        assert!(failure.contains("No space left on device"), "{failure}");
+        assert!(reports.iter().all(|r| r.through == 0), "nothing confirmed");
     }
 }

@@ -16,6 +16,7 @@ use tokio::sync::{broadcast, mpsc, watch};
 use crate::events::logged::check_logged;
 use crate::events::{Event, EventKind, LogUnwritable, Logged};
 use crate::sync::lock;
+use docent_corpus::{Committer, Feed};
 
 /// An acknowledgement that finds the log written by another one less than this time ago waits
 /// this long before it writes: under load one write then serves the acknowledgements of a whole
@@ -293,23 +294,16 @@ impl Inner {
     }
 }
 
-/// Writes the pending events at once, on the caller's thread, if no one else is writing:
-/// an acknowledgement that does so spares the writer thread a wake-up and itself the wait.
-pub trait Committer: Send + Sync {
-    /// False when the log is busy or failing (then the writer thread is asked instead).
-    fn try_commit(&self) -> bool;
-}
-
-impl CorpusFeed {
+impl Feed for CorpusFeed {
     /// Makes the calling thread the writer that publishes wake. Call once, from that thread.
-    pub fn attach_current_thread(&self) {
+    fn attach_current_thread(&self) {
         let _ = self.inner.writer.set(std::thread::current());
     }
 
     /// Sleeps for up to `tick`, or until an acknowledgement asks for a write or the hub closes.
     /// Publishing does not wake the writer (that would cost a wake-up per event on the hot
     /// path), so events nobody waits for are taken on the next tick.
-    pub fn wait(&self, tick: Duration) {
+    fn wait(&self, tick: Duration) {
         if !self.inner.wake_asked.load(Ordering::Acquire) {
             std::thread::park_timeout(tick);
         }
@@ -317,23 +311,23 @@ impl CorpusFeed {
     }
 
     /// Moves every pending event into `batch` (which should be empty), without waiting.
-    pub fn take_now(&self, batch: &mut Vec<Arc<Event>>) {
+    fn take_now(&self, batch: &mut Vec<Arc<Event>>) {
         std::mem::swap(&mut lock(&self.inner.queue).pending, batch);
     }
 
     /// Whether the hub asked the writer to stop.
-    pub fn closed(&self) -> bool {
+    fn closed(&self) -> bool {
         lock(&self.inner.queue).closed
     }
 
     /// Lets acknowledgements write the log themselves through `committer` (`None`: no more).
-    pub fn set_committer(&self, committer: Option<Arc<dyn Committer>>) {
+    fn set_committer(&self, committer: Option<Arc<dyn Committer>>) {
         *lock(&self.inner.committer) = committer;
     }
 
     /// After a quiet spell: sleeps until the next publish (which then wakes the writer, once),
     /// an acknowledgement or a close, so that an idle server's writer does not tick.
-    pub fn sleep_until_published(&self) {
+    fn sleep_until_published(&self) {
         loop {
             let mut queue = lock(&self.inner.queue);
             if !queue.pending.is_empty() || queue.closed {
@@ -350,7 +344,7 @@ impl CorpusFeed {
     }
 
     /// Reports how far the log is written.
-    pub fn report(&self, logged: Logged) {
+    fn report(&self, logged: Logged) {
         self.inner.logged.send_replace(logged);
     }
 }

@@ -1,21 +1,11 @@
-//! How far the corpus log is written ([`Logged`], which the corpus writer reports) and why an
+//! How far the corpus log is written ([`Logged`], which the corpus crate's writer reports) and why an
 //! acknowledgement cannot be given when the log cannot be written ([`LogUnwritable`]).
 
 use std::sync::Arc;
 
 use crate::wire::ErrorCode;
 
-/// How far the corpus log is written, as the corpus writer last reported it.
-#[derive(Clone, Debug, Default)]
-pub struct Logged {
-    /// Every event up to this `seq` has been handed to the operating system (`write(2)`
-    /// returned), so it survives a crash or `kill -9` of Docent.
-    pub through: u64,
-    /// Why the log cannot be written now (a full disk, an I/O error); `None` while it can.
-    pub failure: Option<Arc<str>>,
-    /// The writer has stopped: nothing published later will be written.
-    pub ended: bool,
-}
+pub use docent_corpus::Logged;
 
 /// Why an acknowledgement cannot be given: the event is not in the log.
 #[derive(Clone, Debug, PartialEq, Eq, thiserror::Error)]

@@ -5,8 +5,10 @@
 
 mod hub;
 mod logged;
+#[cfg(test)]
+mod writer_tests;
 
 pub use docent_protocol::EVENT_FORMAT_VERSION;
 pub use docent_protocol::events::*;
-pub use hub::{Committer, CorpusFeed, EVENT_CHANNEL_CAPACITY, HISTORY_LEN, Hub, Interest};
+pub use hub::{CorpusFeed, EVENT_CHANNEL_CAPACITY, HISTORY_LEN, Hub, Interest};
 pub use logged::{LogUnwritable, Logged};

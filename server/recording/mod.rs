@@ -11,20 +11,17 @@
 //!   closes the session's recordings and removes its media before the mark is answered;
 //!   `may_keep`, what every start and chunk asks.
 //! - `quota.rs`: `corpus: record_limits`, counted per chunk before it is stored.
-//! - `chunks.rs`: [`chunks::ChunkFile`], one file grown chunk by chunk, acknowledged only
-//!   once synced, cut back to what was acknowledged after a crash.
 //! - `upload.rs`: `PUT /api/recordings/{recording}/chunks/{seq}`, each recording's own
 //!   upload token as its Bearer credential.
 //! - `frames.rs`: the frames to the kiosk (`record`, `record-stop`, `clock`).
-//! - `recover.rs`: at start-up, recordings a crash left with unacknowledged bytes cut back,
-//!   and media a refused consent left behind removed.
+//!
+//! The files themselves (`ChunkFile`, one file grown chunk by chunk, acknowledged only once
+//! synced; the recovery at start-up) are the corpus crate's `chunks` and `recover`.
 
-pub mod chunks;
 mod consent;
 mod control;
 mod frames;
 mod quota;
-mod recover;
 mod upload;
 
 use std::collections::{BTreeMap, HashMap};
@@ -42,11 +39,11 @@ use crate::operator::Visits;
 use crate::state::ClientLinks;
 use crate::sync::lock;
 
-pub use chunks::ChunkFile;
+pub use crate::corpus::chunks::{self, ChunkFile};
+pub use crate::corpus::recover::{Cut, cut_unacknowledged, remove_unconsented};
 pub use frames::clock_frame;
 use quota::OverLimit as Over;
 pub use quota::{OverLimit, SessionQuota, available_bytes};
-pub use recover::{Cut, cut_unacknowledged, remove_unconsented};
 pub use upload::{MAX_CHUNK_BYTES, put_chunk};
 
 /// The folder of a session's recordings, inside its folder (the corpus layout's).

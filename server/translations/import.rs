@@ -11,8 +11,8 @@
 use std::collections::BTreeMap;
 
 use crate::content::language::LANGUAGE_USAGE;
+use crate::content::spreadsheet::formula_start;
 use crate::content::{Bundle, Language, Languages};
-use crate::spreadsheet::formula_start;
 
 use super::table::TextKey;
 use super::{Place, ReadTable};

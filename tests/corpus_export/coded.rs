@@ -106,7 +106,7 @@ impl Coded {
     pub fn csv_rows(&self) -> Vec<(u64, Value)> {
         (self.rows.iter())
             .map(|(start, end, code, tier)| {
-                let cell = |text: &str| docent::spreadsheet::neutralise(text).into_owned();
+                let cell = |text: &str| docent::content::spreadsheet::neutralise(text).into_owned();
                 let row = json!([
                     s(*start),
                     s(*end),

@@ -271,8 +271,8 @@ pub fn assert_reads_back(log: &[Value], coded: &Coded, read: &Value) -> Expected
     coded.assert_read(read);
 
     // The spreadsheet, through Python's csv module: a cell that starts like a formula has a
-    // `'` before it (`docent::spreadsheet`).
-    let cell = |text: &str| docent::spreadsheet::neutralise(text).into_owned();
+    // `'` before it (`docent::content::spreadsheet`).
+    let cell = |text: &str| docent::content::spreadsheet::neutralise(text).into_owned();
     let csv = &read["csv"];
     let header = "start_s end_s source act variant alternative text kind";
     assert_eq!(csv["header"], json!(header.split(' ').collect::<Vec<_>>()));

@@ -6,12 +6,12 @@
 //! UTF-8 without a byte-order mark, lines ended by CRLF, a field with a comma, a quote or a
 //! line break in double quotes with each `"` doubled. A cell that a spreadsheet would run as a
 //! formula (a kiosk's refused label `=HYPERLINK(...)`) is written with a `'` before it
-//! (`crate::spreadsheet`).
+//! (`docent_content::spreadsheet`).
 
-use crate::corpus::annotations::Annotation;
-use crate::corpus::export::textgrid::seconds;
-use crate::corpus::export::timeline::{Timeline, Touched};
-use crate::spreadsheet::neutralise;
+use crate::annotations::Annotation;
+use crate::export::textgrid::seconds;
+use crate::export::timeline::{Timeline, Touched};
+use docent_content::spreadsheet::neutralise;
 
 /// The header row.
 pub const HEADER: [&str; 8] = [
@@ -104,7 +104,7 @@ fn push_row<'a>(out: &mut String, fields: impl Iterator<Item = &'a str>) {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::corpus::export::timeline::{Outcome, Touch, Utterance};
+    use crate::export::timeline::{Outcome, Touch, Utterance};
 
     #[test]
     fn rows_are_quoted_as_rfc_4180_says_and_sorted_by_start() {

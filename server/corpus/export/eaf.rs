@@ -20,7 +20,7 @@ use std::io;
 use quick_xml::Writer;
 use quick_xml::events::{BytesDecl, BytesText, Event};
 
-use crate::corpus::export::tiers::{Annotation, CodedTier, MIN_INTERVAL_US, Point, Tiers};
+use crate::export::tiers::{Annotation, CodedTier, MIN_INTERVAL_US, Point, Tiers};
 use elements::{
     EVENT_TYPE, INSTANT_TYPE, LABEL_TYPE, UTTERANCE_TYPE, annotation, coded_codes, coded_entry,
     coded_type, coded_types, controlled_vocabulary, eaf_date, language_and_constraints,

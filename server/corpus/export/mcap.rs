@@ -24,10 +24,10 @@ use ::mcap::{Compression, McapError, WriteOptions};
 use serde::Serialize;
 use serde_json::Value;
 
-use crate::corpus::annotations::Annotation;
-use crate::corpus::export::timeline::Timeline;
-use crate::corpus::export::{ExportError, ExportWarning, SessionExport};
-use crate::corpus::layout::{SESSION_EVENTS, SESSION_MANIFEST};
+use crate::annotations::Annotation;
+use crate::export::timeline::Timeline;
+use crate::export::{ExportError, ExportWarning, SessionExport};
+use crate::layout::{SESSION_EVENTS, SESSION_MANIFEST};
 use events::{LogEvent, Projection};
 
 /// A channel of the export: its topic and the schema its messages follow.

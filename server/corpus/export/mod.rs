@@ -33,11 +33,11 @@ use std::str::FromStr;
 
 pub use error::{ExportError, ExportWarning, UnknownFormat};
 
-use crate::content::config::Codebook;
-use crate::content::load_bundle;
-use crate::corpus::annotations::{ANNOTATIONS_FILE, Annotation, read_annotations};
-use crate::corpus::layout::{SESSION_EVENTS, SESSION_MANIFEST};
-use crate::corpus::manifest::SessionManifest;
+use crate::annotations::{ANNOTATIONS_FILE, Annotation, read_annotations};
+use crate::layout::{SESSION_EVENTS, SESSION_MANIFEST};
+use crate::manifest::SessionManifest;
+use docent_content::config::Codebook;
+use docent_content::load_bundle;
 use tiers::Tiers;
 use timeline::{Timeline, TimelineReader};
 
@@ -169,7 +169,7 @@ impl SessionExport {
         // Consent is read here, once, for every format: without it no recording is copied,
         // linked or named, whatever files a crash or an older Docent left behind.
         if !manifest.media_allowed() {
-            let left = std::fs::read_dir(dir.join(crate::corpus::layout::MEDIA_DIR))
+            let left = std::fs::read_dir(dir.join(crate::layout::MEDIA_DIR))
                 .map_or(0, |entries| entries.count());
             warnings.push(ExportWarning::MediaWithheld {
                 consent: manifest.consent.clone(),

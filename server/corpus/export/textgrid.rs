@@ -8,7 +8,7 @@
 
 use std::fmt::Write;
 
-use crate::corpus::export::tiers::{Annotation, IntervalTier, PointTier, Tiers};
+use crate::export::tiers::{Annotation, IntervalTier, PointTier, Tiers};
 
 /// The TextGrid of `tiers`.
 pub fn write(tiers: &Tiers) -> Vec<u8> {
@@ -133,7 +133,7 @@ fn point_tier(out: &mut String, item: usize, tier: &PointTier, end: &str) {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::corpus::export::timeline::{Timeline, Touch, Touched, Utterance};
+    use crate::export::timeline::{Timeline, Touch, Touched, Utterance};
 
     #[test]
     fn seconds_are_exact_to_the_microsecond() {
@@ -153,7 +153,7 @@ mod tests {
             source: "kiosk".into(),
             variant: None,
             alternative: None,
-            outcome: crate::corpus::export::timeline::Outcome::Done,
+            outcome: crate::export::timeline::Outcome::Done,
         };
         let touch = Touch {
             at_us: 500_000,

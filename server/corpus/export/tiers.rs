@@ -10,9 +10,9 @@
 //! `situation-2`, ...) and its points (`situation-points`, ...), each with the tier's codes as
 //! its vocabulary.
 
-use crate::content::config::Codebook;
-use crate::corpus::annotations::Annotation as Coded;
-use crate::corpus::export::timeline::{CommandRun, Marked, Outcome, Timeline, Touched};
+use crate::annotations::Annotation as Coded;
+use crate::export::timeline::{CommandRun, Marked, Outcome, Timeline, Touched};
+use docent_content::config::Codebook;
 
 /// The shortest interval drawn, and the room a point takes: 1 ms, ELAN's time unit.
 pub const MIN_INTERVAL_US: u64 = 1_000;
@@ -319,7 +319,7 @@ fn spread<T>(items: impl Iterator<Item = T>, span: impl Fn(&T) -> (u64, u64)) ->
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::corpus::export::timeline::{CommandRun, Mark, Touch};
+    use crate::export::timeline::{CommandRun, Mark, Touch};
 
     fn run(start_us: u64, end_us: u64, verb: &str) -> CommandRun {
         let (arg, outcome) = (None, Outcome::Done);

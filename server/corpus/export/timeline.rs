@@ -6,9 +6,7 @@
 
 use std::collections::{BTreeMap, HashMap};
 
-use crate::corpus::export::log_line::{
-    CommandFields, EXPLICIT_TOUCHES, Event, KNOWN_FORMAT, LogLine,
-};
+use crate::export::log_line::{CommandFields, EXPLICIT_TOUCHES, Event, KNOWN_FORMAT, LogLine};
 
 mod parts;
 

@@ -5,7 +5,7 @@
 //! recording's `start_us`, so that sample 0 is session time 0 like every export's time 0 and
 //! the EAF needs no `TIME_ORIGIN`.
 //!
-//! Only the bytes the `.chunks` index acknowledges are read (`recording/chunks.rs`); a torn
+//! Only the bytes the `.chunks` index acknowledges are read (`chunks.rs`); a torn
 //! tail, an undecodable packet or a file that cannot be read at all becomes an
 //! [`ExportWarning`] naming the file, and the export goes on.
 
@@ -18,8 +18,8 @@ use percent_encoding::{AsciiSet, CONTROLS, utf8_percent_encode};
 use super::eaf::MediaLink;
 use super::webm_audio::{OpusTrack, SAMPLE_RATE};
 use super::{ExportError, ExportWarning};
-use crate::corpus::manifest::MediaFile;
-use crate::recording::chunks::index_path;
+use crate::chunks::index_path;
+use crate::manifest::MediaFile;
 
 /// One WAV copy written.
 pub struct WavCopy {

@@ -4,8 +4,8 @@
 
 use serde::Serialize;
 
-use crate::corpus::export::mcap::events::{LogEvent, LogLevel, Pose, Projection as Projected};
-use crate::corpus::export::timeline::{
+use crate::export::mcap::events::{LogEvent, LogLevel, Pose, Projection as Projected};
+use crate::export::timeline::{
     CommandRun, Mark as MarkEvent, Marked, Outcome, PageShown, Touch as TouchEvent, Touched,
     Utterance as Said,
 };
@@ -278,8 +278,8 @@ pub struct Annotation<'a> {
     annotator: Option<&'a str>,
 }
 
-impl<'a> From<&'a crate::corpus::annotations::Annotation> for Annotation<'a> {
-    fn from(a: &'a crate::corpus::annotations::Annotation) -> Self {
+impl<'a> From<&'a crate::annotations::Annotation> for Annotation<'a> {
+    fn from(a: &'a crate::annotations::Annotation) -> Self {
         Annotation {
             id: &a.id,
             tier: &a.tier,

@@ -5,13 +5,13 @@
 use std::io::Write;
 use std::path::Path;
 
+use crate::cli::corpus::CommandError;
+use crate::cli::units::{count, long_duration};
 use crate::corpus::annotations::{ANNOTATIONS_FILE, read_annotations};
 use crate::corpus::catalog::{find_session, folder_contents};
-use crate::corpus::cli::CommandError;
 use crate::corpus::layout::SESSION_EVENTS;
 use crate::corpus::log_lock::LogLock;
 use crate::corpus::session_folder::{SessionFolder, SessionState};
-use crate::corpus::units::{count, long_duration};
 
 /// `docent corpus show SESSION`: the manifest in words, the length, the events by type, the
 /// files, and whatever is wrong.

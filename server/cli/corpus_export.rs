@@ -9,8 +9,8 @@ use std::path::{Path, PathBuf};
 
 use indicatif::{ProgressBar, ProgressStyle};
 
+use crate::cli::corpus::CommandError;
 use crate::corpus::catalog::{Catalog, find_session};
-use crate::corpus::cli::CommandError;
 use crate::corpus::export::{EXPORTS_DIR, ExportError, ExportFormat, SessionExport};
 use crate::corpus::session_folder::SessionState;
 

@@ -7,11 +7,10 @@
 
 use std::path::{Path, PathBuf};
 
-use super::MEDIA_DIR;
-use super::chunks::{ChunkFile, index_path};
-use crate::corpus::layout::{SESSION_EVENTS, SESSIONS_DIR};
-use crate::corpus::log_lock::{LogLock, log_lock};
-use crate::corpus::manifest::SessionManifest;
+use crate::chunks::{ChunkFile, index_path};
+use crate::layout::{MEDIA_DIR, SESSION_EVENTS, SESSIONS_DIR};
+use crate::log_lock::{LogLock, log_lock};
+use crate::manifest::SessionManifest;
 
 /// A recording cut back to what was acknowledged.
 #[derive(Debug, PartialEq, Eq)]
@@ -90,7 +89,7 @@ pub fn remove_unconsented(corpus: &Path) -> (Vec<PathBuf>, Vec<String>) {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::corpus::manifest::{MANIFEST_FORMAT, SessionMark};
+    use crate::manifest::{MANIFEST_FORMAT, SessionMark};
 
     fn session(corpus: &Path, name: &str, consent: &str) -> PathBuf {
         let dir = corpus.join(SESSIONS_DIR).join(name);

@@ -1,20 +1,20 @@
 //! `docent corpus`: its command line (`CorpusArgs`, one variant per command), its exit codes,
 //! and what `list` and `purge` print: the catalog (`catalog.rs`) and a purge (`purge.rs`) in
-//! words for a researcher; `show.rs` prints one session, `export_command.rs` runs an export.
+//! words for a researcher; `corpus_show.rs` prints one session, `corpus_export.rs` runs an export.
 //! Format and exit codes: docs/CORPUS.md, "Command line".
 
 use std::io::{self, Write};
 use std::path::{Path, PathBuf};
 use std::process::ExitCode;
 
+use crate::cli::corpus_export::{ExportRequest, export};
+use crate::cli::corpus_show::show;
+use crate::cli::units::{count, minute_and_second, short_duration, size};
 use crate::corpus::catalog::{Catalog, CorpusError};
 use crate::corpus::export::ExportFormat;
-use crate::corpus::export_command::{ExportRequest, export};
 use crate::corpus::log_lock::LogLock;
 use crate::corpus::purge::{PurgeError, purge as purge_session};
 use crate::corpus::session_folder::{SessionFolder, SessionState};
-use crate::corpus::show::show;
-use crate::corpus::units::{count, minute_and_second, short_duration, size};
 
 /// `docent corpus`'s arguments.
 #[derive(Debug, clap::Args)]
