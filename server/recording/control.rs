@@ -15,7 +15,10 @@ use tokio_util::sync::CancellationToken;
 
 use super::frames::{record_frame, record_stop_frame};
 use super::quota::SessionQuota;
-use super::{ChunkFile, Inner, KioskRecording, MEDIA_DIR, Recorded, Recording, Recordings};
+use super::{
+    ChunkFile, Inner, KioskRecording, KioskRecordingState, MEDIA_DIR, Recorded, Recording,
+    Recordings,
+};
 use crate::access::Secret;
 use crate::content::config::{CorpusSettings, RecordTracks};
 use crate::events::{ClientRole, Consent, Event, EventKind, FailureCode, StopReason, Track};
@@ -201,7 +204,7 @@ impl Recordings {
                 return;
             };
             *kiosk = KioskRecording {
-                state: "starting",
+                state: KioskRecordingState::Starting,
                 recording: Some(recording.id),
                 file: Some(recording.file.clone()),
                 ..off(client)
@@ -228,7 +231,7 @@ impl Recordings {
             }
             for (client, _) in &told {
                 if let Some(kiosk) = inner.kiosks.get_mut(client) {
-                    kiosk.state = "stopping";
+                    kiosk.state = KioskRecordingState::Stopping;
                 }
             }
             told
@@ -318,7 +321,7 @@ fn plan(
 fn off(client: u64) -> KioskRecording {
     KioskRecording {
         client,
-        state: "off",
+        state: KioskRecordingState::Off,
         recording: None,
         file: None,
         code: None,

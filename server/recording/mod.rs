@@ -54,9 +54,8 @@ pub use crate::corpus::layout::MEDIA_DIR;
 pub struct KioskRecording {
     /// The kiosk's connection.
     pub client: u64,
-    /// `off`, `starting` (asked, the browser has not begun), `recording`, `stopping`
-    /// (told to stop, its last chunk on its way) or `failed`.
-    pub state: &'static str,
+    /// What it is doing.
+    pub state: KioskRecordingState,
     /// The recording, when there is one.
     pub recording: Option<u64>,
     /// Its file in the session folder.
@@ -65,6 +64,22 @@ pub struct KioskRecording {
     pub code: Option<FailureCode>,
     /// For `failed`: what went wrong.
     pub message: Option<String>,
+}
+
+/// What a kiosk's recording is doing, written in `/api/state` in lower case.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize)]
+#[serde(rename_all = "lowercase")]
+pub enum KioskRecordingState {
+    /// Not recording.
+    Off,
+    /// Asked to record; the browser has not begun.
+    Starting,
+    /// Recording.
+    Recording,
+    /// Told to stop, its last chunk on its way.
+    Stopping,
+    /// It failed (`code` and `message` say how).
+    Failed,
 }
 
 /// The recording state for `/api/state`.
@@ -192,7 +207,7 @@ impl Recordings {
             return false;
         }
         if let Some(kiosk) = inner.kiosks.get_mut(&client) {
-            kiosk.state = "recording";
+            kiosk.state = KioskRecordingState::Recording;
         }
         // Published under the lock: a consent withdrawn meanwhile comes after it in the log.
         self.hub
@@ -215,7 +230,7 @@ impl Recordings {
         let mut inner = lock(&self.inner);
         let session = inner.session.as_ref().map(|s| s.number);
         if let Some(kiosk) = inner.kiosks.get_mut(&client) {
-            kiosk.state = "failed";
+            kiosk.state = KioskRecordingState::Failed;
             kiosk.code = Some(code);
             kiosk.message = Some(message.chars().take(500).collect());
         }
@@ -318,9 +333,9 @@ impl Recordings {
         };
         if let Some(kiosk) = inner.kiosks.get_mut(&recording.client)
             && kiosk.recording == Some(id)
-            && kiosk.state != "failed"
+            && kiosk.state != KioskRecordingState::Failed
         {
-            kiosk.state = "off";
+            kiosk.state = KioskRecordingState::Off;
         }
         // The file's lock is taken after the registry's, never the other way round.
         let file = lock(&recording.chunks).take();
