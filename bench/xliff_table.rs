@@ -1,6 +1,6 @@
 //! A generated XLIFF 1.2 table of translations, shaped as `docent translations export` writes
 //! one (a unit per text, each on its lines, with a note), of at least a given size: for
-//! `bench/xliff.rs` and the reader's linearity test (`server/translations/xliff_tests.rs`).
+//! `bench/xliff.rs` and the reader's linearity test (`server/content/translations/xliff_tests.rs`).
 
 /// A table of at least `min_bytes`, in German, and how many units it has.
 pub fn table(min_bytes: usize) -> (String, usize) {

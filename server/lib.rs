@@ -29,6 +29,7 @@
 pub mod access;
 pub mod adapters;
 pub use docent_content as content;
+pub use docent_content::translations;
 pub mod cli;
 pub use docent_corpus as corpus;
 pub mod dispatch;
@@ -43,6 +44,5 @@ pub mod robot;
 pub mod serve;
 pub mod state;
 pub mod sync;
-pub mod translations;
 pub mod wire;
 pub mod ws;

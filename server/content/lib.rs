@@ -38,6 +38,9 @@
 //!   them and the runtime reads them.
 //! - `spreadsheet`: CSV cells a spreadsheet would run as formulas, neutralised in every CSV
 //!   Docent writes (translations, corpus exports).
+//! - `translations`: the texts as a table for a translator (CSV or XLIFF) and a filled table
+//!   written back into the acts files (`docent translations`, whose command line is the
+//!   root crate's).
 //! - `report`: the content report (acts, pages, media, problems) behind `/report`.
 
 pub mod args;
@@ -74,6 +77,7 @@ pub mod size;
 mod speech;
 pub mod spreadsheet;
 mod suggest;
+pub mod translations;
 mod unused;
 mod voices;
 

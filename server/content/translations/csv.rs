@@ -8,14 +8,14 @@
 //! locales) is read too.
 //!
 //! A cell a spreadsheet would run as a formula (one that starts with `=`, `+`, `-`, `@`, a tab
-//! or a carriage return) is written with a `'` before it (`crate::content::spreadsheet`), and that `'`
+//! or a carriage return) is written with a `'` before it (`crate::spreadsheet`), and that `'`
 //! is taken away again when the table is read back. A translation that still starts with
 //! `=`, `@`, a tab or a carriage return is refused by the import (`import.rs`).
 
 use std::io::{self, Write};
 
-use crate::content::Language;
-use crate::content::spreadsheet::{neutralise, restore};
+use crate::Language;
+use crate::spreadsheet::{neutralise, restore};
 
 use super::table::Row;
 use super::{Entry, Place, ReadError, ReadTable, line_of};

@@ -18,7 +18,7 @@ use std::io::{self, Write};
 use quick_xml::events::{BytesDecl, BytesStart, BytesText, Event};
 use quick_xml::{Reader, Writer, XmlVersion};
 
-use crate::content::Language;
+use crate::Language;
 
 use super::table::Row;
 use super::{Entry, Place, ReadError, ReadTable, line_of};

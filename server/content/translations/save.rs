@@ -13,7 +13,7 @@ use std::fs::{self, OpenOptions};
 use std::io::{self, Write};
 use std::path::{Path, PathBuf};
 
-use crate::content::{ActsReplacements, Bundle, Diagnostic, Language, load_bundle_replacing};
+use crate::{ActsReplacements, Bundle, Diagnostic, Language, load_bundle_replacing};
 
 use super::import::{Change, language_name};
 use super::located::{WrittenText, told_by_row, written_text_of};
@@ -223,7 +223,7 @@ fn verify(
     language: &Language,
     changes: &[Change],
 ) -> Result<(), SaveError> {
-    let texts = |list: &[crate::content::Located<String>]| -> Vec<String> {
+    let texts = |list: &[crate::Located<String>]| -> Vec<String> {
         list.iter().map(|t| t.value.clone()).collect()
     };
     let mismatch = |key: String, meant: Vec<String>, read: Vec<String>| {

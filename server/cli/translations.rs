@@ -13,14 +13,32 @@ use std::process::ExitCode;
 
 use crate::content::{Bundle, Language, load_bundle};
 
-use super::csv::{read_csv, write_csv};
-use super::import::{language_name, plan, target_language};
-use super::save::{replace_file, save};
-use super::table::rows;
-use super::xliff::{read_xliff, unwritable, write_xliff};
-use super::{Format, ReadError};
+use crate::content::translations::csv::{read_csv, write_csv};
+use crate::content::translations::import::{language_name, plan, target_language};
+use crate::content::translations::save::{replace_file, save};
+use crate::content::translations::table::rows;
+use crate::content::translations::xliff::{read_xliff, unwritable, write_xliff};
+use crate::content::translations::{Format, ReadError};
 
 /// `docent translations`'s arguments.
+/// `--format`: the formats a table is written in, as the command line names them.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, clap::ValueEnum)]
+pub enum FormatArg {
+    /// Comma-separated values (RFC 4180, UTF-8 with a byte order mark), for spreadsheets.
+    Csv,
+    /// XLIFF 1.2, for CAT tools.
+    Xliff,
+}
+
+impl From<FormatArg> for Format {
+    fn from(arg: FormatArg) -> Format {
+        match arg {
+            FormatArg::Csv => Format::Csv,
+            FormatArg::Xliff => Format::Xliff,
+        }
+    }
+}
+
 #[derive(Debug, clap::Args)]
 pub struct TranslationsArgs {
     /// What to do.
@@ -41,7 +59,7 @@ pub enum TranslationsCommand {
         language: String,
         /// csv or xliff; by default the output file's extension says, else csv.
         #[arg(long, value_enum)]
-        format: Option<Format>,
+        format: Option<FormatArg>,
         /// The file to write (replaced atomically); by default the table goes to stdout.
         #[arg(long, value_name = "FILE")]
         output: Option<PathBuf>,
@@ -71,7 +89,13 @@ pub fn run(args: &TranslationsArgs) -> ExitCode {
             language,
             format,
             output,
-        } => export(bundle, language, *format, output.as_deref(), &mut out),
+        } => export(
+            bundle,
+            language,
+            format.map(Format::from),
+            output.as_deref(),
+            &mut out,
+        ),
         TranslationsCommand::Import {
             bundle,
             file,

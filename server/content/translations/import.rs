@@ -10,9 +10,9 @@
 
 use std::collections::BTreeMap;
 
-use crate::content::language::LANGUAGE_USAGE;
-use crate::content::spreadsheet::formula_start;
-use crate::content::{Bundle, Language, Languages};
+use crate::language::LANGUAGE_USAGE;
+use crate::spreadsheet::formula_start;
+use crate::{Bundle, Language, Languages};
 
 use super::table::TextKey;
 use super::{Place, ReadTable};

@@ -11,7 +11,7 @@
 
 use std::ops::Range;
 
-use crate::content::Pos;
+use crate::Pos;
 
 use super::quote::{Context, yaml_text};
 

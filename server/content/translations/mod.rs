@@ -12,7 +12,6 @@
 //! - `cli.rs`: the command line, what it prints and its exit codes (docs/AUTHORING.md,
 //!   "Working with a translator").
 
-pub mod cli;
 pub mod csv;
 pub mod import;
 pub mod located;
@@ -26,7 +25,7 @@ use std::fmt;
 use std::path::Path;
 
 /// The file formats a table is written in.
-#[derive(Clone, Copy, Debug, PartialEq, Eq, clap::ValueEnum)]
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum Format {
     /// Comma-separated values (RFC 4180, UTF-8 with a byte order mark), for spreadsheets.
     Csv,

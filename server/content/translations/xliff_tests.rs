@@ -2,7 +2,7 @@
 
 use super::*;
 
-#[path = "../../bench/xliff_table.rs"]
+#[path = "../../../bench/xliff_table.rs"]
 mod generated;
 
 fn en() -> Language {

@@ -4,7 +4,7 @@
 
 use std::fmt;
 
-use crate::content::{Bundle, Language};
+use crate::{Bundle, Language};
 
 /// The stable key of one text: `GREETING/TextChild/2`.
 #[derive(Clone, Debug, PartialEq, Eq, PartialOrd, Ord, Hash)]
