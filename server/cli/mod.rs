@@ -1,9 +1,9 @@
 //! The command line's subcommands that are more than a call: `docent corpus` (list, show,
 //! purge, export, printed for people), on top of the corpus crate.
 //!
-//! - `corpus.rs`: `docent corpus` and its arguments; `corpus_show.rs`: one session in full;
-//!   `corpus_export.rs`: exports with a progress bar; `units.rs`: counts, sizes and durations
-//!   as people read them.
+//! - `corpus`: `docent corpus` and its arguments; `corpus_show`: one session in full;
+//!   `corpus_export`: exports with a progress bar; `units`: counts, sizes and durations as
+//!   people read them.
 
 pub mod corpus;
 mod corpus_export;
