@@ -1,8 +1,8 @@
 //! ARCHITECTURE.md stays a true map of the code, at country level: it names every crate of the
 //! workspace and every top-level module of the runtime crate, and every code path it writes in
 //! backticks still exists; each crate root (the four `lib.rs` files and `server/cli/mod.rs`)
-//! opens with a `//!` map naming each module it declares; the format crates depend only
-//! downward and on no async runtime. A crate or module added without its place in the maps, or
+//! opens with a `//!` map naming each module it declares; the map stays short; the format
+//! crates depend only downward and on no async runtime. A crate or module added without its place in the maps, or
 //! a file renamed under the map's feet, fails here with the list of what to fix.
 //!
 //! Each check has a test that plants an omission and sees it reported, so none passes on
@@ -164,6 +164,42 @@ fn a_path_gone_from_the_repo_is_reported() {
             "`{name}` named in the map but absent from the repo was not reported: {gone:?}"
         );
     }
+}
+
+/// The most lines ARCHITECTURE.md may have: a map a newcomer reads in ten minutes. Detail
+/// belongs in each crate's `lib.rs` map and in docs/.
+const MAX_MAP_LINES: usize = 240;
+
+/// The number of lines of `map` when it has more than [`MAX_MAP_LINES`].
+fn too_long(map: &str) -> Option<usize> {
+    let lines = map.lines().count();
+    (lines > MAX_MAP_LINES).then_some(lines)
+}
+
+#[test]
+fn the_map_stays_short_enough_to_read_in_ten_minutes() {
+    let map = architecture();
+    assert!(map.lines().count() > 50, "ARCHITECTURE.md was not read");
+    if let Some(lines) = too_long(&map) {
+        panic!(
+            "ARCHITECTURE.md has {lines} lines, more than {MAX_MAP_LINES}: move detail into the \
+             crates' `lib.rs` maps or docs/ instead"
+        );
+    }
+}
+
+#[test]
+fn a_map_grown_too_long_is_reported() {
+    let grown = format!(
+        "{}{}",
+        architecture(),
+        "- one more clause\n".repeat(MAX_MAP_LINES)
+    );
+    assert!(
+        too_long(&grown).is_some(),
+        "a map of {} lines passed",
+        grown.lines().count()
+    );
 }
 
 /// The workspace's members as `Cargo.toml`'s `members` list writes them (`.`, `bench`,
