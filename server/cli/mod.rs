@@ -2,9 +2,9 @@
 //! purge, export, printed for people), on top of the corpus crate, and `docent translations`
 //! (export, import), on top of the content crate's `translations`.
 //!
-//! - `corpus.rs`: `docent corpus` and its arguments; `corpus_show.rs`: one session in full;
-//!   `corpus_export.rs`: exports with a progress bar; `units.rs`: counts, sizes and durations
-//!   as people read them; `translations.rs`: `docent translations`.
+//! - `corpus`: `docent corpus` and its arguments; `corpus_show`: one session in full;
+//!   `corpus_export`: exports with a progress bar; `units`: counts, sizes and durations as
+//!   people read them; `translations`: `docent translations`.
 
 pub mod corpus;
 mod corpus_export;

@@ -10,7 +10,8 @@
 //! - `args`: a command's argument as a typed value, parsed once at load.
 //! - `model`: the loaded data (acts, variants, commands, positions).
 //! - `config`: validated site settings; `config_file`: parsing `docent.yaml`; `config_policy`:
-//!   channel policies and source priorities.
+//!   channel policies and source priorities; `config_corpus`: the `corpus:` settings (what
+//!   starts a visitor session, its consent, what the kiosk records).
 //! - `language`: a language tag (`en`, `de`, `pt-br`) and a bundle's languages.
 //! - `contexts`: the context names a bundle uses, and misspelt variant keys.
 //! - `acts_file`: parsing one acts file, keeping every position.
@@ -19,12 +20,14 @@
 //! - `media`: what a media file really is (by its first bytes) and whether Chromium shows it.
 //! - `paths`: resolving a relative path inside the bundle (shared with the HTTP file routes).
 //! - `encoding`: files not saved as UTF-8, explained.
-//! - `duration`: `2s`, `500ms`, `1.5m`.
+//! - `duration`: `2s`, `500ms`, `1.5m`; `size`: amounts of storage, `4 GB`, `1.5 GiB`.
 //! - `attract`, `schedule`: the kiosk's attract loop and opening hours, parsed once.
 //! - `highlight`: the areas of a `HIGHLIGHT` argument.
 //! - `operator_check`: what the operator console uses (act keys, map, visitor groups),
 //!   checked against the whole bundle.
-//! - `render`: diagnostics drawn for people (source line, caret, hint).
+//! - `diagnostic`: a problem found, with its stable code, severity, place and message;
+//!   `render`: diagnostics drawn for people (source line, caret, hint).
+//! - `reaction`: the site's `reactions:` to robot events, and the grammar of their `if:`.
 //! - `speech`: what the robot will really say: emoji, addresses, markup, placeholders and
 //!   length in spoken texts.
 //! - `suggest`: "did you mean" for labels, keys, verbs and file names.
@@ -32,6 +35,7 @@
 //! - `voices`: the languages no installed espeak-ng voice speaks (start-up and `docent check`).
 //! - `gather`: reading the acts files and pages on every core.
 //! - `load`: putting it together: `load_bundle`.
+//! - `fingerprint`: the bundle's content as one SHA-256, for a session's manifest.
 //! - `schema`: JSON Schemas of the acts file and `docent.yaml`, for editors.
 //! - `consent`: what a session's visitors agreed to (`corpus: consent`, manifests, marks).
 //! - `names`: robot event names, robot ids and the broker's address, as `docent.yaml` writes

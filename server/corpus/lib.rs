@@ -5,11 +5,18 @@
 //! Writing. The corpus writer is the only code that writes a log. It runs on its own thread,
 //! off the dispatcher's hot path, and commits events in groups: it takes every event published
 //! since its last batch, writes their JSON lines with one `write(2)` per file they go to (a
-//! visitor session's own log, or the day log: `layout.rs`, `route.rs`), then reports how far
-//! the log is written ([`Logged`]), which releases the acknowledgements waiting on that batch.
-//! So an acknowledged event survives `kill -9`; a second thread syncs the file to disk at a
-//! bounded interval (`sync.rs`), which bounds what a power cut can take. Format and
-//! guarantees: `docs/CORPUS.md`.
+//! visitor session's own log, or the day log), then reports how far the log is written
+//! ([`Logged`]), which releases the acknowledgements waiting on that batch. So an acknowledged
+//! event survives `kill -9`; a second thread syncs the file to disk at a bounded interval,
+//! which bounds what a power cut can take. Format and guarantees: `docs/CORPUS.md`.
+//!
+//! - `writer`: the writer thread's loop, group commit, and the [`Feed`] it is fed through.
+//! - `route`: which file each event goes to, and the session manifest's changes it makes;
+//!   `layout`: the folder's names (`days/`, `sessions/`), shared with `docent corpus`.
+//! - `files`: the file being appended to, switched when the lines belong elsewhere; `sync`:
+//!   the thread that syncs it at the `--corpus-sync` interval.
+//! - `manifest`: a session's `session.json`, replaced whole after its lines are written.
+//! - `failures`: write failures (a full disk) counted, said and retried at a bounded pace.
 //!
 //! Reading. [`catalog`], [`session_folder`], [`log_lock`], [`log_scan`] and [`purge`] read a
 //! corpus (and remove a session); [`export`] reads a session's folder and writes its exports

@@ -12,9 +12,9 @@
 //! - `events/`: [`events::EventKind`] and its parts, one file per family (`origin.rs`: who
 //!   triggered; `session.rs`: why a session ended; `recording.rs`; `robot.rs`;
 //!   `robot_link.rs`; `touch.rs`; `attract.rs`), and `stamped.rs`, the [`events::Event`] line.
-//! - `error_code.rs`: [`ErrorCode`], every code an `error` frame or an HTTP error body carries.
-//! - `frames.rs`: the `command` and `cancel` frames adapters and screens are sent.
-//! - `projector.rs`: [`ProjectorState`]; `fleet_link.rs`: a robot's broker link as shown.
+//! - `error_code`: [`ErrorCode`], every code an `error` frame or an HTTP error body carries.
+//! - `frames`: the `command` and `cancel` frames adapters and screens are sent.
+//! - `projector`: [`ProjectorState`]; `fleet_link`: a robot's broker link as shown.
 
 pub mod events;
 pub mod fleet_link;
