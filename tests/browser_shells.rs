@@ -144,7 +144,7 @@ fn an_unknown_idle_act_is_reported_at_its_place() {
     let found: Vec<_> = report
         .diagnostics
         .iter()
-        .map(|d| (d.code, d.file.as_ref(), d.line, d.column))
+        .map(|d| (d.code.as_str(), d.file.as_ref(), d.line, d.column))
         .collect();
     // INVITE, meant as the idle act, is then triggered by nothing.
     assert_eq!(

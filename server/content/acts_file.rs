@@ -8,6 +8,7 @@
 
 use std::sync::Arc;
 
+use crate::DiagnosticCode;
 use crate::commands::WrittenCommand;
 use crate::config::{Languages, SpeechConfig};
 use crate::diagnostic::Diagnostic;
@@ -71,7 +72,12 @@ pub(crate) fn read_acts_file(
     speech: &SpeechConfig,
     languages: &Languages,
 ) -> ActsFile {
-    let parsed = yaml::parse(file, bytes, "yaml-syntax", Recovery::SkipBrokenItems);
+    let parsed = yaml::parse(
+        file,
+        bytes,
+        DiagnosticCode::YamlSyntax,
+        Recovery::SkipBrokenItems,
+    );
     let reading = Reading {
         source: texts::Source {
             text: std::str::from_utf8(bytes).unwrap_or_default(),
@@ -105,14 +111,14 @@ pub(crate) fn read_acts_file(
             let message = "This acts file has no acts. Add acts (a list of `- Label: ...` \
                            entries) or delete the file.";
             out.diagnostics.push(Diagnostic::warning(
-                "empty-file",
+                DiagnosticCode::EmptyFile,
                 &Pos::start_of(file.clone()),
                 message,
             ));
         }
         Kind::Null => {}
         _ => out.diagnostics.push(Diagnostic::error(
-            "not-a-list",
+            DiagnosticCode::NotAList,
             &root.pos,
             file_not_a_list_message(file, &root),
         )),
@@ -150,7 +156,11 @@ fn read_act(node: &Node, reading: &Reading<'_>, out: &mut Vec<Diagnostic>) -> Op
              Check the indentation: the act's keys belong under its `- `.",
             node.describe()
         );
-        out.push(Diagnostic::error("not-a-list", &node.pos, message));
+        out.push(Diagnostic::error(
+            DiagnosticCode::NotAList,
+            &node.pos,
+            message,
+        ));
         return None;
     };
     let mut act = WrittenAct {
@@ -166,7 +176,7 @@ fn read_act(node: &Node, reading: &Reading<'_>, out: &mut Vec<Diagnostic>) -> Op
     for (key, value) in entries {
         let Some(name) = key.as_text() else {
             out.push(Diagnostic::error(
-                "unknown-key",
+                DiagnosticCode::UnknownKey,
                 &key.pos,
                 format!(
                     "A key must be a word such as `Label`, `Text` or `Cmds`, but this one is {}.",
@@ -200,7 +210,11 @@ fn read_act(node: &Node, reading: &Reading<'_>, out: &mut Vec<Diagnostic>) -> Op
                 first.line,
                 default = reading.languages.default_language()
             );
-            out.push(Diagnostic::error("duplicate-key", &key.pos, message));
+            out.push(Diagnostic::error(
+                DiagnosticCode::DuplicateKey,
+                &key.pos,
+                message,
+            ));
             continue;
         }
         seen.push((name, &key.pos));
@@ -235,7 +249,7 @@ fn read_act(node: &Node, reading: &Reading<'_>, out: &mut Vec<Diagnostic>) -> Op
                 }
             }
             _ => out.push(Diagnostic::error(
-                "unknown-key",
+                DiagnosticCode::UnknownKey,
                 &key.pos,
                 unknown_key_message(name),
             )),
@@ -248,7 +262,11 @@ fn read_act(node: &Node, reading: &Reading<'_>, out: &mut Vec<Diagnostic>) -> Op
         if !seen.iter().any(|(k, _)| *k == "Label") {
             let message = "This act has no `Label`. Add a line `Label: SOME_NAME` so pages \
                            and people can trigger it.";
-            out.push(Diagnostic::error("missing-label", &node.pos, message));
+            out.push(Diagnostic::error(
+                DiagnosticCode::MissingLabel,
+                &node.pos,
+                message,
+            ));
         }
         return None;
     };
@@ -258,7 +276,11 @@ fn read_act(node: &Node, reading: &Reading<'_>, out: &mut Vec<Diagnostic>) -> Op
              Add `Text:` or `Cmds:`.",
             label.value
         );
-        out.push(Diagnostic::warning("empty-act", &node.pos, message));
+        out.push(Diagnostic::warning(
+            DiagnosticCode::EmptyAct,
+            &node.pos,
+            message,
+        ));
     }
     // The paper: "Text is the default and has to exist for all dialog acts where text
     // utterance is desired"; without it the act is silent in every other context.
@@ -270,7 +292,11 @@ fn read_act(node: &Node, reading: &Reading<'_>, out: &mut Vec<Diagnostic>) -> Op
              Add a `Text:` list as the default.",
             label.value, first.name
         );
-        out.push(Diagnostic::warning("no-default-text", &first.pos, message));
+        out.push(Diagnostic::warning(
+            DiagnosticCode::NoDefaultText,
+            &first.pos,
+            message,
+        ));
     }
     Some(act)
 }

@@ -5,6 +5,7 @@
 
 use std::sync::Arc;
 
+use crate::DiagnosticCode;
 use crate::acts_file::yaml::{self, Kind, Node, Recovery};
 use crate::config::{AdapterKind, SiteConfig};
 use crate::diagnostic::Diagnostic;
@@ -87,7 +88,7 @@ const TIMEOUT_USAGE: &str = "`timeout` is a length of time with its unit, e.g. `
 
 /// Parses the content of `docent.yaml`.
 pub(crate) fn parse_config(file: &Arc<str>, bytes: &[u8]) -> ConfigFile {
-    let parsed = yaml::parse(file, bytes, "config-syntax", Recovery::None);
+    let parsed = yaml::parse(file, bytes, DiagnosticCode::ConfigSyntax, Recovery::None);
     let mut reader = Reader {
         diagnostics: parsed.diagnostics,
         screen_refs: attract::ScreenRefs::default(),
@@ -216,7 +217,7 @@ pub(crate) mod test_support {
         let file = parse(text);
         file.diagnostics
             .into_iter()
-            .map(|d| (d.code, d.line, d.column, d.message))
+            .map(|d| (d.code.as_str(), d.line, d.column, d.message))
             .collect()
     }
 }

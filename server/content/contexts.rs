@@ -6,6 +6,7 @@
 
 use std::collections::{BTreeMap, BTreeSet};
 
+use crate::DiagnosticCode;
 use crate::config::SiteConfig;
 use crate::diagnostic::Diagnostic;
 use crate::model::{Act, DEFAULT_VARIANT, Pos, Variant};
@@ -43,7 +44,11 @@ pub(crate) fn check_declared(config: &SiteConfig, variants: &[Variant], out: &mu
             variant.name,
             config.contexts.join(", ")
         );
-        out.push(Diagnostic::error("unknown-context", &variant.pos, message));
+        out.push(Diagnostic::error(
+            DiagnosticCode::UnknownContext,
+            &variant.pos,
+            message,
+        ));
     }
 }
 
@@ -84,7 +89,11 @@ pub(crate) fn check_undeclared(config: &SiteConfig, acts: &[Act], out: &mut Vec<
             None => continue,
         };
         for pos in places {
-            out.push(Diagnostic::warning("context-typo", pos, message.clone()));
+            out.push(Diagnostic::warning(
+                DiagnosticCode::ContextTypo,
+                pos,
+                message.clone(),
+            ));
         }
     }
 }

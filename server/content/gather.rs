@@ -12,6 +12,7 @@ use std::path::Path;
 use std::sync::Arc;
 use std::sync::atomic::{AtomicUsize, Ordering};
 
+use crate::DiagnosticCode;
 use crate::acts_file::{WrittenAct, read_acts_file, yaml::MAX_FILE_BYTES};
 use crate::commands::CommandChecker;
 use crate::config::SiteConfig;
@@ -188,7 +189,7 @@ fn read_checked(
         let message = "This acts file is a link to a place outside the bundle folder. Copy the \
                        file into the bundle instead.";
         out.push(Diagnostic::error(
-            "path-outside-bundle",
+            DiagnosticCode::PathOutsideBundle,
             &Pos::start_of(file),
             message,
         ));
@@ -245,7 +246,7 @@ pub(super) fn read_limited(path: &Path, file: &Arc<str>) -> Result<Vec<u8>, Diag
         .map(|_| bytes)
         .map_err(|e| {
             Diagnostic::error(
-                "unreadable-file",
+                DiagnosticCode::UnreadableFile,
                 &Pos::start_of(file.clone()),
                 format!("Docent could not read this file ({e}). Check that it is readable."),
             )

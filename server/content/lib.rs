@@ -87,7 +87,7 @@ mod voices;
 
 pub use args::{Args, MediaKind};
 pub use consent::Consent;
-pub use diagnostic::{Diagnostic, Severity};
+pub use diagnostic::{Diagnostic, DiagnosticCode, Severity};
 pub use duration::parse_duration;
 pub use fingerprint::{bundle_fingerprint, corpus_fingerprint};
 pub use highlight::{Area, Shape};

@@ -6,6 +6,7 @@ use std::collections::{BTreeMap, BTreeSet, HashMap, HashSet};
 use std::path::Path;
 use std::sync::Arc;
 
+use crate::DiagnosticCode;
 use crate::commands::{CommandChecker, path_error_code};
 use crate::config::{Language, SiteConfig};
 use crate::config_file::attract::check_screen_refs;
@@ -59,7 +60,7 @@ fn load(root: &Path, replaced: &ActsReplacements) -> LoadReport {
                 root.display()
             );
             diagnostics.push(Diagnostic::error(
-                "not-a-bundle",
+                DiagnosticCode::NotABundle,
                 &Pos::start_of(root.display().to_string()),
                 message,
             ));
@@ -74,7 +75,7 @@ fn load(root: &Path, replaced: &ActsReplacements) -> LoadReport {
     // warnings that follow from the defaults would only mislead.
     let settings_unread = diagnostics
         .iter()
-        .any(|d| d.code == "config-syntax" || d.code == "file-encoding");
+        .any(|d| d.code == DiagnosticCode::ConfigSyntax || d.code == DiagnosticCode::FileEncoding);
     let names = acts_file_names(&root, &mut diagnostics);
     let mut config = settings.config;
     let gathered = gather(&root, &names, &config, replaced, &mut diagnostics);
@@ -174,7 +175,7 @@ fn acts_file_names(root: &Path, out: &mut Vec<Diagnostic>) -> Vec<String> {
         let message = "No acts files found. Acts are written in .yaml files at the top of the \
                        bundle folder, next to pages/ and media/ (for example acts.yaml).";
         out.push(Diagnostic::error(
-            "no-acts",
+            DiagnosticCode::NoActs,
             &Pos::start_of("acts.yaml"),
             message,
         ));
@@ -226,7 +227,11 @@ fn merge_acts(files: Vec<CheckedFile>, out: &mut Vec<Diagnostic>) -> Merged {
                      one of the two acts.",
                     label.value, first_pos.file, first_pos.line
                 );
-                out.push(Diagnostic::error("duplicate-label", &label.pos, message));
+                out.push(Diagnostic::error(
+                    DiagnosticCode::DuplicateLabel,
+                    &label.pos,
+                    message,
+                ));
                 again.push((first, label.pos));
                 continue;
             }
@@ -259,7 +264,11 @@ fn merge_acts(files: Vec<CheckedFile>, out: &mut Vec<Diagnostic>) -> Merged {
             act.label,
             places.join(" and ")
         );
-        out.push(Diagnostic::error("duplicate-label", &act.pos, message));
+        out.push(Diagnostic::error(
+            DiagnosticCode::DuplicateLabel,
+            &act.pos,
+            message,
+        ));
     }
     merged
 }
@@ -290,7 +299,7 @@ fn check_page_labels(
             "This page triggers the act `{value}`, but no act has that label.{hint} Fix the \
              `data-act` value or add the act."
         );
-        out.push(Diagnostic::error("unknown-act", pos, message));
+        out.push(Diagnostic::error(DiagnosticCode::UnknownAct, pos, message));
     }
     let labels: BTreeSet<String> = offered.iter().map(|r| r.value.clone()).collect();
     for Located { value, pos } in &triggered {
@@ -300,7 +309,7 @@ fn check_page_labels(
                 "This page script triggers the act `{value}`, but no act has that label.\
                  {hint} Fix the label in `docent.trigger(...)` or add the act."
             );
-            out.push(Diagnostic::error("unknown-act", pos, message));
+            out.push(Diagnostic::error(DiagnosticCode::UnknownAct, pos, message));
         } else if !labels.contains(value) && !config.kiosk_own_acts().any(|a| a == value) {
             let message = format!(
                 "This page script triggers the act `{value}`, but no page offers it with \
@@ -309,7 +318,11 @@ fn check_page_labels(
                  `<span data-act=\"{value}\" hidden></span>`), or trigger an act a page \
                  offers."
             );
-            out.push(Diagnostic::error("trigger-not-offered", pos, message));
+            out.push(Diagnostic::error(
+                DiagnosticCode::TriggerNotOffered,
+                pos,
+                message,
+            ));
         }
     }
     merged.page_acts = labels.into_iter().collect();
@@ -329,7 +342,7 @@ fn check_idle_act(merged: &Merged, idle_act: Option<&Located<String>>, out: &mut
         "The kiosk triggers the act `{value}` when it goes idle, but no act has that label.\
          {hint} Fix `idle_act` in docent.yaml or add the act."
     );
-    out.push(Diagnostic::error("unknown-act", pos, message));
+    out.push(Diagnostic::error(DiagnosticCode::UnknownAct, pos, message));
 }
 
 /// The acts `reactions:` trigger must exist.
@@ -340,7 +353,7 @@ fn check_reaction_acts(merged: &Merged, acts: &[Located<String>], out: &mut Vec<
             "This reaction triggers the act `{value}` when the robot notices its event, but \
              no act has that label.{hint} Fix `act:` in the reaction or add the act."
         );
-        out.push(Diagnostic::error("unknown-act", pos, message));
+        out.push(Diagnostic::error(DiagnosticCode::UnknownAct, pos, message));
     }
 }
 
@@ -359,7 +372,7 @@ fn check_home(
         None => Pos::start_of(format!("pages/{}", config.home)),
     };
     let code = match err {
-        PathError::NotFound | PathError::NotAFile => "no-home-page",
+        PathError::NotFound | PathError::NotAFile => DiagnosticCode::NoHomePage,
         other => path_error_code(&other),
     };
     let message = format!(

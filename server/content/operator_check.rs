@@ -4,6 +4,7 @@
 
 use std::collections::{BTreeMap, HashMap};
 
+use crate::DiagnosticCode;
 use crate::commands::{CommandChecker, path_error_code};
 use crate::config::SiteConfig;
 use crate::config_file::operator::{VISITOR_GROUPS, default_context};
@@ -35,7 +36,7 @@ impl KeyBindings {
             k = key.value
         );
         out.push(Diagnostic::error(
-            "duplicate-key-binding",
+            DiagnosticCode::DuplicateKeyBinding,
             &key.pos,
             message,
         ));
@@ -74,7 +75,11 @@ pub(crate) fn check_map(
                        (the corners of the area the picture shows), and docent.yaml sets none. \
                        Add them, e.g. `drive: { bounds: { min_x: 0, min_y: 0, max_x: 20, \
                        max_y: 12 } }`, or remove `map:`.";
-        out.push(Diagnostic::error("map-needs-bounds", pos, message));
+        out.push(Diagnostic::error(
+            DiagnosticCode::MapNeedsBounds,
+            pos,
+            message,
+        ));
     }
 }
 
@@ -97,7 +102,11 @@ pub(crate) fn visitor_groups(
                          write acts with `{value}` texts.",
                         contexts.join(", ")
                     );
-                    out.push(Diagnostic::error("unknown-context", pos, message));
+                    out.push(Diagnostic::error(
+                        DiagnosticCode::UnknownContext,
+                        pos,
+                        message,
+                    ));
                     continue;
                 }
                 value.as_str()
@@ -168,7 +177,7 @@ mod tests {
         );
         assert_eq!(out.len(), 1);
         assert_eq!(
-            (out[0].code, out[0].line, out[0].column),
+            (out[0].code.as_str(), out[0].line, out[0].column),
             ("unknown-context", 3, 12)
         );
         assert!(
@@ -190,7 +199,7 @@ mod tests {
         keys.bind("WAVE", &key(9), &mut out);
         assert_eq!(out.len(), 1);
         assert_eq!(
-            (out[0].code, out[0].line, out[0].column),
+            (out[0].code.as_str(), out[0].line, out[0].column),
             ("duplicate-key-binding", 9, 8)
         );
         assert!(

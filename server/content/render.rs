@@ -47,7 +47,7 @@ fn render_one(renderer: &Renderer, d: &Diagnostic, line: Option<&str>) -> String
     };
     let (what, hint) = split_message(&d.message);
     let place = format!("{}:{}:{}", d.file, d.line, d.column);
-    let title = level.primary_title(what).id(d.code);
+    let title = level.primary_title(what).id(d.code.as_str());
     let mut group = match line {
         Some(line) => {
             let line = line.trim_end_matches('\r');
@@ -154,7 +154,7 @@ mod tests {
     fn a_diagnostic_is_drawn_with_its_line_caret_and_hint() {
         let pos = Pos::new("acts.yaml", 4, 7);
         let d = Diagnostic::error(
-            "unknown-verb",
+            crate::DiagnosticCode::UnknownVerb,
             &pos,
             "`SAY2` is not a command Docent knows. Did you mean `SAY`?",
         );

@@ -6,6 +6,7 @@
 
 use std::collections::HashSet;
 
+use crate::DiagnosticCode;
 use crate::diagnostic::Diagnostic;
 use crate::model::Act;
 
@@ -28,6 +29,10 @@ pub(crate) fn check_unused<'a>(
              `Group:` so the operator finds it, or remove it.",
             act.label
         );
-        out.push(Diagnostic::warning("unused-act", &act.pos, message));
+        out.push(Diagnostic::warning(
+            DiagnosticCode::UnusedAct,
+            &act.pos,
+            message,
+        ));
     }
 }

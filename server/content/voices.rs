@@ -3,6 +3,7 @@
 //! warning, at the place the voice or the language was written). The installed voices are
 //! handed in (the caller runs `espeak-ng --voices`): content loading itself runs nothing.
 
+use crate::DiagnosticCode;
 use crate::config::{SiteConfig, SpeechConfig};
 use crate::diagnostic::Diagnostic;
 use crate::language::Language;
@@ -46,7 +47,7 @@ pub fn no_voice_diagnostics(config: &SiteConfig, installed: &[String]) -> Vec<Di
                  default voice. Name an installed voice in `speech: voices:` (e.g. \
                  `{language}: {language}`), or install the voice."
             );
-            Diagnostic::warning("no-voice", &place(language), message)
+            Diagnostic::warning(DiagnosticCode::NoVoice, &place(language), message)
         })
         .collect()
 }
@@ -62,7 +63,7 @@ mod tests {
         let installed = ["en".to_owned(), "de".to_owned()];
         let found = no_voice_diagnostics(&config, &installed);
         assert_eq!(found.len(), 1, "{found:?}");
-        assert_eq!(found[0].code, "no-voice");
+        assert_eq!(found[0].code.as_str(), "no-voice");
         assert_eq!((found[0].line, found[0].column), (3, 12));
         // Without `voices:`, the language's place in `languages:`.
         let config = parse("languages: [en, xq]\n").config;

@@ -63,7 +63,11 @@ mod tests {
     #[test]
     fn a_good_save_clears_a_refusal_and_a_trouble() {
         let status = ReloadStatus::default();
-        let problem = Diagnostic::error("unknown-verb", &Pos::new("acts.yaml", 3, 5), "x");
+        let problem = Diagnostic::error(
+            crate::content::DiagnosticCode::UnknownVerb,
+            &Pos::new("acts.yaml", 3, 5),
+            "x",
+        );
         status.refused(vec![problem.clone()]);
         status.trouble("gone".into());
         assert_eq!(status.view().refused, Some(vec![problem]));

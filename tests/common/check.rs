@@ -35,7 +35,9 @@ pub fn bundle(files: &[(&str, &str)]) -> tempfile::TempDir {
 /// tests trigger their acts from nothing. [`check_all`] keeps them (for the tests of that code).
 pub fn check(dir: &Path) -> LoadReport {
     let mut report = load_bundle(dir);
-    report.diagnostics.retain(|d| d.code != "unused-act");
+    report
+        .diagnostics
+        .retain(|d| d.code != docent_content::DiagnosticCode::UnusedAct);
     report
 }
 
@@ -55,7 +57,10 @@ pub fn places(report: &LoadReport) -> Vec<(&'static str, String)> {
                 d.line > 0 && d.column > 0,
                 "a diagnostic without a place: {d}"
             );
-            (d.code, format!("{}:{}:{}", d.file, d.line, d.column))
+            (
+                d.code.as_str(),
+                format!("{}:{}:{}", d.file, d.line, d.column),
+            )
         })
         .collect()
 }

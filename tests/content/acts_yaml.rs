@@ -9,7 +9,7 @@ use crate::common;
 use std::fs;
 
 use common::check::{assert_plain, bundle, check, only, places, yaml};
-use docent_content::Severity;
+use docent_content::{DiagnosticCode, Severity};
 
 #[test]
 fn yaml_errors_are_reworded_located_and_do_not_hide_other_acts_or_files() {
@@ -73,7 +73,7 @@ fn key_problems_are_reported_at_the_key_with_suggestions() {
     let found: Vec<(&str, u32, u32)> = report
         .diagnostics
         .iter()
-        .map(|d| (d.code, d.line, d.column))
+        .map(|d| (d.code.as_str(), d.line, d.column))
         .collect();
     assert_eq!(
         found,
@@ -248,52 +248,12 @@ fn an_act_with_variants_but_no_default_text_is_warned_about() {
     assert_eq!((d[0].line, d[0].column), (2, 3));
 }
 
-/// Kebab-case string literals in the content code outside its unit tests: the codes.
-fn codes_in_source(dir: &std::path::Path, found: &mut std::collections::BTreeSet<String>) {
-    for entry in fs::read_dir(dir).expect("source folder").flatten() {
-        let path = entry.path();
-        // `translations/` makes no diagnostics of its own: its kebab-case strings are XLIFF's
-        // names (`trans-unit`, `target-language`).
-        if path.is_dir() && !path.ends_with("translations") {
-            codes_in_source(&path, found);
-            continue;
-        }
-        if path.is_dir() {
-            continue;
-        }
-        // Unit tests that outgrew their module live in a file of their own (`tests.rs`,
-        // `*_tests.rs`), included under `#[cfg(test)]` by the module: not content code.
-        let name = path
-            .file_name()
-            .and_then(|n| n.to_str())
-            .unwrap_or_default();
-        if name == "tests.rs" || name.ends_with("_tests.rs") || !name.ends_with(".rs") {
-            continue;
-        }
-        let text = fs::read_to_string(&path).expect("source file");
-        let code = text.split("#[cfg(test)]").next().unwrap_or_default();
-        for literal in code.split('"').skip(1).step_by(2) {
-            let kebab = literal.contains('-')
-                && literal.starts_with(|c: char| c.is_ascii_lowercase())
-                && literal
-                    .split('-')
-                    .all(|w| !w.is_empty() && w.chars().all(|c| c.is_ascii_lowercase()));
-            // `data-act` is HTML, `kebab-case` a serde attribute: neither is a code.
-            if kebab && !["data-act", "kebab-case"].contains(&literal) {
-                found.insert(literal.to_owned());
-            }
-        }
-    }
-}
-
 #[test]
 fn every_diagnostic_code_is_in_the_authoring_guide() {
     let root = common::repo();
-    let mut codes = std::collections::BTreeSet::new();
-    codes_in_source(&root.join("server/content"), &mut codes);
-    assert!(codes.len() > 30, "{codes:?}");
+    let codes: Vec<&str> = DiagnosticCode::ALL.iter().map(|c| c.as_str()).collect();
     let guide = fs::read_to_string(root.join("docs/AUTHORING.md")).expect("guide");
-    let missing: Vec<&String> = codes
+    let missing: Vec<&&str> = codes
         .iter()
         .filter(|code| !guide.contains(&format!("| `{code}` |")))
         .collect();
@@ -301,12 +261,27 @@ fn every_diagnostic_code_is_in_the_authoring_guide() {
         missing.is_empty(),
         "not in the table of docs/AUTHORING.md: {missing:?}"
     );
+    // And the other way: a row of the table whose code Docent no longer has is stale.
+    let tabled: Vec<&str> = guide
+        .lines()
+        .filter_map(|l| l.strip_prefix("| `")?.split_once("` |").map(|(c, _)| c))
+        .filter(|c| c.contains('-') && c.chars().all(|ch| ch.is_ascii_lowercase() || ch == '-'))
+        .collect();
+    assert!(
+        tabled.len() >= codes.len(),
+        "the table's rows were not read: {tabled:?}"
+    );
+    let stale: Vec<&&str> = tabled.iter().filter(|c| !codes.contains(c)).collect();
+    assert!(
+        stale.is_empty(),
+        "in the table of docs/AUTHORING.md but not a code Docent has: {stale:?}"
+    );
     // Each code also has its own entry in "Problems, one by one" (its heading is the anchor
     // messages link to), with a broken example and its fix: at least two code blocks.
     let (_, one_by_one) = guide
         .split_once("\n## Problems, one by one\n")
         .expect("a \"Problems, one by one\" section in docs/AUTHORING.md");
-    let without_example: Vec<&String> = codes
+    let without_example: Vec<&&str> = codes
         .iter()
         .filter(|code| {
             let heading = format!("\n#### `{code}`\n");

@@ -52,7 +52,12 @@ fn the_papers_fig4_sample_loads_unchanged() {
     let warnings: Vec<(&str, String)> = report
         .diagnostics
         .iter()
-        .map(|d| (d.code, format!("{}:{}:{}", d.file, d.line, d.column)))
+        .map(|d| {
+            (
+                d.code.as_str(),
+                format!("{}:{}:{}", d.file, d.line, d.column),
+            )
+        })
         .collect();
     assert_eq!(
         warnings,

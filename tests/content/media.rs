@@ -77,7 +77,7 @@ fn unplayable_content_behind_a_playable_name_is_refused() {
     let found: Vec<(&str, u32, u32)> = report
         .diagnostics
         .iter()
-        .map(|d| (d.code, d.line, d.column))
+        .map(|d| (d.code.as_str(), d.line, d.column))
         .collect();
     assert_eq!(
         found,
@@ -127,7 +127,7 @@ fn formats_chromium_cannot_show_are_refused_whatever_their_name() {
         ("a.tiff", b"MM\0*\0\0\0\x08".to_vec()),
     ];
     let report = projecting(&samples);
-    let codes: Vec<&str> = report.diagnostics.iter().map(|d| d.code).collect();
+    let codes: Vec<&str> = report.diagnostics.iter().map(|d| d.code.as_str()).collect();
     assert_eq!(codes, ["media-unplayable"; 7], "{:?}", report.diagnostics);
     assert!(
         report
@@ -150,7 +150,7 @@ fn names_that_do_not_match_the_content_are_reported() {
     let found: Vec<(&str, Severity, u32)> = report
         .diagnostics
         .iter()
-        .map(|d| (d.code, d.severity, d.line))
+        .map(|d| (d.code.as_str(), d.severity, d.line))
         .collect();
     assert_eq!(
         found,

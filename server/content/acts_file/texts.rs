@@ -4,6 +4,7 @@
 //! quotes are not YAML's `-` and `"`. These checks compare what was written (the source bytes
 //! of the text) with what YAML made of it, and quote what the robot will really say.
 
+use crate::DiagnosticCode;
 use crate::diagnostic::Diagnostic;
 use crate::model::Pos;
 
@@ -73,7 +74,11 @@ fn dash_without_space(node: &Node, value: &str, out: &mut Vec<Diagnostic>) {
          list item, and the robot says: {}. Put a space after the dash: `- {rest}`.",
         quote(value)
     );
-    out.push(Diagnostic::error("dash-without-space", &node.pos, message));
+    out.push(Diagnostic::error(
+        DiagnosticCode::DashWithoutSpace,
+        &node.pos,
+        message,
+    ));
 }
 
 /// Whether text starting right after `before` is the body of a `|` or `>` block (the parser
@@ -112,9 +117,9 @@ fn cut_by_comment(
          `- \"{value} #{comment}\"`. If it is a note for people, put it on a line of its own."
     );
     out.push(if glued || !ends_sentence {
-        Diagnostic::error("text-cut-by-comment", &pos, message)
+        Diagnostic::error(DiagnosticCode::TextCutByComment, &pos, message)
     } else {
-        Diagnostic::warning("text-cut-by-comment", &pos, message)
+        Diagnostic::warning(DiagnosticCode::TextCutByComment, &pos, message)
     });
 }
 
@@ -155,7 +160,7 @@ fn joined_lines(
                 quote(value)
             );
             out.push(Diagnostic::error(
-                "joined-lines",
+                DiagnosticCode::JoinedLines,
                 &pos_at(source, node, at),
                 message,
             ));
@@ -173,7 +178,11 @@ fn joined_lines(
         node.pos.line,
         quote(value)
     );
-    out.push(Diagnostic::warning("joined-lines", &at, message));
+    out.push(Diagnostic::warning(
+        DiagnosticCode::JoinedLines,
+        &at,
+        message,
+    ));
 }
 
 /// `– Hello`: Word's en dash bullet is text to YAML.
@@ -191,7 +200,11 @@ fn fake_bullet(node: &Node, value: &str, out: &mut Vec<Diagnostic>) {
          other `- ` lines.",
         quote(value)
     );
-    out.push(Diagnostic::error("word-processor-dash", &node.pos, message));
+    out.push(Diagnostic::error(
+        DiagnosticCode::WordProcessorDash,
+        &node.pos,
+        message,
+    ));
 }
 
 /// “Hello”: typographic quotes are not YAML quotes; they stay in the text.
@@ -208,7 +221,11 @@ fn curly_quotes(node: &Node, value: &str, out: &mut Vec<Diagnostic>) {
          Replace them with straight quotes, or remove them.",
         quote(value)
     );
-    out.push(Diagnostic::warning("curly-quotes", &node.pos, message));
+    out.push(Diagnostic::warning(
+        DiagnosticCode::CurlyQuotes,
+        &node.pos,
+        message,
+    ));
 }
 
 /// The position of byte `at` of the file, counted from the node's own start.

@@ -5,6 +5,7 @@
 
 use std::collections::BTreeMap;
 
+use crate::DiagnosticCode;
 use crate::config::Languages;
 use crate::diagnostic::Diagnostic;
 use crate::language::{LANGUAGE_USAGE, Language};
@@ -38,7 +39,7 @@ pub(super) fn suffix(
              languages are {}.",
             languages.listed()
         );
-        out.push(Diagnostic::error("bad-language", pos, message));
+        out.push(Diagnostic::error(DiagnosticCode::BadLanguage, pos, message));
         return Suffix::Refused;
     };
     if language == *languages.default_language() {
@@ -52,7 +53,11 @@ pub(super) fn suffix(
          `{language}` to `languages:` in docent.yaml, or correct the language after the `@`.",
         languages.listed()
     );
-    out.push(Diagnostic::error("unknown-language", pos, message));
+    out.push(Diagnostic::error(
+        DiagnosticCode::UnknownLanguage,
+        pos,
+        message,
+    ));
     Suffix::Refused
 }
 
@@ -98,7 +103,7 @@ impl Pending {
                     languages.default_language()
                 );
                 out.push(Diagnostic::error(
-                    "translation-without-original",
+                    DiagnosticCode::TranslationWithoutOriginal,
                     &translation.pos,
                     message,
                 ));
@@ -121,7 +126,7 @@ impl Pending {
                     default = languages.default_language(),
                 );
                 out.push(Diagnostic::warning(
-                    "missing-translation",
+                    DiagnosticCode::MissingTranslation,
                     &variant.pos,
                     message,
                 ));
@@ -169,7 +174,7 @@ fn count_mismatch(
         texts(original),
     );
     out.push(Diagnostic::warning(
-        "translation-count",
+        DiagnosticCode::TranslationCount,
         &translation.pos,
         message,
     ));

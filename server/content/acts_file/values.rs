@@ -6,6 +6,7 @@ use crate::commands::WrittenCommand;
 use crate::diagnostic::Diagnostic;
 use crate::model::Located;
 
+use crate::DiagnosticCode;
 use crate::speech::{SpokenText, check_spoken};
 
 use super::Reading;
@@ -22,7 +23,7 @@ pub(super) fn read_label(value: &Node, out: &mut Vec<Diagnostic>) -> Option<Loca
         }
         Kind::Str { .. } | Kind::Null => {
             out.push(Diagnostic::error(
-                "empty-label",
+                DiagnosticCode::EmptyLabel,
                 &value.pos,
                 "The label is empty. Write a name after `Label:`, e.g. `Label: WELCOME`.",
             ));
@@ -33,7 +34,11 @@ pub(super) fn read_label(value: &Node, out: &mut Vec<Diagnostic>) -> Option<Loca
                 "A label must be a single name such as `WELCOME`, but this one is {}.",
                 value.describe()
             );
-            out.push(Diagnostic::error("bad-value", &value.pos, message));
+            out.push(Diagnostic::error(
+                DiagnosticCode::BadValue,
+                &value.pos,
+                message,
+            ));
             return None;
         }
     };
@@ -55,7 +60,11 @@ pub(super) fn read_group(value: &Node, out: &mut Vec<Diagnostic>) -> Option<Stri
             let message = "`Group` is empty. Write the name of the group the operator console \
                            shows this act in, e.g. `Group: Small talk`, or remove the line (the \
                            act is then shown under its file's name).";
-            out.push(Diagnostic::error("bad-value", &value.pos, message));
+            out.push(Diagnostic::error(
+                DiagnosticCode::BadValue,
+                &value.pos,
+                message,
+            ));
             None
         }
         _ => {
@@ -63,7 +72,11 @@ pub(super) fn read_group(value: &Node, out: &mut Vec<Diagnostic>) -> Option<Stri
                 "A group must be a single name such as `Small talk`, but this one is {}.",
                 value.describe()
             );
-            out.push(Diagnostic::error("bad-value", &value.pos, message));
+            out.push(Diagnostic::error(
+                DiagnosticCode::BadValue,
+                &value.pos,
+                message,
+            ));
             None
         }
     }
@@ -102,7 +115,11 @@ pub(super) fn read_key(value: &Node, out: &mut Vec<Diagnostic>) -> Option<Locate
             value.describe()
         ),
     };
-    out.push(Diagnostic::error("bad-key", &value.pos, message));
+    out.push(Diagnostic::error(
+        DiagnosticCode::BadKey,
+        &value.pos,
+        message,
+    ));
     None
 }
 
@@ -131,7 +148,7 @@ pub(super) fn read_alternatives(
     match &value.kind {
         Kind::Seq(items) if items.is_empty() => {
             out.push(Diagnostic::error(
-                "empty-text",
+                DiagnosticCode::EmptyText,
                 &value.pos,
                 format!("`{key}` has no text. Write at least one alternative, or remove `{key}`."),
             ));
@@ -146,7 +163,11 @@ pub(super) fn read_alternatives(
                 "`{key}` has no text. Write the text after `{key}:` or as a list below it, or \
                  remove `{key}`."
             );
-            out.push(Diagnostic::error("empty-text", &value.pos, message));
+            out.push(Diagnostic::error(
+                DiagnosticCode::EmptyText,
+                &value.pos,
+                message,
+            ));
             Vec::new()
         }
         Kind::Map(_) => {
@@ -155,7 +176,11 @@ pub(super) fn read_alternatives(
                  followed by a space (`: `). Put the whole text in quotes, e.g. \
                  `{key}: \"Note: this is splendid\"`."
             );
-            out.push(Diagnostic::error("bad-value", &value.pos, message));
+            out.push(Diagnostic::error(
+                DiagnosticCode::BadValue,
+                &value.pos,
+                message,
+            ));
             Vec::new()
         }
         _ => read_alternative(value, reading, out).into_iter().collect(),
@@ -177,7 +202,7 @@ fn read_alternative(
         }
         Kind::Str { .. } | Kind::Null => {
             out.push(Diagnostic::error(
-                "empty-text",
+                DiagnosticCode::EmptyText,
                 &item.pos,
                 "This alternative is empty. Write the text after the `- `, or remove the line.",
             ));
@@ -185,7 +210,7 @@ fn read_alternative(
         }
         Kind::Map(entries) => {
             out.push(Diagnostic::error(
-                "bad-value",
+                DiagnosticCode::BadValue,
                 &item.pos,
                 colon_message("text", entries),
             ));
@@ -194,7 +219,11 @@ fn read_alternative(
         Kind::Seq(_) => {
             let message = "This is a list inside the list of texts. Each alternative must be \
                            a single text; if it starts with `-` or `[`, put it in quotes.";
-            out.push(Diagnostic::error("bad-value", &item.pos, message));
+            out.push(Diagnostic::error(
+                DiagnosticCode::BadValue,
+                &item.pos,
+                message,
+            ));
             return None;
         }
     };
@@ -227,18 +256,30 @@ pub(super) fn read_commands(value: &Node, out: &mut Vec<Diagnostic>) -> Vec<Writ
             Kind::Null => {
                 let message = "This command is empty. Write a command such as `SAY Hello`, or \
                                remove the line.";
-                out.push(Diagnostic::error("bad-value", &item.pos, message));
+                out.push(Diagnostic::error(
+                    DiagnosticCode::BadValue,
+                    &item.pos,
+                    message,
+                ));
                 continue;
             }
             Kind::Map(entries) => {
                 let message = colon_message("command", entries);
-                out.push(Diagnostic::error("bad-value", &item.pos, message));
+                out.push(Diagnostic::error(
+                    DiagnosticCode::BadValue,
+                    &item.pos,
+                    message,
+                ));
                 continue;
             }
             Kind::Seq(_) => {
                 let message = "This is a list inside the list of commands. Write each command \
                                on its own line, e.g. `- SAY Hello`.";
-                out.push(Diagnostic::error("bad-value", &item.pos, message));
+                out.push(Diagnostic::error(
+                    DiagnosticCode::BadValue,
+                    &item.pos,
+                    message,
+                ));
                 continue;
             }
         };
@@ -273,5 +314,5 @@ fn unquoted_warning(node: &Node, text: &str) -> Diagnostic {
         "`{text}` without quotes is read by YAML as a yes/no value or a number. Docent keeps the \
          text as written, but other tools may not: write it in quotes, `\"{text}\"`."
     );
-    Diagnostic::warning("unquoted-scalar", &node.pos, message)
+    Diagnostic::warning(DiagnosticCode::UnquotedScalar, &node.pos, message)
 }

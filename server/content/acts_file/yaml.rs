@@ -14,6 +14,7 @@ use std::sync::Arc;
 
 use serde_saphyr::{DuplicateKeyPolicy, NonFiniteFloatPolicy, Options, Spanned};
 
+use crate::DiagnosticCode;
 use crate::diagnostic::Diagnostic;
 use crate::encoding::not_utf8;
 use crate::model::Pos;
@@ -107,7 +108,7 @@ pub(crate) enum Recovery {
 pub(crate) fn parse(
     file: &Arc<str>,
     bytes: &[u8],
-    syntax_code: &'static str,
+    syntax_code: DiagnosticCode,
     recovery: Recovery,
 ) -> YamlFile {
     let whole_file = Pos::start_of(file.clone());
@@ -122,14 +123,20 @@ pub(crate) fn parse(
              Split the acts into several files.",
             MAX_FILE_BYTES / (1024 * 1024)
         );
-        out.diagnostics
-            .push(Diagnostic::error("file-too-large", &whole_file, message));
+        out.diagnostics.push(Diagnostic::error(
+            DiagnosticCode::FileTooLarge,
+            &whole_file,
+            message,
+        ));
         return out;
     }
     if let Some(found) = not_utf8(bytes) {
         let pos = position_of_byte(file, bytes, found.at);
-        out.diagnostics
-            .push(Diagnostic::error("file-encoding", &pos, found.message));
+        out.diagnostics.push(Diagnostic::error(
+            DiagnosticCode::FileEncoding,
+            &pos,
+            found.message,
+        ));
         return out;
     }
     let source = std::str::from_utf8(bytes).unwrap_or_default();

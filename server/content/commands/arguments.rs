@@ -2,6 +2,7 @@
 //! the drive's bounds, highlight areas, lengths of time, and the site verbs' declared rules.
 //! Separate from `mod.rs`, which splits a command into verb and argument and parses it.
 
+use crate::DiagnosticCode;
 use crate::config::ArgRule;
 use crate::diagnostic::Diagnostic;
 use crate::duration::parse_duration;
@@ -64,7 +65,11 @@ impl CommandChecker<'_> {
             (Verb::Highlight, Some(areas)) => {
                 for problem in parse_highlight(areas).err().unwrap_or_default() {
                     let pos = offset_pos(cmd, arg_start + problem.offset);
-                    out.push(Diagnostic::error("bad-argument", &pos, problem.message));
+                    out.push(Diagnostic::error(
+                        DiagnosticCode::BadArgument,
+                        &pos,
+                        problem.message,
+                    ));
                 }
                 None
             }
@@ -99,7 +104,7 @@ impl CommandChecker<'_> {
             _ => None,
         };
         if let Some((pos, message)) = problem {
-            out.push(Diagnostic::error("bad-argument", pos, message));
+            out.push(Diagnostic::error(DiagnosticCode::BadArgument, pos, message));
         }
     }
 
@@ -118,7 +123,7 @@ impl CommandChecker<'_> {
                 offset_pos(cmd, arg_start)
             };
             out.push(Diagnostic::error(
-                "bad-argument",
+                DiagnosticCode::BadArgument,
                 &pos,
                 format!("Found {} value(s). {WAYPOINT_USAGE}", words.len()),
             ));
@@ -131,7 +136,7 @@ impl CommandChecker<'_> {
                 _ => {
                     let pos = offset_pos(cmd, offset);
                     out.push(Diagnostic::error(
-                        "bad-argument",
+                        DiagnosticCode::BadArgument,
                         &pos,
                         format!("`{word}` is not a number. {WAYPOINT_USAGE}"),
                     ));
@@ -148,7 +153,11 @@ impl CommandChecker<'_> {
                  to {}, y from {} to {} (set in docent.yaml under `drive: bounds`).",
                 bounds.min_x, bounds.max_x, bounds.min_y, bounds.max_y
             );
-            out.push(Diagnostic::error("waypoint-out-of-bounds", &pos, message));
+            out.push(Diagnostic::error(
+                DiagnosticCode::WaypointOutOfBounds,
+                &pos,
+                message,
+            ));
         }
     }
 }

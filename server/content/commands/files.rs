@@ -3,6 +3,7 @@
 
 use std::path::{Path, PathBuf};
 
+use crate::DiagnosticCode;
 use crate::diagnostic::Diagnostic;
 use crate::media::ShownBy;
 use crate::model::Pos;
@@ -106,10 +107,10 @@ impl CommandChecker<'_> {
 }
 
 /// The diagnostic code for a path refused by the gate.
-pub(crate) fn path_error_code(err: &PathError) -> &'static str {
+pub(crate) fn path_error_code(err: &PathError) -> DiagnosticCode {
     match err {
-        PathError::Outside => "path-outside-bundle",
-        PathError::Miscased { .. } => "miscased-file",
-        PathError::NotFound | PathError::NotAFile => "missing-file",
+        PathError::Outside => DiagnosticCode::PathOutsideBundle,
+        PathError::Miscased { .. } => DiagnosticCode::MiscasedFile,
+        PathError::NotFound | PathError::NotAFile => DiagnosticCode::MissingFile,
     }
 }

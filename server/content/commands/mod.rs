@@ -14,6 +14,7 @@ mod files;
 
 pub(crate) use files::path_error_code;
 
+use crate::DiagnosticCode;
 use crate::args::Args;
 use crate::config::SiteConfig;
 use crate::diagnostic::Diagnostic;
@@ -94,7 +95,7 @@ impl<'a> CommandChecker<'a> {
         let trimmed = cmd.text.trim();
         if trimmed.is_empty() {
             out.push(Diagnostic::error(
-                "bad-value",
+                DiagnosticCode::BadValue,
                 &cmd.pos,
                 "This command is empty. Write a command such as `SAY Hello`, or remove the line.",
             ));
@@ -107,7 +108,7 @@ impl<'a> CommandChecker<'a> {
         let arg = Some(rest.trim()).filter(|a| !a.is_empty());
         let Some(verb) = self.verb(word) else {
             out.push(Diagnostic::error(
-                "unknown-verb",
+                DiagnosticCode::UnknownVerb,
                 &cmd.pos,
                 self.unknown_verb_message(word),
             ));
@@ -125,7 +126,11 @@ impl<'a> CommandChecker<'a> {
                 "Docent accepted this command but could not read its argument. Please report \
                  this as a bug in Docent, with this line: `{trimmed}`."
             );
-            out.push(Diagnostic::error("bad-argument", &cmd.pos, message));
+            out.push(Diagnostic::error(
+                DiagnosticCode::BadArgument,
+                &cmd.pos,
+                message,
+            ));
             return None;
         };
         let spec = CommandSpec {

@@ -17,7 +17,10 @@ fn check(cmd: &WrittenCommand) -> (Option<CommandSpec>, Vec<(&'static str, u32)>
     let checker = CommandChecker::new(&root, &config);
     let mut out = Vec::new();
     let spec = checker.check(cmd, &mut out).map(|c| c.value);
-    (spec, out.iter().map(|d| (d.code, d.column)).collect())
+    (
+        spec,
+        out.iter().map(|d| (d.code.as_str(), d.column)).collect(),
+    )
 }
 
 #[test]

@@ -2,6 +2,7 @@
 //! A token is never repeated in a message (messages end up in logs and terminals); the
 //! environment variables named here take precedence over the file at serve time.
 
+use crate::DiagnosticCode;
 use crate::acts_file::yaml::{Kind, Node};
 use crate::config::{AccessSettings, Credential};
 use crate::diagnostic::Diagnostic;
@@ -21,8 +22,11 @@ impl Reader {
                 KEYS.join(", "),
                 node.describe()
             );
-            self.diagnostics
-                .push(Diagnostic::error("config-bad-value", &node.pos, message));
+            self.diagnostics.push(Diagnostic::error(
+                DiagnosticCode::ConfigBadValue,
+                &node.pos,
+                message,
+            ));
             return;
         }
         for (key, value) in self.entries(node, KEYS, "access") {
@@ -55,8 +59,11 @@ impl Reader {
                  {advice}",
                 node.describe()
             );
-            self.diagnostics
-                .push(Diagnostic::error("config-bad-value", &node.pos, message));
+            self.diagnostics.push(Diagnostic::error(
+                DiagnosticCode::ConfigBadValue,
+                &node.pos,
+                message,
+            ));
             return None;
         };
         match Credential::new(text) {
@@ -64,8 +71,11 @@ impl Reader {
             Err(why) => {
                 let message =
                     format!("The {who}'s token (`{key}`) is too easy to guess: {why}. {advice}");
-                self.diagnostics
-                    .push(Diagnostic::error("weak-credential", &node.pos, message));
+                self.diagnostics.push(Diagnostic::error(
+                    DiagnosticCode::WeakCredential,
+                    &node.pos,
+                    message,
+                ));
                 None
             }
         }
@@ -103,7 +113,7 @@ mod tests {
         let found: Vec<_> = file
             .diagnostics
             .iter()
-            .map(|d| (d.code, d.line, d.column))
+            .map(|d| (d.code.as_str(), d.line, d.column))
             .collect();
         assert_eq!(
             found,

@@ -5,6 +5,7 @@
 
 use std::time::Duration;
 
+use crate::DiagnosticCode;
 use crate::acts_file::yaml::{Kind, Node};
 use crate::attract::AttractLoop;
 use crate::commands::{CommandChecker, path_error_code};
@@ -152,6 +153,6 @@ pub(crate) fn check_screen_refs(
             "The attract loop triggers the act `{value}`, but no act has that label.{hint} \
              Fix `act` in docent.yaml or add the act."
         );
-        out.push(Diagnostic::error("unknown-act", pos, message));
+        out.push(Diagnostic::error(DiagnosticCode::UnknownAct, pos, message));
     }
 }

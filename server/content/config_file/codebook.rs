@@ -15,6 +15,7 @@
 
 use serde::Serialize;
 
+use crate::DiagnosticCode;
 use crate::acts_file::yaml::{Kind, Node};
 use crate::diagnostic::Diagnostic;
 use crate::model::Pos;
@@ -229,7 +230,7 @@ impl Reader {
                 node.as_text()
                     .map_or_else(|| node.describe().to_owned(), |t| format!("`{t}`"))
             );
-            let diagnostic = Diagnostic::error("codebook-bad-key", &node.pos, message);
+            let diagnostic = Diagnostic::error(DiagnosticCode::CodebookBadKey, &node.pos, message);
             self.diagnostics.push(diagnostic);
             return None;
         };
@@ -240,7 +241,8 @@ impl Reader {
                  `{code}`.",
                 first.line, first.column
             );
-            let diagnostic = Diagnostic::error("codebook-key-taken", &node.pos, message);
+            let diagnostic =
+                Diagnostic::error(DiagnosticCode::CodebookKeyTaken, &node.pos, message);
             self.diagnostics.push(diagnostic);
             return None;
         }
@@ -254,7 +256,11 @@ impl Reader {
             "`{name}` is written twice here (first on line {}). Keep one.",
             first.line
         );
-        (self.diagnostics).push(Diagnostic::error("duplicate-key", &node.pos, message));
+        (self.diagnostics).push(Diagnostic::error(
+            DiagnosticCode::DuplicateKey,
+            &node.pos,
+            message,
+        ));
     }
 }
 
@@ -267,7 +273,7 @@ mod tests {
     fn located(text: &str) -> Vec<(&'static str, u32, u32)> {
         let file = parse(text);
         (file.diagnostics.iter())
-            .map(|d| (d.code, d.line, d.column))
+            .map(|d| (d.code.as_str(), d.line, d.column))
             .collect()
     }
 

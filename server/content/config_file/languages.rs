@@ -5,6 +5,7 @@
 
 use std::collections::BTreeMap;
 
+use crate::DiagnosticCode;
 use crate::acts_file::yaml::{Kind, Node};
 use crate::config::{Language, Languages, SiteConfig};
 use crate::diagnostic::Diagnostic;
@@ -49,8 +50,11 @@ impl Reader {
                 let message = format!(
                     "`{language}` is listed twice in `languages:`. Remove the second `{language}`."
                 );
-                self.diagnostics
-                    .push(Diagnostic::error("config-bad-value", &item.pos, message));
+                self.diagnostics.push(Diagnostic::error(
+                    DiagnosticCode::ConfigBadValue,
+                    &item.pos,
+                    message,
+                ));
                 continue;
             }
             out.push(Located {
@@ -85,8 +89,11 @@ impl Reader {
             text.trim(),
             tags.join(", ")
         );
-        self.diagnostics
-            .push(Diagnostic::error("bad-language", &node.pos, message));
+        self.diagnostics.push(Diagnostic::error(
+            DiagnosticCode::BadLanguage,
+            &node.pos,
+            message,
+        ));
         let located = meant.into_iter().map(|value| Located {
             value,
             pos: node.pos.clone(),
@@ -106,16 +113,22 @@ impl Reader {
                 "`{}` is the name of a language, not its tag: write `{meant}`. {LANGUAGE_USAGE}",
                 text.trim()
             );
-            self.diagnostics
-                .push(Diagnostic::error("bad-language", &node.pos, message));
+            self.diagnostics.push(Diagnostic::error(
+                DiagnosticCode::BadLanguage,
+                &node.pos,
+                message,
+            ));
             return Some(meant);
         }
         let found = node
             .as_text()
             .map_or_else(|| node.describe().to_owned(), |t| format!("`{t}`"));
         let message = format!("{found} is not a language tag. {LANGUAGE_USAGE}");
-        self.diagnostics
-            .push(Diagnostic::error("bad-language", &node.pos, message));
+        self.diagnostics.push(Diagnostic::error(
+            DiagnosticCode::BadLanguage,
+            &node.pos,
+            message,
+        ));
         None
     }
 
@@ -185,7 +198,7 @@ impl Reader {
                     config.languages.listed()
                 );
                 self.diagnostics.push(Diagnostic::error(
-                    "unknown-language",
+                    DiagnosticCode::UnknownLanguage,
                     &language.pos,
                     message,
                 ));

@@ -6,6 +6,7 @@
 
 use std::fmt;
 
+use crate::DiagnosticCode;
 use crate::acts_file::yaml::Node;
 use crate::diagnostic::Diagnostic;
 use crate::names::{BrokerUrl, robot_id_problem};
@@ -110,8 +111,11 @@ impl Reader {
                     "`url` is the fleet's MQTT broker, e.g. `url: mqtt://broker.local:1883`: \
                      {why}."
                 );
-                self.diagnostics
-                    .push(Diagnostic::error("config-bad-value", &node.pos, message));
+                self.diagnostics.push(Diagnostic::error(
+                    DiagnosticCode::ConfigBadValue,
+                    &node.pos,
+                    message,
+                ));
                 None
             }
         }
@@ -128,8 +132,11 @@ impl Reader {
                      Docent.",
                     node.describe()
                 );
-                self.diagnostics
-                    .push(Diagnostic::error("config-bad-value", &node.pos, message));
+                self.diagnostics.push(Diagnostic::error(
+                    DiagnosticCode::ConfigBadValue,
+                    &node.pos,
+                    message,
+                ));
                 None
             }
         }

@@ -196,7 +196,7 @@ mod tests {
     fn located(file: &ConfigFile) -> Vec<(&'static str, u32, u32)> {
         file.diagnostics
             .iter()
-            .map(|d| (d.code, d.line, d.column))
+            .map(|d| (d.code.as_str(), d.line, d.column))
             .collect()
     }
 

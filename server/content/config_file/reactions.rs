@@ -9,6 +9,7 @@
 //!     cooldown: 2m
 //! ```
 
+use crate::DiagnosticCode;
 use crate::acts_file::yaml::{Kind, Node};
 use crate::diagnostic::Diagnostic;
 use crate::duration::parse_duration;
@@ -145,8 +146,11 @@ impl Reader {
              e.g. `if: distance < 1.5 and zone == \"entrance\"`.",
             problem.message
         );
-        self.diagnostics
-            .push(Diagnostic::error("reaction-bad-condition", &pos, message));
+        self.diagnostics.push(Diagnostic::error(
+            DiagnosticCode::ReactionBadCondition,
+            &pos,
+            message,
+        ));
         None
     }
 }
@@ -163,7 +167,7 @@ mod tests {
 
     fn located(text: &str) -> Vec<(&'static str, u32, u32)> {
         (parse(text).diagnostics.iter())
-            .map(|d| (d.code, d.line, d.column))
+            .map(|d| (d.code.as_str(), d.line, d.column))
             .collect()
     }
 

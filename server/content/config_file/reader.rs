@@ -2,6 +2,7 @@
 //! with suggestions), a value parsed from text, a choice among fixed words. Each reports a
 //! located, plain-language problem and returns `None` so the default stays in force.
 
+use crate::DiagnosticCode;
 use crate::acts_file::yaml::{Kind, Node};
 use crate::diagnostic::Diagnostic;
 use crate::model::Pos;
@@ -60,8 +61,11 @@ impl Reader {
             None => node.describe().to_owned(),
         };
         let message = format!("{message} Found: {found}.");
-        self.diagnostics
-            .push(Diagnostic::error("config-bad-value", &node.pos, message));
+        self.diagnostics.push(Diagnostic::error(
+            DiagnosticCode::ConfigBadValue,
+            &node.pos,
+            message,
+        ));
     }
 
     /// The entries of a settings mapping, reporting unknown, duplicate and non-text keys.
@@ -95,8 +99,11 @@ impl Reader {
                     "`{name}` is set twice here (first on line {}). Keep one.",
                     first.line
                 );
-                self.diagnostics
-                    .push(Diagnostic::error("duplicate-key", &key.pos, message));
+                self.diagnostics.push(Diagnostic::error(
+                    DiagnosticCode::DuplicateKey,
+                    &key.pos,
+                    message,
+                ));
                 continue;
             }
             seen.push((name, &key.pos));
@@ -110,8 +117,11 @@ impl Reader {
                  here: {}.",
                 known.join(", ")
             );
-            self.diagnostics
-                .push(Diagnostic::error("config-unknown-key", &key.pos, message));
+            self.diagnostics.push(Diagnostic::error(
+                DiagnosticCode::ConfigUnknownKey,
+                &key.pos,
+                message,
+            ));
         }
         out
     }

@@ -5,6 +5,7 @@
 //! `drive: adapter: rosbridge` or a `rosbridge:` section without a `url` is
 //! `rosbridge-url-missing`.
 
+use crate::DiagnosticCode;
 use crate::acts_file::yaml::{Kind, Node};
 use crate::config::{AdapterKind, SiteConfig};
 use crate::diagnostic::Diagnostic;
@@ -229,7 +230,7 @@ impl Reader {
                            connect and none of it would happen. Add the rosbridge server's \
                            address, e.g. `url: ws://robot.local:9090`.";
             self.diagnostics.push(Diagnostic::error(
-                "rosbridge-url-missing",
+                DiagnosticCode::RosbridgeUrlMissing,
                 &node.pos,
                 message,
             ));
@@ -317,7 +318,7 @@ impl Reader {
                        a `rosbridge:` section with its `url`, e.g. `rosbridge: {url: \
                        ws://robot.local:9090}`.";
         self.diagnostics.push(Diagnostic::error(
-            "rosbridge-url-missing",
+            DiagnosticCode::RosbridgeUrlMissing,
             &adapter.pos,
             message,
         ));

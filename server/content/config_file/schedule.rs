@@ -6,6 +6,7 @@
 
 use std::collections::BTreeMap;
 
+use crate::DiagnosticCode;
 use crate::acts_file::yaml::{Kind, Node};
 use crate::diagnostic::Diagnostic;
 use crate::model::Pos;
@@ -162,8 +163,11 @@ impl Reader {
         let has = |k: &str| pairs.iter().any(|(key, _)| key.as_text() == Some(k));
         if !has(first) || !has("hours") {
             let message = format!("This entry needs both `{first}` and `hours`. {usage}");
-            self.diagnostics
-                .push(Diagnostic::error("config-bad-value", &entry.pos, message));
+            self.diagnostics.push(Diagnostic::error(
+                DiagnosticCode::ConfigBadValue,
+                &entry.pos,
+                message,
+            ));
         }
     }
 
@@ -241,8 +245,9 @@ impl Reader {
                 (later, earlier)
             };
             fine = false;
-            let told =
-                |d: &Diagnostic| d.code == "schedule-overlap" && (d.line, d.column) == at(second);
+            let told = |d: &Diagnostic| {
+                d.code == DiagnosticCode::ScheduleOverlap && (d.line, d.column) == at(second)
+            };
             if self.diagnostics.iter().any(told) {
                 continue; // the same range on another of its days
             }
@@ -260,8 +265,11 @@ impl Reader {
                 clock_range(first),
                 first.pos.line
             );
-            self.diagnostics
-                .push(Diagnostic::error("schedule-overlap", &second.pos, message));
+            self.diagnostics.push(Diagnostic::error(
+                DiagnosticCode::ScheduleOverlap,
+                &second.pos,
+                message,
+            ));
         }
         fine
     }
@@ -269,8 +277,11 @@ impl Reader {
     /// A `config-bad-value` at a place inside a value.
     fn bad_at(&mut self, pos: &Pos, message: &str, found: &str) {
         let message = format!("{message} Found: `{found}`.");
-        self.diagnostics
-            .push(Diagnostic::error("config-bad-value", pos, message));
+        self.diagnostics.push(Diagnostic::error(
+            DiagnosticCode::ConfigBadValue,
+            pos,
+            message,
+        ));
     }
 }
 

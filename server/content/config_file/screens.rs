@@ -253,7 +253,7 @@ mod tests {
             let located: Vec<_> = file
                 .diagnostics
                 .iter()
-                .map(|d| (d.code, d.line, d.column))
+                .map(|d| (d.code.as_str(), d.line, d.column))
                 .collect();
             assert_eq!(located, [("config-bad-value", 2, 19)], "{bad}");
             assert!(
@@ -286,7 +286,7 @@ mod tests {
         assert_eq!(file.config.corpus.record_limits, RecordLimits::default());
         let problem = &file.diagnostics[0];
         assert_eq!(
-            (problem.code, problem.line),
+            (problem.code.as_str(), problem.line),
             ("config-bad-value", 2),
             "{problem:?}"
         );
@@ -319,7 +319,7 @@ mod tests {
         ] {
             let file = parse(text);
             let located: Vec<_> = (file.diagnostics.iter())
-                .map(|d| (d.code, d.line, d.column))
+                .map(|d| (d.code.as_str(), d.line, d.column))
                 .collect();
             assert_eq!(located, [("config-bad-value", 2, column)], "{text}");
             assert_eq!(file.config.corpus.record, audio, "default kept: {text}");
@@ -359,7 +359,7 @@ mod tests {
         ] {
             let file = parse(text);
             let located: Vec<_> = (file.diagnostics.iter())
-                .map(|d| (d.code, d.line, d.column))
+                .map(|d| (d.code.as_str(), d.line, d.column))
                 .collect();
             assert_eq!(located, [("config-bad-value", 2, column)], "{text}");
             assert!(file.diagnostics[0].message.contains(says), "{text}");
@@ -388,7 +388,7 @@ mod tests {
         let located: Vec<_> = file
             .diagnostics
             .iter()
-            .map(|d| (d.code, d.line, d.column))
+            .map(|d| (d.code.as_str(), d.line, d.column))
             .collect();
         assert_eq!(
             located,

@@ -75,7 +75,7 @@ mod tests {
              trusted_proxy: x\n",
         );
         let found: Vec<_> = (file.diagnostics.iter())
-            .map(|d| (d.code, d.line, d.column))
+            .map(|d| (d.code.as_str(), d.line, d.column))
             .collect();
         assert_eq!(
             found,

@@ -104,7 +104,7 @@ fn bad_values_are_located_and_defaults_kept() {
     let located: Vec<_> = file
         .diagnostics
         .iter()
-        .map(|d| (d.code, d.line, d.column))
+        .map(|d| (d.code.as_str(), d.line, d.column))
         .collect();
     assert_eq!(
         located,

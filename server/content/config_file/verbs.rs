@@ -2,6 +2,7 @@
 //! name with its adapter, argument rule and description. Separate because a site verb is
 //! checked against the built-in verbs and the other declarations, not just read.
 
+use crate::DiagnosticCode;
 use crate::acts_file::yaml::{Kind, Node};
 use crate::config::{AdapterKind, ArgRule, SiteConfig, SiteVerb};
 use crate::diagnostic::Diagnostic;
@@ -36,8 +37,11 @@ impl Reader {
                 "This is already a built-in command; choose another name for the site's command."
             } else if config.verbs.contains_key(name) {
                 let message = format!("The command `{name}` is declared twice. Keep one.");
-                self.diagnostics
-                    .push(Diagnostic::error("duplicate-key", &key.pos, message));
+                self.diagnostics.push(Diagnostic::error(
+                    DiagnosticCode::DuplicateKey,
+                    &key.pos,
+                    message,
+                ));
                 continue;
             } else {
                 let verb = self.site_verb(value);

@@ -11,6 +11,7 @@ use std::collections::HashMap;
 use std::io::Read;
 use std::path::{Path, PathBuf};
 
+use crate::DiagnosticCode;
 use crate::args::{PROJECTOR_IMAGES, PROJECTOR_VIDEOS};
 use crate::diagnostic::Diagnostic;
 use crate::model::Pos;
@@ -77,7 +78,11 @@ impl MediaSniffs {
                 PROJECTOR_IMAGES.join(", ."),
                 PROJECTOR_VIDEOS.join(", .")
             );
-            out.push(Diagnostic::error("media-unplayable", pos, message));
+            out.push(Diagnostic::error(
+                DiagnosticCode::MediaUnplayable,
+                pos,
+                message,
+            ));
             return;
         }
         match (content, named) {
@@ -96,7 +101,11 @@ impl MediaSniffs {
                     described(real),
                     convert_advice(shown, real, by)
                 );
-                out.push(Diagnostic::error("media-unplayable", pos, message));
+                out.push(Diagnostic::error(
+                    DiagnosticCode::MediaUnplayable,
+                    pos,
+                    message,
+                ));
             }
             (Some(real), _) if !real.extensions.contains(&ext.as_str()) => {
                 misnamed(shown, &ext, real, by, pos, out);
@@ -109,7 +118,11 @@ impl MediaSniffs {
                     expected_kind(by),
                     expected_kind(by)
                 );
-                out.push(Diagnostic::error("media-misnamed", pos, message));
+                out.push(Diagnostic::error(
+                    DiagnosticCode::MediaMisnamed,
+                    pos,
+                    message,
+                ));
             }
             (Some(_), _) => {}
             (None, Some(name)) if !name.shows => {
@@ -119,7 +132,11 @@ impl MediaSniffs {
                     described(name),
                     convert_advice(shown, name, by)
                 );
-                out.push(Diagnostic::error("media-unplayable", pos, message));
+                out.push(Diagnostic::error(
+                    DiagnosticCode::MediaUnplayable,
+                    pos,
+                    message,
+                ));
             }
             (None, Some(name)) => {
                 let message = format!(
@@ -129,7 +146,11 @@ impl MediaSniffs {
                     described(name),
                     name.name
                 );
-                out.push(Diagnostic::warning("media-unrecognised", pos, message));
+                out.push(Diagnostic::warning(
+                    DiagnosticCode::MediaUnrecognised,
+                    pos,
+                    message,
+                ));
             }
             (None, None) => {}
         }
@@ -167,14 +188,22 @@ fn misnamed(
             described(real),
             expected_kind(by_kind_of_ext(ext, by)),
         );
-        out.push(Diagnostic::error("media-misnamed", pos, message));
+        out.push(Diagnostic::error(
+            DiagnosticCode::MediaMisnamed,
+            pos,
+            message,
+        ));
     } else {
         let message = format!(
             "`{shown}` is {}, but its name ends in .{ext}. It shows, but the name misleads \
              people and programs. {rename}",
             described(real)
         );
-        out.push(Diagnostic::warning("media-misnamed", pos, message));
+        out.push(Diagnostic::warning(
+            DiagnosticCode::MediaMisnamed,
+            pos,
+            message,
+        ));
     }
 }
 

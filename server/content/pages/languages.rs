@@ -7,6 +7,7 @@
 
 use std::collections::BTreeSet;
 
+use crate::DiagnosticCode;
 use crate::commands::CommandChecker;
 use crate::config::SiteConfig;
 use crate::diagnostic::Diagnostic;
@@ -43,7 +44,7 @@ pub(super) fn check_translated_pages(
             );
             let pos = Pos::start_of(format!("pages/{page}"));
             out.push(Diagnostic::warning(
-                "missing-page-translation",
+                DiagnosticCode::MissingPageTranslation,
                 &pos,
                 message,
             ));
@@ -66,7 +67,7 @@ pub(super) fn offered_language(
              bundle's languages are {}.",
             languages.listed()
         );
-        out.push(Diagnostic::error("bad-language", pos, message));
+        out.push(Diagnostic::error(DiagnosticCode::BadLanguage, pos, message));
         return None;
     };
     if !languages.all().contains(&language) {
@@ -76,7 +77,11 @@ pub(super) fn offered_language(
              docent.yaml, or correct the button.",
             languages.listed()
         );
-        out.push(Diagnostic::error("unknown-language", pos, message));
+        out.push(Diagnostic::error(
+            DiagnosticCode::UnknownLanguage,
+            pos,
+            message,
+        ));
         return None;
     }
     Some(Located {
@@ -143,7 +148,11 @@ impl StrayFolders {
                 languages.listed()
             );
             let pos = Pos::start_of(format!("pages/{first}"));
-            out.push(Diagnostic::error("unknown-language", &pos, message));
+            out.push(Diagnostic::error(
+                DiagnosticCode::UnknownLanguage,
+                &pos,
+                message,
+            ));
         }
     }
 }
@@ -167,6 +176,10 @@ pub(crate) fn check_reachable_languages(
              `<button data-language=\"{value}\">…</button>` to the home page (and a button \
              back to `{default}` on its `{value}` version)."
         );
-        out.push(Diagnostic::warning("language-unreachable", pos, message));
+        out.push(Diagnostic::warning(
+            DiagnosticCode::LanguageUnreachable,
+            pos,
+            message,
+        ));
     }
 }

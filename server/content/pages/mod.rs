@@ -15,6 +15,7 @@ mod text;
 
 use std::sync::Arc;
 
+use crate::DiagnosticCode;
 use crate::commands::CommandChecker;
 use crate::diagnostic::Diagnostic;
 use crate::language::Language;
@@ -124,7 +125,7 @@ impl PageFile<'_, '_> {
                            a `<select>`, can do this), so the rest of the page was not checked. \
                            Move that element out, or check the page in the preview.";
             out.push(Diagnostic::warning(
-                "page-not-checked",
+                DiagnosticCode::PageNotChecked,
                 &source.pos(0),
                 message,
             ));
@@ -132,7 +133,7 @@ impl PageFile<'_, '_> {
         for act in &found.acts {
             match broken_quoting(&act.text) {
                 Some(message) => out.push(Diagnostic::error(
-                    "act-quoting",
+                    DiagnosticCode::ActQuoting,
                     &source.pos(act.at),
                     message,
                 )),
@@ -222,7 +223,7 @@ impl PageFile<'_, '_> {
                 };
                 if let Some((_, problem)) = self.checker.path_problem(area, &rel) {
                     let message = format!("This link leads nowhere. {problem}");
-                    out.push(Diagnostic::error("broken-link", &pos, message));
+                    out.push(Diagnostic::error(DiagnosticCode::BrokenLink, &pos, message));
                     return;
                 }
                 let by = match used {
@@ -241,14 +242,22 @@ impl PageFile<'_, '_> {
                      link (`{url}`) does nothing. Copy what it shows into a page under pages/ \
                      and link there, or remove the link."
                 );
-                out.push(Diagnostic::warning("external-link", &pos, message));
+                out.push(Diagnostic::warning(
+                    DiagnosticCode::ExternalLink,
+                    &pos,
+                    message,
+                ));
             }
             Target::Internet => {
                 let message = format!(
                     "`{url}` is on the internet, which the touchscreen may not reach. Copy the \
                      file into pages/ and link to it relative to this page."
                 );
-                out.push(Diagnostic::warning("external-link", &pos, message));
+                out.push(Diagnostic::warning(
+                    DiagnosticCode::ExternalLink,
+                    &pos,
+                    message,
+                ));
             }
             Target::OwnComputer => {
                 let message = format!(
@@ -256,7 +265,7 @@ impl PageFile<'_, '_> {
                      reach. Copy the file into pages/ and link to it relative to this page, \
                      e.g. `images/photo.jpg`."
                 );
-                out.push(Diagnostic::error("broken-link", &pos, message));
+                out.push(Diagnostic::error(DiagnosticCode::BrokenLink, &pos, message));
             }
             Target::Server { path } => {
                 let message = format!(
@@ -264,7 +273,7 @@ impl PageFile<'_, '_> {
                      pages/ and media/ folders, so it finds nothing (too many `../`?). Link \
                      to a file inside pages/, relative to this page, or to `/media/...`."
                 );
-                out.push(Diagnostic::error("broken-link", &pos, message));
+                out.push(Diagnostic::error(DiagnosticCode::BrokenLink, &pos, message));
             }
             Target::NotAFile => {}
         }
@@ -310,7 +319,11 @@ fn check_act_after(source: &SourceText, after: &Value, has_act: bool, out: &mut 
         let message = "`data-act-after` only works on an element that also has `data-act`, \
                        which names the act to trigger: add `data-act=\"LABEL\"` to this \
                        element.";
-        out.push(Diagnostic::error("act-after-without-act", &pos, message));
+        out.push(Diagnostic::error(
+            DiagnosticCode::ActAfterWithoutAct,
+            &pos,
+            message,
+        ));
     } else if act_delay(&after.text).is_none() {
         let message = format!(
             "`{}` is not a delay the page script can read, so the act would never be \
@@ -318,7 +331,11 @@ fn check_act_after(source: &SourceText, after: &Value, has_act: bool, out: &mut 
              `1.5s` or `1m`.",
             after.text
         );
-        out.push(Diagnostic::error("bad-act-delay", &pos, message));
+        out.push(Diagnostic::error(
+            DiagnosticCode::BadActDelay,
+            &pos,
+            message,
+        ));
     }
 }
 
@@ -339,7 +356,7 @@ fn check_charset(source: &SourceText, charsets: &[Value], out: &mut Vec<Diagnost
              instead (and keep saving the file as UTF-8)."
         );
         out.push(Diagnostic::error(
-            "page-charset",
+            DiagnosticCode::PageCharset,
             &source.pos(charset.at),
             message,
         ));
@@ -348,7 +365,11 @@ fn check_charset(source: &SourceText, charsets: &[Value], out: &mut Vec<Diagnost
         let message = "This page has letters beyond plain English but does not say it is \
                        UTF-8, so the browser may guess and show `Ã¶` instead of `ö`. Add \
                        `<meta charset=\"utf-8\">` at the start of `<head>`.";
-        out.push(Diagnostic::warning("page-charset", &source.pos(0), message));
+        out.push(Diagnostic::warning(
+            DiagnosticCode::PageCharset,
+            &source.pos(0),
+            message,
+        ));
     }
 }
 
@@ -382,7 +403,7 @@ fn report_unclosed(source: &SourceText, unclosed: &Unclosed, out: &mut Vec<Diagn
         )
     };
     out.push(Diagnostic::error(
-        "page-hidden-content",
+        DiagnosticCode::PageHiddenContent,
         &source.pos(unclosed.at),
         message,
     ));

@@ -3,6 +3,7 @@
 
 use std::sync::Arc;
 
+use crate::DiagnosticCode;
 use crate::diagnostic::Diagnostic;
 use crate::encoding::not_utf8;
 use crate::model::Pos;
@@ -28,12 +29,20 @@ impl SourceText {
         };
         if found.utf16 {
             let pos = Pos::new(file, 1, 1);
-            out.push(Diagnostic::error("page-encoding", &pos, found.message));
+            out.push(Diagnostic::error(
+                DiagnosticCode::PageEncoding,
+                &pos,
+                found.message,
+            ));
             return None;
         }
         let valid = String::from_utf8_lossy(&bytes[..found.at]);
         let pos = Self::new(file.clone(), valid.into_owned()).pos(found.at);
-        out.push(Diagnostic::error("page-encoding", &pos, found.message));
+        out.push(Diagnostic::error(
+            DiagnosticCode::PageEncoding,
+            &pos,
+            found.message,
+        ));
         let text = String::from_utf8_lossy(bytes).into_owned();
         Some(Self::new(file, text))
     }

@@ -15,6 +15,7 @@ mod suspects;
 use finders::{find_address, find_markup, find_placeholder, is_emoji};
 use suspects::Suspects;
 
+use crate::DiagnosticCode;
 use crate::config::SpeechConfig;
 use crate::diagnostic::Diagnostic;
 use crate::model::Pos;
@@ -86,7 +87,7 @@ pub(crate) fn check_spoken(
              what the robot should say."
         );
         out.push(Diagnostic::error(
-            "speech-emoji",
+            DiagnosticCode::SpeechEmoji,
             &spoken.pos_of(at),
             message,
         ));
@@ -109,7 +110,7 @@ pub(crate) fn check_spoken(
             )
         };
         out.push(Diagnostic::warning(
-            "speech-address",
+            DiagnosticCode::SpeechAddress,
             &spoken.pos_of(at),
             message,
         ));
@@ -122,7 +123,7 @@ pub(crate) fn check_spoken(
              out or stumbles over them. Remove it; speech has no bold or links."
         );
         out.push(Diagnostic::error(
-            "speech-markup",
+            DiagnosticCode::SpeechMarkup,
             &spoken.pos_of(at),
             message,
         ));
@@ -135,7 +136,7 @@ pub(crate) fn check_spoken(
              replace anything in a text: the robot would say it as written. Write the real words."
         );
         out.push(Diagnostic::error(
-            "speech-placeholder",
+            DiagnosticCode::SpeechPlaceholder,
             &spoken.pos_of(at),
             message,
         ));
@@ -163,14 +164,22 @@ fn check_length(spoken: &SpokenText<'_>, speech: &SpeechConfig, out: &mut Vec<Di
              all of it and nobody could stop it but the operator. Was a whole document pasted \
              here? Split it into short acts, one for each thing the visitor can ask."
         );
-        out.push(Diagnostic::error("speech-too-long", spoken.pos, message));
+        out.push(Diagnostic::error(
+            DiagnosticCode::SpeechTooLong,
+            spoken.pos,
+            message,
+        ));
     } else {
         let message = format!(
             "{said}, more than the {limit} s a text may take (`speech.max_seconds` in \
              docent.yaml). Visitors rarely listen that long: split it into shorter acts, or \
              raise `speech.max_seconds` if this length is wanted."
         );
-        out.push(Diagnostic::warning("speech-too-long", spoken.pos, message));
+        out.push(Diagnostic::warning(
+            DiagnosticCode::SpeechTooLong,
+            spoken.pos,
+            message,
+        ));
     }
 }
 
@@ -201,7 +210,7 @@ mod tests {
             &crate::config::SiteConfig::default().speech,
             &mut out,
         );
-        out.iter().map(|d| (d.code, d.column)).collect()
+        out.iter().map(|d| (d.code.as_str(), d.column)).collect()
     }
 
     #[test]

@@ -97,13 +97,17 @@ mod tests {
             place: Place::Row(3),
         }];
         let pos = crate::Pos::new("acts.yaml", 2, 10);
-        let inside = Diagnostic::error("speech-placeholder", &pos, "`{z}` …");
+        let inside = Diagnostic::error(crate::DiagnosticCode::SpeechPlaceholder, &pos, "`{z}` …");
         let found = written_text_of(&inside, &files, &written).expect("in the text");
         assert_eq!(
             told_by_row(&inside, found, Some("Not imported.")),
             "row 3 (A/B/1): error[speech-placeholder]: `{z}` … Not imported."
         );
-        let outside = Diagnostic::error("x", &crate::Pos::new("acts.yaml", 1, 3), "");
+        let outside = Diagnostic::error(
+            crate::DiagnosticCode::BadValue,
+            &crate::Pos::new("acts.yaml", 1, 3),
+            "",
+        );
         assert!(written_text_of(&outside, &files, &written).is_none());
     }
 }

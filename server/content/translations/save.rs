@@ -13,7 +13,9 @@ use std::fs::{self, OpenOptions};
 use std::io::{self, Write};
 use std::path::{Path, PathBuf};
 
-use crate::{ActsReplacements, Bundle, Diagnostic, Language, load_bundle_replacing};
+use crate::{
+    ActsReplacements, Bundle, Diagnostic, DiagnosticCode, Language, load_bundle_replacing,
+};
 
 use super::import::{Change, language_name};
 use super::located::{WrittenText, told_by_row, written_text_of};
@@ -277,7 +279,7 @@ fn verify(
 
 /// The warnings of `after` that `before` did not have (by code, file and message).
 fn fresh_warnings(before: &[Diagnostic], after: &[&Diagnostic]) -> Vec<String> {
-    let mut known: Vec<(&str, &str, &str)> = before
+    let mut known: Vec<(DiagnosticCode, &str, &str)> = before
         .iter()
         .map(|d| (d.code, d.file.as_str(), d.message.as_str()))
         .collect();

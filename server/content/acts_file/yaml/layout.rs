@@ -3,6 +3,7 @@
 
 use std::sync::Arc;
 
+use crate::DiagnosticCode;
 use crate::diagnostic::Diagnostic;
 use crate::model::Pos;
 
@@ -178,7 +179,7 @@ pub(super) fn odd_space_diagnostics(file: &Arc<str>, places: &[(u32, u32)]) -> V
         .iter()
         .map(|&(line, column)| {
             let pos = Pos::new(file.clone(), line, column);
-            Diagnostic::error("non-breaking-space", &pos, message)
+            Diagnostic::error(DiagnosticCode::NonBreakingSpace, &pos, message)
         })
         .collect()
 }
@@ -196,9 +197,9 @@ pub(super) fn tab_diagnostics(
         .map(|&(line, column)| {
             let pos = Pos::new(file.clone(), line, column);
             if failed {
-                Diagnostic::error("yaml-tab", &pos, message)
+                Diagnostic::error(DiagnosticCode::YamlTab, &pos, message)
             } else {
-                Diagnostic::warning("yaml-tab", &pos, message)
+                Diagnostic::warning(DiagnosticCode::YamlTab, &pos, message)
             }
         })
         .collect()

@@ -8,7 +8,7 @@ use serde_saphyr::Spanned;
 
 use super::layout::{Item, unclosed_bracket_before};
 use super::{Kind, Node, YamlFile, options, raw, wording};
-use crate::diagnostic::Diagnostic;
+use crate::diagnostic::{Diagnostic, DiagnosticCode};
 use crate::model::Pos;
 
 /// Parses each top-level item on its own, so an error (even an unclosed bracket) stays
@@ -17,7 +17,7 @@ pub(super) fn parse_items(
     file: &Arc<str>,
     source: &str,
     items: &[Item],
-    syntax_code: &'static str,
+    syntax_code: DiagnosticCode,
     explained: &[(u32, u32)],
     out: &mut YamlFile,
 ) {
@@ -66,7 +66,7 @@ pub(super) fn report_error(
     source: &str,
     err: &serde_saphyr::Error,
     line_offset: u32,
-    syntax_code: &'static str,
+    syntax_code: DiagnosticCode,
     explained: &[(u32, u32)],
     out: &mut Vec<Diagnostic>,
 ) {

@@ -11,7 +11,7 @@ fn parse_acts(text: &str) -> YamlFile {
     parse(
         &file(),
         text.as_bytes(),
-        "yaml-syntax",
+        crate::DiagnosticCode::YamlSyntax,
         Recovery::SkipBrokenItems,
     )
 }
@@ -20,7 +20,7 @@ fn codes(parsed: &YamlFile) -> Vec<(&'static str, u32, u32)> {
     parsed
         .diagnostics
         .iter()
-        .map(|d| (d.code, d.line, d.column))
+        .map(|d| (d.code.as_str(), d.line, d.column))
         .collect()
 }
 
@@ -60,7 +60,7 @@ fn locates_bytes_that_are_not_utf8() {
     let parsed = parse(
         &file(),
         b"- Label: A\n  Text: caf\xe9\n",
-        "yaml-syntax",
+        crate::DiagnosticCode::YamlSyntax,
         Recovery::SkipBrokenItems,
     );
     assert_eq!(codes(&parsed), [("file-encoding", 2, 12)]);
@@ -152,7 +152,7 @@ fn settings_are_not_partially_read() {
     let parsed = parse(
         &file(),
         b"home: [x\nspeech: {}\n",
-        "config-syntax",
+        crate::DiagnosticCode::ConfigSyntax,
         Recovery::None,
     );
     assert!(parsed.root.is_none());

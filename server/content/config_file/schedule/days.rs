@@ -3,6 +3,7 @@
 //! `weekdays`, a word processor's `–`) recognised so that the hint is the whole fix, never a
 //! part of it (`Did you mean Mon?` for `Mon to Fri` would open on Mondays only).
 
+use crate::DiagnosticCode;
 use crate::acts_file::yaml::{Kind, Node};
 use crate::diagnostic::Diagnostic;
 use crate::model::Pos;
@@ -174,7 +175,7 @@ impl Reader {
                 continue;
             }
             let at_key = |d: &Diagnostic| {
-                d.code == "config-unknown-key"
+                d.code == DiagnosticCode::ConfigUnknownKey
                     && *d.file == *key.pos.file
                     && (d.line, d.column) == (key.pos.line, key.pos.column)
             };
