@@ -11,12 +11,12 @@ use clap::{Parser, Subcommand, ValueEnum};
 use docent::access::{AccessMode, AccessSetup, Origin, decide_access};
 use docent::adapters::{espeak_available, espeak_voices};
 use docent::cli::corpus as corpus_cli;
+use docent::cli::fleet as fleet_cli;
 use docent::cli::translations as translations_cli;
 use docent::content::config::AdapterKind;
 use docent::content::{
     Colour, Diagnostic, load_bundle, no_voice_diagnostics, render_diagnostics, schema,
 };
-use docent::fleet::cli as fleet_cli;
 use docent::http::ConnectionLimits;
 use docent::reload::ReloadOptions;
 use docent::serve::{ServeOptions, Server, run};

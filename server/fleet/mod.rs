@@ -15,12 +15,11 @@
 //! - `http`: `/fleet`, `/api/fleet...`, on a Docent and on `docent fleet`.
 //! - `setup`: flags over `docent.yaml`'s `mqtt:`; starting the bridge and the view.
 //! - `tls`: `mqtts://` with rustls (ring), trusting a site's CA file or the system's.
-//! - `standalone`: `docent fleet --mqtt URL`, a server of the fleet view only; `cli` its
-//!   command line.
+//! - `standalone`: `docent fleet --mqtt URL`, a server of the fleet view only (its command
+//!   line is the root crate's `cli::fleet`).
 
 mod bridge;
 mod broker;
-pub mod cli;
 mod commands;
 mod http;
 mod link;
