@@ -191,12 +191,8 @@ pub async fn put_context(
 /// pending proposals and the visitor session.
 pub async fn get_state(State(state): State<AppState>, _: Authorized) -> Json<Value> {
     let adapters = state.dispatcher.adapter_status();
-    let speaking = (adapters.get(state.devices.speech_adapter)).and_then(|s| {
-        s.current
-            .as_deref()?
-            .strip_prefix("SAY ")
-            .map(str::to_owned)
-    });
+    let speaking = (adapters.get(state.devices.speech_adapter))
+        .and_then(|s| s.current.as_ref()?.spoken().map(str::to_owned));
     let bundle = state.dispatcher.bundle();
     // What the touchscreen should show by the schedule, by this machine's clock.
     let scheduled = bundle.config.showing_at(&WallClock::now());
