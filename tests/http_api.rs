@@ -3,7 +3,7 @@
 
 use crate::common;
 
-use common::{TestServer, bundle};
+use common::{TempBundle, TestServer, bundle};
 use serde_json::{Value, json};
 
 fn commands(triggered: &Value) -> Vec<(String, Option<String>)> {
@@ -196,6 +196,46 @@ async fn the_acts_listing_carries_labels_variants_commands_and_positions() {
         (status, health["status"].as_str(), health["acts"].as_u64()),
         (200, Some("ok"), Some(4))
     );
+    server.stop().await;
+}
+
+#[tokio::test]
+async fn the_acts_listing_names_the_variant_a_trigger_speaks_in_each_context() {
+    let acts = "- Label: HELLO\n  Text: [Hello]\n  TextGroup: [Hello all]\n\
+                - Label: CHILD\n  TextChild: [Hi there]\n\
+                - Label: QUIET\n  Cmds: [WAIT 1ms]\n";
+    let b = TempBundle::new(acts);
+    let server = TestServer::start(b.path()).await;
+    let (status, body) = server.get("/api/acts").await;
+    assert_eq!(status, 200);
+    assert_eq!(body["contexts"], json!(["Text", "TextChild", "TextGroup"]));
+    let speaks: Vec<(&str, &Value)> = (body["acts"].as_array().unwrap().iter())
+        .map(|a| (a["label"].as_str().unwrap(), &a["speaks"]))
+        .collect();
+    assert_eq!(
+        speaks,
+        [
+            (
+                "HELLO",
+                &json!({"Text": "Text", "TextChild": "Text", "TextGroup": "TextGroup"})
+            ),
+            (
+                "CHILD",
+                &json!({"Text": null, "TextChild": "TextChild", "TextGroup": null})
+            ),
+            (
+                "QUIET",
+                &json!({"Text": null, "TextChild": null, "TextGroup": null})
+            ),
+        ]
+    );
+    // What the listing says is what a trigger in that context speaks.
+    for (label, by_context) in speaks {
+        for (context, variant) in by_context.as_object().unwrap() {
+            let triggered = server.trigger(label, json!({"context": context})).await;
+            assert_eq!(&triggered["variant"], variant, "{label} in {context}");
+        }
+    }
     server.stop().await;
 }
 

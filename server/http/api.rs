@@ -1,6 +1,8 @@
 //! The trigger API: acts, triggers, stop, context, state and health. Routes reach devices only
 //! through the dispatcher.
 
+use std::collections::BTreeMap;
+
 use crate::content::schedule::WallClock;
 use axum::Json;
 use axum::extract::rejection::PathRejection;
@@ -11,7 +13,7 @@ use serde::{Deserialize, Serialize};
 use serde_json::{Value, json};
 
 use crate::content::{Act, Pos};
-use crate::dispatch::TriggerRequest;
+use crate::dispatch::{TriggerRequest, variant_for};
 use crate::events::Source;
 use crate::http::AppError;
 use crate::http::auth::Authorized;
@@ -42,6 +44,9 @@ struct ActView<'a> {
     /// The console key (`Alt+` this), if the act has one.
     key: Option<String>,
     variants: Vec<VariantView<'a>>,
+    /// For each of the bundle's contexts, the variant the act speaks in it (null: nothing), so
+    /// that the console looks the server's choice up instead of repeating its rule.
+    speaks: BTreeMap<&'a str, Option<&'a str>>,
     commands: Vec<CommandView<'a>>,
 }
 
@@ -65,7 +70,7 @@ struct CommandView<'a> {
     at: &'a Pos,
 }
 
-fn act_view(act: &Act) -> ActView<'_> {
+fn act_view<'a>(act: &'a Act, contexts: &'a [String]) -> ActView<'a> {
     ActView {
         label: &act.label,
         at: &act.pos,
@@ -86,6 +91,9 @@ fn act_view(act: &Act) -> ActView<'_> {
                     .collect(),
             })
             .collect(),
+        speaks: (contexts.iter())
+            .map(|c| (c.as_str(), variant_for(act, c).map(|v| v.name.as_str())))
+            .collect(),
         commands: (act.commands.iter())
             .map(|c| CommandView {
                 verb: c.value.verb.as_str(),
@@ -99,7 +107,9 @@ fn act_view(act: &Act) -> ActView<'_> {
 /// `GET /api/acts`: every act with its variants, commands and positions.
 pub async fn list_acts(State(state): State<AppState>) -> impl IntoResponse {
     let bundle = state.dispatcher.bundle();
-    let acts: Vec<ActView<'_>> = bundle.acts.iter().map(act_view).collect();
+    let acts: Vec<ActView<'_>> = (bundle.acts.iter())
+        .map(|act| act_view(act, &bundle.contexts))
+        .collect();
     Json(json!({ "contexts": bundle.contexts, "acts": acts })).into_response()
 }
 
