@@ -240,6 +240,49 @@ async fn the_acts_listing_names_the_variant_a_trigger_speaks_in_each_context() {
 }
 
 #[tokio::test]
+async fn a_kiosk_is_told_its_opening_hours_evaluated_from_its_own_clock() {
+    let config = "home: index.html\nschedule:\n  closed: closed.html\n  open:\n    \
+                  - {days: Mon-Fri, hours: 09:00-12:00, home: school.html}\n    \
+                  - {days: Mon-Fri, hours: 12:00-17:00}\n";
+    let b = TempBundle::new("- Label: HELLO\n  Text: [Hello]\n")
+        .with_file("docent.yaml", config)
+        .with_file("pages/closed.html", "<!doctype html><title>closed</title>")
+        .with_file("pages/school.html", "<!doctype html><title>school</title>");
+    let server = TestServer::start(b.path()).await;
+    // No credential: the kiosk asks.
+    let answer = reqwest::get(server.url("/api/schedule/2025-12-01T08:59"))
+        .await
+        .expect("answers");
+    assert_eq!(answer.status().as_u16(), 200);
+    let table: Value = answer.json().await.expect("json");
+    assert_eq!(
+        table["showing"],
+        json!({"state": "closed", "page": "closed.html"})
+    );
+    let open = |home: &str| json!({"state": "open", "home": home, "attract": null});
+    let closed = json!({"state": "closed", "page": "closed.html"});
+    assert_eq!(
+        table["changes"].as_array().expect("changes")[..4],
+        [
+            json!({"at": "2025-12-01T09:00", "showing": open("school.html")}),
+            json!({"at": "2025-12-01T12:00", "showing": open("index.html")}),
+            json!({"at": "2025-12-01T17:00", "showing": closed}),
+            json!({"at": "2025-12-02T09:00", "showing": open("school.html")}),
+        ]
+    );
+    assert_eq!(table["until"], "2025-12-10T00:00");
+    for bad in ["2025-12-01", "2025-13-01T08:59", "now"] {
+        let (status, body) = server.get(&format!("/api/schedule/{bad}")).await;
+        assert_eq!(
+            (status, body["code"].as_str()),
+            (400, Some("bad-request")),
+            "{bad}"
+        );
+    }
+    server.stop().await;
+}
+
+#[tokio::test]
 async fn state_reports_display_pose_context_and_queues() {
     let server = TestServer::start(&bundle("tests/fixtures/fig4-verbatim")).await;
     server.trigger("WELCOME", json!({})).await;

@@ -229,6 +229,29 @@ pub async fn get_state(State(state): State<AppState>, _: Authorized) -> Json<Val
     }))
 }
 
+/// Whole days after the asked-for one that a kiosk's timetable covers: a week and a day, so a
+/// kiosk that cannot ask again for a while still keeps to the hours.
+const TIMETABLE_DAYS: u16 = 8;
+
+/// `GET /api/schedule/{at}` (`at`: the kiosk's wall-clock time, `YYYY-MM-DDTHH:MM`): what the
+/// touchscreen shows then by the bundle's opening hours, and every change after it for
+/// [`TIMETABLE_DAYS`] days. The kiosk applies them by its own clock; it never evaluates the
+/// schedule itself.
+pub async fn get_schedule(
+    State(state): State<AppState>,
+    at: Result<Path<String>, PathRejection>,
+) -> Result<impl IntoResponse, AppError> {
+    let example = "/api/schedule/2025-12-01T08:59";
+    let at = at.ok().and_then(|Path(at)| WallClock::parse(&at));
+    let Some(at) = at else {
+        return Err(AppError::bad_request(format!(
+            "expected the kiosk's local time as YYYY-MM-DDTHH:MM, e.g. {example}"
+        )));
+    };
+    let bundle = state.dispatcher.bundle();
+    Ok(Json(json!(bundle.config.timetable(&at, TIMETABLE_DAYS))))
+}
+
 /// `GET /favicon.ico`: browsers ask every top-level page's server for one; there is none, and
 /// saying so with 204 keeps a 404 out of the kiosk's console.
 pub async fn no_favicon() -> StatusCode {

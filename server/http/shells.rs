@@ -34,8 +34,9 @@ pub struct KioskShell<'a> {
     pub idle_act: Option<&'a str>,
     /// `kiosk: attract:` as JSON for `static/attract.js`; empty when there is none.
     pub attract: String,
-    /// `schedule:` in its parsed form, as JSON for `static/schedule.js`; empty when none.
-    pub schedule: String,
+    /// Whether the bundle has `schedule:`: the shell then asks `GET /api/schedule/{at}` what
+    /// to show by its clock (`static/schedule.js`).
+    pub schedule: bool,
     /// Whether the kiosk speaks `SAY` itself (`speech: {adapter: browser}`).
     pub browser_speech: bool,
     /// Voice (a language tag or voice name) for browser speech.
@@ -64,7 +65,7 @@ impl<'a> KioskShell<'a> {
             idle_ms: config.kiosk.idle.as_millis(),
             idle_act: config.kiosk.idle_act.as_deref(),
             attract: json_or_empty(config.kiosk.attract.as_ref()),
-            schedule: json_or_empty(config.schedule.as_ref()),
+            schedule: config.schedule.is_some(),
             browser_speech: config.speech.adapter == Some(AdapterKind::Browser),
             voice: &config.speech.voice,
             rate: config.speech.rate_wpm,
