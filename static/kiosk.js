@@ -228,6 +228,7 @@ const speech = speechState({
 
 const language = kioskLanguage({
   languages: config.languages,
+  pageFolders: parsed(config.pageFolders),
   send: (frame) => socket.send(frame),
   say: (text) => speech.say(text),
   onChange: () => reloadPage(), // the page on show, in the new language
