@@ -14,8 +14,9 @@
 // Recording (recorder.js): on the server's `record` frame the shell records the microphone (and
 // camera) and uploads the chunks into the session's folder.
 // Attract loop (attract.js) and opening hours (schedule.js): after `after_ms` without a touch
-// the loop runs until the first touch; the schedule, by the kiosk's own clock, picks the home
-// page and attract loop, or shows the closed page (and then neither idles nor attracts).
+// the loop runs until the first touch; the schedule, as the server evaluated it for the kiosk's
+// own clock, picks the home page and attract loop, or shows the closed page (and then neither
+// idles nor attracts).
 // Captions (caption.js): what the robot says, in the page while it is said. While Docent is
 // away (outage.js) a calm notice shows and taps answer "one moment"; the hello of a new
 // connection says which page is shown, so a restarted server keeps the visitor there.
@@ -28,7 +29,7 @@ import { answerRecordRequests } from "./recorder.js";
 import { kioskLanguage } from "./language.js";
 import { encodePath, keepConnected } from "./socket.js";
 import { startBrowserSpeech } from "./speech.js";
-import { followSchedule } from "./schedule.js";
+import { askSchedule, followSchedule } from "./schedule.js";
 import { speechState } from "./speech-state.js";
 
 const TRIGGER_ANSWER_TIMEOUT_MS = 10_000;
@@ -43,6 +44,9 @@ let closed = false; // outside opening hours: the closed page, no idle return, n
 const parsed = (text) => (text ? JSON.parse(text) : null);
 const defaultAttract = parsed(config.attract);
 let attractLoop = defaultAttract;
+// With opening hours, what they say now is asked for before the connection opens, so the
+// server's first state frame already meets the closed page or the range's home.
+const firstSchedule = config.schedule ? await askSchedule() : null;
 const idleMs = Number(config.idleMs) || 0;
 const idleAct = config.idleAct || null;
 
@@ -224,6 +228,7 @@ const speech = speechState({
 
 const language = kioskLanguage({
   languages: config.languages,
+  pageFolders: parsed(config.pageFolders),
   send: (frame) => socket.send(frame),
   say: (text) => speech.say(text),
   onChange: () => reloadPage(), // the page on show, in the new language
@@ -389,9 +394,8 @@ const attract = createAttract({
   onTouchEnd: () => showBy(home, "attract"),
 });
 
-const schedule = parsed(config.schedule);
-if (schedule) followSchedule(schedule, { home: defaultHome, attract: defaultAttract }, (showing) => {
-  if (!showing.open) {
+if (config.schedule) followSchedule(firstSchedule, (showing) => {
+  if (showing.state === "closed") {
     closed = true;
     attract.stop("schedule");
     showBy(showing.page, "schedule");

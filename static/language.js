@@ -1,24 +1,29 @@
 // language.js: the visitor's language in the kiosk shell (docs/AUTHORING.md, "Several
-// languages"). Knows the bundle's languages (the shell's `data-languages`, the default first)
-// and the one in force (from `welcome` and `state` frames' `state.language` and from
-// `language` frames). A page is shown from the language's folder when the language is not the
-// default one (`pages/de/tour.html`; the server serves the default language's page where the
-// folder lacks it), and reported to Docent without that folder, as the bundle names it
-// (`tour.html`). A page's `data-language` button (docent-page.js) asks through `ask`: the
+// languages"). Knows the bundle's languages (the shell's `data-languages`, the default first),
+// the folder under pages/ the server says each shows its pages from (`data-page-folders`:
+// none for the default, `de/` for German; the server serves the default language's page where
+// the folder lacks it), and the language in force (from `welcome` and `state` frames'
+// `state.language` and from `language` frames). A page is shown from the folder in force
+// (`pages/de/tour.html`) and reported to Docent without a language's folder, as the bundle
+// names it (`tour.html`). A page's `data-language` button (docent-page.js) asks through `ask`: the
 // answer is the `language` frame or Docent's `error` (`not-offered`, `unknown-language`),
 // which the shell says on screen and in the browser's log: a refusal is never silent.
 
 const ANSWER_TIMEOUT_MS = 10_000;
 
 /**
- * @param {{languages: string, send: (frame: object) => boolean, say: (text: string) => void,
+ * @param {{languages: string, pageFolders: Object<string, string>,
+ *          send: (frame: object) => boolean, say: (text: string) => void,
  *          onChange: (language: string) => void}} options `languages`: the tags separated by
- *          spaces, the default first; `send`: the shell's socket; `say`: the shell's notice;
+ *          spaces, the default first; `pageFolders`: each language's folder under pages/, as
+ *          the server resolved it; `send`: the shell's socket; `say`: the shell's notice;
  *          `onChange`: the language changed (the shell shows its page again in it)
  */
-export function kioskLanguage({ languages, send, say, onChange }) {
+export function kioskLanguage({ languages, pageFolders, send, say, onChange }) {
   const all = String(languages || "en").toLowerCase().split(/\s+/).filter(Boolean);
   const fallback = all[0] ?? "en";
+  const folders = Object.entries(pageFolders ?? {}); // [[language, folder]] as the server resolved them
+  const folderOf = (tag) => folders.find(([language]) => language === tag)?.[1] ?? "";
   let current = fallback;
   const pending = new Map(); // ref -> resolve
   let refCount = 0;
@@ -46,12 +51,12 @@ export function kioskLanguage({ languages, send, say, onChange }) {
     /** The visitor's language when it is not the default, else null (for the hello). */
     chosen: () => (current === fallback ? null : current),
     /** The path under pages/ that shows `page` in the language in force. */
-    path: (page) => (current === fallback || !page ? page : `${current}/${page}`),
+    path: (page) => (page ? folderOf(current) + page : page),
     /** The page the bundle names for a path under pages/: without its language folder. */
     page(path) {
-      const [folder, ...rest] = String(path).split("/");
-      const translated = all.slice(1).includes(folder.toLowerCase());
-      return translated && rest.length > 0 && rest.join("/") ? rest.join("/") : path;
+      const text = String(path);
+      const folder = folders.find(([, f]) => f && text.toLowerCase().startsWith(f) && text.length > f.length)?.[1];
+      return folder ? text.slice(folder.length) : path;
     },
     /** Takes a server frame: the language in `welcome`/`state`, `language`, answers. */
     onFrame(frame) {

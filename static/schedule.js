@@ -1,45 +1,83 @@
-// schedule.js: the kiosk's opening hours. Docent reads `schedule:` once, when the bundle loads
-// (server/content/schedule.rs), and hands the kiosk its parsed form: each weekday's open ranges
-// (minutes from midnight, Monday first), the special days by date, and the closed page. This
-// file only looks up the range the kiosk's own clock is in, so the kiosk switches on time with
-// no message from the server. Times are the kiosk's local wall-clock time.
+// schedule.js: the kiosk's opening hours, applied, never evaluated. Docent evaluates
+// `schedule:` (server/content/schedule.rs) from the kiosk's own wall-clock time
+// (`GET /api/schedule/{at}`) and answers with what the touchscreen shows now and each change
+// over the next days. This file applies each change when the kiosk's clock reaches it (checked
+// every minute, so it switches on time with no message from the server) and asks again after
+// each change it applies; while the server is away it keeps to the changes it holds. Times are
+// the kiosk's local wall-clock time, `YYYY-MM-DDTHH:MM`, which compare as text as in time.
 
 const MINUTE_MS = 60_000;
+const ANSWER_TIMEOUT_MS = 5_000;
 
-/** "2025-12-24" for `date`'s local day. */
-function localDay(date) {
+/** `date` as the kiosk's local wall-clock time: `2025-12-01T08:59`. */
+export function wallTime(date) {
   const two = (n) => String(n).padStart(2, "0");
-  return `${date.getFullYear()}-${two(date.getMonth() + 1)}-${two(date.getDate())}`;
+  const day = `${date.getFullYear()}-${two(date.getMonth() + 1)}-${two(date.getDate())}`;
+  return `${day}T${two(date.getHours())}:${two(date.getMinutes())}`;
 }
 
 /**
- * What the touchscreen should show at `date`: `{open: true, home, attract}` or
- * `{open: false, page}`. `defaults` are the bundle's `home` and `kiosk: attract` (or null).
+ * What the server's `table` says the touchscreen shows at wall time `now`: its last change at
+ * or before `now`, else its `showing`. Either `{state: "open", home, attract}` or
+ * `{state: "closed", page}`.
  */
-export function showingAt(schedule, defaults, date) {
-  if (!schedule) return { open: true, home: defaults.home, attract: defaults.attract };
-  const special = schedule.special_days?.[localDay(date)];
-  const hours = special ?? schedule.week[(date.getDay() + 6) % 7] ?? [];
-  const minute = date.getHours() * 60 + date.getMinutes();
-  const range = hours.find((h) => h.from <= minute && minute < h.to);
-  if (!range) return { open: false, page: schedule.closed_page };
-  return { open: true, home: range.home ?? defaults.home, attract: range.attract ?? defaults.attract };
+export function showingIn(table, now) {
+  let showing = table.showing;
+  for (const change of table.changes) {
+    if (change.at > now) break;
+    showing = change.showing;
+  }
+  return showing;
+}
+
+/** The server's timetable from the kiosk's time now; null when it cannot be had. */
+export async function askSchedule() {
+  try {
+    const answer = fetch(`/api/schedule/${wallTime(new Date())}`, { cache: "no-store" }).then((r) => {
+      if (!r.ok) throw new Error(`HTTP ${r.status}`);
+      return r.json();
+    });
+    const late = new Promise((_, reject) => setTimeout(() => reject(new Error("no answer")), ANSWER_TIMEOUT_MS));
+    return await Promise.race([answer, late]);
+  } catch (error) {
+    console.warn("docent: the opening hours could not be asked for", error);
+    return null;
+  }
 }
 
 /**
- * Calls `onChange(showing)` now and whenever what the schedule says changes, checked at every
- * minute of the kiosk's clock.
+ * Calls `onChange(showing)` now (from `first`, a timetable already asked for, or null) and
+ * whenever what the timetable says changes, checked at every minute of the kiosk's clock.
  */
-export function followSchedule(schedule, defaults, onChange) {
+export function followSchedule(first, onChange) {
+  let table = first;
   let last = null;
-  const check = () => {
-    const showing = showingAt(schedule, defaults, new Date());
+  let asking = false;
+  const apply = () => {
+    if (!table) return;
+    const showing = showingIn(table, wallTime(new Date()));
     const key = JSON.stringify(showing);
     if (key !== last) {
       last = key;
       onChange(showing);
     }
-    setTimeout(check, MINUTE_MS - (Date.now() % MINUTE_MS) + 5);
   };
-  check();
+  const ask = async () => {
+    if (asking) return;
+    asking = true;
+    table = (await askSchedule()) ?? table;
+    asking = false;
+    apply();
+  };
+  const check = () => {
+    setTimeout(check, MINUTE_MS - (Date.now() % MINUTE_MS) + 5);
+    const now = wallTime(new Date());
+    // A change reached (or the end of the evaluated time, or none held yet): ask again. The
+    // change it holds is applied first, so the switch is on time even when no answer comes.
+    const due = !table || now >= table.until || (table.changes[0] && table.changes[0].at <= now);
+    apply();
+    if (due) ask();
+  };
+  apply();
+  setTimeout(check, MINUTE_MS - (Date.now() % MINUTE_MS) + 5);
 }

@@ -141,6 +141,24 @@ async fn stop_preempts_a_long_say_and_a_running_drive_and_the_next_act_works() {
 }
 
 #[tokio::test]
+async fn state_names_the_running_say_its_text_and_its_verb_apart() {
+    let b = bundle();
+    let server = TestServer::start(b.path()).await;
+    let mut op = server.operator().await;
+    let long = ids(&server.trigger("LONG", json!({})).await)[0];
+    op.event_where(is("command.started", long)).await;
+    let (_, state) = server.get("/api/state").await;
+    let text = state["speaking"].as_str().expect("a text being spoken");
+    assert!(text.starts_with("This sentence goes on"), "{state}");
+    let queue = &state["queues"]["log"];
+    assert_eq!(queue["current"], format!("SAY {text}"), "{state}");
+    assert_eq!(queue["current_verb"], "SAY", "{state}");
+    let idle = &state["queues"]["display"];
+    assert_eq!(idle, &json!({"current": null, "queued": 0}), "{state}");
+    server.stop().await;
+}
+
+#[tokio::test]
 async fn an_act_with_drive_stop_preempts_everything_but_keeps_its_own_speech() {
     let b = bundle();
     let server = TestServer::start(b.path()).await;

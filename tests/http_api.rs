@@ -3,7 +3,7 @@
 
 use crate::common;
 
-use common::{TestServer, bundle};
+use common::{TempBundle, TestServer, bundle};
 use serde_json::{Value, json};
 
 fn commands(triggered: &Value) -> Vec<(String, Option<String>)> {
@@ -196,6 +196,89 @@ async fn the_acts_listing_carries_labels_variants_commands_and_positions() {
         (status, health["status"].as_str(), health["acts"].as_u64()),
         (200, Some("ok"), Some(4))
     );
+    server.stop().await;
+}
+
+#[tokio::test]
+async fn the_acts_listing_names_the_variant_a_trigger_speaks_in_each_context() {
+    let acts = "- Label: HELLO\n  Text: [Hello]\n  TextGroup: [Hello all]\n\
+                - Label: CHILD\n  TextChild: [Hi there]\n\
+                - Label: QUIET\n  Cmds: [WAIT 1ms]\n";
+    let b = TempBundle::new(acts);
+    let server = TestServer::start(b.path()).await;
+    let (status, body) = server.get("/api/acts").await;
+    assert_eq!(status, 200);
+    assert_eq!(body["contexts"], json!(["Text", "TextChild", "TextGroup"]));
+    let speaks: Vec<(&str, &Value)> = (body["acts"].as_array().unwrap().iter())
+        .map(|a| (a["label"].as_str().unwrap(), &a["speaks"]))
+        .collect();
+    assert_eq!(
+        speaks,
+        [
+            (
+                "HELLO",
+                &json!({"Text": "Text", "TextChild": "Text", "TextGroup": "TextGroup"})
+            ),
+            (
+                "CHILD",
+                &json!({"Text": null, "TextChild": "TextChild", "TextGroup": null})
+            ),
+            (
+                "QUIET",
+                &json!({"Text": null, "TextChild": null, "TextGroup": null})
+            ),
+        ]
+    );
+    // What the listing says is what a trigger in that context speaks.
+    for (label, by_context) in speaks {
+        for (context, variant) in by_context.as_object().unwrap() {
+            let triggered = server.trigger(label, json!({"context": context})).await;
+            assert_eq!(&triggered["variant"], variant, "{label} in {context}");
+        }
+    }
+    server.stop().await;
+}
+
+#[tokio::test]
+async fn a_kiosk_is_told_its_opening_hours_evaluated_from_its_own_clock() {
+    let config = "home: index.html\nschedule:\n  closed: closed.html\n  open:\n    \
+                  - {days: Mon-Fri, hours: 09:00-12:00, home: school.html}\n    \
+                  - {days: Mon-Fri, hours: 12:00-17:00}\n";
+    let b = TempBundle::new("- Label: HELLO\n  Text: [Hello]\n")
+        .with_file("docent.yaml", config)
+        .with_file("pages/closed.html", "<!doctype html><title>closed</title>")
+        .with_file("pages/school.html", "<!doctype html><title>school</title>");
+    let server = TestServer::start(b.path()).await;
+    // No credential: the kiosk asks.
+    let answer = reqwest::get(server.url("/api/schedule/2025-12-01T08:59"))
+        .await
+        .expect("answers");
+    assert_eq!(answer.status().as_u16(), 200);
+    let table: Value = answer.json().await.expect("json");
+    assert_eq!(
+        table["showing"],
+        json!({"state": "closed", "page": "closed.html"})
+    );
+    let open = |home: &str| json!({"state": "open", "home": home, "attract": null});
+    let closed = json!({"state": "closed", "page": "closed.html"});
+    assert_eq!(
+        table["changes"].as_array().expect("changes")[..4],
+        [
+            json!({"at": "2025-12-01T09:00", "showing": open("school.html")}),
+            json!({"at": "2025-12-01T12:00", "showing": open("index.html")}),
+            json!({"at": "2025-12-01T17:00", "showing": closed}),
+            json!({"at": "2025-12-02T09:00", "showing": open("school.html")}),
+        ]
+    );
+    assert_eq!(table["until"], "2025-12-10T00:00");
+    for bad in ["2025-12-01", "2025-13-01T08:59", "now"] {
+        let (status, body) = server.get(&format!("/api/schedule/{bad}")).await;
+        assert_eq!(
+            (status, body["code"].as_str()),
+            (400, Some("bad-request")),
+            "{bad}"
+        );
+    }
     server.stop().await;
 }
 

@@ -2,8 +2,10 @@
 //! Every outcome becomes an event; a reply dropped without an outcome reports a failure, so no
 //! command can vanish silently.
 
-use docent_protocol::frames::{CommandFrame, command_frame};
+use std::fmt;
 use std::sync::Arc;
+
+use docent_protocol::frames::{CommandFrame, command_frame};
 
 use tokio::sync::oneshot;
 
@@ -41,9 +43,43 @@ impl Command {
 
     /// `VERB argument`, for status displays and messages.
     pub fn describe(&self) -> String {
+        self.current().to_string()
+    }
+
+    /// What an adapter carrying it out reports in its [`AdapterStatus`](super::AdapterStatus).
+    pub fn current(&self) -> CurrentCommand {
+        CurrentCommand {
+            verb: self.verb.clone(),
+            arg: self.arg.clone(),
+        }
+    }
+}
+
+/// The command an adapter is carrying out, kept as fields so that Rust reads the verb and the
+/// argument instead of splitting the `VERB argument` text it displays as.
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub struct CurrentCommand {
+    /// Its verb.
+    pub verb: Verb,
+    /// Its argument as written.
+    pub arg: Option<Arc<str>>,
+}
+
+impl CurrentCommand {
+    /// The text being spoken, when this is a `SAY` with an argument.
+    pub fn spoken(&self) -> Option<&str> {
+        (self.verb == Verb::Say)
+            .then_some(self.arg.as_deref())
+            .flatten()
+    }
+}
+
+impl fmt::Display for CurrentCommand {
+    /// `VERB argument`, as status displays show it.
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
         match &self.arg {
-            Some(arg) => format!("{} {arg}", self.verb),
-            None => self.verb.to_string(),
+            Some(arg) => write!(f, "{} {arg}", self.verb),
+            None => write!(f, "{}", self.verb),
         }
     }
 }

@@ -374,7 +374,7 @@ impl Adapter for ExternalAdapters {
             .and_then(|id| registry.pending.get(id));
         AdapterStatus {
             queued: registry.pending.len(),
-            current: oldest.map(|p| p.reply.command().describe()),
+            current: oldest.map(|p| p.reply.command().current()),
         }
     }
 }

@@ -21,7 +21,7 @@ mod speech_espeak;
 mod speech_log;
 mod worker;
 
-pub use command::{Command, Outcome, Reply};
+pub use command::{Command, CurrentCommand, Outcome, Reply};
 pub use display::{Display, DisplayAdapter, DisplayState, ProjectorState, Screen, ScreenReport};
 pub use drive_sim::{DriveSim, Pose};
 pub use external::ExternalAdapters;
@@ -45,12 +45,29 @@ pub enum CancelScope<'a> {
 }
 
 /// What an adapter is doing, for `GET /api/state`.
-#[derive(Clone, Debug, Default, serde::Serialize)]
+#[derive(Clone, Debug, Default)]
 pub struct AdapterStatus {
     /// Commands waiting in its queue.
     pub queued: usize,
-    /// The command it is executing: `VERB argument`.
-    pub current: Option<String>,
+    /// The command it is executing.
+    pub current: Option<CurrentCommand>,
+}
+
+/// Serialized as `GET /api/state` has always sent it (`queued`, and `current` as the text
+/// `VERB argument`), plus `current_verb` while a command runs, so that the console reads the
+/// verb instead of splitting the text.
+impl serde::Serialize for AdapterStatus {
+    fn serialize<S: serde::Serializer>(&self, serializer: S) -> Result<S::Ok, S::Error> {
+        use serde::ser::SerializeStruct;
+        let fields = if self.current.is_some() { 3 } else { 2 };
+        let mut s = serializer.serialize_struct("AdapterStatus", fields)?;
+        s.serialize_field("queued", &self.queued)?;
+        s.serialize_field("current", &self.current.as_ref().map(|c| c.to_string()))?;
+        if let Some(current) = &self.current {
+            s.serialize_field("current_verb", current.verb.as_str())?;
+        }
+        s.end()
+    }
 }
 
 /// A device adapter. Implementations queue work and return at once: `submit` runs on the
@@ -67,4 +84,50 @@ pub trait Adapter: Send + Sync {
 
     /// What it is doing now.
     fn status(&self) -> AdapterStatus;
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use serde_json::json;
+
+    #[test]
+    fn a_status_is_sent_as_verb_and_argument_text_with_the_verb_beside_it() {
+        let status = AdapterStatus {
+            queued: 2,
+            current: Some(CurrentCommand {
+                verb: Verb::DisplayPage,
+                arg: Some("Welcome/Welcome.html".into()),
+            }),
+        };
+        assert_eq!(
+            serde_json::to_value(&status).ok(),
+            Some(json!({
+                "queued": 2,
+                "current": "DISPLAY_PAGE Welcome/Welcome.html",
+                "current_verb": "DISPLAY_PAGE",
+            }))
+        );
+    }
+
+    #[test]
+    fn an_idle_status_is_sent_as_before() {
+        let text = serde_json::to_string(&AdapterStatus::default()).ok();
+        assert_eq!(text.as_deref(), Some(r#"{"queued":0,"current":null}"#));
+    }
+
+    #[test]
+    fn only_a_say_with_text_is_spoken() {
+        let say = |arg: Option<&str>| CurrentCommand {
+            verb: Verb::Say,
+            arg: arg.map(Into::into),
+        };
+        assert_eq!(say(Some("Hello there")).spoken(), Some("Hello there"));
+        assert_eq!(say(None).spoken(), None);
+        let site = CurrentCommand {
+            verb: Verb::Site("SAY_LOUD".into()),
+            arg: Some("Hello".into()),
+        };
+        assert_eq!(site.spoken(), None);
+    }
 }

@@ -162,7 +162,7 @@ async fn run_queue<T: Task>(
             reply.finish(Outcome::Cancelled(cancel.reason()));
             continue;
         }
-        lock(&status).current = Some(command.describe());
+        lock(&status).current = Some(command.current());
         reply.started();
         let outcome = tokio::select! {
             outcome = task.run(&command) => outcome,

@@ -165,9 +165,28 @@ impl Languages {
     /// The page a kiosk in another language falls back to: `de/tour.html` (a page of the
     /// German folder `pages/de/`) → `tour.html`; `None` for a path in no language folder.
     pub fn page_fallback<'p>(&self, rel: &'p str) -> Option<&'p str> {
-        let (folder, rest) = rel.split_once('/')?;
-        let translated = self.translated().iter().any(|l| l.as_str() == folder);
-        (translated && !rest.is_empty()).then_some(rest)
+        (self.translated().iter())
+            .find_map(|l| rel.strip_prefix(self.page_folder(l).as_str()))
+            .filter(|rest| !rest.is_empty())
+    }
+
+    /// The folder under `pages/` that `language`'s pages are shown from: none (`""`) for the
+    /// default language, `de/` for German. With [`Languages::page_fallback`] the one place
+    /// that knows this layout; the kiosk shell gets the result per language
+    /// ([`Languages::page_folders`]) and only puts it before a page or takes it off a path.
+    pub fn page_folder(&self, language: &Language) -> String {
+        if language == self.default_language() {
+            String::new()
+        } else {
+            format!("{language}/")
+        }
+    }
+
+    /// Each language's [`Languages::page_folder`], the default first.
+    pub fn page_folders(&self) -> Vec<(&Language, String)> {
+        (self.list.iter())
+            .map(|l| (l, self.page_folder(l)))
+            .collect()
     }
 
     /// The tags as a list for messages: `en, de`.
@@ -244,5 +263,33 @@ mod tests {
         );
         assert_eq!(languages.page_fallback("tour.html"), None);
         assert_eq!(Languages::new(Vec::new()), None);
+    }
+
+    #[test]
+    fn each_language_shows_pages_from_its_folder_and_the_default_from_none() {
+        let list = ["en", "de", "pt-br"]
+            .map(|t| Language::parse(t).expect("tag"))
+            .to_vec();
+        let languages = Languages::new(list).expect("not empty");
+        let folders: Vec<(&str, String)> = (languages.page_folders().into_iter())
+            .map(|(l, f)| (l.as_str(), f))
+            .collect();
+        let expected = [("en", ""), ("de", "de/"), ("pt-br", "pt-br/")];
+        assert_eq!(folders, expected.map(|(l, f)| (l, f.to_owned())));
+        // A page shown from a folder falls back to the page the bundle names.
+        for (language, folder) in languages.page_folders().into_iter().skip(1) {
+            let path = format!("{folder}tour.html");
+            assert_eq!(
+                languages.page_fallback(&path),
+                Some("tour.html"),
+                "{language}"
+            );
+        }
+        assert_eq!(
+            languages.page_fallback("de/"),
+            None,
+            "a folder alone is no page"
+        );
+        assert_eq!(languages.page_fallback("pt/tour.html"), None);
     }
 }

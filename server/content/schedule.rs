@@ -1,8 +1,9 @@
 //! A bundle's opening hours (`schedule:` in `docent.yaml`): per weekday and for special
 //! dates, the time ranges the kiosk is open, each with its own home page and attract loop,
-//! and the page shown while closed. Read once by `config_file/schedule.rs`; the kiosk gets
-//! this parsed form as JSON (`static/schedule.js` only looks ranges up, it never parses
-//! schedule text) and the server evaluates the same form for `GET /api/state`.
+//! and the page shown while closed. Read once by `config_file/schedule.rs`; evaluated only
+//! here: for `GET /api/state` ([`SiteConfig::showing_at`]) and, for the kiosk, as a
+//! [`Timetable`] from the kiosk's own wall-clock time (`static/schedule.js` applies the
+//! changes it is given when its clock reaches them; it holds no copy of the rule).
 //!
 //! Times are wall-clock times where the kiosk is: the kiosk uses its own clock and time zone,
 //! the server its own (`WallClock::now`), so both machines should be set to the site's zone.
@@ -131,6 +132,79 @@ impl WallClock {
     }
 }
 
+impl WallClock {
+    /// `minute` of `date`, its weekday worked out from the calendar.
+    pub fn at(date: CalendarDate, minute: u16) -> Option<Self> {
+        let day = jiff::civil::Date::new(
+            i16::try_from(date.year).ok()?,
+            i8::try_from(date.month).ok()?,
+            i8::try_from(date.day).ok()?,
+        )
+        .ok()?;
+        let weekday = u8::try_from(day.weekday().to_monday_zero_offset()).ok()?;
+        (minute < DAY_MINUTES).then_some(WallClock {
+            date,
+            weekday,
+            minute,
+        })
+    }
+
+    /// The time written `YYYY-MM-DDTHH:MM`, if it is a real one.
+    pub fn parse(text: &str) -> Option<Self> {
+        let (date, time) = text.split_once('T')?;
+        let (hh, mm) = time.split_once(':')?;
+        let number = |t: &str| {
+            (t.len() == 2 && t.bytes().all(|b| b.is_ascii_digit()))
+                .then(|| t.parse::<u16>().ok())?
+        };
+        let (hh, mm) = (number(hh)?, number(mm)?);
+        (hh < 24 && mm < 60).then_some(())?;
+        WallClock::at(CalendarDate::parse(date)?, hh * 60 + mm)
+    }
+
+    /// Midnight of the next day.
+    fn next_midnight(&self) -> Self {
+        let d = self.date;
+        let date = if d.day < d.month_days() {
+            CalendarDate {
+                day: d.day + 1,
+                ..d
+            }
+        } else if d.month < 12 {
+            CalendarDate {
+                month: d.month + 1,
+                day: 1,
+                ..d
+            }
+        } else {
+            CalendarDate {
+                year: d.year.saturating_add(1),
+                month: 1,
+                day: 1,
+            }
+        };
+        WallClock {
+            date,
+            weekday: (self.weekday + 1) % 7,
+            minute: 0,
+        }
+    }
+}
+
+impl fmt::Display for WallClock {
+    /// `YYYY-MM-DDTHH:MM`: ordered as text the way it is in time.
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        let (hh, mm) = (self.minute / 60, self.minute % 60);
+        write!(f, "{}T{hh:02}:{mm:02}", self.date)
+    }
+}
+
+impl Serialize for WallClock {
+    fn serialize<S: Serializer>(&self, s: S) -> Result<S::Ok, S::Error> {
+        s.collect_str(self)
+    }
+}
+
 impl Schedule {
     /// The open ranges of `clock`'s day: its special day's if it has one, else its weekday's.
     pub fn hours_on(&self, clock: &WallClock) -> &[OpenHours] {
@@ -164,6 +238,26 @@ pub enum Showing<'a> {
     },
 }
 
+/// What the touchscreen shows from a moment on: `GET /api/schedule`'s answer.
+#[derive(Clone, Debug, PartialEq, Eq, Serialize)]
+pub struct Timetable<'a> {
+    /// What it shows at the moment asked about.
+    pub showing: Showing<'a>,
+    /// Each later change, in time order.
+    pub changes: Vec<Change<'a>>,
+    /// The end of the evaluated time: ask again before it.
+    pub until: WallClock,
+}
+
+/// One change of what the touchscreen shows.
+#[derive(Clone, Debug, PartialEq, Eq, Serialize)]
+pub struct Change<'a> {
+    /// When, on the kiosk's wall clock.
+    pub at: WallClock,
+    /// What it shows from then on.
+    pub showing: Showing<'a>,
+}
+
 impl SiteConfig {
     /// What the touchscreen should show at `clock`: always open without a schedule.
     pub fn showing_at(&self, clock: &WallClock) -> Showing<'_> {
@@ -182,6 +276,38 @@ impl SiteConfig {
             None => Showing::Closed {
                 page: &schedule.closed_page,
             },
+        }
+    }
+
+    /// What the touchscreen shows from `from` on, evaluated for `days` whole days after
+    /// `from`'s: the kiosk applies each change when its own clock reaches it, so it keeps to
+    /// the hours while the server is away.
+    pub fn timetable(&self, from: &WallClock, days: u16) -> Timetable<'_> {
+        let showing = self.showing_at(from);
+        let mut changes: Vec<Change<'_>> = Vec::new();
+        let mut day = WallClock { minute: 0, ..*from };
+        for _ in 0..=days {
+            let mut minutes: Vec<u16> = (self.schedule.iter())
+                .flat_map(|s| s.hours_on(&day).iter().flat_map(|h| [h.from, h.to]))
+                .chain([0])
+                .filter(|&m| m < DAY_MINUTES && (day.date != from.date || m > from.minute))
+                .collect();
+            minutes.sort_unstable();
+            minutes.dedup();
+            for minute in minutes {
+                let at = WallClock { minute, ..day };
+                let now = self.showing_at(&at);
+                let last = changes.last().map_or(&showing, |c| &c.showing);
+                if now != *last {
+                    changes.push(Change { at, showing: now });
+                }
+            }
+            day = day.next_midnight();
+        }
+        Timetable {
+            showing,
+            changes,
+            until: day,
         }
     }
 

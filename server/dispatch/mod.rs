@@ -50,7 +50,7 @@ pub use request::{ResolvedCommand, TriggerError, TriggerRequest, Triggered};
 
 use crate::adapters::{AdapterStatus, CancelScope, Command, Router};
 use crate::content::config::Channel;
-use crate::content::{Args, Bundle, DEFAULT_VARIANT, Verb, closest};
+use crate::content::{Act, Args, Bundle, DEFAULT_VARIANT, Variant, Verb, closest};
 use crate::events::{ActRef, EventKind, Hub, Source};
 use crate::lifecycle::Lifecycle;
 use crate::sync::lock;
@@ -176,9 +176,7 @@ impl Dispatcher {
             None => lock(&self.context).clone(),
         };
         let act = &bundle.acts[index];
-        let variant = (act.variants.iter())
-            .find(|v| v.name == context)
-            .or_else(|| act.variants.iter().find(|v| v.name == DEFAULT_VARIANT));
+        let variant = variant_for(act, &context);
         let visitor_language = self.language();
         let choice = variant.map(|v| {
             let texts = language::texts_in(&bundle, v, &visitor_language);
@@ -404,6 +402,14 @@ impl Dispatcher {
     pub(crate) fn next_id(&self) -> u64 {
         self.next_id.fetch_add(1, Ordering::Relaxed)
     }
+}
+
+/// The variant `act` speaks in `context`: the context's own, else `Text`; `None` when the act
+/// says nothing there. The one place this rule lives: the trigger applies it, and
+/// `GET /api/acts` sends its result per context so the console only looks it up.
+pub fn variant_for<'a>(act: &'a Act, context: &str) -> Option<&'a Variant> {
+    act.variant(context)
+        .or_else(|| act.variant(DEFAULT_VARIANT))
 }
 
 /// Labels and contexts longer than this get no suggestion: comparing them costs too much for

@@ -67,12 +67,8 @@ pub fn snapshot(
         .map(|n| n.to_string_lossy().into_owned())
         .unwrap_or_else(|| bundle.root.display().to_string());
     let adapters = state.dispatcher.adapter_status();
-    let speaking = (adapters.get(state.devices.speech_adapter)).and_then(|s| {
-        s.current
-            .as_deref()?
-            .strip_prefix("SAY ")
-            .map(str::to_owned)
-    });
+    let speaking = (adapters.get(state.devices.speech_adapter))
+        .and_then(|s| s.current.as_ref()?.spoken().map(str::to_owned));
     json!({
         "online": true,
         "robot": identity.robot,

@@ -1,6 +1,8 @@
 //! The trigger API: acts, triggers, stop, context, state and health. Routes reach devices only
 //! through the dispatcher.
 
+use std::collections::BTreeMap;
+
 use crate::content::schedule::WallClock;
 use axum::Json;
 use axum::extract::rejection::PathRejection;
@@ -11,7 +13,7 @@ use serde::{Deserialize, Serialize};
 use serde_json::{Value, json};
 
 use crate::content::{Act, Pos};
-use crate::dispatch::TriggerRequest;
+use crate::dispatch::{TriggerRequest, variant_for};
 use crate::events::Source;
 use crate::http::AppError;
 use crate::http::auth::Authorized;
@@ -42,6 +44,9 @@ struct ActView<'a> {
     /// The console key (`Alt+` this), if the act has one.
     key: Option<String>,
     variants: Vec<VariantView<'a>>,
+    /// For each of the bundle's contexts, the variant the act speaks in it (null: nothing), so
+    /// that the console looks the server's choice up instead of repeating its rule.
+    speaks: BTreeMap<&'a str, Option<&'a str>>,
     commands: Vec<CommandView<'a>>,
 }
 
@@ -65,7 +70,7 @@ struct CommandView<'a> {
     at: &'a Pos,
 }
 
-fn act_view(act: &Act) -> ActView<'_> {
+fn act_view<'a>(act: &'a Act, contexts: &'a [String]) -> ActView<'a> {
     ActView {
         label: &act.label,
         at: &act.pos,
@@ -86,6 +91,9 @@ fn act_view(act: &Act) -> ActView<'_> {
                     .collect(),
             })
             .collect(),
+        speaks: (contexts.iter())
+            .map(|c| (c.as_str(), variant_for(act, c).map(|v| v.name.as_str())))
+            .collect(),
         commands: (act.commands.iter())
             .map(|c| CommandView {
                 verb: c.value.verb.as_str(),
@@ -99,7 +107,9 @@ fn act_view(act: &Act) -> ActView<'_> {
 /// `GET /api/acts`: every act with its variants, commands and positions.
 pub async fn list_acts(State(state): State<AppState>) -> impl IntoResponse {
     let bundle = state.dispatcher.bundle();
-    let acts: Vec<ActView<'_>> = bundle.acts.iter().map(act_view).collect();
+    let acts: Vec<ActView<'_>> = (bundle.acts.iter())
+        .map(|act| act_view(act, &bundle.contexts))
+        .collect();
     Json(json!({ "contexts": bundle.contexts, "acts": acts })).into_response()
 }
 
@@ -191,12 +201,8 @@ pub async fn put_context(
 /// pending proposals and the visitor session.
 pub async fn get_state(State(state): State<AppState>, _: Authorized) -> Json<Value> {
     let adapters = state.dispatcher.adapter_status();
-    let speaking = (adapters.get(state.devices.speech_adapter)).and_then(|s| {
-        s.current
-            .as_deref()?
-            .strip_prefix("SAY ")
-            .map(str::to_owned)
-    });
+    let speaking = (adapters.get(state.devices.speech_adapter))
+        .and_then(|s| s.current.as_ref()?.spoken().map(str::to_owned));
     let bundle = state.dispatcher.bundle();
     // What the touchscreen should show by the schedule, by this machine's clock.
     let scheduled = bundle.config.showing_at(&WallClock::now());
@@ -221,6 +227,29 @@ pub async fn get_state(State(state): State<AppState>, _: Authorized) -> Json<Val
         "recording": state.recordings.view(),
         "fleet": state.fleet.state_json(),
     }))
+}
+
+/// Whole days after the asked-for one that a kiosk's timetable covers: a week and a day, so a
+/// kiosk that cannot ask again for a while still keeps to the hours.
+const TIMETABLE_DAYS: u16 = 8;
+
+/// `GET /api/schedule/{at}` (`at`: the kiosk's wall-clock time, `YYYY-MM-DDTHH:MM`): what the
+/// touchscreen shows then by the bundle's opening hours, and every change after it for
+/// [`TIMETABLE_DAYS`] days. The kiosk applies them by its own clock; it never evaluates the
+/// schedule itself.
+pub async fn get_schedule(
+    State(state): State<AppState>,
+    at: Result<Path<String>, PathRejection>,
+) -> Result<impl IntoResponse, AppError> {
+    let example = "/api/schedule/2025-12-01T08:59";
+    let at = at.ok().and_then(|Path(at)| WallClock::parse(&at));
+    let Some(at) = at else {
+        return Err(AppError::bad_request(format!(
+            "expected the kiosk's local time as YYYY-MM-DDTHH:MM, e.g. {example}"
+        )));
+    };
+    let bundle = state.dispatcher.bundle();
+    Ok(Json(json!(bundle.config.timetable(&at, TIMETABLE_DAYS))))
 }
 
 /// `GET /favicon.ico`: browsers ask every top-level page's server for one; there is none, and

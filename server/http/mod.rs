@@ -69,6 +69,7 @@ pub fn app(state: AppState) -> Router {
         .route("/api/stop", post(api::stop_all))
         .route("/api/context", get(api::get_context).put(api::put_context))
         .route("/api/state", get(api::get_state))
+        .route("/api/schedule/{at}", get(api::get_schedule))
         .route("/api/operator", get(operator::settings))
         .route("/api/report", get(report::get_report))
         .route("/sessions", get(sessions::sessions_page))

@@ -7,6 +7,7 @@ use axum::extract::State;
 use axum::http::header;
 use axum::response::{IntoResponse, Response};
 
+use crate::content::Languages;
 use crate::content::config::{AdapterKind, Camera, SiteConfig};
 use crate::http::AppError;
 use crate::http::missing_page::MissingPage;
@@ -28,14 +29,18 @@ pub struct KioskShell<'a> {
     /// The bundle's languages separated by spaces, the default first (`en de`): pages in
     /// another language are shown from its folder (`pages/de/`).
     pub languages: String,
+    /// Each language's folder under `pages/` (`{"en": "", "de": "de/"}`), as the server
+    /// resolves it (`Languages::page_folder`), for `static/language.js`.
+    pub page_folders: String,
     /// Milliseconds without touch before returning home; 0 disables.
     pub idle_ms: u128,
     /// The act triggered on going idle, if any.
     pub idle_act: Option<&'a str>,
     /// `kiosk: attract:` as JSON for `static/attract.js`; empty when there is none.
     pub attract: String,
-    /// `schedule:` in its parsed form, as JSON for `static/schedule.js`; empty when none.
-    pub schedule: String,
+    /// Whether the bundle has `schedule:`: the shell then asks `GET /api/schedule/{at}` what
+    /// to show by its clock (`static/schedule.js`).
+    pub schedule: bool,
     /// Whether the kiosk speaks `SAY` itself (`speech: {adapter: browser}`).
     pub browser_speech: bool,
     /// Voice (a language tag or voice name) for browser speech.
@@ -61,10 +66,11 @@ impl<'a> KioskShell<'a> {
                 .map(|language| language.as_str())
                 .collect::<Vec<_>>()
                 .join(" "),
+            page_folders: page_folders(&config.languages),
             idle_ms: config.kiosk.idle.as_millis(),
             idle_act: config.kiosk.idle_act.as_deref(),
             attract: json_or_empty(config.kiosk.attract.as_ref()),
-            schedule: json_or_empty(config.schedule.as_ref()),
+            schedule: config.schedule.is_some(),
             browser_speech: config.speech.adapter == Some(AdapterKind::Browser),
             voice: &config.speech.voice,
             rate: config.speech.rate_wpm,
@@ -76,6 +82,15 @@ impl<'a> KioskShell<'a> {
 
 /// `value` as JSON for a `data-` attribute (askama escapes it), or empty for none: the
 /// kiosk's scripts take the parsed form and never parse `docent.yaml` text themselves.
+/// `{"en": "", "de": "de/"}`: where each language's pages are shown from.
+fn page_folders(languages: &Languages) -> String {
+    let folders: serde_json::Map<String, serde_json::Value> = (languages.page_folders())
+        .into_iter()
+        .map(|(language, folder)| (language.to_string(), folder.into()))
+        .collect();
+    serde_json::Value::Object(folders).to_string()
+}
+
 fn json_or_empty<T: serde::Serialize>(value: Option<&T>) -> String {
     value
         .and_then(|v| serde_json::to_string(v).ok())
@@ -221,6 +236,19 @@ mod tests {
             "{page}"
         );
         assert!(page.contains(r#"src="/static/preview.js""#), "{page}");
+    }
+
+    #[test]
+    fn the_kiosk_shell_is_told_each_languages_page_folder() {
+        let list = ["en", "de"].map(|t| crate::content::Language::parse(t).expect("tag"));
+        let config = SiteConfig {
+            languages: Languages::new(list.to_vec()).expect("languages"),
+            ..SiteConfig::default()
+        };
+        let page = KioskShell::new(&config, "").render().expect("renders");
+        let folders = r#"data-page-folders="{&#34;de&#34;:&#34;de/&#34;,&#34;en&#34;:&#34;&#34;}""#;
+        assert!(page.contains(folders), "{page}");
+        assert!(page.contains(r#"data-languages="en de""#), "{page}");
     }
 
     #[test]

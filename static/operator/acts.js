@@ -1,13 +1,13 @@
 // acts.js: the bundle's acts as the console sees them (from GET /api/acts): each act's group
 // (its `Group`, else its acts file without extension), its key, and the texts it would say in
-// a context, chosen the way the server chooses: the context's own variant, else `Text`.
+// a context, looked up in the act's `speaks` (the variant the server chose for each context).
 // Pure functions on plain data, no DOM: tests import this module in Node too.
 
 /**
  * The console's view of one act from /api/acts.
  * @typedef {{label: string, group: string, key: string|null, file: string,
- *            variants: Map<string, string[]>, commands: {verb: string, arg: string|null}[],
- *            order: number}} ConsoleAct
+ *            variants: Map<string, string[]>, speaks: Map<string, string|null>,
+ *            commands: {verb: string, arg: string|null}[], order: number}} ConsoleAct
  */
 
 /** The acts of a GET /api/acts answer, in load order. */
@@ -25,6 +25,7 @@ export function readActs(answer) {
       key: act.key ? String(act.key).toUpperCase() : null,
       file,
       variants,
+      speaks: new Map(Object.entries(act.speaks ?? {})),
       commands: (act.commands ?? []).map((c) => ({ verb: c.verb, arg: c.arg ?? null })),
       order,
     };
@@ -33,17 +34,13 @@ export function readActs(answer) {
 
 /**
  * What `act` would say in `context`: `{variant, texts, fallback}`. `variant` is the variant
- * used (null when the act says nothing), `fallback` whether that is `Text` standing in for a
- * context the act has no variant of.
+ * the server chose (null when the act says nothing, or the context is not the bundle's),
+ * `fallback` whether that variant stands in for a context the act has no variant of.
  */
 export function textsFor(act, context) {
-  if (context && act.variants.has(context)) {
-    return { variant: context, texts: act.variants.get(context), fallback: false };
-  }
-  if (act.variants.has("Text")) {
-    return { variant: "Text", texts: act.variants.get("Text"), fallback: context !== "Text" };
-  }
-  return { variant: null, texts: [], fallback: false };
+  const variant = act.speaks.get(context) ?? null;
+  if (variant === null) return { variant: null, texts: [], fallback: false };
+  return { variant, texts: act.variants.get(variant) ?? [], fallback: variant !== context };
 }
 
 /** Groups in first-appearance order: `[[group, acts], ...]`. */

@@ -14,7 +14,7 @@ const ENDED = new Set(["command.done", "command.failed", "command.cancelled"]);
 /** @param {{kiosk: HTMLElement, projector: HTMLElement, speaking: HTMLElement, queue: HTMLElement}} els */
 export function createLive(els) {
   const commands = new Map(); // id -> {id, verb, arg, label, adapter, started}
-  let snapshot = []; // [{adapter, current, queued}] from /api/state until events take over
+  let snapshot = []; // [{adapter, verb, current, queued}] from /api/state until events take over
   let speakingId = null;
   let speakingText = null;
   // Which parts events have told since the connection's `welcome`: the snapshot leaves them be.
@@ -75,8 +75,8 @@ export function createLive(els) {
       if (!told.display) showDisplay(state.display);
       if (!told.queue) {
         snapshot = Object.entries(state.queues ?? {})
-          .filter(([, q]) => q.current && !told.verbs.has(q.current.split(" ")[0]))
-          .map(([adapter, q]) => ({ adapter, current: q.current, queued: q.queued ?? 0 }));
+          .filter(([, q]) => q.current && !told.verbs.has(q.current_verb))
+          .map(([adapter, q]) => ({ adapter, verb: q.current_verb, current: q.current, queued: q.queued ?? 0 }));
       }
       if (!told.speech) speakingText = state.speaking ?? null;
       showSpeaking();
@@ -106,7 +106,7 @@ export function createLive(els) {
         }
         showQueue();
       } else if (ENDED.has(e.type)) {
-        if (!commands.delete(e.command)) snapshot = snapshot.filter((s) => !s.current.startsWith(e.verb));
+        if (!commands.delete(e.command)) snapshot = snapshot.filter((s) => s.verb !== e.verb);
         if (e.command === speakingId || (speakingId === null && e.verb === "SAY")) {
           speakingId = null;
           speakingText = null;

@@ -155,3 +155,44 @@ test('a schedule at a fixed time shows the closed page, then each range\'s home 
     assert.ok(!operator.events().some((e) => e.type === 'session.started'), 'no visitor');
   });
 });
+
+test('while no answer about the hours comes, the kiosk keeps to the changes it was told', { timeout: 90_000 }, async () => {
+  const files = {
+    'docent.yaml': [
+      'home: index.html',
+      'speech: {adapter: log}',
+      'kiosk: {idle: 0s}',
+      'schedule:',
+      '  closed: closed.html',
+      '  open:',
+      '    - {days: Mon-Fri, hours: 09:00-12:00, home: school.html}',
+      '    - {days: Mon-Fri, hours: 12:00-17:00}',
+      '',
+    ].join('\n'),
+    'acts.yaml': '- Label: HELLO\n  Text: Hello!\n',
+    'pages/index.html': PAGE('home', BIG_BUTTON('HELLO')),
+    'pages/school.html': PAGE('school', '<p>Welcome, class</p>'),
+    'pages/closed.html': PAGE('closed', '<p>We open at nine</p>'),
+  };
+  await withKiosk(files, async ({ server, operator, page }) => {
+    await page.clock.install({ time: new Date(2025, 11, 1, 8, 59, 30) });
+    await page.goto(`${server.base}/`);
+    await waitForShownPage(page, 'closed.html');
+    await operator.waitForEvent(shownOnServer('closed.html'));
+    await pauseNow(page);
+    // From here on every question about the hours goes unanswered.
+    let asked = 0;
+    await page.route('**/api/schedule/**', (route) => {
+      asked += 1;
+      return route.abort();
+    });
+
+    await page.clock.runFor(40_000); // about 09:00:11
+    await operator.waitForEvent(shownOnServer('school.html'));
+    assert.equal(await shownPage(page), '/pages/school.html');
+    await page.clock.runFor(3 * 60 * 60_000); // about 12:00:11
+    await operator.waitForEvent(shownOnServer('index.html'));
+    assert.equal(await shownPage(page), '/pages/index.html');
+    assert.ok(asked > 0, 'the kiosk did not ask again after a change');
+  });
+});

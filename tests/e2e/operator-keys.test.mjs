@@ -78,6 +78,17 @@ test('search ignores case and accents, finds labels and groups; Up/Down choose, 
       const fired = await observer.waitForEvent((e) => e.type === 'act.triggered');
       assert.equal(fired.label, second);
       assert.equal(await page.inputValue('#search'), '');
+
+      // The preview shows the variant the server says an act speaks in the context: its own,
+      // else Text standing in for it.
+      await page.selectOption('#context', 'TextChild');
+      await observer.waitForEvent((e) => e.type === 'context.changed' && e.context === 'TextChild');
+      await page.fill('#search', 'see you');
+      await page.locator('#preview .preview-texts', { hasText: 'Bye bye, see you!' }).waitFor();
+      assert.equal(await page.locator('#preview .preview-variant').textContent(), 'TextChild');
+      await page.fill('#search', 'coffee machine');
+      assert.equal(await chosenLabel(page), 'COFFEE_MACHINE');
+      await page.locator('#preview .preview-variant', { hasText: 'no TextChild text: says Text' }).waitFor();
       assert.deepEqual(problems, [], 'problems in the console');
     });
   } finally {

@@ -160,7 +160,7 @@ impl Adapter for DisplayAdapter {
         let books = lock(&self.state.books);
         AdapterStatus {
             queued: books.awaiting.len(),
-            current: (books.awaiting.values().next()).map(|e| e.reply.command().describe()),
+            current: (books.awaiting.values().next()).map(|e| e.reply.command().current()),
         }
     }
 }

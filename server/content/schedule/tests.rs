@@ -180,3 +180,67 @@ fn calendar_dates_are_real_days() {
     let date = CalendarDate::parse("2025-03-09").expect("a day");
     assert_eq!(date.to_string(), "2025-03-09");
 }
+
+#[test]
+fn a_timetable_changes_exactly_where_the_schedule_does_minute_by_minute() {
+    let config = site();
+    // Monday 2025-12-22 08:59, over Christmas Eve (09:00-13:00) and a closed Christmas Day.
+    let from = WallClock::parse("2025-12-22T08:59").expect("a time");
+    let table = config.timetable(&from, 8);
+    assert_eq!(table.until.to_string(), "2025-12-31T00:00");
+    let mut clock = from;
+    let mut held = &table.showing;
+    let mut changes = table.changes.iter().peekable();
+    while clock != table.until {
+        if let Some(change) = changes.next_if(|c| c.at == clock) {
+            held = &change.showing;
+        }
+        assert_eq!(*held, config.showing_at(&clock), "at {clock}");
+        clock = match clock.minute + 1 {
+            DAY_MINUTES => clock.next_midnight(),
+            minute => WallClock { minute, ..clock },
+        };
+    }
+    assert!(changes.next().is_none(), "a change after the window");
+    let first: Vec<String> = (table.changes.iter().take(4))
+        .map(|c| format!("{} {:?}", c.at, home_at(&config, &c.at)))
+        .collect();
+    assert_eq!(
+        first,
+        [
+            "2025-12-22T09:00 Some(\"school.html\")",
+            "2025-12-22T12:00 Some(\"index.html\")",
+            "2025-12-22T17:00 None",
+            "2025-12-23T09:00 Some(\"school.html\")",
+        ]
+    );
+}
+
+#[test]
+fn without_a_schedule_a_timetable_never_changes() {
+    let config = parse("home: start.html\n").config;
+    let from = WallClock::parse("2025-12-31T23:59").expect("a time");
+    let table = config.timetable(&from, 2);
+    assert!(table.changes.is_empty());
+    assert_eq!(table.until.to_string(), "2026-01-03T00:00");
+}
+
+#[test]
+fn wall_times_are_read_and_written_as_the_kiosk_sends_them() {
+    let monday = WallClock::parse("2025-12-01T08:59").expect("a time");
+    assert_eq!(monday, at(12, 1, 0, 8, 59));
+    assert_eq!(monday.to_string(), "2025-12-01T08:59");
+    let sunday = WallClock::parse("2024-02-29T23:05").expect("a leap day");
+    assert_eq!((sunday.weekday, sunday.minute), (3, 23 * 60 + 5));
+    for bad in [
+        "2025-12-01 08:59",
+        "2025-12-01T24:00",
+        "2025-12-01T08:60",
+        "2025-02-29T08:00",
+        "2025-12-01T8:59",
+        "2025-12-01T08:59:00",
+        "",
+    ] {
+        assert_eq!(WallClock::parse(bad), None, "{bad}");
+    }
+}
