@@ -114,8 +114,9 @@ test('an attract act is triggered by the kiosk, as the attract loop\'s and not a
   });
 });
 
-test('a schedule at a fixed time shows the closed page, then each range\'s home page', { timeout: 90_000 }, async () => {
-  const files = {
+/** A bundle open Mon-Fri 09:00-12:00 (home: school.html) and 12:00-17:00, closed.html otherwise. */
+function scheduledFiles() {
+  return {
     'docent.yaml': [
       'home: index.html',
       'speech: {adapter: log}',
@@ -132,14 +133,23 @@ test('a schedule at a fixed time shows the closed page, then each range\'s home 
     'pages/school.html': PAGE('school', '<p>Welcome, class</p>'),
     'pages/closed.html': PAGE('closed', '<p>We open at nine</p>'),
   };
-  await withKiosk(files, async ({ server, operator, page }) => {
-    // Monday 2025-12-01, 08:59:30 on the kiosk's clock.
-    await page.clock.install({ time: new Date(2025, 11, 1, 8, 59, 30) });
-    await page.goto(`${server.base}/`);
-    await waitForShownPage(page, 'closed.html');
-    // The server is told, although its own display state began at the bundle's home.
-    await operator.waitForEvent(shownOnServer('closed.html'));
-    await pauseNow(page); // about 08:59:31
+}
+
+/**
+ * Opens the kiosk on Monday 2025-12-01 at 08:59:30 by its own clock, and waits until it shows
+ * closed.html and the server is told so (although its display state began at the home page).
+ */
+async function closedBeforeNine(page, server, operator) {
+  await page.clock.install({ time: new Date(2025, 11, 1, 8, 59, 30) });
+  await page.goto(`${server.base}/`);
+  await waitForShownPage(page, 'closed.html');
+  await operator.waitForEvent(shownOnServer('closed.html'));
+  await pauseNow(page);
+}
+
+test('a schedule at a fixed time shows the closed page, then each range\'s home page', { timeout: 90_000 }, async () => {
+  await withKiosk(scheduledFiles(), async ({ server, operator, page }) => {
+    await closedBeforeNine(page, server, operator); // about 08:59:31
 
     await page.clock.runFor(40_000); // about 09:00:11
     await operator.waitForEvent(shownOnServer('school.html'));
@@ -157,29 +167,8 @@ test('a schedule at a fixed time shows the closed page, then each range\'s home 
 });
 
 test('while no answer about the hours comes, the kiosk keeps to the changes it was told', { timeout: 90_000 }, async () => {
-  const files = {
-    'docent.yaml': [
-      'home: index.html',
-      'speech: {adapter: log}',
-      'kiosk: {idle: 0s}',
-      'schedule:',
-      '  closed: closed.html',
-      '  open:',
-      '    - {days: Mon-Fri, hours: 09:00-12:00, home: school.html}',
-      '    - {days: Mon-Fri, hours: 12:00-17:00}',
-      '',
-    ].join('\n'),
-    'acts.yaml': '- Label: HELLO\n  Text: Hello!\n',
-    'pages/index.html': PAGE('home', BIG_BUTTON('HELLO')),
-    'pages/school.html': PAGE('school', '<p>Welcome, class</p>'),
-    'pages/closed.html': PAGE('closed', '<p>We open at nine</p>'),
-  };
-  await withKiosk(files, async ({ server, operator, page }) => {
-    await page.clock.install({ time: new Date(2025, 11, 1, 8, 59, 30) });
-    await page.goto(`${server.base}/`);
-    await waitForShownPage(page, 'closed.html');
-    await operator.waitForEvent(shownOnServer('closed.html'));
-    await pauseNow(page);
+  await withKiosk(scheduledFiles(), async ({ server, operator, page }) => {
+    await closedBeforeNine(page, server, operator);
     // From here on every question about the hours goes unanswered.
     let asked = 0;
     await page.route('**/api/schedule/**', (route) => {
