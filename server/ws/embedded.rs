@@ -118,7 +118,7 @@ fn needs_connection(frame: &ClientFrame) -> Option<&'static str> {
         | ClientFrame::Accept { .. }
         | ClientFrame::Dismiss { .. }
         | ClientFrame::Mark { .. } => None,
-        ClientFrame::Hello { .. } => {
+        ClientFrame::Hello(_) => {
             Some("a command says who sends it in its signed envelope's role; send no hello frame")
         }
         ClientFrame::Propose { .. } => Some(

@@ -20,7 +20,7 @@ use crate::state::ClientInfo;
 use crate::wire::ErrorCode;
 use crate::wire::outbox::Frame;
 use crate::ws::client::Client;
-use crate::ws::protocol::{event_frame, speaking_frame, welcome_frame};
+use crate::ws::protocol::{HelloFrame, event_frame, speaking_frame, welcome_frame};
 use crate::ws::writer::Feed;
 
 /// What a `hello` frame says.
@@ -35,6 +35,22 @@ pub(super) struct Hello {
     pub(super) page: Option<String>,
     /// The language a reconnecting kiosk shows its pages in.
     pub(super) language: Option<String>,
+}
+
+impl From<HelloFrame> for Hello {
+    /// A `hello` frame as sent: its credential, if any, travelled in `token`.
+    fn from(frame: HelloFrame) -> Hello {
+        Hello {
+            role: frame.role,
+            verbs: frame.verbs,
+            robot_events: frame.robot_events,
+            name: frame.name,
+            credential: Credential::Token(frame.token),
+            events: frame.events,
+            page: frame.page,
+            language: frame.language,
+        }
+    }
 }
 
 /// How a client proves its role.

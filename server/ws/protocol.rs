@@ -14,39 +14,44 @@ pub use docent_protocol::PROTOCOL_VERSION;
 /// Largest text frame Docent reads; larger ones are answered with an error.
 pub const MAX_FRAME_BYTES: usize = 16 * 1024;
 
+/// `hello`: who the client is. Its own struct, so that the session takes it whole.
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct HelloFrame {
+    /// Its role.
+    pub role: ClientRole,
+    /// Verbs served (adapters only).
+    #[serde(default)]
+    pub verbs: Vec<String>,
+    /// The robot events it may send (adapters only): what its sensors notice.
+    #[serde(default)]
+    pub robot_events: Vec<String>,
+    /// A name for logs and the operator's view.
+    #[serde(default)]
+    pub name: Option<String>,
+    /// The credential (operator and dialog-manager roles; adapters not on this machine).
+    #[serde(default)]
+    pub token: Option<String>,
+    /// Whether an operator or dialog manager wants the event stream (default true); a
+    /// client that only triggers can say false and save both sides the traffic.
+    #[serde(default = "yes")]
+    pub events: bool,
+    /// The page a reconnecting kiosk shows (relative to `pages/`): a restarted server
+    /// adopts it instead of sending the kiosk home (docs/PROTOCOL.md, `hello`).
+    #[serde(default)]
+    pub page: Option<String>,
+    /// The visitor's language a reconnecting kiosk shows its pages in: a restarted
+    /// server goes on in it instead of the default (docs/PROTOCOL.md, `hello`).
+    #[serde(default)]
+    pub language: Option<String>,
+}
+
 /// A frame from a client.
 #[derive(Debug, Deserialize)]
 #[serde(tag = "type", rename_all = "lowercase", deny_unknown_fields)]
 pub enum ClientFrame {
     /// First frame: who the client is.
-    Hello {
-        /// Its role.
-        role: ClientRole,
-        /// Verbs served (adapters only).
-        #[serde(default)]
-        verbs: Vec<String>,
-        /// The robot events it may send (adapters only): what its sensors notice.
-        #[serde(default)]
-        robot_events: Vec<String>,
-        /// A name for logs and the operator's view.
-        #[serde(default)]
-        name: Option<String>,
-        /// The credential (operator and dialog-manager roles; adapters not on this machine).
-        #[serde(default)]
-        token: Option<String>,
-        /// Whether an operator or dialog manager wants the event stream (default true); a
-        /// client that only triggers can say false and save both sides the traffic.
-        #[serde(default = "yes")]
-        events: bool,
-        /// The page a reconnecting kiosk shows (relative to `pages/`): a restarted server
-        /// adopts it instead of sending the kiosk home (docs/PROTOCOL.md, `hello`).
-        #[serde(default)]
-        page: Option<String>,
-        /// The visitor's language a reconnecting kiosk shows its pages in: a restarted
-        /// server goes on in it instead of the default (docs/PROTOCOL.md, `hello`).
-        #[serde(default)]
-        language: Option<String>,
-    },
+    Hello(HelloFrame),
     /// Trigger an act.
     Trigger {
         /// The act.

@@ -16,7 +16,7 @@ use crate::events::{ClientRole, EventKind};
 use crate::wire::ErrorCode;
 use crate::ws::client::Client;
 use crate::ws::diagnose::diagnose;
-use crate::ws::hello::{self, Credential, Hello, Refused};
+use crate::ws::hello::{self, Hello, Refused};
 use crate::ws::protocol::{ClientFrame, MAX_FRAME_BYTES};
 use crate::ws::triggers::{self, RefusedRun, Trigger};
 use crate::ws::writer::Feed;
@@ -111,25 +111,7 @@ impl Session {
     pub(super) fn on_frame(&mut self, frame: ClientFrame) {
         let (client, role) = (&self.client, self.role);
         match frame {
-            ClientFrame::Hello {
-                role,
-                verbs,
-                robot_events,
-                name,
-                token,
-                events,
-                page,
-                language,
-            } => self.hello(Hello {
-                role,
-                verbs,
-                robot_events,
-                name,
-                credential: Credential::Token(token),
-                events,
-                page,
-                language,
-            }),
+            ClientFrame::Hello(frame) => self.hello(Hello::from(frame)),
             ClientFrame::Trigger {
                 label,
                 context,
