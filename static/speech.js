@@ -40,10 +40,12 @@ export function detectVoice({ waitMs = VOICE_WAIT_MS } = {}) {
   });
 }
 
-/** How long saying `text` takes at `wpm` words per minute, in ms (at least MIN_TEXT_MS). */
-export function speakingMs(text, wpm) {
-  const words = String(text ?? "").split(/\s+/).filter(Boolean).length;
-  return Math.max(MIN_TEXT_MS, (words / (Number(wpm) || NORMAL_WPM)) * 60_000);
+/**
+ * How long a text is shown for when it cannot be spoken: the speaking time the server sent
+ * with the command (`speaking_ms`, at the site's rate), and at least MIN_TEXT_MS to read it.
+ */
+export function shownMs(command) {
+  return Math.max(MIN_TEXT_MS, Number(command.speaking_ms) || 0);
 }
 
 /** The language (`en`) the configured voice speaks: its tag's, or its browser voice's. */
@@ -81,7 +83,7 @@ export function startBrowserSpeech({ path, voice, wpm }) {
       speaking = null;
       socket.send({ type: "done", id: command.id });
       next();
-    }, speakingMs(command.arg, wpm));
+    }, shownMs(command));
   };
   const silence = () => {
     queue.length = 0;

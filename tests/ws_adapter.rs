@@ -316,3 +316,25 @@ async fn shutdown_settles_what_adapters_owe_and_logs_them_leaving() {
     );
     drop(lights);
 }
+
+#[tokio::test]
+async fn a_say_is_sent_with_how_long_saying_it_takes_at_the_sites_rate() {
+    let config =
+        "speech: {adapter: ws, rate: 120}\nverbs:\n  LIGHTS: {adapter: ws, argument: required}\n";
+    let b = TempBundle::new(ACTS).with_file("docent.yaml", config);
+    let server = TestServer::start(b.path()).await;
+    let mut speech = adapter(&server, &["SAY"]).await;
+    let mut lights = adapter(&server, &["LIGHTS"]).await;
+    server.trigger("GREET", json!({})).await;
+    let say = speech.recv_type("command").await;
+    // The server's one rule (words at the site's rate, and a breath): 2 words at 120 a minute.
+    let expected = docent::content::speaking_time("Good morning", 120);
+    assert_eq!(expected.as_millis(), 1_100);
+    assert_eq!(say["speaking_ms"], json!(1_100), "{say}");
+    let light = lights.recv_type("command").await;
+    assert!(
+        light.get("speaking_ms").is_none(),
+        "only a SAY has it: {light}"
+    );
+    server.stop().await;
+}

@@ -9,7 +9,7 @@ use docent_protocol::frames::{CommandFrame, command_frame};
 
 use tokio::sync::oneshot;
 
-use crate::content::{Args, Verb};
+use crate::content::{Args, Verb, speaking_time};
 use crate::events::{ActRef, EventKind, Hub};
 
 /// A command on its way to an adapter. Cheap to clone.
@@ -28,9 +28,27 @@ pub struct Command {
 }
 
 impl Command {
-    /// The `command` frame that sends it to a screen or an adapter process.
+    /// The `command` frame that sends it to a screen.
     pub fn frame(&self) -> String {
-        command_frame(&CommandFrame {
+        command_frame(&self.frame_fields(None))
+    }
+
+    /// The `command` frame that sends it to an adapter process or browser speech: a `SAY`
+    /// also says how long saying it takes at `rate_wpm` (`speaking_time`, the one rule), so
+    /// that no client works it out again.
+    pub fn frame_at_rate(&self, rate_wpm: u32) -> String {
+        let speaking_ms = match self.args.as_ref() {
+            Args::Say { text, .. } => {
+                let ms = speaking_time(text, rate_wpm).as_millis();
+                Some(u64::try_from(ms).unwrap_or(u64::MAX))
+            }
+            _ => None,
+        };
+        command_frame(&self.frame_fields(speaking_ms))
+    }
+
+    fn frame_fields(&self, speaking_ms: Option<u64>) -> CommandFrame<'_> {
+        CommandFrame {
             id: self.id,
             trigger: self.act.trigger,
             reference: self.act.reference.as_deref(),
@@ -38,7 +56,8 @@ impl Command {
             verb: self.verb.as_str(),
             arg: self.arg.as_deref(),
             args: &self.args,
-        })
+            speaking_ms,
+        }
     }
 
     /// `VERB argument`, for status displays and messages.

@@ -118,6 +118,8 @@ pub struct ExternalAdapters {
 struct Inner {
     registry: Mutex<Registry>,
     timeout: Duration,
+    /// The site's speech rate, for a `SAY`'s `speaking_ms`.
+    rate_wpm: u32,
     life: Lifecycle,
 }
 
@@ -130,11 +132,13 @@ pub enum AnswerError {
 }
 
 impl ExternalAdapters {
-    /// An empty registry; commands nobody takes on fail after `timeout`.
-    pub fn new(timeout: Duration, life: Lifecycle) -> Self {
+    /// An empty registry; commands nobody takes on fail after `timeout`; a `SAY` is sent
+    /// with its speaking time at `rate_wpm` words a minute.
+    pub fn new(timeout: Duration, rate_wpm: u32, life: Lifecycle) -> Self {
         let inner = Inner {
             registry: Mutex::default(),
             timeout,
+            rate_wpm,
             life,
         };
         ExternalAdapters {
@@ -300,7 +304,7 @@ impl Adapter for ExternalAdapters {
         }
         // On the books before the frame goes out, so that a fast answer, a stop or a
         // disconnect always finds it.
-        let frame = Frame::from(command.frame());
+        let frame = Frame::from(command.frame_at_rate(self.inner.rate_wpm));
         registry.pending.insert(
             id,
             Pending {

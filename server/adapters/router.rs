@@ -46,7 +46,11 @@ impl Devices {
         life: &Lifecycle,
     ) -> (Devices, Router) {
         let display = DisplayState::start(home, config.adapter_timeout, hub.clone(), life);
-        let external = Arc::new(ExternalAdapters::new(config.adapter_timeout, life.clone()));
+        let external = Arc::new(ExternalAdapters::new(
+            config.adapter_timeout,
+            config.speech.rate_wpm,
+            life.clone(),
+        ));
         let log = Arc::new(log_adapter(config.speech.rate_wpm, life));
         let drive = (config.drive.adapter == AdapterKind::DriveSim)
             .then(|| Arc::new(DriveSim::new(&config.drive, hub.clone(), life)));

@@ -18,6 +18,8 @@ enum AdapterFrame<'a> {
         verb: &'a str,
         arg: Option<&'a str>,
         args: &'a Args,
+        #[serde(skip_serializing_if = "Option::is_none")]
+        speaking_ms: Option<u64>,
     },
     Cancel {
         verbs: Option<&'a [String]>,
@@ -47,6 +49,9 @@ pub struct CommandFrame<'a> {
     pub arg: Option<&'a str>,
     /// The argument, parsed.
     pub args: &'a Args,
+    /// For a `SAY` to an adapter process or browser speech: how long saying it takes at the
+    /// site's rate, in milliseconds (what a screen that only shows the text waits).
+    pub speaking_ms: Option<u64>,
 }
 
 /// `command`: a command for an adapter or a display client.
@@ -59,6 +64,7 @@ pub fn command_frame(c: &CommandFrame<'_>) -> String {
         verb: c.verb,
         arg: c.arg,
         args: c.args,
+        speaking_ms: c.speaking_ms,
     })
 }
 
