@@ -25,6 +25,7 @@ mod corpus_robot_events;
 mod corpus_sessions;
 mod corpus_touches;
 mod corpus_unwritable;
+mod crate_graph;
 mod dispatch_sequencing;
 mod dm_example;
 mod documented_limits;
