@@ -131,8 +131,15 @@ impl Server {
         state.life.spawn(intake);
         let languages = Arc::clone(&state.dispatcher).reset_language_after_sessions();
         state.life.spawn(languages);
-        let notices = crate::ws::ClientNotices::new(state.links());
-        state.dispatcher.set_notifier(Arc::new(notices));
+        let live = Arc::clone(&state.dispatcher);
+        let notices = crate::ws::deliver_notices(
+            state.dispatcher.notices(),
+            state.links(),
+            Arc::clone(&state.captions),
+            move || live.bundle().config.captions,
+            state.life.shutdown.clone(),
+        );
+        state.life.spawn(notices);
         Ok(Server {
             state,
             corpus,

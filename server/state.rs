@@ -87,6 +87,19 @@ impl ClientLinks {
         outbox.is_some_and(|outbox| self.0.linger.send(&outbox, frame.clone()))
     }
 
+    /// Queues `frame` for client `id`, held until the log holds event `logged` (an answer
+    /// acknowledges only what is logged); false when it is not connected (or too slow).
+    pub fn send_logged_to(
+        &self,
+        id: u64,
+        frame: Frame,
+        logged: u64,
+        reference: Option<String>,
+    ) -> bool {
+        let outbox = lock(&self.0.connected).get(&id).map(|c| c.outbox.clone());
+        outbox.is_some_and(|outbox| outbox.send_logged(frame, logged, reference))
+    }
+
     /// Queues `frame` for every connected client in `role`.
     pub fn send_to_role(&self, role: ClientRole, frame: &Frame) {
         let outboxes: Vec<Outbox> = (lock(&self.0.connected).values())

@@ -1,18 +1,19 @@
 //! The dispatcher's side of the channels (`channels.rs` decides): hands a command to its
 //! adapter when its channel is free, learns when it ended, starts the next one, cancels what a
 //! policy, a priority, an interruption, a visitor or a page change removes, and tells the
-//! client that triggered a command when it will not be carried out. Nothing here holds the
-//! lanes' lock while it submits, cancels or reports; the order lock is held from a decision
-//! to its last hand-over (adapters never call back into the dispatcher, so it cannot nest).
+//! client that triggered a command when it will not be carried out. Everything here runs
+//! within a [`Turn`], from a decision to its last hand-over (adapters never call back into the
+//! dispatcher, so it cannot nest).
 
 use std::sync::Arc;
 
-use tokio::sync::oneshot;
+use tokio::sync::{mpsc, oneshot};
 
 use crate::adapters::{CancelScope, Command, Outcome, Reply};
 use crate::content::config::Channel;
-use crate::dispatch::Dispatcher;
 use crate::dispatch::channels::{Decision, LaneStatus, Waiting};
+use crate::dispatch::state::{State, Turn};
+use crate::dispatch::{Dispatcher, priority};
 use crate::events::{EventKind, Source};
 use crate::sync::lock;
 
@@ -25,24 +26,55 @@ pub struct Speaking {
     pub client: Option<u64>,
 }
 
-/// Where the dispatcher tells clients about their commands; the websocket layer implements
-/// it (the dispatcher knows no wire format).
-pub trait Notifier: Send + Sync {
+/// The client that asked for a change, answered with the notice of it: after every screen was
+/// told, as the protocol promises.
+#[derive(Debug, Clone)]
+pub struct Answer {
+    /// The websocket client.
+    pub client: u64,
+    /// The `ref` of its frame.
+    pub reference: Option<String>,
+}
+
+/// What the dispatcher tells clients outside an answer: a closed set of messages, queued in
+/// the turn that decided them (so in the order things happened) and delivered by the websocket
+/// layer's own task (`ws::notices`). The dispatcher never calls into the websocket layer.
+#[derive(Debug)]
+pub enum Notice {
     /// A command triggered by `client` ended without being carried out; `ended_by_visitor`
     /// when a visitor ended it (stopped speech, left the page), so it needs no word to them.
-    fn outcome(&self, client: u64, command: &Command, outcome: &Outcome, ended_by_visitor: bool);
-    /// Speech started (`Some`) or stopped (`None`). Called under the dispatcher's lock: it
-    /// must only queue (never wait, never call back into the dispatcher).
-    fn speaking(&self, now: Option<Speaking>);
-    /// The visitor's language changed: the kiosks show their page in it. Called under the
-    /// dispatcher's language lock: it must only queue.
-    fn language(&self, language: &crate::content::Language);
+    NotCarriedOut {
+        /// The websocket client that triggered it.
+        client: u64,
+        /// The command.
+        command: Command,
+        /// How it ended (cancelled or failed).
+        outcome: Outcome,
+        /// Whether a visitor ended it.
+        ended_by_visitor: bool,
+    },
+    /// Speech started (`Some`) or stopped (`None`): the kiosks show it.
+    Speaking(Option<Speaking>),
+    /// The visitor's language changed (event `seq` logs it): the kiosks and projectors show
+    /// their page in it, and the client that asked, if one did, is answered after them.
+    Language {
+        /// The language now.
+        language: crate::content::Language,
+        /// The sequence number of its `language.changed` event.
+        seq: u64,
+        /// Who asked for it, to be answered once every screen was told.
+        answer: Option<Answer>,
+    },
+    /// A kiosk joined: it is to be told who speaks now, in its place among the changes, so
+    /// it never gets an older state after a newer one.
+    KioskJoined(u64),
 }
 
 impl Dispatcher {
     /// Sends `command` through its channel; `waiter` learns its outcome.
     pub(crate) fn send(
         self: &Arc<Self>,
+        turn: &mut Turn,
         command: Command,
         waiter: Option<oneshot::Sender<Outcome>>,
     ) {
@@ -58,43 +90,25 @@ impl Dispatcher {
         let channel = Channel::of(&command.verb);
         let (Some(_), Some(channel)) = (adapter, channel) else {
             let reason = format!("no adapter serves {}", command.verb);
-            return self.report(command, waiter, Outcome::Failed(reason));
+            return self.report(&turn.state, command, waiter, Outcome::Failed(reason));
         };
-        let bundle = self.bundle();
-        let policy = bundle.config.channels.of(&channel);
-        let priority = self.priority(command.act.source);
+        let policy = turn.bundle.config.channels.of(&channel);
+        let priority = priority(&turn.bundle, command.act.source);
         let new = Waiting {
             command,
             waiter,
             priority,
         };
-        let _order = lock(&self.order);
-        let decision = {
-            let mut lanes = lock(&self.lanes);
-            let lane = lanes.entry(channel.clone()).or_default();
-            lane.admit(new, &channel, policy)
-        };
-        self.carry_out(&channel, decision);
-    }
-
-    /// The priority of `source` in the live bundle's settings.
-    pub(crate) fn priority(&self, source: Source) -> u8 {
-        let priorities = self.bundle.load().config.priorities;
-        match source {
-            Source::Kiosk => priorities.kiosk,
-            // A reaction acts on its own, as a dialog manager does.
-            Source::Dm | Source::Robot => priorities.dm,
-            Source::Http => priorities.http,
-            Source::Operator | Source::Projector | Source::Adapter | Source::Server => {
-                priorities.operator
-            }
-        }
+        let lane = turn.state.lanes.entry(channel.clone()).or_default();
+        let decision = lane.admit(new, &channel, policy);
+        self.carry_out(&mut turn.state, &channel, decision);
     }
 
     /// Acts on a decision: reports the dropped, cancels the running, starts the next.
-    fn carry_out(self: &Arc<Self>, channel: &Channel, decision: Decision) {
+    fn carry_out(self: &Arc<Self>, state: &mut State, channel: &Channel, decision: Decision) {
         for (waiting, reason) in decision.dropped {
-            self.report(waiting.command, waiting.waiter, Outcome::Cancelled(reason));
+            let outcome = Outcome::Cancelled(reason);
+            self.report(state, waiting.command, waiting.waiter, outcome);
         }
         if let Some((verb, reason)) = decision.cancel_running
             && let Some(adapter) = self.router.adapter_for(&verb)
@@ -102,21 +116,22 @@ impl Dispatcher {
             adapter.cancel(CancelScope::Verb(&verb), &reason);
         }
         if let Some(next) = decision.run {
-            self.launch(channel.clone(), next);
+            self.launch(state, channel.clone(), next);
         }
     }
 
     /// Hands a command to its adapter and follows it to its end.
-    fn launch(self: &Arc<Self>, channel: Channel, waiting: Waiting) {
+    fn launch(self: &Arc<Self>, state: &mut State, channel: Channel, waiting: Waiting) {
         let Waiting {
             command, waiter, ..
         } = waiting;
         let Some(adapter) = self.router.adapter_for(&command.verb) else {
             // Checked on arrival; routes do not change while serving.
-            return self.report(command, waiter, Outcome::Failed("no adapter".into()));
+            let outcome = Outcome::Failed("no adapter".into());
+            return self.report(state, command, waiter, outcome);
         };
         if channel == Channel::Speech {
-            self.tell_speaking();
+            self.tell_speaking(state);
         }
         let (tx, rx) = oneshot::channel();
         adapter.submit(
@@ -143,17 +158,15 @@ impl Dispatcher {
         outcome: Outcome,
         waiter: Option<oneshot::Sender<Outcome>>,
     ) {
-        self.tell_sender(command, &outcome);
+        let mut state = lock(&self.state);
+        self.tell_sender(&state, command, &outcome);
         if let Some(waiter) = waiter {
             let _ = waiter.send(outcome);
         }
-        let _order = lock(&self.order);
-        let next = lock(&self.lanes)
-            .get_mut(channel)
-            .and_then(|lane| lane.finished(command.id));
+        let next = (state.lanes.get_mut(channel)).and_then(|lane| lane.finished(command.id));
         match next {
-            Some(next) => self.launch(channel.clone(), next),
-            None if *channel == Channel::Speech => self.tell_speaking(),
+            Some(next) => self.launch(&mut state, channel.clone(), next),
+            None if *channel == Channel::Speech => self.tell_speaking(&mut state),
             None => {}
         }
     }
@@ -161,89 +174,89 @@ impl Dispatcher {
     /// Reports the outcome of a command that never reached its adapter.
     pub(crate) fn report(
         &self,
+        state: &State,
         command: Command,
         waiter: Option<oneshot::Sender<Outcome>>,
         outcome: Outcome,
     ) {
-        self.tell_sender(&command, &outcome);
+        self.tell_sender(state, &command, &outcome);
         Reply::new(self.hub.clone(), command, waiter).finish(outcome);
     }
 
     /// Cancels the commands on `channel` (every channel when `None`) that `pred` selects.
     pub(crate) fn cancel_where(
         self: &Arc<Self>,
+        turn: &mut Turn,
         channel: Option<&Channel>,
         pred: impl Fn(&Command, u8) -> bool,
         reason: &str,
     ) {
-        let _order = lock(&self.order);
-        let decisions: Vec<(Channel, Decision)> = {
-            let mut lanes = lock(&self.lanes);
-            lanes
-                .iter_mut()
-                .filter(|(c, _)| channel.is_none_or(|wanted| wanted == *c))
-                .map(|(c, lane)| (c.clone(), lane.cancel_where(&pred, reason)))
-                .collect()
-        };
+        let decisions: Vec<(Channel, Decision)> = (turn.state.lanes.iter_mut())
+            .filter(|(c, _)| channel.is_none_or(|wanted| wanted == *c))
+            .map(|(c, lane)| (c.clone(), lane.cancel_where(&pred, reason)))
+            .collect();
         for (channel, decision) in decisions {
-            self.carry_out(&channel, decision);
+            self.carry_out(&mut turn.state, &channel, decision);
         }
     }
 
-    /// Whether speech of act `label` is running or waiting.
-    pub(crate) fn speaking_act(&self, label: &str) -> bool {
-        lock(&self.lanes)
-            .get(&Channel::Speech)
-            .is_some_and(|lane| lane.holds(|c| &*c.act.label == label))
+    /// The notices from now on, in the order they were decided (taken once, at start-up, by
+    /// the websocket layer; until then, and for a second taker, none are kept).
+    pub fn notices(&self) -> mpsc::UnboundedReceiver<Notice> {
+        let (sender, receiver) = mpsc::unbounded_channel();
+        let _ = self.notices.set(sender);
+        receiver
     }
 
-    /// Sets where clients are told about their commands (once, at start-up).
-    pub fn set_notifier(&self, notifier: Arc<dyn Notifier>) {
-        let _ = self.notifier.set(notifier);
+    /// Queues `notice` (called within a turn, so notices keep the order of the decisions).
+    pub(crate) fn notify(&self, notice: Notice) {
+        if let Some(notices) = self.notices.get() {
+            let _ = notices.send(notice);
+        }
     }
 
-    fn tell_sender(&self, command: &Command, outcome: &Outcome) {
+    fn tell_sender(&self, state: &State, command: &Command, outcome: &Outcome) {
         if matches!(outcome, Outcome::Done) {
             return;
         }
-        if let (Some(client), Some(notifier)) = (command.act.client, self.notifier.get()) {
+        if let Some(client) = command.act.client {
             // Everything of a visitor's act older than their stop or page change ended by it.
-            let ended_by_visitor = self.visitor_cut_off(&command.act).is_some();
-            notifier.outcome(client, command, outcome, ended_by_visitor);
+            let ended_by_visitor = state.visitor_cuts.cut_off(&command.act).is_some();
+            self.notify(Notice::NotCarriedOut {
+                client,
+                command: command.clone(),
+                outcome: outcome.clone(),
+                ended_by_visitor,
+            });
         }
     }
 
-    /// Tells the kiosks who speaks now. Read and sent under the lanes' lock, so that two
-    /// changes racing on two threads reach the kiosks in the order they happened.
-    fn tell_speaking(&self) {
-        let Some(notifier) = self.notifier.get() else {
-            return;
-        };
-        let lanes = lock(&self.lanes);
-        let running = lanes.get(&Channel::Speech).and_then(|lane| lane.running());
+    /// Tells the kiosks who speaks now, in the turn that changed it: two changes racing on
+    /// two threads reach the kiosks in the order they happened.
+    fn tell_speaking(&self, state: &mut State) {
+        let running = (state.lanes.get(&Channel::Speech)).and_then(|lane| lane.running());
         let now = running.map(|c| Speaking {
             source: c.act.source,
             client: c.act.client,
         });
         // A cancelled command ends after its successor started: kiosks hear only changes.
-        let mut told = lock(&self.speaking_told);
-        if *told != now {
-            *told = now;
-            notifier.speaking(now);
+        if state.speaking_told != now {
+            state.speaking_told = now;
+            self.notify(Notice::Speaking(now));
         }
     }
 
     /// Every channel that has carried a command: what runs and what waits, by channel name.
     pub fn channel_status(&self) -> std::collections::BTreeMap<String, LaneStatus> {
-        (lock(&self.lanes).iter())
+        (lock(&self.state).lanes.iter())
             .map(|(channel, lane)| (channel.to_string(), lane.status()))
             .collect()
     }
 
-    /// Hands `tell` who speaks now, as the kiosks were last told, under the lock the changes
-    /// are sent under: a kiosk that joined the notices first never gets it after a newer one.
-    pub fn tell_speaking_now(&self, tell: impl FnOnce(Option<Speaking>)) {
-        let _lanes = lock(&self.lanes);
-        tell(*lock(&self.speaking_told));
+    /// Kiosk `client` joined: it is told who speaks now among the notices, after the changes
+    /// decided before it and before those decided after (queued within a turn).
+    pub fn kiosk_joined(&self, client: u64) {
+        let _turn = lock(&self.state);
+        self.notify(Notice::KioskJoined(client));
     }
 }

@@ -5,9 +5,9 @@
 //! which then show their page in the new language.
 
 use std::sync::Arc;
-use std::sync::atomic::Ordering;
 
 use crate::content::{Bundle, Language, Located, Variant};
+use crate::dispatch::state::State;
 use crate::dispatch::{Dispatcher, TriggerError};
 use crate::events::{EventKind, Source};
 use crate::sync::lock;
@@ -54,21 +54,23 @@ fn bundle_language(bundle: &Bundle, wanted: &str) -> Result<Language, TriggerErr
 impl Dispatcher {
     /// The visitor's language now.
     pub fn language(&self) -> Language {
-        lock(&self.language).clone()
+        lock(&self.state).language.clone()
     }
 
     /// Changes the visitor's language to the bundle's language spelt `wanted`; a kiosk
-    /// (`Source::Kiosk`) only to one a button on `page` offers.
+    /// (`Source::Kiosk`) only to one a button on `page` offers. `answer`, the client that
+    /// asked, is answered among the notices, after every screen was told.
     pub fn set_language(
         &self,
         wanted: &str,
         source: Source,
         page: Option<&str>,
+        answer: Option<super::Answer>,
     ) -> Result<Language, TriggerError> {
-        // Checked and changed under the lock, against the bundle live then (as the context).
-        let mut current = lock(&self.language);
-        let bundle = self.bundle.load();
-        let language = bundle_language(&bundle, wanted)?;
+        // Checked and changed in one turn, against the bundle live then (as the context).
+        let mut turn = self.turn();
+        let bundle = &turn.bundle;
+        let language = bundle_language(bundle, wanted)?;
         if source == Source::Kiosk
             && !page.is_some_and(|page| bundle.page_offers_language(page, &language))
         {
@@ -76,9 +78,7 @@ impl Dispatcher {
                 language: language.to_string(),
             });
         }
-        *current = language.clone();
-        self.publish_language(&language, source);
-        drop(current);
+        self.publish_language(&mut turn.state, language.clone(), source, answer);
         Ok(language)
     }
 
@@ -88,39 +88,44 @@ impl Dispatcher {
     /// an operator, a session's end), the server's language stands and the kiosk follows it.
     /// Returns the language in force.
     pub fn adopt_kiosk_language(&self, wanted: &str) -> Result<Language, TriggerError> {
-        let mut current = lock(&self.language);
-        let bundle = self.bundle.load();
-        let language = bundle_language(&bundle, wanted)?;
-        if self.language_changed.load(Ordering::Acquire) || *current == language {
-            return Ok(current.clone());
+        let mut turn = self.turn();
+        let language = bundle_language(&turn.bundle, wanted)?;
+        if turn.state.language_changed || turn.state.language == language {
+            return Ok(turn.state.language.clone());
         }
-        *current = language.clone();
-        self.publish_language(&language, Source::Kiosk);
-        drop(current);
+        self.publish_language(&mut turn.state, language.clone(), Source::Kiosk, None);
         Ok(language)
     }
 
-    /// Logs and tells the kiosks of a change (called under the language lock, so that the
-    /// log's last change is the language in force).
-    pub(super) fn publish_language(&self, language: &Language, source: Source) {
-        self.language_changed.store(true, Ordering::Release);
-        self.hub.publish(EventKind::LanguageChanged {
+    /// Makes `language` the visitor's, logs the change and tells the kiosks, in one turn: the
+    /// log's last change is the language in force.
+    pub(super) fn publish_language(
+        &self,
+        state: &mut State,
+        language: Language,
+        source: Source,
+        answer: Option<super::Answer>,
+    ) {
+        state.language_changed = true;
+        let event = self.hub.publish(EventKind::LanguageChanged {
             source,
             language: language.clone(),
         });
-        if let Some(notifier) = self.notifier.get() {
-            notifier.language(language);
-        }
+        self.notify(super::Notice::Language {
+            language: language.clone(),
+            seq: event.seq,
+            answer,
+        });
+        state.language = language;
     }
 
     /// Back to the default language after `bundle` went live, if it lacks the current one.
-    pub(super) fn keep_language(&self, bundle: &Bundle) {
-        let mut current = lock(&self.language);
-        if bundle.config.languages.all().contains(&current) {
+    pub(super) fn keep_language(&self, state: &mut State, bundle: &Bundle) {
+        if bundle.config.languages.all().contains(&state.language) {
             return;
         }
-        *current = bundle.config.languages.default_language().clone();
-        self.publish_language(&current, Source::Server);
+        let default = bundle.config.languages.default_language().clone();
+        self.publish_language(state, default, Source::Server, None);
     }
 
     /// Follows the hub: when a visitor session ends, the next visitors start in the
@@ -144,17 +149,10 @@ impl Dispatcher {
     }
 
     fn back_to_default(&self) {
-        let mut current = lock(&self.language);
-        let default = self
-            .bundle
-            .load()
-            .config
-            .languages
-            .default_language()
-            .clone();
-        if *current != default {
-            *current = default;
-            self.publish_language(&current, Source::Server);
+        let mut turn = self.turn();
+        let default = turn.bundle.config.languages.default_language().clone();
+        if turn.state.language != default {
+            self.publish_language(&mut turn.state, default, Source::Server, None);
         }
     }
 }

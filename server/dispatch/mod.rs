@@ -35,17 +35,17 @@ pub(crate) fn log_dispatcher(bundle: crate::content::Bundle, hub: &Hub) -> Arc<D
 mod language;
 mod request;
 mod sequence;
+mod state;
 mod visitors;
 
 use std::collections::BTreeMap;
-use std::sync::atomic::{AtomicBool, AtomicU64, Ordering};
+use std::sync::atomic::{AtomicU64, Ordering};
 use std::sync::{Arc, Mutex, OnceLock};
 
 use arc_swap::ArcSwap;
-use tokio_util::sync::CancellationToken;
 
 pub use channels::{LaneEntry, LaneStatus};
-pub use gate::{Notifier, Speaking};
+pub use gate::{Answer, Notice, Speaking};
 pub use request::{ResolvedCommand, TriggerError, TriggerRequest, Triggered};
 
 use crate::adapters::{AdapterStatus, CancelScope, Command, Router};
@@ -54,40 +54,22 @@ use crate::content::{Act, Args, Bundle, DEFAULT_VARIANT, Variant, Verb, closest}
 use crate::events::{ActRef, EventKind, Hub, Source};
 use crate::lifecycle::Lifecycle;
 use crate::sync::lock;
-use choose::Chooser;
 use sequence::Sequence;
+use state::{State, Turn};
 
 /// Resolves acts into commands and sends them to adapters.
 pub struct Dispatcher {
+    /// The bundle being served: read without a lock by every view, swapped only under the
+    /// state's lock (so a [`Turn`] decides in one bundle).
     bundle: ArcSwap<Bundle>,
     router: Router,
     hub: Hub,
     life: Lifecycle,
-    chooser: Mutex<Chooser>,
-    context: Mutex<String>,
-    /// The visitor's language (`language.rs`).
-    language: Mutex<crate::content::Language>,
-    /// Whether the language changed since this server started: a reconnecting kiosk's
-    /// language is taken only until then (`language.rs`).
-    language_changed: AtomicBool,
     next_id: AtomicU64,
-    /// Cancelled and replaced by every stop: sequences started before a stop end with it.
-    epoch: Mutex<CancellationToken>,
-    /// One token per source priority, cancelled and replaced by every interrupting trigger of
-    /// that priority or higher: sequences drop their unsent speech.
-    speech_epochs: Mutex<BTreeMap<u8, CancellationToken>>,
-    /// Each output channel's running and waiting commands.
-    lanes: Mutex<channels::Lanes>,
-    /// Held from a channel decision until it is carried out, so that adapters are handed
-    /// cancellations and commands in the order the decisions were made (a cancellation of the
-    /// running command before its successor; never a late cancellation that would hit it).
-    order: Mutex<()>,
-    /// Who speaks, as the kiosks were last told (changed under the lanes' lock).
-    speaking_told: Mutex<Option<Speaking>>,
-    /// Where clients learn about their commands.
-    notifier: OnceLock<Arc<dyn Notifier>>,
-    /// Since when visitors' speech is cut off (a visitor's stop, a page left).
-    visitor_cuts: Mutex<visitors::VisitorCuts>,
+    /// Where clients learn about their commands (`gate.rs`, [`Notice`]).
+    notices: OnceLock<tokio::sync::mpsc::UnboundedSender<Notice>>,
+    /// Everything the dispatcher decides by, with one owner (`state.rs`).
+    state: Mutex<State>,
 }
 
 impl Dispatcher {
@@ -99,26 +81,25 @@ impl Dispatcher {
         seed: Option<u64>,
         life: Lifecycle,
     ) -> Arc<Self> {
-        let epoch = life.shutdown.child_token();
-        let language = bundle.config.languages.default_language().clone();
+        let state = State::new(&bundle, seed, life.shutdown.child_token());
         Arc::new(Dispatcher {
             bundle: ArcSwap::new(bundle),
             router,
             hub,
             life,
-            chooser: Mutex::new(Chooser::new(seed)),
-            context: Mutex::new(DEFAULT_VARIANT.to_owned()),
-            language: Mutex::new(language),
-            language_changed: AtomicBool::new(false),
             next_id: AtomicU64::new(1),
-            epoch: Mutex::new(epoch),
-            speech_epochs: Mutex::default(),
-            lanes: Mutex::default(),
-            order: Mutex::default(),
-            speaking_told: Mutex::default(),
-            notifier: OnceLock::new(),
-            visitor_cuts: Mutex::default(),
+            notices: OnceLock::new(),
+            state: Mutex::new(state),
         })
+    }
+
+    /// Takes the state's lock for one request, with the bundle live now.
+    fn turn(&self) -> Turn<'_> {
+        let state = lock(&self.state);
+        Turn {
+            state,
+            bundle: self.bundle.load_full(),
+        }
     }
 
     /// The bundle being served.
@@ -131,18 +112,18 @@ impl Dispatcher {
     /// commands they resolved. A current context the new bundle lacks falls back to `Text`,
     /// and the change is published.
     pub fn replace_bundle(&self, bundle: Arc<Bundle>) -> Arc<Bundle> {
-        let mut context = lock(&self.context);
-        let known = bundle.contexts.contains(&*context);
-        let old = self.bundle.swap(bundle);
+        // Swapped under the state's lock: a request holding a turn keeps its bundle.
+        let mut state = lock(&self.state);
+        let known = bundle.contexts.contains(&state.context);
+        let old = self.bundle.swap(Arc::clone(&bundle));
         if !known {
-            *context = DEFAULT_VARIANT.to_owned();
+            state.context = DEFAULT_VARIANT.to_owned();
             self.hub.publish(EventKind::ContextChanged {
                 source: Source::Server,
                 context: DEFAULT_VARIANT.to_owned(),
             });
         }
-        drop(context);
-        self.keep_language(&self.bundle.load());
+        self.keep_language(&mut state, &bundle);
         old
     }
 
@@ -151,11 +132,13 @@ impl Dispatcher {
         &self.hub
     }
 
-    /// Triggers an act: resolves it, starts its commands, and says what was resolved.
+    /// Triggers an act: resolves it, starts its commands, and says what was resolved. The
+    /// whole trigger is one turn: checked, resolved, logged and handed over in one bundle.
     pub fn trigger(self: &Arc<Self>, req: TriggerRequest) -> Result<Triggered, TriggerError> {
-        let bundle = self.bundle.load();
+        let mut turn = self.turn();
+        let bundle = Arc::clone(&turn.bundle);
         // A visitor tapping an act already speaking gets an answer, not the text twice.
-        if req.source == Source::Kiosk && self.speaking_act(&req.label) {
+        if req.source == Source::Kiosk && speaking_act(&turn.state, &req.label) {
             let label = req.label.clone();
             return Err(self.refuse(&req, TriggerError::AlreadySpeaking { label }));
         }
@@ -170,18 +153,19 @@ impl Dispatcher {
             ));
         };
         let context = match req.context.as_deref() {
-            Some(c) => self
-                .known_context(&bundle, c)
-                .map_err(|e| self.refuse(&req, e))?,
-            None => lock(&self.context).clone(),
+            Some(c) => known_context(&bundle, c).map_err(|e| self.refuse(&req, e))?,
+            None => turn.state.context.clone(),
         };
         let act = &bundle.acts[index];
         let variant = variant_for(act, &context);
-        let visitor_language = self.language();
+        let visitor_language = turn.state.language.clone();
         let choice = variant.map(|v| {
             let texts = language::texts_in(&bundle, v, &visitor_language);
             let count = texts.alternatives.len();
-            let alt = lock(&self.chooser).pick(&act.label, &texts.chooser_key, count);
+            let alt = turn
+                .state
+                .chooser
+                .pick(&act.label, &texts.chooser_key, count);
             (
                 v,
                 alt,
@@ -239,53 +223,53 @@ impl Dispatcher {
             language: triggered.language.clone(),
             interrupt: req.interrupt,
         });
-        drop(bundle);
-        self.start(commands, &act_ref, req.interrupt);
+        self.start(&mut turn, commands, &act_ref, req.interrupt);
         Ok(triggered)
     }
 
-    fn start(self: &Arc<Self>, commands: Vec<Command>, act: &ActRef, interrupt: bool) {
-        let priority = self.priority(act.source);
+    fn start(
+        self: &Arc<Self>,
+        turn: &mut Turn,
+        commands: Vec<Command>,
+        act: &ActRef,
+        interrupt: bool,
+    ) {
+        let priority = priority(&turn.bundle, act.source);
         if interrupt {
-            self.interrupt_speech(act, priority);
+            self.interrupt_speech(turn, act, priority);
         }
         if act.source == Source::Kiosk && commands.iter().any(|c| visitors::moves_on(&c.verb)) {
-            self.visitor_moved_on(act);
+            self.visitor_moved_on(turn, act);
         }
         let first_wait = commands.iter().position(|c| c.verb == Verb::Wait);
         let before_wait = &commands[..first_wait.unwrap_or(commands.len())];
         // Preempt before sending anything, so the act's own speech survives its DRIVE_STOP.
         if before_wait.iter().any(|c| c.verb == Verb::DriveStop) {
-            self.stop(act.source, &format!("DRIVE_STOP in act {}", act.label));
+            self.stop_in(
+                turn,
+                act.source,
+                &format!("DRIVE_STOP in act {}", act.label),
+            );
         }
-        let stop = self.stop_token();
-        let speech = lock(&self.speech_epochs)
-            .entry(priority)
+        let stop = turn.state.epoch.clone();
+        let speech = (turn.state.speech_epochs.entry(priority))
             .or_default()
             .clone();
-        Sequence::new(Arc::clone(self), stop, speech, first_wait.is_some()).start(commands);
+        Sequence::new(Arc::clone(self), stop, speech, first_wait.is_some()).start(turn, commands);
     }
 
     /// Clears queued and current speech of `priority` or lower, and such speech that acts
     /// waiting at a `WAIT` would say: higher-priority speech is never interrupted.
-    fn interrupt_speech(self: &Arc<Self>, act: &ActRef, priority: u8) {
-        let old: Vec<CancellationToken> = {
-            let mut epochs = lock(&self.speech_epochs);
-            let higher = epochs.split_off(&(priority + 1));
-            std::mem::replace(&mut *epochs, higher)
-                .into_values()
-                .collect()
-        };
-        old.iter().for_each(CancellationToken::cancel);
+    fn interrupt_speech(self: &Arc<Self>, turn: &mut Turn, act: &ActRef, priority: u8) {
+        let epochs = &mut turn.state.speech_epochs;
+        let higher = epochs.split_off(&(priority + 1));
+        for old in std::mem::replace(epochs, higher).into_values() {
+            old.cancel();
+        }
         let reason = format!("interrupted by act {}", act.label);
         let trigger = act.trigger;
         let lower = |c: &Command, p: u8| p <= priority && c.act.trigger != trigger;
-        self.cancel_where(Some(&Channel::Speech), lower, &reason);
-    }
-
-    /// The token the next sequences stop on.
-    pub(crate) fn stop_token(&self) -> CancellationToken {
-        lock(&self.epoch).clone()
+        self.cancel_where(turn, Some(&Channel::Speech), lower, &reason);
     }
 
     /// Spawns tracked tasks.
@@ -296,21 +280,26 @@ impl Dispatcher {
     /// Stops everything: sequences end, every queue is cleared, speech is killed and the drive
     /// stops.
     pub fn stop(&self, source: Source, reason: &str) {
-        let old = std::mem::replace(&mut *lock(&self.epoch), self.life.shutdown.child_token());
+        self.stop_in(&mut self.turn(), source, reason);
+    }
+
+    /// [`Dispatcher::stop`], within a turn.
+    pub(crate) fn stop_in(&self, turn: &mut Turn, source: Source, reason: &str) {
+        let fresh = self.life.shutdown.child_token();
+        let old = std::mem::replace(&mut turn.state.epoch, fresh);
         self.hub.publish(EventKind::Stop {
             source,
             reason: reason.to_owned(),
         });
         old.cancel();
-        let _order = lock(&self.order);
         // Waiting commands first, so that none starts when the running ones end.
-        let waiting: Vec<channels::Waiting> = (lock(&self.lanes).values_mut())
+        let waiting: Vec<channels::Waiting> = (turn.state.lanes.values_mut())
             .flat_map(|lane| lane.cancel_where(|_, _| true, reason).dropped)
             .map(|(waiting, _)| waiting)
             .collect();
         for waiting in waiting {
             let outcome = crate::adapters::Outcome::Cancelled(reason.to_owned());
-            self.report(waiting.command, waiting.waiter, outcome);
+            self.report(&turn.state, waiting.command, waiting.waiter, outcome);
         }
         for adapter in self.router.adapters() {
             adapter.cancel(CancelScope::All, reason);
@@ -319,20 +308,19 @@ impl Dispatcher {
 
     /// The current context.
     pub fn context(&self) -> String {
-        lock(&self.context).clone()
+        lock(&self.state).context.clone()
     }
 
     /// Changes the current context.
     pub fn set_context(&self, context: &str, source: Source) -> Result<(), TriggerError> {
-        // Checked under the lock, against the bundle live then: a reload (which takes the lock
-        // too) cannot slip in between and leave a context its bundle does not have.
-        let mut current = lock(&self.context);
-        let context = self.known_context(&self.bundle.load(), context)?;
-        *current = context.clone();
-        // Logged under the lock, so the log's last change is the context in force.
+        // Checked and changed in one turn, against the bundle live then: a reload cannot slip
+        // in between and leave a context its bundle does not have.
+        let mut turn = self.turn();
+        let context = known_context(&turn.bundle, context)?;
+        turn.state.context = context.clone();
+        // Logged in the turn, so the log's last change is the context in force.
         self.hub
             .publish(EventKind::ContextChanged { source, context });
-        drop(current);
         Ok(())
     }
 
@@ -362,20 +350,9 @@ impl Dispatcher {
             });
         }
         match context {
-            Some(c) => self.known_context(&bundle, c).map(drop),
+            Some(c) => known_context(&bundle, c).map(drop),
             None => Ok(()),
         }
-    }
-
-    fn known_context(&self, bundle: &Bundle, context: &str) -> Result<String, TriggerError> {
-        if bundle.contexts.iter().any(|c| c == context) {
-            return Ok(context.to_owned());
-        }
-        let suggestion = suggest(context, bundle.contexts.iter().map(String::as_str));
-        Err(TriggerError::UnknownContext {
-            context: context.to_owned(),
-            suggestion,
-        })
     }
 
     fn refuse(&self, req: &TriggerRequest, error: TriggerError) -> TriggerError {
@@ -402,6 +379,37 @@ impl Dispatcher {
     pub(crate) fn next_id(&self) -> u64 {
         self.next_id.fetch_add(1, Ordering::Relaxed)
     }
+}
+
+/// `context` if `bundle` has it, else `unknown-context` with a suggestion.
+fn known_context(bundle: &Bundle, context: &str) -> Result<String, TriggerError> {
+    if bundle.contexts.iter().any(|c| c == context) {
+        return Ok(context.to_owned());
+    }
+    let suggestion = suggest(context, bundle.contexts.iter().map(String::as_str));
+    Err(TriggerError::UnknownContext {
+        context: context.to_owned(),
+        suggestion,
+    })
+}
+
+/// The priority of `source` in `bundle`'s settings.
+fn priority(bundle: &Bundle, source: Source) -> u8 {
+    let priorities = bundle.config.priorities;
+    match source {
+        Source::Kiosk => priorities.kiosk,
+        // A reaction acts on its own, as a dialog manager does.
+        Source::Dm | Source::Robot => priorities.dm,
+        Source::Http => priorities.http,
+        Source::Operator | Source::Projector | Source::Adapter | Source::Server => {
+            priorities.operator
+        }
+    }
+}
+
+/// Whether speech of act `label` is running or waiting.
+fn speaking_act(state: &State, label: &str) -> bool {
+    (state.lanes.get(&Channel::Speech)).is_some_and(|lane| lane.holds(|c| &*c.act.label == label))
 }
 
 /// The variant `act` speaks in `context`: the context's own, else `Text`; `None` when the act

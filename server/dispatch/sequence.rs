@@ -16,6 +16,7 @@ use tokio_util::sync::CancellationToken;
 use crate::adapters::{Command, Outcome, Reply};
 use crate::content::{Args, Verb};
 use crate::dispatch::Dispatcher;
+use crate::dispatch::state::{State, Turn};
 use crate::events::EventKind;
 
 /// One act's commands on their way out.
@@ -45,8 +46,9 @@ impl Sequence {
         }
     }
 
-    /// Sends `commands` up to the first `WAIT`, then hands the rest to a task.
-    pub fn start(mut self, commands: Vec<Command>) {
+    /// Sends `commands` up to the first `WAIT` in the trigger's own turn, then hands the
+    /// rest to a task.
+    pub fn start(mut self, turn: &mut Turn, commands: Vec<Command>) {
         let mut rest = commands.into_iter();
         while let Some(command) = rest.next() {
             if command.verb == Verb::Wait {
@@ -54,36 +56,37 @@ impl Sequence {
                 life.spawn(self.run(command, rest));
                 return;
             }
-            self.send(command);
+            self.send(turn, command);
         }
     }
 
-    fn send(&mut self, command: Command) {
+    fn send(&mut self, turn: &mut Turn, command: Command) {
         if command.verb == Verb::Say && self.speech.is_cancelled() {
             let reason = "interrupted by a later act before it was said".to_owned();
-            return self.drop_unsent(command, reason);
+            return self.drop_unsent(&turn.state, command, reason);
         }
         if command.verb == Verb::Say
-            && let Some(reason) = self.dispatcher.visitor_cut_off(&command.act)
+            && let Some(reason) = turn.state.visitor_cuts.cut_off(&command.act)
         {
-            return self.drop_unsent(command, reason);
+            return self.drop_unsent(&turn.state, command, reason);
         }
         match &mut self.outstanding {
             Some(outstanding) => {
                 let (tx, rx) = oneshot::channel();
                 outstanding.push((command.verb.to_string(), rx));
-                self.dispatcher.send(command, Some(tx));
+                self.dispatcher.send(turn, command, Some(tx));
             }
-            None => self.dispatcher.send(command, None),
+            None => self.dispatcher.send(turn, command, None),
         }
     }
 
-    fn drop_unsent(&self, command: Command, reason: String) {
+    fn drop_unsent(&self, state: &State, command: Command, reason: String) {
         self.dispatcher
-            .report(command, None, Outcome::Cancelled(reason));
+            .report(state, command, None, Outcome::Cancelled(reason));
     }
 
     async fn run(mut self, first_wait: Command, mut rest: std::vec::IntoIter<Command>) {
+        let dispatcher = Arc::clone(&self.dispatcher);
         let mut next = Some(first_wait);
         let abandoned = loop {
             let Some(command) = next.take().or_else(|| rest.next()) else {
@@ -105,18 +108,20 @@ impl Sequence {
                     if let Some(outstanding) = &mut self.outstanding {
                         outstanding.clear();
                     }
+                    let mut turn = dispatcher.turn();
                     let act = &command.act;
-                    self.dispatcher
-                        .stop(act.source, &format!("DRIVE_STOP in act {}", act.label));
+                    let reason = format!("DRIVE_STOP in act {}", act.label);
+                    dispatcher.stop_in(&mut turn, act.source, &reason);
                     // This act goes on after its own stop.
-                    self.stop = self.dispatcher.stop_token();
-                    self.send(command);
+                    self.stop = turn.state.epoch.clone();
+                    self.send(&mut turn, command);
                 }
-                _ => self.send(command),
+                _ => self.send(&mut dispatcher.turn(), command),
             }
         };
+        let turn = dispatcher.turn();
         for command in next.into_iter().chain(rest) {
-            self.drop_unsent(command, abandoned.clone());
+            self.drop_unsent(&turn.state, command, abandoned.clone());
         }
     }
 

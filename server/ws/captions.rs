@@ -21,7 +21,7 @@ use crate::content::config::CaptionSettings;
 use crate::events::{ClientRole, Event, EventKind};
 use crate::state::ClientLinks;
 use crate::sync::lock;
-use crate::wire::outbox::{Frame, Outbox};
+use crate::wire::outbox::Frame;
 use crate::ws::protocol::caption_frame;
 
 /// The roles that are told captions: the screens.
@@ -156,13 +156,18 @@ impl Captions {
 
     /// Tells a client that just joined as `role` the caption in force (nothing when none:
     /// a new client shows none yet).
-    pub fn tell_joined(&self, role: ClientRole, outbox: &Outbox, settings: CaptionSettings) {
+    pub fn tell_joined(
+        &self,
+        role: ClientRole,
+        settings: CaptionSettings,
+        send: impl FnOnce(Frame),
+    ) {
         if !CAPTIONED.contains(&role) {
             return;
         }
         let now = lock(&self.now);
         if let Some(caption) = now.for_role(role, settings) {
-            outbox.send(Frame::from(caption_frame(Some(caption))));
+            send(Frame::from(caption_frame(Some(caption))));
         }
     }
 }

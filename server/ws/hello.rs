@@ -20,7 +20,7 @@ use crate::state::ClientInfo;
 use crate::wire::ErrorCode;
 use crate::wire::outbox::Frame;
 use crate::ws::client::Client;
-use crate::ws::protocol::{HelloFrame, event_frame, speaking_frame, welcome_frame};
+use crate::ws::protocol::{HelloFrame, event_frame, welcome_frame};
 use crate::ws::writer::Feed;
 
 /// What a `hello` frame says.
@@ -255,15 +255,15 @@ pub(super) fn join(client: &Client, admitted: Admitted) {
     };
     state.client_joined(client.id, info, client.outbox.clone());
     if role == ClientRole::Kiosk {
-        // Joined first, so every later change reaches this kiosk on its own. Sent when
-        // nothing speaks too: a shell that reconnects after a restart must drop what it knew.
-        state.dispatcher.tell_speaking_now(|now| {
-            client.outbox.send(Frame::from(speaking_frame(now)));
+        // Joined first, so every later change reaches this kiosk on its own; greeted among
+        // the dispatcher's notices with who speaks, then what is being said (`ws::notices`).
+        state.dispatcher.kiosk_joined(client.id);
+    } else {
+        let captions = state.dispatcher.bundle().config.captions;
+        state.captions.tell_joined(role, captions, |frame| {
+            client.outbox.send(frame);
         });
     }
-    // After `speaking`: a screen learns who speaks, then what is being said.
-    let captions = state.dispatcher.bundle().config.captions;
-    state.captions.tell_joined(role, &client.outbox, captions);
     state.hub.publish(EventKind::ClientConnected {
         client: client.id,
         role,

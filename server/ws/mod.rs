@@ -40,5 +40,5 @@ pub use allowance::{FRAME_BURST, FRAMES_PER_SECOND, PING_BURST, PINGS_PER_SECOND
 pub use captions::Captions;
 pub use connection::ws_upgrade;
 pub use embedded::EmbeddedSession;
-pub use notices::ClientNotices;
+pub use notices::deliver as deliver_notices;
 pub use robot::ROBOT_DATA_BYTES;

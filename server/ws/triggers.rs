@@ -11,7 +11,7 @@ use std::time::Instant;
 
 use crate::access::KioskAllowance;
 use crate::content::{BundleArea, resolve_in_bundle};
-use crate::dispatch::TriggerRequest;
+use crate::dispatch::{Answer, TriggerRequest};
 use crate::events::{ClientRole, EventKind, KioskCause, element_description};
 use crate::wire::ErrorCode;
 use crate::ws::client::Client;
@@ -245,7 +245,16 @@ pub(super) fn set_language(
         touch.log(client, page.clone());
     }
     let dispatcher = &client.state.dispatcher;
-    match dispatcher.set_language(language, role.source(), page.as_deref()) {
+    // A kiosk is one of the screens every change is told to: it is answered among the
+    // dispatcher's notices, after that notice (`ws::notices`). Others are answered here, before
+    // the `language.changed` event in their event stream.
+    let screen = role == ClientRole::Kiosk;
+    let answer = screen.then(|| Answer {
+        client: client.id,
+        reference: reference.clone(),
+    });
+    match dispatcher.set_language(language, role.source(), page.as_deref(), answer) {
+        Ok(_) if screen => {}
         Ok(language) => client.send_logged(
             language_frame(reference.as_deref(), &language),
             reference.as_deref(),
