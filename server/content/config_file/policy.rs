@@ -13,7 +13,7 @@ use super::section::{Field, Section, Shape};
 use crate::schema::section_schema;
 
 /// The settings of one channel's policy.
-const CHANNEL: Section = Section {
+pub(super) const CHANNEL: Section = Section {
     name: "the channel",
     required: &[],
     fields: &[

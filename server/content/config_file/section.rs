@@ -96,3 +96,98 @@ impl Shape {
         }
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use super::{Section, Shape};
+    use crate::config::{Channel, SiteConfig};
+    use crate::config_file::test_support::parse;
+    use crate::config_file::{SECTION, policy, verbs};
+
+    /// The section `key` of the top level.
+    fn top(key: &str) -> &'static Section {
+        match SECTION.field(key).map(|field| &field.shape) {
+            Some(Shape::Nested(section)) => section,
+            _ => panic!("`{key}` is not a section"),
+        }
+    }
+
+    /// Each word `key` of `section` accepts, with the settings `yaml_for(word)` reads as.
+    fn read_each(
+        section: &'static Section,
+        key: &str,
+        yaml_for: impl Fn(&str) -> String,
+    ) -> Vec<(&'static str, SiteConfig)> {
+        let field = section.field(key).expect("a field");
+        assert!(!field.shape.words().is_empty(), "{key} has words");
+        (field.shape.words().iter())
+            .map(|word| (*word, parse(&yaml_for(word)).config))
+            .collect()
+    }
+
+    /// `Reader::pick` pairs a shape's words with the reader's values by position: each word
+    /// must read as the value of that name, wherever a switch or a choice is read.
+    #[test]
+    fn each_word_of_a_choice_reads_as_the_value_of_that_name() {
+        let named = |value: &dyn std::fmt::Debug| format!("{value:?}").to_lowercase();
+        for (word, config) in read_each(top("display"), "adapter", |w| {
+            format!("display: {{adapter: {w}}}\n")
+        }) {
+            assert_eq!(config.display.adapter.as_str(), word);
+        }
+        for (word, config) in read_each(top("speech"), "adapter", |w| {
+            format!("speech: {{adapter: {w}}}\n")
+        }) {
+            assert_eq!(config.speech.adapter.map(|a| a.as_str()), Some(word));
+        }
+        for (word, config) in read_each(top("drive"), "adapter", |w| {
+            format!("drive: {{adapter: {w}}}\n")
+        }) {
+            assert_eq!(config.drive.adapter.as_str(), word);
+        }
+        for (word, config) in read_each(top("projector"), "after_video", |w| {
+            format!("projector: {{after_video: {w}}}\n")
+        }) {
+            assert_eq!(named(&config.projector.after_video), word);
+        }
+        for (word, config) in read_each(top("corpus"), "consent", |w| {
+            format!("corpus: {{consent: {w}}}\n")
+        }) {
+            assert_eq!(named(&config.corpus.consent), word);
+        }
+        for (word, config) in read_each(top("corpus"), "session_start", |w| {
+            format!("corpus: {{session_start: {w}}}\n")
+        }) {
+            assert_eq!(named(&config.corpus.session_start), word);
+        }
+        for (word, config) in read_each(top("captions"), "kiosk", |w| {
+            format!("captions: {{kiosk: {w}, projector: {w}}}\n")
+        }) {
+            assert_eq!(config.captions.kiosk.to_string(), word);
+            assert_eq!(config.captions.projector.to_string(), word);
+        }
+        for (word, config) in read_each(top("kiosk"), "leave_page_stops_speech", |w| {
+            format!("kiosk: {{leave_page_stops_speech: {w}}}\n")
+        }) {
+            assert_eq!(config.kiosk.leave_page_stops_speech.to_string(), word);
+        }
+        for (word, config) in read_each(&policy::CHANNEL, "when_busy", |w| {
+            format!("channels: {{speech: {{when_busy: {w}}}}}\n")
+        }) {
+            assert_eq!(
+                config.channels.of(&Channel::Speech).when_busy.as_str(),
+                word
+            );
+        }
+        for (word, config) in read_each(&verbs::SITE_VERB, "adapter", |w| {
+            format!("verbs: {{LIGHTS: {{adapter: {w}}}}}\n")
+        }) {
+            assert_eq!(config.verbs["LIGHTS"].adapter.as_str(), word);
+        }
+        for (word, config) in read_each(&verbs::SITE_VERB, "argument", |w| {
+            format!("verbs: {{LIGHTS: {{argument: {w}}}}}\n")
+        }) {
+            assert_eq!(named(&config.verbs["LIGHTS"].argument), word);
+        }
+    }
+}

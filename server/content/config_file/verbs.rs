@@ -15,7 +15,7 @@ use super::section::{Field, Section, Shape};
 use crate::schema::section_schema;
 
 /// The settings of one site command under `verbs:`.
-const SITE_VERB: Section = Section {
+pub(super) const SITE_VERB: Section = Section {
     name: "the command",
     required: &[],
     fields: &[
