@@ -26,11 +26,14 @@ mod reader;
 pub(crate) mod rosbridge;
 pub(crate) mod schedule;
 pub(crate) mod screens;
+pub(crate) mod section;
 pub(crate) mod server;
 mod verbs;
 
 use codebook::Codebook;
 use reader::Reader;
+use section::{Field, Section, Shape};
+use serde_json::{Value, json};
 
 /// What `docent.yaml` gave, beyond the settings themselves.
 #[derive(Default)]
@@ -55,30 +58,189 @@ pub(crate) struct ConfigFile {
     pub diagnostics: Vec<Diagnostic>,
 }
 
-pub(crate) const TOP_KEYS: &[&str] = &[
-    "home",
-    "contexts",
-    "languages",
-    "speech",
-    "display",
-    "drive",
-    "adapters",
-    "kiosk",
-    "projector",
-    "corpus",
-    "verbs",
-    "access",
-    "operator",
-    "server",
-    "channels",
-    "priorities",
-    "codebook",
-    "reactions",
-    "mqtt",
-    "rosbridge",
-    "schedule",
-    "captions",
-];
+/// The top level of `docent.yaml`: every section, in the order unknown-key messages list them.
+pub(crate) const SECTION: Section = Section {
+    name: "docent.yaml",
+    required: &[],
+    fields: &[
+        Field {
+            key: "home",
+            description: "The page under pages/ the touchscreen starts on, e.g. `index.html`.",
+            shape: Shape::Words,
+        },
+        Field {
+            key: "contexts",
+            description: "The text variants this bundle uses as contexts, e.g. `[TextGroup, \
+                          TextChild]`. Listing them lets `docent check` catch a misspelt \
+                          variant key.",
+            shape: Shape::Custom(contexts_schema),
+        },
+        Field {
+            key: "languages",
+            description: "The bundle's languages, the default first, e.g. `[en, de]`. Texts \
+                          in another language are written `Text@de:` beside `Text:`, pages in \
+                          `pages/de/`. Without it the bundle has one language: that of \
+                          `speech: voice`, else `en`.",
+            shape: Shape::Custom(languages::schema),
+        },
+        Field {
+            key: "speech",
+            description: "How the robot speaks.",
+            shape: Shape::Nested(&devices::SPEECH),
+        },
+        Field {
+            key: "display",
+            description: "The touchscreen and the projector.",
+            shape: Shape::Nested(&DISPLAY),
+        },
+        Field {
+            key: "drive",
+            description: "The robot's driving base.",
+            shape: Shape::Nested(&devices::DRIVE),
+        },
+        Field {
+            key: "adapters",
+            description: "Settings shared by all devices.",
+            shape: Shape::Nested(&ADAPTERS),
+        },
+        Field {
+            key: "kiosk",
+            description: "How the touchscreen behaves.",
+            shape: Shape::Nested(&screens::KIOSK),
+        },
+        Field {
+            key: "projector",
+            description: "How the projector behaves.",
+            shape: Shape::Nested(&screens::PROJECTOR),
+        },
+        Field {
+            key: "corpus",
+            description: "How the corpus is cut into visitor sessions.",
+            shape: Shape::Nested(&screens::CORPUS),
+        },
+        Field {
+            key: "verbs",
+            description: "This site's own commands, by name, e.g. `verbs: { LIGHTS: { adapter: \
+                          ws, argument: required } }`.",
+            shape: Shape::Custom(verbs::schema),
+        },
+        Field {
+            key: "access",
+            description: "Credentials the operator console and a dialog manager show to \
+                          connect. Better kept out of the bundle: set DOCENT_OPERATOR_TOKEN \
+                          and DOCENT_DM_TOKEN instead.",
+            shape: Shape::Nested(&access::SECTION),
+        },
+        Field {
+            key: "operator",
+            description: "What the operator console shows.",
+            shape: Shape::Nested(&operator::SECTION),
+        },
+        Field {
+            key: "server",
+            description: "How Docent itself is reached.",
+            shape: Shape::Nested(&server::SECTION),
+        },
+        Field {
+            key: "channels",
+            description: "What each output channel (speech, touchscreen, projector, drive or a \
+                          command under `verbs`) does with a command that arrives while \
+                          another runs.",
+            shape: Shape::Custom(policy::channels_schema),
+        },
+        Field {
+            key: "priorities",
+            description: "Which trigger source wins when several ask for the same channel \
+                          (defaults: operator 3, http 3, dm 2, kiosk 1).",
+            shape: Shape::Nested(&policy::PRIORITIES),
+        },
+        Field {
+            key: "codebook",
+            description: "The annotation tiers researchers code recorded sessions with on the \
+                          /sessions page, e.g. `{situation: {question: q, laughter: l}}`. \
+                          Without it: one `situation` tier of `operator.situations`, keyed 1 \
+                          to 9.",
+            shape: Shape::Custom(codebook::schema),
+        },
+        Field {
+            key: "reactions",
+            description: "Robot events mapped to acts, each with an optional condition and a \
+                          cool-down, e.g. `- {event: person.near, if: distance < 1.5, act: \
+                          GREETING, cooldown: 2m}`.",
+            shape: Shape::Custom(reactions::schema),
+        },
+        Field {
+            key: "mqtt",
+            description: "The fleet's MQTT broker and this robot's id in it (docs/FLEET.md); \
+                          `docent serve --mqtt URL --robot-id ID` overrides both.",
+            shape: Shape::Nested(&mqtt::SECTION),
+        },
+        Field {
+            key: "rosbridge",
+            description: "The link to a ROS 2 robot through a rosbridge v2 server \
+                          (docs/ROBOT.md): where goals go, where the pose comes from, how the \
+                          robot is stopped, which topics become robot events. Needs `url`.",
+            shape: Shape::Nested(&rosbridge::SECTION),
+        },
+        Field {
+            key: "schedule",
+            description: "Opening hours, evaluated by the kiosk's own clock: outside them the \
+                          kiosk shows the `closed` page.",
+            shape: Shape::Nested(&schedule::SECTION),
+        },
+        Field {
+            key: "captions",
+            description: "Captions of the robot's speech: on the touchscreen by default (a \
+                          page may opt out with <meta name=\"docent-captions\" \
+                          content=\"off\">), on the projector when asked.",
+            shape: Shape::Nested(&captions::SECTION),
+        },
+    ],
+};
+
+/// `display:`: who shows pages and pictures.
+const DISPLAY: Section = Section {
+    name: "display",
+    required: &[],
+    fields: &[Field {
+        key: "adapter",
+        description: "Who shows pages and pictures: `display` (Docent's own touchscreen and \
+                      projector pages, the default) or `ws` (a program connected over the \
+                      websocket).",
+        shape: Shape::Choice(&["display", "ws"]),
+    }],
+};
+
+/// `adapters:`: settings shared by all devices.
+const ADAPTERS: Section = Section {
+    name: "adapters",
+    required: &[],
+    fields: &[Field {
+        key: "timeout",
+        description: "How long a device (a websocket adapter, the touchscreen or projector \
+                      page) may take to report a command before Docent reports it failed, \
+                      e.g. `30s`; a film only until it plays. Not zero.",
+        shape: Shape::Duration,
+    }],
+};
+
+/// The schema of `contexts:`: one name or a list of names, each `Text` and more.
+fn contexts_schema(description: &'static str) -> Value {
+    let context = json!({
+        "type": "string",
+        "pattern": "^Text.",
+        "description": "A context: the name of a text variant key, e.g. `TextChild`.",
+    });
+    json!({
+        "description": description,
+        "anyOf": [
+            { "type": "null" },
+            context,
+            { "type": "array", "items": context, "uniqueItems": true },
+        ],
+    })
+}
+
 const HOME_USAGE: &str = "`home` names the page under pages/ the kiosk starts on, e.g. \
                           `home: index.html`.";
 const CONTEXT_USAGE: &str = "A context is the name of a text variant key: `Text` followed by \
@@ -111,9 +273,9 @@ impl Reader {
         let mut languages = Vec::new();
         let mut voices = Vec::new();
         let mut voice_written = false;
-        for (key, value) in self.entries(root, TOP_KEYS, "docent.yaml") {
+        for (field, value) in self.entries(root, &SECTION) {
             let config = &mut out.config;
-            match key {
+            match field.key {
                 "home" => {
                     if let Some(home) = self.setting(value, HOME_USAGE, |t| Some(t.to_owned())) {
                         config.home.clone_from(&home);
@@ -131,9 +293,11 @@ impl Reader {
                     voices = self.speech(value, config);
                 }
                 "display" => {
-                    for (_, value) in self.entries(value, &["adapter"], "display") {
-                        let kinds = [("display", AdapterKind::Display), ("ws", AdapterKind::Ws)];
-                        if let Some(kind) = self.choice(value, "display adapter", &kinds) {
+                    for (field, value) in self.entries(value, &DISPLAY) {
+                        let kinds = [AdapterKind::Display, AdapterKind::Ws];
+                        if let Some(kind) =
+                            self.pick(value, "display adapter", &field.shape, &kinds)
+                        {
                             config.display.adapter = kind;
                         }
                     }
@@ -147,7 +311,7 @@ impl Reader {
                 "projector" => self.projector(value, config),
                 "corpus" => self.corpus(value, config),
                 "adapters" => {
-                    for (_, value) in self.entries(value, &["timeout"], "adapters") {
+                    for (_, value) in self.entries(value, &ADAPTERS) {
                         let parse = |t: &str| parse_duration(t).filter(|d| !d.is_zero());
                         if let Some(timeout) = self.setting(value, TIMEOUT_USAGE, parse) {
                             config.adapter_timeout = timeout;

@@ -9,9 +9,11 @@
 //! Map:
 //! - `args`: a command's argument as a typed value, parsed once at load.
 //! - `model`: the loaded data (acts, variants, commands, positions).
-//! - `config`: validated site settings; `config_file`: parsing `docent.yaml`; `config_policy`:
-//!   channel policies and source priorities; `config_corpus`: the `corpus:` settings (what
-//!   starts a visitor session, its consent, what the kiosk records).
+//! - `config`: validated site settings; `config_file`: parsing `docent.yaml`, with one
+//!   declarative definition per section (`config_file/section.rs`) that the schema is
+//!   generated from; `config_policy`: channel policies and source priorities;
+//!   `config_corpus`: the `corpus:` settings (what starts a visitor session, its consent,
+//!   what the kiosk records).
 //! - `language`: a language tag (`en`, `de`, `pt-br`) and a bundle's languages.
 //! - `contexts`: the context names a bundle uses, and misspelt variant keys.
 //! - `acts_file`: parsing one acts file, keeping every position.
@@ -36,7 +38,8 @@
 //! - `gather`: reading the acts files and pages on every core.
 //! - `load`: putting it together: `load_bundle`.
 //! - `fingerprint`: the bundle's content as one SHA-256, for a session's manifest.
-//! - `schema`: JSON Schemas of the acts file and `docent.yaml`, for editors.
+//! - `schema`: JSON Schemas of the acts file and `docent.yaml` (walked from `config_file`'s
+//!   section definitions), for editors.
 //! - `consent`: what a session's visitors agreed to (`corpus: consent`, manifests, marks).
 //! - `names`: robot event names, robot ids and the broker's address, as `docent.yaml` writes
 //!   them and the runtime reads them.

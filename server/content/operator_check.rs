@@ -91,8 +91,8 @@ pub(crate) fn visitor_groups(
     out: &mut Vec<Diagnostic>,
 ) -> BTreeMap<String, String> {
     let mut groups = BTreeMap::new();
-    for group in VISITOR_GROUPS {
-        let context = match written.iter().find(|(g, _)| g == group) {
+    for group in VISITOR_GROUPS.keys() {
+        let context = match written.iter().find(|(g, _)| *g == group) {
             Some((_, Located { value, pos })) => {
                 if !contexts.contains(value) {
                     let hint = did_you_mean(value, contexts.iter().map(String::as_str));
@@ -119,7 +119,7 @@ pub(crate) fn visitor_groups(
                 default
             }
         };
-        groups.insert((*group).to_owned(), context.to_owned());
+        groups.insert(group.to_owned(), context.to_owned());
     }
     groups
 }

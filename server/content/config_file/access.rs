@@ -7,9 +7,42 @@ use crate::acts_file::yaml::{Kind, Node};
 use crate::config::{AccessSettings, Credential};
 use crate::diagnostic::Diagnostic;
 
-use super::Reader;
+use serde_json::{Value, json};
 
-const KEYS: &[&str] = &["operator_token", "dm_token"];
+use super::Reader;
+use super::section::{Field, Section, Shape};
+
+/// The settings of `access:`.
+pub(crate) const SECTION: Section = Section {
+    name: "access",
+    required: &[],
+    fields: &[
+        Field {
+            key: "operator_token",
+            description: "The credential the operator console shows to connect",
+            shape: Shape::Custom(credential_schema),
+        },
+        Field {
+            key: "dm_token",
+            description: "The credential the dialog manager shows to connect",
+            shape: Shape::Custom(credential_schema),
+        },
+    ],
+};
+
+/// A token: printable characters without spaces, at least [`Credential::MIN_CHARS`] of them
+/// (the rest of [`Credential::new`]'s rules need the whole text and stay with `docent check`).
+fn credential_schema(description: &'static str) -> Value {
+    let min = Credential::MIN_CHARS;
+    json!({
+        "type": "string",
+        "pattern": format!("^[!-~]{{{min},}}$"),
+        "description": format!(
+            "{description}: at least {min} characters, no spaces, e.g. the output of \
+             `openssl rand -hex 16`."
+        ),
+    })
+}
 
 impl Reader {
     /// Reads `access:` into `access`.
@@ -19,7 +52,7 @@ impl Reader {
             let message = format!(
                 "`access` must be a set of settings ({}), e.g. \
                  `access: {{ operator_token: ... }}`, but it is {} here.",
-                KEYS.join(", "),
+                SECTION.keys().join(", "),
                 node.describe()
             );
             self.diagnostics.push(Diagnostic::error(
@@ -29,7 +62,8 @@ impl Reader {
             ));
             return;
         }
-        for (key, value) in self.entries(node, KEYS, "access") {
+        for (field, value) in self.entries(node, &SECTION) {
+            let key = field.key;
             let (who, variable) = match key {
                 "operator_token" => ("operator console", "DOCENT_OPERATOR_TOKEN"),
                 _ => ("dialog manager", "DOCENT_DM_TOKEN"),

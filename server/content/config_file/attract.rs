@@ -15,10 +15,56 @@ use crate::model::Located;
 use crate::paths::BundleArea;
 use crate::suggest::did_you_mean;
 
-use super::Reader;
+use serde_json::{Value, json};
 
-/// The keys of an `attract:` section.
-pub(crate) const ATTRACT_KEYS: &[&str] = &["after", "pages", "every", "act"];
+use super::Reader;
+use super::section::{Field, Section, Shape};
+use crate::schema::words;
+
+/// What an attract loop is, for the author (under `kiosk:` and in a schedule's ranges).
+pub(crate) const DESCRIPTION: &str = "The attract loop: after a time without a touch the kiosk \
+                                      shows pages in turn or triggers an act, until the first \
+                                      touch, which returns to the home page.";
+
+/// The settings of an `attract:` section.
+pub(crate) const SECTION: Section = Section {
+    name: "attract",
+    required: &[],
+    fields: &[
+        Field {
+            key: "after",
+            description: "How long the touchscreen waits without a touch before the attract \
+                          loop starts, e.g. `3m` (2m unless set).",
+            shape: Shape::Duration,
+        },
+        Field {
+            key: "pages",
+            description: "The pages the attract loop shows in turn.",
+            shape: Shape::Custom(pages_schema),
+        },
+        Field {
+            key: "every",
+            description: "How long each attract page stays on screen, e.g. `10s` (the \
+                          default); with only an act, how often it is repeated (once unless \
+                          set).",
+            shape: Shape::Duration,
+        },
+        Field {
+            key: "act",
+            description: "The label of the act triggered when the loop starts, e.g. `INVITE`.",
+            shape: Shape::Pattern(r"^\S+$"),
+        },
+    ],
+};
+
+/// One page or a list of pages.
+fn pages_schema(description: &'static str) -> Value {
+    let page = words("A page under pages/, e.g. `attract/a.html`.");
+    json!({
+        "description": description,
+        "anyOf": [page, { "type": "array", "items": page, "minItems": 1 }],
+    })
+}
 const AFTER_USAGE: &str = "`after` is how long the touchscreen waits without a touch before \
                            the attract loop starts: a length of time with its unit, e.g. \
                            `after: 3m`.";
@@ -55,8 +101,8 @@ impl Reader {
             act: None,
         };
         let mut usable = true;
-        for (key, value) in self.entries(node, ATTRACT_KEYS, "attract") {
-            match key {
+        for (field, value) in self.entries(node, &SECTION) {
+            match field.key {
                 "after" => {
                     let after = |t: &str| parse_duration(t).filter(|d| !d.is_zero());
                     match self.setting(value, AFTER_USAGE, after) {

@@ -5,9 +5,27 @@
 use crate::acts_file::yaml::Node;
 use crate::config::SiteConfig;
 use crate::config_file::reader::Reader;
+use crate::config_file::section::{Field, Section, Shape};
 
-/// The keys of `captions:`.
-pub(crate) const KEYS: &[&str] = &["kiosk", "projector"];
+/// The settings of `captions:`.
+pub(crate) const SECTION: Section = Section {
+    name: "captions",
+    required: &[],
+    fields: &[
+        Field {
+            key: "kiosk",
+            description: "Whether the touchscreen shows what the robot says as a caption while \
+                          it is said (default `true`).",
+            shape: Shape::Bool,
+        },
+        Field {
+            key: "projector",
+            description: "Whether the projector shows what the robot says as a caption while \
+                          it is said (default `false`).",
+            shape: Shape::Bool,
+        },
+    ],
+};
 
 /// Which screens show captions of the robot's speech.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -30,9 +48,10 @@ impl Default for CaptionSettings {
 impl Reader {
     /// Reads `captions:` into `config.captions`.
     pub(super) fn captions(&mut self, node: &Node, config: &mut SiteConfig) {
-        for (key, value) in self.entries(node, KEYS, "captions") {
+        for (field, value) in self.entries(node, &SECTION) {
+            let key = field.key;
             let what = format!("captions' `{key}` setting (whether that screen shows captions)");
-            let Some(on) = self.choice(value, &what, &[("true", true), ("false", false)]) else {
+            let Some(on) = self.pick(value, &what, &field.shape, &[true, false]) else {
                 continue;
             };
             match key {

@@ -20,7 +20,43 @@ use crate::acts_file::yaml::{Kind, Node};
 use crate::diagnostic::Diagnostic;
 use crate::model::Pos;
 
+use serde_json::{Value, json};
+
 use super::Reader;
+
+/// The schema of `codebook:`: tier name to codes, each code with a one-key shortcut or none;
+/// or a list of codes without shortcuts.
+pub(crate) fn schema(description: &'static str) -> Value {
+    let key = json!({
+        "anyOf": [
+            { "type": "null" },
+            { "type": "string", "pattern": "^[A-Za-z0-9]$" },
+            { "type": "integer", "minimum": 0, "maximum": 9 },
+        ],
+        "description": "The code's shortcut on the /sessions page: one letter or digit, or \
+                        nothing (chosen by click only).",
+    });
+    let code = json!({ "type": "string", "minLength": 1, "maxLength": MAX_NAME });
+    let tier = json!({
+        "description": "A tier's codes: `{question: q, laughter: l}` (code: shortcut), or a \
+                        list of codes without shortcuts.",
+        "anyOf": [
+            { "type": "object", "minProperties": 1, "additionalProperties": key },
+            { "type": "array", "minItems": 1, "items": code, "uniqueItems": true },
+        ],
+    });
+    json!({
+        "description": description,
+        "anyOf": [
+            { "type": "null" },
+            {
+                "type": "object",
+                "propertyNames": { "pattern": "^[A-Za-z][A-Za-z0-9._-]{0,63}$" },
+                "additionalProperties": tier,
+            },
+        ],
+    })
+}
 
 /// The tier the default codebook (from `operator.situations`) codes.
 pub const DEFAULT_TIER: &str = "situation";

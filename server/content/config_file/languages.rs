@@ -12,12 +12,33 @@ use crate::diagnostic::Diagnostic;
 use crate::language::LANGUAGE_USAGE;
 use crate::model::Located;
 
+use serde_json::{Value, json};
+
 use super::Reader;
+
+/// A short BCP 47 language tag, as `content::Language::parse` reads it (any case).
+pub(crate) const LANGUAGE_PATTERN: &str = "^[A-Za-z]{2,3}(-([A-Za-z]{2}|[0-9]{3}|[A-Za-z]{4}))?$";
 
 const LANGUAGES_USAGE: &str = "`languages` lists the bundle's languages, the default first, \
                                e.g. `languages: [en, de]`.";
 const VOICES_USAGE: &str = "`voices` gives each language its espeak-ng voice, e.g. \
                             `voices: {en: en-gb, de: de}`.";
+
+/// The schema of `languages:`: one tag or a list of different tags.
+pub(crate) fn schema(description: &'static str) -> Value {
+    let language = json!({
+        "type": "string",
+        "pattern": LANGUAGE_PATTERN,
+        "description": "A short language tag, e.g. `en`, `de` or `pt-br`.",
+    });
+    json!({
+        "description": description,
+        "anyOf": [
+            language,
+            { "type": "array", "items": language, "minItems": 1, "uniqueItems": true },
+        ],
+    })
+}
 
 impl Reader {
     /// `languages:`: a list (or a single tag), no repeats; every tag checked. A list written

@@ -12,16 +12,51 @@ use crate::diagnostic::Diagnostic;
 use crate::names::{BrokerUrl, robot_id_problem};
 
 use super::Reader;
+use super::section::{Field, Section, Shape};
 
-/// The section's keys, also the JSON Schema's.
-pub(crate) const KEYS: &[&str] = &[
-    "url",
-    "robot_id",
-    "username",
-    "password",
-    "ca_file",
-    "console_url",
-];
+/// The settings of `mqtt:`.
+pub(crate) const SECTION: Section = Section {
+    name: "mqtt",
+    required: &[],
+    fields: &[
+        Field {
+            key: "url",
+            description: "The fleet's MQTT broker, e.g. `mqtt://broker.local:1883` (port 1883 \
+                          when left out). No user name or password in it.",
+            shape: Shape::Pattern("^mqtt://[^@/?#]+/?$"),
+        },
+        Field {
+            key: "robot_id",
+            description: "This robot's id in the topics (`docent/ID/state`): 1 to 64 letters, \
+                          digits, - and _, e.g. `robot-1`.",
+            shape: Shape::Pattern("^[A-Za-z0-9_-]{1,64}$"),
+        },
+        Field {
+            key: "username",
+            description: "The broker's user name for this robot.",
+            shape: Shape::Text,
+        },
+        Field {
+            key: "password",
+            description: "The broker's password for `username`. Better kept out of the \
+                          bundle: set DOCENT_MQTT_PASSWORD instead.",
+            shape: Shape::Text,
+        },
+        Field {
+            key: "ca_file",
+            description: "For an mqtts:// broker: the absolute path of the PEM file with the \
+                          CA certificates it is checked against (the system's without one).",
+            shape: Shape::Pattern("^/"),
+        },
+        Field {
+            key: "console_url",
+            description: "This robot's console as the fleet view links to it, e.g. \
+                          `http://robot-1.local:8080/operator` (by default the --listen \
+                          address's).",
+            shape: Shape::Pattern("^https?://"),
+        },
+    ],
+};
 
 /// What `mqtt:` says (all optional: the command line may give the rest).
 #[derive(Clone, Debug, Default, PartialEq)]
@@ -61,8 +96,8 @@ impl fmt::Debug for MqttPassword {
 impl Reader {
     /// Reads `mqtt:` into `mqtt`.
     pub(super) fn mqtt(&mut self, node: &Node, mqtt: &mut MqttSettings) {
-        for (key, value) in self.entries(node, KEYS, "mqtt") {
-            match key {
+        for (field, value) in self.entries(node, &SECTION) {
+            match field.key {
                 "url" => mqtt.url = self.broker_url(value),
                 "robot_id" => {
                     let usage = robot_id_problem("").unwrap_or_default();

@@ -8,11 +8,70 @@ use crate::config::Camera;
 use crate::model::Located;
 use crate::suggest::did_you_mean;
 
-use super::{ConfigFile, Reader};
+use serde_json::{Value, json};
 
-pub(crate) const KEYS: &[&str] = &["map", "camera", "situations", "visitor_groups"];
-/// Visitor groups the console offers, in the order it shows them.
-pub(crate) const VISITOR_GROUPS: &[&str] = &["single", "group", "children"];
+use super::section::{Field, Section, Shape};
+use super::{ConfigFile, Reader};
+use crate::schema::{VARIANT_KEY_PATTERN, any_case, words};
+
+/// The settings of `operator:`.
+pub(crate) const SECTION: Section = Section {
+    name: "operator",
+    required: &[],
+    fields: &[
+        Field {
+            key: "map",
+            description: "A picture of the area the robot drives in, spanning `drive: bounds`, \
+                          written from the bundle folder, e.g. `pages/images/map.png`",
+            shape: Shape::Custom(map_schema),
+        },
+        Field {
+            key: "camera",
+            description: "The camera the operator sees: `webrtc` (the touchscreen's own \
+                          camera, the default), `none`, or the address of an MJPEG stream \
+                          starting with http:// or https://.",
+            shape: Shape::Custom(camera_schema),
+        },
+        Field {
+            key: "situations",
+            description: "1 to 9 short names the operator marks during a session with \
+                          Alt+Shift+1 to 9, e.g. `[question, laughter, leaving]`.",
+            shape: Shape::Custom(situations_schema),
+        },
+        Field {
+            key: "visitor_groups",
+            description: "Which context each visitor group button of the console switches to.",
+            shape: Shape::Nested(&VISITOR_GROUPS),
+        },
+    ],
+};
+
+/// Visitor groups the console offers, in the order it shows them, each naming the context
+/// its button switches to.
+pub(crate) const VISITOR_GROUPS: Section = Section {
+    name: "visitor_groups",
+    required: &[],
+    fields: &[
+        Field {
+            key: "single",
+            description: "The context the console switches to for the `single` visitor group: \
+                          `Text` or a text variant key, e.g. `TextChild`.",
+            shape: Shape::Pattern(VARIANT_KEY_PATTERN),
+        },
+        Field {
+            key: "group",
+            description: "The context the console switches to for the `group` visitor group: \
+                          `Text` or a text variant key, e.g. `TextChild`.",
+            shape: Shape::Pattern(VARIANT_KEY_PATTERN),
+        },
+        Field {
+            key: "children",
+            description: "The context the console switches to for the `children` visitor \
+                          group: `Text` or a text variant key, e.g. `TextChild`.",
+            shape: Shape::Pattern(VARIANT_KEY_PATTERN),
+        },
+    ],
+};
 /// Picture formats Chromium shows in an `<img>`.
 pub(crate) const MAP_FORMATS: &[&str] = &["png", "jpg", "jpeg", "gif", "webp", "svg"];
 /// Situations are marked with Alt+Shift+1 to 9.
@@ -33,9 +92,9 @@ const GROUP_CONTEXT_USAGE: &str = "A visitor group switches to a context: `Text`
 impl Reader {
     /// Reads `operator:` into `out.config.operator`, keeping the places the bundle checks need.
     pub(super) fn operator(&mut self, node: &Node, out: &mut ConfigFile) {
-        for (key, value) in self.entries(node, KEYS, "operator") {
+        for (field, value) in self.entries(node, &SECTION) {
             let operator = &mut out.config.operator;
-            match key {
+            match field.key {
                 "map" => {
                     if let Some(map) = self.map(value) {
                         operator.map = Some(map.clone());
@@ -141,7 +200,8 @@ impl Reader {
 
     fn visitor_groups(&mut self, node: &Node) -> Vec<(&'static str, Located<String>)> {
         let mut groups = Vec::new();
-        for (group, value) in self.entries(node, VISITOR_GROUPS, "visitor_groups") {
+        for (field, value) in self.entries(node, &VISITOR_GROUPS) {
+            let group = field.key;
             let context = |t: &str| is_context_name(t).then(|| t.to_owned());
             if let Some(context) = self.setting(value, GROUP_CONTEXT_USAGE, context) {
                 let pos = value.pos.clone();
@@ -184,6 +244,50 @@ pub(crate) fn default_context(group: &str) -> &'static str {
         "children" => "TextChild",
         _ => "Text",
     }
+}
+
+/// A picture under pages/ or media/ in a format the console's browser shows; the
+/// description ends with the formats.
+fn map_schema(description: &'static str) -> Value {
+    let formats: Vec<String> = MAP_FORMATS.iter().map(|f| any_case(f)).collect();
+    json!({
+        "type": "string",
+        "pattern": format!(r"^\s*(pages|media)/.+\.({})\s*$", formats.join("|")),
+        "description": format!("{description} ({}).", MAP_FORMATS.join(", ")),
+    })
+}
+
+/// `webrtc`, `none` or an MJPEG stream's address.
+fn camera_schema(description: &'static str) -> Value {
+    json!({
+        "description": description,
+        "anyOf": [
+            { "enum": ["webrtc", "none"] },
+            {
+                "type": "string",
+                "pattern": r#"^\s*[hH][tT][tT][pP][sS]?://[^/?#@\s"'<>`\\{}|^][^\s"'<>`\\{}|^]*\s*$"#,
+            },
+        ],
+    })
+}
+
+/// One name or a list of 1 to 9 different names.
+fn situations_schema(description: &'static str) -> Value {
+    let name = words("A short name the operator marks, e.g. `question`.");
+    json!({
+        "description": description,
+        "anyOf": [
+            { "type": "null" },
+            name,
+            {
+                "type": "array",
+                "minItems": 1,
+                "maxItems": MAX_SITUATIONS,
+                "uniqueItems": true,
+                "items": name,
+            },
+        ],
+    })
 }
 
 #[cfg(test)]

@@ -6,12 +6,85 @@ use crate::acts_file::yaml::{Kind, Node};
 use crate::config::{Channel, ChannelPolicy, MAX_PRIORITY, MAX_QUEUE_LIMIT, SiteConfig, WhenBusy};
 use crate::suggest::did_you_mean;
 
-use super::Reader;
+use serde_json::{Value, json};
 
-/// The keys of one channel's policy.
-pub(crate) const CHANNEL_KEYS: &[&str] = &["when_busy", "queue_limit"];
-/// The trigger sources `priorities:` names.
-pub(crate) const PRIORITY_KEYS: &[&str] = &["operator", "http", "dm", "kiosk"];
+use super::Reader;
+use super::section::{Field, Section, Shape};
+use crate::schema::section_schema;
+
+/// The settings of one channel's policy.
+pub(super) const CHANNEL: Section = Section {
+    name: "the channel",
+    required: &[],
+    fields: &[
+        Field {
+            key: "when_busy",
+            description: "What a command arriving while another of the same priority runs \
+                          does: `queue` (waits its turn), `replace` (stops what runs) or \
+                          `drop` (is not carried out).",
+            shape: Shape::Choice(&["queue", "replace", "drop"]),
+        },
+        Field {
+            key: "queue_limit",
+            description: "How many commands may wait on this channel, 1 to 20.",
+            shape: Shape::Integer {
+                min: 1,
+                max: MAX_QUEUE_LIMIT as i64,
+            },
+        },
+    ],
+};
+
+/// A trigger source's priority.
+const PRIORITY: Shape = Shape::Integer {
+    min: 1,
+    max: MAX_PRIORITY as i64,
+};
+
+/// The settings of `priorities:`: one per trigger source.
+pub(crate) const PRIORITIES: Section = Section {
+    name: "priorities",
+    required: &[],
+    fields: &[
+        Field {
+            key: "operator",
+            description: "The priority of `operator` triggers, 1 (lowest) to 9: a lower priority \
+                          never interrupts a higher one.",
+            shape: PRIORITY,
+        },
+        Field {
+            key: "http",
+            description: "The priority of `http` triggers, 1 (lowest) to 9: a lower priority \
+                          never interrupts a higher one.",
+            shape: PRIORITY,
+        },
+        Field {
+            key: "dm",
+            description: "The priority of `dm` triggers, 1 (lowest) to 9: a lower priority \
+                          never interrupts a higher one.",
+            shape: PRIORITY,
+        },
+        Field {
+            key: "kiosk",
+            description: "The priority of `kiosk` triggers, 1 (lowest) to 9: a lower priority \
+                          never interrupts a higher one.",
+            shape: PRIORITY,
+        },
+    ],
+};
+
+/// The schema of `channels:`: a policy by channel name, built-in or a site command's.
+pub(crate) fn channels_schema(description: &'static str) -> Value {
+    json!({
+        "type": ["object", "null"],
+        "description": description,
+        "propertyNames": {
+            "pattern": format!("^({}|[A-Z][A-Z0-9_]*)$", Channel::BUILT_IN.join("|")),
+            "description": "A built-in channel or a site command's name.",
+        },
+        "additionalProperties": section_schema(&CHANNEL, "One output channel's policy."),
+    })
+}
 
 const CHANNELS_USAGE: &str = "`channels` gives output channels a policy by name: `speech`, \
                               `touchscreen`, `projector`, `drive` or a command declared under \
@@ -67,14 +140,11 @@ impl Reader {
     }
 
     fn channel_policy(&mut self, node: &Node, mut policy: ChannelPolicy) -> ChannelPolicy {
-        for (key, value) in self.entries(node, CHANNEL_KEYS, "the channel") {
-            if key == "when_busy" {
-                let options = [
-                    ("queue", WhenBusy::Queue),
-                    ("replace", WhenBusy::Replace),
-                    ("drop", WhenBusy::Drop),
-                ];
-                if let Some(when) = self.choice(value, "channel's `when_busy`", &options) {
+        for (field, value) in self.entries(node, &CHANNEL) {
+            if field.key == "when_busy" {
+                let options = [WhenBusy::Queue, WhenBusy::Replace, WhenBusy::Drop];
+                let what = "channel's `when_busy`";
+                if let Some(when) = self.pick(value, what, &field.shape, &options) {
                     policy.when_busy = when;
                 }
                 continue;
@@ -90,7 +160,8 @@ impl Reader {
 
     /// Reads `priorities:`.
     pub(super) fn priorities(&mut self, node: &Node, config: &mut SiteConfig) {
-        for (key, value) in self.entries(node, PRIORITY_KEYS, "priorities") {
+        for (field, value) in self.entries(node, &PRIORITIES) {
+            let key = field.key;
             let parse = |t: &str| {
                 t.parse::<u8>()
                     .ok()

@@ -17,10 +17,53 @@ use crate::model::{Located, Pos};
 use crate::names::robot_event_name_problem;
 use crate::reaction::{Condition, DEFAULT_COOLDOWN, Reaction};
 
-use super::Reader;
+use serde_json::{Value, json};
 
-/// The keys of one reaction.
-pub(crate) const REACTION_KEYS: &[&str] = &["event", "if", "act", "cooldown"];
+use super::Reader;
+use super::section::{Field, Section, Shape};
+use crate::schema::section_schema;
+
+/// The settings of one reaction.
+const REACTION: Section = Section {
+    name: "a reaction",
+    required: &["event", "act"],
+    fields: &[
+        Field {
+            key: "event",
+            description: "The robot event that sets it off, e.g. `person.near`.",
+            shape: Shape::Pattern("^[a-z][a-z0-9._-]{0,63}$"),
+        },
+        Field {
+            key: "if",
+            description: "A condition on the event's data: comparisons (<, <=, >, >=, ==, !=) \
+                          of a field with a number, \"quoted text\", true or false, joined by \
+                          `and`, e.g. `distance < 1.5`.",
+            shape: Shape::Words,
+        },
+        Field {
+            key: "act",
+            description: "The label of the act it triggers.",
+            shape: Shape::Words,
+        },
+        Field {
+            key: "cooldown",
+            description: "The least time between two of its triggers (default 30s).",
+            shape: Shape::Duration,
+        },
+    ],
+};
+
+/// The schema of `reactions:`: a list of reactions.
+pub(crate) fn schema(description: &'static str) -> Value {
+    let reaction = section_schema(
+        &REACTION,
+        "A reaction: when the robot notices `event` and its data passes `if`, trigger `act`.",
+    );
+    json!({
+        "description": description,
+        "anyOf": [{ "type": "null" }, { "type": "array", "items": reaction }],
+    })
+}
 
 const REACTIONS_USAGE: &str = "`reactions` is a list; each item names a robot `event`, the \
                                `act` it triggers and, if wanted, a condition `if` and a \
@@ -62,8 +105,8 @@ impl Reader {
         let (mut event, mut condition, mut act) = (None, None, None);
         let mut cooldown = Some(DEFAULT_COOLDOWN);
         let mut complete = true;
-        for (key, value) in self.entries(item, REACTION_KEYS, "a reaction") {
-            match key {
+        for (field, value) in self.entries(item, &REACTION) {
+            match field.key {
                 "event" => {
                     let name = value.as_text().map(str::trim).unwrap_or_default();
                     event = match robot_event_name_problem(name) {

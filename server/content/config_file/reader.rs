@@ -8,6 +8,8 @@ use crate::diagnostic::Diagnostic;
 use crate::model::Pos;
 use crate::suggest::did_you_mean;
 
+use super::section::{Field, Section, Shape};
+
 /// Collects the problems found while reading `docent.yaml`.
 pub(super) struct Reader {
     /// Problems so far, in the order found.
@@ -54,6 +56,21 @@ impl Reader {
         None
     }
 
+    /// The value of a [`Shape::Bool`] or [`Shape::Choice`] setting: the word written, mapped
+    /// to `values` in the order of the shape's words (`true`, `false` for a switch).
+    pub(super) fn pick<T: Copy>(
+        &mut self,
+        node: &Node,
+        what: &str,
+        shape: &Shape,
+        values: &[T],
+    ) -> Option<T> {
+        let words = shape.words();
+        debug_assert_eq!(words.len(), values.len(), "one value per word");
+        let options: Vec<(&str, T)> = words.iter().copied().zip(values.iter().copied()).collect();
+        self.choice(node, what, &options)
+    }
+
     /// Reports a `config-bad-value` at `node`, saying what was found there.
     pub(super) fn bad(&mut self, node: &Node, message: &str) {
         let found = match node.as_text() {
@@ -68,14 +85,15 @@ impl Reader {
         ));
     }
 
-    /// The entries of a settings mapping, reporting unknown, duplicate and non-text keys.
-    /// A null section (`speech:` alone) has no entries.
+    /// The entries of a settings mapping with the fields `section` defines, reporting
+    /// unknown, duplicate and non-text keys. A null section (`speech:` alone) has no entries.
     pub(super) fn entries<'n>(
         &mut self,
         node: &'n Node,
-        known: &'static [&'static str],
-        section: &str,
-    ) -> Vec<(&'static str, &'n Node)> {
+        definition: &'static Section,
+    ) -> Vec<(&'static Field, &'n Node)> {
+        let known = definition.keys();
+        let section = definition.name;
         let entries = match &node.kind {
             Kind::Map(entries) => entries,
             Kind::Null => return Vec::new(),
@@ -107,8 +125,8 @@ impl Reader {
                 continue;
             }
             seen.push((name, &key.pos));
-            if let Some(known_key) = known.iter().find(|k| **k == name) {
-                out.push((*known_key, value));
+            if let Some(field) = definition.field(name) {
+                out.push((field, value));
                 continue;
             }
             let hint = did_you_mean(name, known.iter().copied());

@@ -11,24 +11,142 @@ use crate::config::{AdapterKind, SiteConfig};
 use crate::diagnostic::Diagnostic;
 use crate::names::robot_event_name_problem;
 
-use super::Reader;
+use serde_json::{Value, json};
 
-/// The keys of `rosbridge:`.
-pub(crate) const KEYS: &[&str] = &[
-    "url",
-    "goal_topic",
-    "frame",
-    "action",
-    "pose_topic",
-    "pose_type",
-    "stop_topic",
-    "cmd_vel",
-    "tolerance",
-    "stall",
-    "events",
+use super::Reader;
+use super::section::{Field, Limit, Section, Shape};
+use crate::schema::{choice, section_schema};
+
+/// A ROS topic, action or frame name, as [`is_ros_name`] accepts it.
+const ROS_NAME: &str = r"^/?[A-Za-z][A-Za-z0-9_]*(/[A-Za-z][A-Za-z0-9_]*)*$";
+
+/// The settings of `rosbridge:`.
+pub(crate) const SECTION: Section = Section {
+    name: "rosbridge",
+    required: &[],
+    fields: &[
+        Field {
+            key: "url",
+            description: "The rosbridge server's websocket address, e.g. \
+                          `ws://robot.local:9090`.",
+            shape: Shape::Pattern(r"^ws://[^/\s]\S*$"),
+        },
+        Field {
+            key: "goal_topic",
+            description: "Where DRIVE_START publishes its geometry_msgs/msg/PoseStamped goal \
+                          (default `/goal_pose`, which Nav2 listens to).",
+            shape: Shape::Pattern(ROS_NAME),
+        },
+        Field {
+            key: "frame",
+            description: "The frame the goals are in (default `map`).",
+            shape: Shape::Pattern(ROS_NAME),
+        },
+        Field {
+            key: "action",
+            description: "Nav2's NavigateToPose action (e.g. `/navigate_to_pose`): goals are \
+                          sent as action goals and cancelled on a stop, instead of published \
+                          on `goal_topic`.",
+            shape: Shape::Pattern(ROS_NAME),
+        },
+        Field {
+            key: "pose_topic",
+            description: "Where the robot's pose comes from (default `/amcl_pose`).",
+            shape: Shape::Pattern(ROS_NAME),
+        },
+        Field {
+            key: "pose_type",
+            description: "The pose topic's message type (default PoseWithCovarianceStamped).",
+            shape: Shape::Custom(pose_type_schema),
+        },
+        Field {
+            key: "stop_topic",
+            description: "Where a std_msgs/msg/Empty goes on every stop, if anywhere.",
+            shape: Shape::Pattern(ROS_NAME),
+        },
+        Field {
+            key: "cmd_vel",
+            description: "Where a zero geometry_msgs/msg/Twist goes on every stop (default \
+                          `/cmd_vel`), or `none`.",
+            shape: Shape::Custom(cmd_vel_schema),
+        },
+        Field {
+            key: "tolerance",
+            description: "How close to its waypoint the robot counts as arrived, in metres \
+                          (default 0.3).",
+            shape: Shape::Number {
+                min: Limit::Exclusive(0.0),
+                max: Limit::Inclusive(10.0),
+            },
+        },
+        Field {
+            key: "stall",
+            description: "How long a drive may go without coming closer to its waypoint \
+                          before it fails and the robot is told to stop (default 30s; at \
+                          least 1s, or 0s: wait for ever).",
+            shape: Shape::Duration,
+        },
+        Field {
+            key: "events",
+            description: "ROS topics whose messages become robot events (the message as \
+                          `data`, at most 4096 bytes of JSON).",
+            shape: Shape::Custom(events_schema),
+        },
+    ],
+};
+
+/// The settings of one entry of `rosbridge: events:`, all needed.
+const EVENT: Section = Section {
+    name: "a rosbridge event",
+    required: &["topic", "type", "event"],
+    fields: &[
+        Field {
+            key: "topic",
+            description: "The ROS topic, e.g. `/humans/bodies/tracked`.",
+            shape: Shape::Pattern(ROS_NAME),
+        },
+        Field {
+            key: "type",
+            description: "Its message type, e.g. `std_msgs/msg/String`.",
+            shape: Shape::Pattern(r"^[A-Za-z][A-Za-z0-9_]*/(msg/)?[A-Za-z][A-Za-z0-9_]*$"),
+        },
+        Field {
+            key: "event",
+            description: "The robot event each message becomes, e.g. `person.near`.",
+            shape: Shape::Pattern(r"^[a-z][a-z0-9._-]{0,63}$"),
+        },
+    ],
+};
+
+/// The pose messages Docent reads, in the order the reader offers them.
+const POSE_MESSAGES: [PoseMessage; 3] = [
+    PoseMessage::PoseWithCovarianceStamped,
+    PoseMessage::Odometry,
+    PoseMessage::PoseStamped,
 ];
-/// The keys of one entry of `rosbridge: events:`.
-pub(crate) const EVENT_KEYS: &[&str] = &["topic", "type", "event"];
+
+/// One of the pose messages' type names.
+fn pose_type_schema(description: &'static str) -> Value {
+    choice(&POSE_MESSAGES.map(PoseMessage::type_name), description)
+}
+
+/// A ROS topic or `none`.
+fn cmd_vel_schema(description: &'static str) -> Value {
+    json!({
+        "type": "string",
+        "anyOf": [{ "pattern": ROS_NAME }, { "const": "none" }],
+        "description": description,
+    })
+}
+
+/// A list of topics, each becoming robot events.
+fn events_schema(description: &'static str) -> Value {
+    json!({
+        "type": ["array", "null"],
+        "items": section_schema(&EVENT, "A topic whose messages become robot events."),
+        "description": description,
+    })
+}
 
 const URL_USAGE: &str = "`url` is the rosbridge server's websocket address, `ws://` then host \
                          and port, e.g. `url: ws://robot.local:9090` (for wss://, run Docent \
@@ -159,8 +277,8 @@ impl Reader {
     pub(super) fn rosbridge(&mut self, node: &Node, config: &mut SiteConfig) {
         let ros = &mut config.rosbridge;
         let name = |t: &str| is_ros_name(t).then(|| t.to_owned());
-        for (key, value) in self.entries(node, KEYS, "rosbridge") {
-            match key {
+        for (field, value) in self.entries(node, &SECTION) {
+            match field.key {
                 "url" => {
                     let parse = |t: &str| is_ws_url(t).then(|| t.to_owned());
                     ros.url = self.setting(value, URL_USAGE, parse).or(ros.url.take());
@@ -182,12 +300,7 @@ impl Reader {
                     }
                 }
                 "pose_type" => {
-                    let kinds = [
-                        PoseMessage::PoseWithCovarianceStamped,
-                        PoseMessage::Odometry,
-                        PoseMessage::PoseStamped,
-                    ]
-                    .map(|k| (k.type_name(), k));
+                    let kinds = POSE_MESSAGES.map(|k| (k.type_name(), k));
                     if let Some(kind) = self.choice(value, "pose type", &kinds) {
                         ros.pose_type = kind;
                     }
@@ -249,8 +362,8 @@ impl Reader {
         let mut events: Vec<TopicEvent> = Vec::new();
         for item in items {
             let (mut topic, mut message_type, mut event) = (None, None, None);
-            for (key, value) in self.entries(item, EVENT_KEYS, "a rosbridge event") {
-                match key {
+            for (field, value) in self.entries(item, &EVENT) {
+                match field.key {
                     "topic" => {
                         let parse = |t: &str| is_ros_name(t).then(|| t.to_owned());
                         topic = self.setting(value, TOPIC_USAGE, parse);

@@ -12,16 +12,148 @@ use crate::diagnostic::Diagnostic;
 use crate::model::Pos;
 use crate::schedule::{CalendarDate, DAY_MINUTES, OpenHours, Schedule, WEEKDAYS};
 
+use serde_json::{Value, json};
+
 use super::Reader;
+use super::attract;
+use super::section::{Field, Section, Shape};
+use crate::schema::section_schema;
 
 mod days;
 
-/// The keys of `schedule:`.
-pub(crate) const SCHEDULE_KEYS: &[&str] = &["closed", "open", "special_days"];
-/// The keys of an entry of `open:`.
-pub(crate) const OPEN_KEYS: &[&str] = &["days", "hours", "home", "attract"];
-/// The keys of an entry of `special_days:`.
-pub(crate) const SPECIAL_DAY_KEYS: &[&str] = &["date", "hours", "home", "attract"];
+/// The settings of `schedule:`.
+pub(crate) const SECTION: Section = Section {
+    name: "schedule",
+    required: &[],
+    fields: &[
+        Field {
+            key: "closed",
+            description: "The page under pages/ shown outside opening hours.",
+            shape: Shape::Words,
+        },
+        Field {
+            key: "open",
+            description: "Opening hours by weekday, each with its own home page and attract \
+                          loop if wanted.",
+            shape: Shape::Custom(open_schema),
+        },
+        Field {
+            key: "special_days",
+            description: "Dates that differ from their weekday (holidays, late nights).",
+            shape: Shape::Custom(special_days_schema),
+        },
+    ],
+};
+
+/// What `hours` is, for the author.
+const HOURS: &str = "Time ranges on the 24-hour clock, e.g. `09:00-17:00` or `10:00-12:00, \
+                     13:00-18:00`.";
+
+/// A range's own home page, in an `open` entry and a special day.
+const RANGE_HOME: Field = Field {
+    key: "home",
+    description: "The home page in these hours, e.g. `school/index.html`.",
+    shape: Shape::Words,
+};
+
+/// A range's own attract loop, in an `open` entry and a special day.
+const RANGE_ATTRACT: Field = Field {
+    key: "attract",
+    description: attract::DESCRIPTION,
+    shape: Shape::Nested(&attract::SECTION),
+};
+
+/// The settings of an entry of `open:`.
+const OPEN: Section = Section {
+    name: "an `open` entry",
+    required: &[],
+    fields: &[
+        Field {
+            key: "days",
+            description: "Weekdays: `Mon-Fri`, `Sat, Sun`, `daily`, or a list of them.",
+            shape: Shape::Custom(days_schema),
+        },
+        Field {
+            key: "hours",
+            description: HOURS,
+            shape: Shape::Custom(hours_schema),
+        },
+        RANGE_HOME,
+        RANGE_ATTRACT,
+    ],
+};
+
+/// The settings of an entry of `special_days:`.
+const SPECIAL_DAY: Section = Section {
+    name: "a `special_days` entry",
+    required: &[],
+    fields: &[
+        Field {
+            key: "date",
+            description: "The day, year-month-day, e.g. `2025-12-24`.",
+            shape: Shape::Pattern(r"^\d{4}-\d\d-\d\d$"),
+        },
+        Field {
+            key: "hours",
+            description: "Its opening hours, or `closed` all day.",
+            shape: Shape::Custom(special_hours_schema),
+        },
+        RANGE_HOME,
+        RANGE_ATTRACT,
+    ],
+};
+
+/// A weekday as the day grammar reads it: its first three letters in any case, then any
+/// letters (`Mon`, `monday`).
+const DAY: &str = r"([Mm][Oo][Nn]|[Tt][Uu][Ee]|[Ww][Ee][Dd]|[Tt][Hh][Uu]|[Ff][Rr][Ii]|[Ss][Aa][Tt]|[Ss][Uu][Nn])[A-Za-z]*";
+/// A time of day on the 24-hour clock.
+const TIME: &str = r"\d{1,2}:\d\d";
+
+/// `days`: a day, a range of days, `daily`, or a list of them.
+fn days_schema(description: &'static str) -> Value {
+    json!({
+        "description": description,
+        "anyOf": [
+            { "type": "string", "pattern": format!(r"^\s*([Dd]aily|{DAY}(\s*-\s*{DAY})?)(\s*,\s*{DAY}(\s*-\s*{DAY})?)*\s*$") },
+            { "type": "array", "items": { "type": "string" } },
+        ],
+    })
+}
+
+/// `hours`: time ranges separated by commas.
+fn hours_schema(description: &'static str) -> Value {
+    json!({
+        "type": "string",
+        "pattern": format!(r"^\s*{TIME}\s*-\s*{TIME}\s*(,\s*{TIME}\s*-\s*{TIME}\s*)*$"),
+        "description": description,
+    })
+}
+
+/// A special day's `hours`: time ranges, or `closed`.
+fn special_hours_schema(description: &'static str) -> Value {
+    json!({
+        "description": description,
+        "anyOf": [hours_schema(HOURS), { "const": "closed" }],
+    })
+}
+
+/// `open`: a list of opening hours.
+fn open_schema(description: &'static str) -> Value {
+    json!({
+        "type": "array",
+        "items": section_schema(&OPEN, "Opening hours on some weekdays."),
+        "description": description,
+    })
+}
+
+/// `special_days`: a list of dates.
+fn special_days_schema(description: &'static str) -> Value {
+    json!({
+        "type": "array",
+        "items": section_schema(&SPECIAL_DAY, "A date whose hours differ from its weekday's."),
+        "description": description,
+    })
+}
 const CLOSED_USAGE: &str = "`closed` names the page under pages/ the kiosk shows outside \
                             opening hours, e.g. `closed: closed.html`.";
 const LIST_USAGE: &str = "`open` lists opening hours, each with `days` and `hours`, e.g. \
@@ -53,8 +185,8 @@ impl Reader {
         let mut schedule = Schedule::default();
         let mut closed = None;
         let mut usable = true;
-        for (key, value) in self.entries(node, SCHEDULE_KEYS, "schedule") {
-            match key {
+        for (field, value) in self.entries(node, &SECTION) {
+            match field.key {
                 "closed" => closed = self.page_setting(value, CLOSED_USAGE),
                 "open" => usable &= self.open_hours(value, &mut schedule),
                 _ => usable &= self.special_days(value, &mut schedule),
@@ -83,14 +215,14 @@ impl Reader {
             let mut ranges = None;
             let mut extras = Extras::default();
             let mut days_written = String::new();
-            for (key, value) in self.entries(entry, OPEN_KEYS, "an `open` entry") {
-                match key {
+            for (field, value) in self.entries(entry, &OPEN) {
+                match field.key {
                     "days" => {
                         days = self.days(value);
                         days_written = days::days_as_written(value);
                     }
                     "hours" => ranges = self.hours(value).filter(|r| !r.is_empty()),
-                    _ => usable &= self.extra(key, value, &mut extras),
+                    _ => usable &= self.extra(field.key, value, &mut extras),
                 }
             }
             self.explain_days_split_by_braces(entry);
@@ -131,14 +263,14 @@ impl Reader {
             let mut date = None;
             let mut ranges = None;
             let mut extras = Extras::default();
-            for (key, value) in self.entries(entry, SPECIAL_DAY_KEYS, "a `special_days` entry") {
-                match key {
+            for (field, value) in self.entries(entry, &SPECIAL_DAY) {
+                match field.key {
                     "date" => date = self.date(value, &mut seen),
                     "hours" if value.as_text().map(str::trim) == Some("closed") => {
                         ranges = Some(Vec::new());
                     }
                     "hours" => ranges = self.hours(value).filter(|r| !r.is_empty()),
-                    _ => usable &= self.extra(key, value, &mut extras),
+                    _ => usable &= self.extra(field.key, value, &mut extras),
                 }
             }
             let (Some(date), Some(mut ranges)) = (date, ranges) else {

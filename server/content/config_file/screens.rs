@@ -12,24 +12,142 @@ use crate::names::robot_event_name_problem;
 use crate::size::parse_size;
 use crate::suggest::did_you_mean;
 
-use super::Reader;
+use serde_json::{Value, json};
 
-/// The keys of `kiosk:`.
-pub(crate) const KIOSK_KEYS: &[&str] = &["idle", "idle_act", "leave_page_stops_speech", "attract"];
+use super::Reader;
+use super::attract;
+use super::section::{Field, Limit, Section, Shape};
+
+/// The settings of `kiosk:`.
+pub(crate) const KIOSK: Section = Section {
+    name: "kiosk",
+    required: &[],
+    fields: &[
+        Field {
+            key: "idle",
+            description: "How long the touchscreen waits without a touch before it goes back \
+                          to the home page, e.g. `2m` or `90s`; `0s` turns this off.",
+            shape: Shape::Duration,
+        },
+        Field {
+            key: "idle_act",
+            description: "The label of the act to trigger when the touchscreen goes idle, \
+                          e.g. `INVITE`.",
+            shape: Shape::Pattern(r"^\S+$"),
+        },
+        Field {
+            key: "leave_page_stops_speech",
+            description: "Whether leaving a page stops the speech that page started (true \
+                          unless set).",
+            shape: Shape::Bool,
+        },
+        Field {
+            key: "attract",
+            description: attract::DESCRIPTION,
+            shape: Shape::Nested(&attract::SECTION),
+        },
+    ],
+};
 const IDLE_USAGE: &str = "`idle` is how long the touchscreen waits without a touch before it \
                           returns to the home page: a length of time with its unit, e.g. \
                           `idle: 2m` or `idle: 90s`; `idle: 0s` turns it off.";
-/// The keys of `corpus:`.
-pub(crate) const CORPUS_KEYS: &[&str] = &[
-    "session_start",
-    "session_idle",
-    "session_start_events",
-    "consent",
-    "record",
-    "record_limits",
-];
-/// The keys of `corpus: record_limits:`.
-pub(crate) const RECORD_LIMITS_KEYS: &[&str] = &["per_session", "per_kiosk", "keep_free"];
+/// The settings of `corpus:`.
+pub(crate) const CORPUS: Section = Section {
+    name: "corpus",
+    required: &[],
+    fields: &[
+        Field {
+            key: "session_start",
+            description: "What starts a visitor session: `touch` (a visitor's first touch when \
+                          none runs, or an operator's or dialog manager's mark; the default) \
+                          or `marked` (only a mark).",
+            shape: Shape::Choice(&["touch", "marked"]),
+        },
+        Field {
+            key: "session_idle",
+            description: "How long a session that a touch started goes on without a touch \
+                          before it ends, e.g. `2m` (the default) or `90s`; `0s`: until it is \
+                          marked ended.",
+            shape: Shape::Duration,
+        },
+        Field {
+            key: "session_start_events",
+            description: "The robot events (sent by an adapter process on the robot, e.g. a \
+                          people tracker's `person.near`) that start a visitor session when \
+                          none runs and `session_start` is `touch`; such a session ends after \
+                          `session_idle` like one a touch started. None by default.",
+            shape: Shape::Custom(event_names_schema),
+        },
+        Field {
+            key: "consent",
+            description: "The consent each visitor session starts with: `recorded` (the \
+                          default: the site records with notice, and an operator marks \
+                          `declined` or `withdrawn` when visitors object) or `declined` \
+                          (nothing is recorded until an operator marks `recorded`).",
+            shape: Shape::Choice(&["recorded", "declined"]),
+        },
+        Field {
+            key: "record",
+            description: "What the kiosk device records during a session whose consent is \
+                          `recorded`: `[audio]` (the default, its microphone), `[audio, \
+                          video]` (and its camera), `[video]`, or `[]` or `none` for nothing.",
+            shape: Shape::Custom(record_schema),
+        },
+        Field {
+            key: "record_limits",
+            description: "How much of the disk recordings may take; a chunk beyond a limit is \
+                          refused, the recording stops and operators are told.",
+            shape: Shape::Nested(&RECORD_LIMITS),
+        },
+    ],
+};
+
+/// The settings of `corpus: record_limits:`, each an amount of storage.
+const RECORD_LIMITS: Section = Section {
+    name: "record_limits",
+    required: &[],
+    fields: &[
+        Field {
+            key: "per_session",
+            description: "All recordings of one visitor session together (default 4 GB).",
+            shape: Shape::Custom(amount_schema),
+        },
+        Field {
+            key: "per_kiosk",
+            description: "One kiosk's recordings in one visitor session (default 2 GB).",
+            shape: Shape::Custom(amount_schema),
+        },
+        Field {
+            key: "keep_free",
+            description: "Left free on the corpus's disk, so the event log can always be \
+                          written (default 1 GB).",
+            shape: Shape::Custom(amount_schema),
+        },
+    ],
+};
+
+/// The settings of `projector:`.
+pub(crate) const PROJECTOR: Section = Section {
+    name: "projector",
+    required: &[],
+    fields: &[
+        Field {
+            key: "after_video",
+            description: "What the projector shows when a video ends: `black` (the default) or \
+                          `hold` (its last picture).",
+            shape: Shape::Choice(&["black", "hold"]),
+        },
+        Field {
+            key: "highlight_edge",
+            description: "How soft the edge of a HIGHLIGHT area is, as a fraction of the \
+                          projected width: 0 (sharp) to 0.5, e.g. `0.02`.",
+            shape: Shape::Number {
+                min: Limit::Inclusive(0.0),
+                max: Limit::Inclusive(0.5),
+            },
+        },
+    ],
+};
 const RECORD_LIMITS_USAGE: &str = "is an amount of storage with its unit, e.g. `4 GB`, \
                                    `500 MB` or `1.5 GiB` (a bare number is refused).";
 const START_EVENTS_USAGE: &str = "`session_start_events` lists the robot events (sent by an \
@@ -57,10 +175,11 @@ impl Reader {
         config: &mut SiteConfig,
     ) -> Option<Located<String>> {
         let mut idle_act = None;
-        for (key, value) in self.entries(node, KIOSK_KEYS, "kiosk") {
+        for (field, value) in self.entries(node, &KIOSK) {
+            let key = field.key;
             if key == "leave_page_stops_speech" {
-                let options = [("true", true), ("false", false)];
-                if let Some(stops) = self.choice(value, "`leave_page_stops_speech`", &options) {
+                let what = "`leave_page_stops_speech`";
+                if let Some(stops) = self.pick(value, what, &field.shape, &[true, false]) {
                     config.kiosk.leave_page_stops_speech = stops;
                 }
                 continue;
@@ -89,7 +208,8 @@ impl Reader {
 
     /// Reads `corpus:` into `config.corpus`.
     pub(super) fn corpus(&mut self, node: &Node, config: &mut SiteConfig) {
-        for (key, value) in self.entries(node, CORPUS_KEYS, "corpus") {
+        for (field, value) in self.entries(node, &CORPUS) {
+            let key = field.key;
             if key == "session_idle" {
                 if let Some(idle) = self.setting(value, SESSION_IDLE_USAGE, parse_duration) {
                     config.corpus.session_idle = idle;
@@ -113,20 +233,14 @@ impl Reader {
                 continue;
             }
             if key == "consent" {
-                let options = [
-                    ("recorded", Consent::Recorded),
-                    ("declined", Consent::Declined),
-                ];
-                if let Some(consent) = self.choice(value, "`consent`", &options) {
+                let options = [Consent::Recorded, Consent::Declined];
+                if let Some(consent) = self.pick(value, "`consent`", &field.shape, &options) {
                     config.corpus.consent = consent;
                 }
                 continue;
             }
-            let options = [
-                ("touch", SessionStart::Touch),
-                ("marked", SessionStart::Marked),
-            ];
-            if let Some(start) = self.choice(value, "`session_start`", &options) {
+            let options = [SessionStart::Touch, SessionStart::Marked];
+            if let Some(start) = self.pick(value, "`session_start`", &field.shape, &options) {
                 config.corpus.session_start = start;
             }
         }
@@ -134,7 +248,8 @@ impl Reader {
 
     /// Reads `corpus: record_limits:`: each limit an amount of storage.
     fn record_limits(&mut self, node: &Node, limits: &mut RecordLimits) {
-        for (key, value) in self.entries(node, RECORD_LIMITS_KEYS, "record_limits") {
+        for (field, value) in self.entries(node, &RECORD_LIMITS) {
+            let key = field.key;
             let usage = format!("`record_limits: {key}` {RECORD_LIMITS_USAGE}");
             let Some(bytes) = self.setting(value, &usage, parse_size) else {
                 continue;
@@ -202,20 +317,58 @@ impl Reader {
 
     /// Reads `projector:` into `config.projector`.
     pub(super) fn projector(&mut self, node: &Node, config: &mut SiteConfig) {
-        for (key, value) in self.entries(node, &["after_video", "highlight_edge"], "projector") {
-            if key == "highlight_edge" {
+        for (field, value) in self.entries(node, &PROJECTOR) {
+            if field.key == "highlight_edge" {
                 let edge = |t: &str| t.parse::<f64>().ok().filter(|e| (0.0..=0.5).contains(e));
                 if let Some(edge) = self.setting(value, HIGHLIGHT_EDGE_USAGE, edge) {
                     config.projector.highlight_edge = edge;
                 }
                 continue;
             }
-            let options = [("black", AfterVideo::Black), ("hold", AfterVideo::Hold)];
-            if let Some(after) = self.choice(value, "projector's `after_video`", &options) {
+            let options = [AfterVideo::Black, AfterVideo::Hold];
+            let what = "projector's `after_video`";
+            if let Some(after) = self.pick(value, what, &field.shape, &options) {
                 config.projector.after_video = after;
             }
         }
     }
+}
+
+/// A list of robot event names, each once.
+fn event_names_schema(description: &'static str) -> Value {
+    json!({
+        "description": description,
+        "type": "array",
+        "uniqueItems": true,
+        "items": { "type": "string", "pattern": "^[a-z][a-z0-9._-]{0,63}$" },
+    })
+}
+
+/// `none` or a list of `audio` and `video`.
+fn record_schema(description: &'static str) -> Value {
+    json!({
+        "description": description,
+        "anyOf": [
+            { "const": "none" },
+            {
+                "type": "array",
+                "uniqueItems": true,
+                "items": { "enum": ["audio", "video"] },
+            },
+        ],
+    })
+}
+
+/// An amount of storage with its unit, as `size.rs` parses it.
+fn amount_schema(description: &'static str) -> Value {
+    json!({
+        "type": "string",
+        "pattern": r"^\s*(\d+(\.\d*)?|\.\d+)\s*([bB]|[kKmMgGtT][iI]?[bB])\s*$",
+        "description": format!(
+            "{description} An amount with its unit: `4 GB`, `500 MB`, `1.5 GiB`."
+        ),
+        "examples": ["4 GB", "500 MB"],
+    })
 }
 
 #[cfg(test)]

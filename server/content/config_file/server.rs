@@ -7,10 +7,22 @@ use std::net::IpAddr;
 use crate::acts_file::yaml::{Kind, Node};
 use crate::config::ServerSettings;
 
-use super::Reader;
+use serde_json::{Value, json};
 
-/// The keys of `server:`.
-pub(crate) const KEYS: &[&str] = &["trusted_proxies"];
+use super::Reader;
+use super::section::{Field, Section, Shape};
+
+/// The settings of `server:`.
+pub(crate) const SECTION: Section = Section {
+    name: "server",
+    required: &[],
+    fields: &[Field {
+        key: "trusted_proxies",
+        description: "The reverse proxies in front of Docent whose X-Forwarded-For header is \
+                      believed, e.g. `[127.0.0.1]`; every other client's header is ignored.",
+        shape: Shape::Custom(proxies_schema),
+    }],
+};
 const PROXIES_USAGE: &str = "`trusted_proxies` lists the IP addresses of the reverse proxies \
                              in front of Docent, e.g. `trusted_proxies: [127.0.0.1]` for a \
                              proxy on this machine or `[10.0.0.2, \"fd00::2\"]`; only these \
@@ -19,7 +31,7 @@ const PROXIES_USAGE: &str = "`trusted_proxies` lists the IP addresses of the rev
 impl Reader {
     /// Reads `server:` into `server`.
     pub(super) fn server(&mut self, node: &Node, server: &mut ServerSettings) {
-        for (_, value) in self.entries(node, KEYS, "server") {
+        for (_, value) in self.entries(node, &SECTION) {
             server.trusted_proxies = self.proxies(value);
         }
     }
@@ -45,6 +57,22 @@ impl Reader {
         }
         proxies
     }
+}
+
+/// One address or a list of them.
+fn proxies_schema(description: &'static str) -> Value {
+    let address = json!({
+        "type": "string",
+        "description": "The IP address of a reverse proxy, e.g. `127.0.0.1` or `fd00::2`.",
+    });
+    json!({
+        "description": description,
+        "anyOf": [
+            { "type": "null" },
+            address,
+            { "type": "array", "items": address, "uniqueItems": true },
+        ],
+    })
 }
 
 #[cfg(test)]

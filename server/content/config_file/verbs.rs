@@ -8,7 +8,53 @@ use crate::config::{AdapterKind, ArgRule, SiteConfig, SiteVerb};
 use crate::diagnostic::Diagnostic;
 use crate::model::Verb;
 
+use serde_json::{Value, json};
+
 use super::Reader;
+use super::section::{Field, Section, Shape};
+use crate::schema::section_schema;
+
+/// The settings of one site command under `verbs:`.
+pub(super) const SITE_VERB: Section = Section {
+    name: "the command",
+    required: &[],
+    fields: &[
+        Field {
+            key: "adapter",
+            description: "Who carries the command out: `ws` (a program connected over the \
+                          websocket, the default) or `log` (nobody: it is only written to the \
+                          log).",
+            shape: Shape::Choice(&["ws", "log"]),
+        },
+        Field {
+            key: "argument",
+            description: "Whether the command needs something after it: `required`, \
+                          `optional` (the default) or `none`.",
+            shape: Shape::Choice(&["required", "optional", "none"]),
+        },
+        Field {
+            key: "description",
+            description: "What the command does, in a few words for people.",
+            shape: Shape::Words,
+        },
+    ],
+};
+
+/// The schema of `verbs:`: site commands by name, none of them a built-in one.
+pub(crate) fn schema(description: &'static str) -> Value {
+    let built_in: Vec<&str> = Verb::BUILT_IN.iter().map(Verb::as_str).collect();
+    json!({
+        "type": ["object", "null"],
+        "description": description,
+        "propertyNames": {
+            "pattern": "^[A-Z][A-Z0-9_]*$",
+            "not": { "enum": built_in },
+            "description": "A command name: capital letters, digits and `_`, starting with a \
+                            letter, and not one of the built-in commands.",
+        },
+        "additionalProperties": section_schema(&SITE_VERB, "One command of this site."),
+    })
+}
 
 const VERBS_USAGE: &str = "`verbs` lists the site's own commands by name, e.g. \
                            `verbs: { LIGHTS: { adapter: ws } }`.";
@@ -58,24 +104,18 @@ impl Reader {
             argument: ArgRule::Optional,
             description: None,
         };
-        for (key, value) in
-            self.entries(node, &["adapter", "argument", "description"], "the command")
-        {
-            match key {
+        for (field, value) in self.entries(node, &SITE_VERB) {
+            match field.key {
                 "adapter" => {
-                    let kinds = [("ws", AdapterKind::Ws), ("log", AdapterKind::Log)];
+                    let kinds = [AdapterKind::Ws, AdapterKind::Log];
                     verb.adapter = self
-                        .choice(value, "command adapter", &kinds)
+                        .pick(value, "command adapter", &field.shape, &kinds)
                         .unwrap_or(verb.adapter);
                 }
                 "argument" => {
-                    let rules = [
-                        ("required", ArgRule::Required),
-                        ("optional", ArgRule::Optional),
-                        ("none", ArgRule::None),
-                    ];
+                    let rules = [ArgRule::Required, ArgRule::Optional, ArgRule::None];
                     verb.argument = self
-                        .choice(value, "argument rule", &rules)
+                        .pick(value, "argument rule", &field.shape, &rules)
                         .unwrap_or(verb.argument);
                 }
                 _ => {

@@ -5,7 +5,8 @@
 //!
 //! Draft-07, because that is the draft yaml-language-server implements fully (newer drafts are
 //! partial there). The schemas are built from the loader's own constants (the act keys, the
-//! built-in verbs, the settings' key lists) so the two cannot drift; tests in this module and
+//! built-in verbs) and, for `docent.yaml`, from the reader's one definition per section
+//! (`config_file/section.rs`), so the two cannot drift; tests in this module and
 //! `tests/schema.rs` hold them to what the loader accepts. `docent check` stays the authority:
 //! some rules need the whole bundle (does a page exist, is a site command declared) and no
 //! schema can say them.
@@ -20,6 +21,7 @@ mod config;
 
 pub use acts::acts_schema;
 pub use config::config_schema;
+pub(crate) use config::section_schema;
 
 /// The draft every schema declares.
 const DRAFT: &str = "http://json-schema.org/draft-07/schema#";
@@ -38,7 +40,7 @@ pub fn to_file_text(schema: &Value) -> String {
 
 /// A value written as text that must not be blank; YAML numbers and yes/no values are
 /// accepted too (the loader keeps them as written and only warns).
-fn words(description: &str) -> Value {
+pub(crate) fn words(description: &str) -> Value {
     json!({
         "type": ["string", "number", "boolean"],
         "pattern": r"\S",
@@ -47,7 +49,7 @@ fn words(description: &str) -> Value {
 }
 
 /// A length of time with its unit, as `duration.rs` parses it.
-fn duration(description: &str) -> Value {
+pub(crate) fn duration(description: &str) -> Value {
     json!({
         "type": "string",
         "pattern": r"^\s*(\d+(\.\d*)?|\.\d+)(ms|s|m|h)\s*$",
@@ -57,28 +59,13 @@ fn duration(description: &str) -> Value {
 }
 
 /// One of fixed words.
-fn choice(words: &[&str], description: &str) -> Value {
+pub(crate) fn choice(words: &[&str], description: &str) -> Value {
     json!({ "enum": words, "description": description })
-}
-
-/// A settings section: a mapping with exactly `keys` (each described by `describe`), or
-/// nothing at all (`speech:` alone, as the loader allows).
-fn section(keys: &[&str], describe: impl Fn(&str) -> Value, description: &str) -> Value {
-    let properties: serde_json::Map<String, Value> = keys
-        .iter()
-        .map(|key| ((*key).to_owned(), describe(key)))
-        .collect();
-    json!({
-        "type": ["object", "null"],
-        "description": description,
-        "properties": properties,
-        "additionalProperties": false,
-    })
 }
 
 /// A regular expression matching `word` in any case (`png` → `[pP][nN][gG]`), since JSON
 /// Schema patterns take no flags.
-fn any_case(word: &str) -> String {
+pub(crate) fn any_case(word: &str) -> String {
     word.chars()
         .map(|c| {
             if c.is_ascii_alphabetic() {
