@@ -15,15 +15,7 @@ use crate::dispatch::Dispatcher;
 use crate::dispatch::channels::{Decision, LaneStatus, Waiting};
 use crate::events::{EventKind, Source};
 use crate::sync::lock;
-
-/// Who speaks now, for the kiosks' "speaking" state.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub struct Speaking {
-    /// The source of the speech running now.
-    pub source: Source,
-    /// The client that triggered it, if a websocket client did.
-    pub client: Option<u64>,
-}
+pub use docent_protocol::server_frames::Speaking;
 
 /// Where the dispatcher tells clients about their commands; the websocket layer implements
 /// it (the dispatcher knows no wire format).

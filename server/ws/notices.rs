@@ -8,7 +8,9 @@ use crate::dispatch::{Notifier, Speaking};
 use crate::events::ClientRole;
 use crate::state::ClientLinks;
 use crate::wire::outbox::Frame;
-use crate::ws::protocol::{NotCarriedOut, language_frame, outcome_frame, speaking_frame};
+use crate::ws::protocol::{
+    NotCarriedOut, OutcomeFrame, language_frame, outcome_frame, speaking_frame,
+};
 
 /// The websocket side of the dispatcher's [`Notifier`].
 pub struct ClientNotices {
@@ -29,7 +31,16 @@ impl Notifier for ClientNotices {
             Outcome::Failed(reason) => (NotCarriedOut::Failed, reason),
             Outcome::Done => return,
         };
-        let frame = Frame::from(outcome_frame(command, kind, reason, ended_by_visitor));
+        let frame = Frame::from(outcome_frame(&OutcomeFrame {
+            command: command.id,
+            trigger: command.act.trigger,
+            reference: command.act.reference.as_deref(),
+            label: &command.act.label,
+            verb: command.verb.as_str(),
+            outcome: kind,
+            reason,
+            ended_by_visitor,
+        }));
         // A client that has left learns nothing; the corpus has the outcome either way. Not
         // an answer: it rides along with the client's next frames (within 2 ms).
         self.links.send_lingering_to(client, &frame);
