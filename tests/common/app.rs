@@ -126,6 +126,16 @@ impl TestApp {
         self.send(request.body(body).expect("a request")).await
     }
 
+    /// GET without a credential, with these headers (a browser's `Accept`, a `Referer`).
+    pub async fn get_with(&self, path: &str, headers: &[(&str, &str)]) -> Answer {
+        let mut request = Request::builder().method(Method::GET).uri(path);
+        for (name, value) in headers {
+            request = request.header(*name, *value);
+        }
+        self.send(request.body(Body::empty()).expect("a request"))
+            .await
+    }
+
     /// GET with the operator credential, returning status and JSON body.
     pub async fn get(&self, path: &str) -> (u16, Value) {
         let answer = self
