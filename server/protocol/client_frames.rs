@@ -1,6 +1,6 @@
 //! The frames a websocket client sends Docent (JSON text, tagged by `type`), read strictly:
-//! an unknown type or field is refused (`docs/PROTOCOL.md`, "Frames"). What Docent sends back
-//! is in `server_frames.rs`.
+//! an unknown type or field is refused (`docs/PROTOCOL.md`, "Client frames"). What Docent
+//! sends back is in `server_frames.rs`.
 
 use serde::{Deserialize, Serialize};
 
