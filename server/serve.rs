@@ -163,6 +163,83 @@ impl Server {
     pub fn corpus_path(&self) -> PathBuf {
         self.corpus.dir().to_owned()
     }
+
+    /// The route table over this server's state, to call in process: tests send it requests
+    /// with `tower::ServiceExt::oneshot`, no socket needed. [`run`] serves the same table.
+    pub fn router(&self) -> axum::Router {
+        app(self.state.clone())
+    }
+
+    /// Stops a server that [`run`] is not serving (one called through
+    /// [`router`](Self::router)) as `run` stops its own: commands end with their outcomes
+    /// logged, tasks finish, the corpus is flushed last.
+    pub async fn stop(self) -> io::Result<()> {
+        announce_stop(&self.state.dispatcher);
+        let closing = Closing::of(&self.state);
+        drop(self.state);
+        wind_down(closing, self.corpus).await
+    }
+}
+
+/// Every queued or running command ends first, with its outcome in the log; connections and
+/// tasks are told to finish after this.
+fn announce_stop(dispatcher: &Dispatcher) {
+    dispatcher.hub().publish(EventKind::ServerStopping);
+    dispatcher.stop(Source::Server, "the server is shutting down");
+}
+
+/// What winding down needs of a server's state, taken before the route table (and with it the
+/// rest of the state) is dropped, as `run` always did.
+struct Closing {
+    /// Not used, only kept: the dispatcher outlives the corpus flush.
+    dispatcher: Arc<Dispatcher>,
+    life: Lifecycle,
+    recordings: Arc<crate::recording::Recordings>,
+    visits: Arc<crate::operator::Visits>,
+    hub: Hub,
+}
+
+impl Closing {
+    fn of(state: &AppState) -> Self {
+        Closing {
+            dispatcher: Arc::clone(&state.dispatcher),
+            life: state.life.clone(),
+            recordings: Arc::clone(&state.recordings),
+            visits: Arc::clone(&state.visits),
+            hub: state.hub.clone(),
+        }
+    }
+}
+
+/// After the connections closed: the tasks are awaited, recordings and the visitor session
+/// closed, and the corpus flushed last.
+async fn wind_down(closing: Closing, corpus: CorpusWriter) -> io::Result<()> {
+    let Closing {
+        dispatcher: _kept,
+        life,
+        recordings,
+        visits,
+        hub,
+    } = closing;
+    // axum's graceful shutdown does not wait for websocket tasks (tokio-rs/axum#3003).
+    life.shutdown.cancel();
+    life.tracker.close();
+    if tokio::time::timeout(SHUTDOWN_GRACE, life.tracker.wait())
+        .await
+        .is_err()
+    {
+        tracing::warn!("some tasks did not finish within {SHUTDOWN_GRACE:?}");
+    }
+    // Kiosks can upload no more: what each recording acknowledged is what it holds.
+    recordings.close_all(StopReason::ServerStopping);
+    // After every client left, so that their leaving is in the session's log.
+    visits.end(Source::Server, None, SessionEnd::ServerStopping);
+    hub.close_corpus();
+    let logged = tokio::task::spawn_blocking(move || corpus.finish())
+        .await
+        .map_err(|e| io::Error::other(format!("corpus writer: {e}")))??;
+    tracing::info!(events = logged, "corpus log flushed");
+    Ok(())
 }
 
 /// Decides the speech adapter and says why when it is not what the bundle asked for.
@@ -242,45 +319,20 @@ pub async fn run(
         limits,
         ..
     } = server;
-    let life = state.life.clone();
-    let dispatcher = Arc::clone(&state.dispatcher);
-    let hub = state.hub.clone();
-    let stop = life.shutdown.clone();
-    let stopping = Arc::clone(&dispatcher);
+    let stop = state.life.shutdown.clone();
+    let stopping = Arc::clone(&state.dispatcher);
     let signal = async move {
         tokio::select! {
             () = shutdown => {}
             () = stop.cancelled() => {}
         }
-        // Every queued or running command ends first, with its outcome in the log; then
-        // connections and tasks are told to finish.
-        stopping.hub().publish(EventKind::ServerStopping);
-        stopping.stop(Source::Server, "the server is shutting down");
+        announce_stop(&stopping);
         stop.cancel();
     };
     let proxies = state.access.proxies().clone();
-    let visits = Arc::clone(&state.visits);
-    let recordings = Arc::clone(&state.recordings);
+    let closing = Closing::of(&state);
     serve_connections(listener, app(state), limits, proxies, signal).await;
-    // axum's graceful shutdown does not wait for websocket tasks (tokio-rs/axum#3003).
-    life.shutdown.cancel();
-    life.tracker.close();
-    if tokio::time::timeout(SHUTDOWN_GRACE, life.tracker.wait())
-        .await
-        .is_err()
-    {
-        tracing::warn!("some tasks did not finish within {SHUTDOWN_GRACE:?}");
-    }
-    // Kiosks can upload no more: what each recording acknowledged is what it holds.
-    recordings.close_all(StopReason::ServerStopping);
-    // After every client left, so that their leaving is in the session's log.
-    visits.end(Source::Server, None, SessionEnd::ServerStopping);
-    hub.close_corpus();
-    let logged = tokio::task::spawn_blocking(move || corpus.finish())
-        .await
-        .map_err(|e| io::Error::other(format!("corpus writer: {e}")))??;
-    tracing::info!(events = logged, "corpus log flushed");
-    Ok(())
+    wind_down(closing, corpus).await
 }
 
 #[cfg(test)]

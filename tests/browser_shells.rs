@@ -1,10 +1,12 @@
-//! The browser side as the server delivers it: the kiosk and projector shells, the embedded
-//! static files, the page script added to bundle HTML pages (and nothing added to other
-//! files), and the `kiosk:` / `projector:` settings reaching the shells.
+//! The browser side as the server delivers it: the kiosk and projector shells (over a real
+//! connection), the embedded static files, the page script added to bundle HTML pages (and
+//! nothing added to other files; these two through the route table in process, `TestApp`),
+//! and the `kiosk:` / `projector:` settings reaching the shells.
 
 use crate::common;
 
-use common::{TempBundle, TestServer};
+use axum::http::Method;
+use common::{TempBundle, TestApp, TestServer};
 use docent::content::load_bundle;
 
 const ACTS: &str = "- Label: INVITE\n  Text: Touch the screen!\n";
@@ -23,6 +25,13 @@ async fn fetch(server: &TestServer, path: &str) -> (u16, String, Vec<u8>) {
         .to_owned();
     let body = response.bytes().await.expect("body").to_vec();
     (status, kind, body)
+}
+
+/// [`fetch`] through the route table, without a connection.
+async fn fetch_in_process(app: &TestApp, path: &str) -> (u16, String, Vec<u8>) {
+    let answer = app.call(Method::GET, path, None, None).await;
+    let kind = answer.header("content-type").to_owned();
+    (answer.status.as_u16(), kind, answer.body.to_vec())
 }
 
 fn text(body: &[u8]) -> &str {
@@ -79,7 +88,7 @@ async fn the_shells_render_with_their_settings() {
 #[tokio::test]
 async fn static_files_are_embedded_and_unknown_ones_are_json_404() {
     let bundle = bundle();
-    let server = TestServer::start(bundle.path()).await;
+    let server = TestApp::start(bundle.path()).await;
     for (name, wanted) in [
         ("kiosk.js", "text/javascript"),
         ("socket.js", "text/javascript"),
@@ -88,7 +97,7 @@ async fn static_files_are_embedded_and_unknown_ones_are_json_404() {
         ("kiosk.css", "text/css"),
         ("projector.css", "text/css"),
     ] {
-        let (status, kind, body) = fetch(&server, &format!("/static/{name}")).await;
+        let (status, kind, body) = fetch_in_process(&server, &format!("/static/{name}")).await;
         assert_eq!(status, 200, "{name}");
         assert!(kind.starts_with(wanted), "{name}: {kind}");
         let on_disk = std::fs::read(common::repo().join("static").join(name)).expect("static");
@@ -109,9 +118,9 @@ async fn static_files_are_embedded_and_unknown_ones_are_json_404() {
 #[tokio::test]
 async fn html_pages_get_the_page_script_and_other_files_are_untouched() {
     let bundle = bundle();
-    let server = TestServer::start(bundle.path()).await;
+    let server = TestApp::start(bundle.path()).await;
 
-    let (status, kind, body) = fetch(&server, "/pages/index.html").await;
+    let (status, kind, body) = fetch_in_process(&server, "/pages/index.html").await;
     assert_eq!((status, kind.as_str()), (200, "text/html"));
     assert!(
         text(&body).starts_with(
@@ -122,10 +131,10 @@ async fn html_pages_get_the_page_script_and_other_files_are_untouched() {
         text(&body)
     );
 
-    let (status, kind, body) = fetch(&server, "/pages/style.css").await;
+    let (status, kind, body) = fetch_in_process(&server, "/pages/style.css").await;
     assert_eq!((status, body.as_slice()), (200, CSS.as_bytes()));
     assert!(kind.starts_with("text/css"), "{kind}");
-    let (status, kind, body) = fetch(&server, "/media/poster.png").await;
+    let (status, kind, body) = fetch_in_process(&server, "/media/poster.png").await;
     assert_eq!(
         (status, kind.as_str(), body.as_slice()),
         (200, "image/png", IMAGE)

@@ -1,10 +1,12 @@
 //! `/pages/` and `/media/` serve the bundle's files, and no request path leaves the bundle:
 //! `..`, encoded dots and slashes, absolute paths, backslashes and symlinks all answer 404.
-//! Requests are written by hand because HTTP client libraries normalise such paths away.
+//! Those requests are written by hand on a real connection because HTTP client libraries
+//! normalise such paths away; the answers to missing pages and the timers' delays are asked
+//! of the route table in process (`TestApp`).
 
 use crate::common;
 
-use common::{TempBundle, TestServer};
+use common::{TempBundle, TestApp, TestServer};
 use tokio::io::{AsyncReadExt, AsyncWriteExt};
 
 const SECRET: &str = "top-secret-outside-the-bundle";
@@ -97,20 +99,6 @@ async fn bundle_files_are_served_and_no_path_leaves_the_bundle() {
     server.stop().await;
 }
 
-/// The status, the `Content-Type` and the body of a raw answer.
-fn parts(response: &str) -> (String, &str) {
-    let (head, body) = response.split_once("\r\n\r\n").unwrap_or((response, ""));
-    let kind = head
-        .lines()
-        .find_map(|l| {
-            l.to_ascii_lowercase()
-                .strip_prefix("content-type: ")
-                .map(str::to_owned)
-        })
-        .unwrap_or_default();
-    (kind, body)
-}
-
 #[tokio::test]
 async fn a_missing_page_answers_a_browser_with_the_friendly_page_and_an_api_client_with_json() {
     let b = TempBundle::new("- Label: A\n  Text: [a]\n")
@@ -119,22 +107,27 @@ async fn a_missing_page_answers_a_browser_with_the_friendly_page_and_an_api_clie
             "<!doctype html><head><link rel=\"stylesheet\" href=\"css/site.css\"></head><p>home",
         )
         .with_file("pages/css/site.css", "body { color: teal }");
-    let server = TestServer::start(b.path()).await;
-    let browser = "Accept: text/html,application/xhtml+xml,*/*;q=0.8\r\n";
-    let from = "Referer: http://docent/pages/index.html\r\n";
+    let server = TestApp::start(b.path()).await;
+    let browser = Some("text/html,application/xhtml+xml,*/*;q=0.8");
+    let from = ("referer", "http://docent/pages/index.html");
 
-    for (path, extra) in [
-        ("/pages/gone.html", ""),
-        ("/pages/gone.html", "Accept: */*\r\n"),
+    for (path, accept) in [
+        ("/pages/gone.html", None),
+        ("/pages/gone.html", Some("*/*")),
         ("/pages/gone.html", browser),
         ("/pages/Index.html", browser), // miscased: not found either
         ("/pages/sub/", browser),
         ("/pages/images/gone.png", browser),
     ] {
-        let (status, response) = raw_get(&server, path, &format!("{extra}{from}")).await;
-        let (kind, body) = parts(&response);
-        assert_eq!(status, 404, "{path}");
-        assert_eq!(kind, "text/html; charset=utf-8", "{path}: {response}");
+        let headers: Vec<_> = accept
+            .map(|a| ("accept", a))
+            .into_iter()
+            .chain([from])
+            .collect();
+        let answer = server.get_with(path, &headers).await;
+        let (kind, body) = (answer.header("content-type"), answer.text());
+        assert_eq!(answer.status, 404, "{path}");
+        assert_eq!(kind, "text/html; charset=utf-8", "{path}: {body}");
         assert!(body.contains("This page is not available."), "{body}");
         assert!(body.contains(r#"<a class="docent-home" href="/pages/index.html""#));
         assert!(body.contains(r#"<link rel="stylesheet" href="css/site.css">"#));
@@ -144,15 +137,20 @@ async fn a_missing_page_answers_a_browser_with_the_friendly_page_and_an_api_clie
             "{body}"
         );
     }
-    for (path, extra) in [
-        ("/pages/gone.html", "Accept: application/json\r\n"),
-        ("/pages/images/gone.png", "Accept: */*\r\n"),
-        ("/pages/images/gone.png", ""),
+    for (path, accept) in [
+        ("/pages/gone.html", Some("application/json")),
+        ("/pages/images/gone.png", Some("*/*")),
+        ("/pages/images/gone.png", None),
         ("/media/gone.html", browser),
     ] {
-        let (status, response) = raw_get(&server, path, extra).await;
-        let (kind, body) = parts(&response);
-        assert_eq!((status, kind.as_str()), (404, "application/json"), "{path}");
+        let headers: Vec<_> = accept.map(|a| ("accept", a)).into_iter().collect();
+        let answer = server.get_with(path, &headers).await;
+        let (kind, body) = (answer.header("content-type"), answer.text());
+        assert_eq!(
+            (answer.status.as_u16(), kind),
+            (404, "application/json"),
+            "{path}"
+        );
         assert!(body.contains(r#""code":"not-found""#), "{path}: {body}");
     }
 
@@ -182,10 +180,12 @@ async fn a_missing_page_answers_a_browser_with_the_friendly_page_and_an_api_clie
 #[tokio::test]
 async fn a_flood_of_missing_pages_is_not_all_logged() {
     let b = TempBundle::new("- Label: A\n  Text: [a]\n");
-    let server = TestServer::start(b.path()).await;
+    let server = TestApp::start(b.path()).await;
     for i in 0..60 {
-        let (status, _) = raw_get(&server, &format!("/pages/nothing-{i}.html"), "").await;
-        assert_eq!(status, 404);
+        let answer = server
+            .get_with(&format!("/pages/nothing-{i}.html"), &[])
+            .await;
+        assert_eq!(answer.status, 404);
     }
     let logged = server.stop().await;
     let logged = logged
@@ -203,9 +203,10 @@ async fn timer_delays_are_served_in_milliseconds_read_by_the_checkers_rule() {
     let page = "<!doctype html><div data-act=\"NEXT\" data-act-after=\" 1.5 s \"></div>";
     let bundle =
         TempBundle::new("- Label: NEXT\n  Text: Next\n").with_file("pages/slides.html", page);
-    let server = TestServer::start(bundle.path()).await;
-    let (status, html) = raw_get(&server, "/pages/slides.html", "").await;
-    assert_eq!(status, 200, "{html}");
+    let server = TestApp::start(bundle.path()).await;
+    let answer = server.get_with("/pages/slides.html", &[]).await;
+    let html = answer.text();
+    assert_eq!(answer.status, 200, "{html}");
     assert!(
         html.contains(r#"data-act-after=" 1.5 s " data-act-after-ms="1500""#),
         "{html}"

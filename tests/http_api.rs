@@ -1,9 +1,12 @@
-//! The HTTP trigger API against a real server: the paper's Fig. 4 bundle resolves, choices never
-//! repeat back to back, contexts fall back to `Text`, unknown labels get a suggestion.
+//! The HTTP trigger API, called in process through the server's route table (`TestApp`: no
+//! socket; `access.rs` and `http_limits.rs` test the same routes over real connections): the
+//! paper's Fig. 4 bundle resolves, choices never repeat back to back, contexts fall back to
+//! `Text`, unknown labels get a suggestion.
 
 use crate::common;
 
-use common::{TempBundle, TestServer, bundle};
+use axum::http::Method;
+use common::{TempBundle, TestApp, bundle};
 use serde_json::{Value, json};
 
 fn commands(triggered: &Value) -> Vec<(String, Option<String>)> {
@@ -26,7 +29,7 @@ fn say(text: &str) -> (String, Option<String>) {
 
 #[tokio::test]
 async fn every_act_of_the_paper_sample_resolves_into_its_commands() {
-    let server = TestServer::start(&bundle("tests/fixtures/fig4-verbatim")).await;
+    let server = TestApp::start(&bundle("tests/fixtures/fig4-verbatim")).await;
     let welcome = server.trigger("WELCOME", json!({})).await;
     assert_eq!(
         commands(&welcome),
@@ -55,7 +58,7 @@ async fn every_act_of_the_paper_sample_resolves_into_its_commands() {
 
 #[tokio::test]
 async fn alternatives_never_repeat_back_to_back() {
-    let server = TestServer::start(&bundle("tests/fixtures/fig4-verbatim")).await;
+    let server = TestApp::start(&bundle("tests/fixtures/fig4-verbatim")).await;
     let mut texts = Vec::new();
     for _ in 0..40 {
         texts.push(
@@ -79,7 +82,7 @@ async fn alternatives_never_repeat_back_to_back() {
 async fn the_same_seed_gives_the_same_choices() {
     let mut runs = Vec::new();
     for _ in 0..2 {
-        let server = TestServer::start_with(&bundle("tests/fixtures/fig4-verbatim"), |o| {
+        let server = TestApp::start_with(&bundle("tests/fixtures/fig4-verbatim"), |o| {
             o.seed = Some(99)
         })
         .await;
@@ -95,7 +98,7 @@ async fn the_same_seed_gives_the_same_choices() {
 
 #[tokio::test]
 async fn a_context_picks_its_variant_and_falls_back_to_text() {
-    let server = TestServer::start(&bundle("tests/fixtures/fig4-verbatim")).await;
+    let server = TestApp::start(&bundle("tests/fixtures/fig4-verbatim")).await;
     let group = server
         .trigger("WHERE_FROM", json!({"context": "TextGroup"}))
         .await;
@@ -147,7 +150,7 @@ async fn a_context_picks_its_variant_and_falls_back_to_text() {
 
 #[tokio::test]
 async fn an_unknown_label_answers_404_naming_the_closest_label() {
-    let server = TestServer::start(&bundle("tests/fixtures/fig4-verbatim")).await;
+    let server = TestApp::start(&bundle("tests/fixtures/fig4-verbatim")).await;
     let (status, body) = server.post("/api/acts/WELCOM/trigger", None).await;
     assert_eq!(status, 404);
     assert_eq!(body["code"], "unknown-act");
@@ -167,7 +170,7 @@ async fn an_unknown_label_answers_404_naming_the_closest_label() {
 
 #[tokio::test]
 async fn the_acts_listing_carries_labels_variants_commands_and_positions() {
-    let server = TestServer::start(&bundle("tests/fixtures/fig4-verbatim")).await;
+    let server = TestApp::start(&bundle("tests/fixtures/fig4-verbatim")).await;
     let (status, body) = server.get("/api/acts").await;
     assert_eq!(status, 200);
     let acts = body["acts"].as_array().unwrap();
@@ -205,7 +208,7 @@ async fn the_acts_listing_names_the_variant_a_trigger_speaks_in_each_context() {
                 - Label: CHILD\n  TextChild: [Hi there]\n\
                 - Label: QUIET\n  Cmds: [WAIT 1ms]\n";
     let b = TempBundle::new(acts);
-    let server = TestServer::start(b.path()).await;
+    let server = TestApp::start(b.path()).await;
     let (status, body) = server.get("/api/acts").await;
     assert_eq!(status, 200);
     assert_eq!(body["contexts"], json!(["Text", "TextChild", "TextGroup"]));
@@ -248,13 +251,12 @@ async fn a_kiosk_is_told_its_opening_hours_evaluated_from_its_own_clock() {
         .with_file("docent.yaml", config)
         .with_file("pages/closed.html", "<!doctype html><title>closed</title>")
         .with_file("pages/school.html", "<!doctype html><title>school</title>");
-    let server = TestServer::start(b.path()).await;
+    let server = TestApp::start(b.path()).await;
     // No credential: the kiosk asks.
-    let answer = reqwest::get(server.url("/api/schedule/2025-12-01T08:59"))
-        .await
-        .expect("answers");
-    assert_eq!(answer.status().as_u16(), 200);
-    let table: Value = answer.json().await.expect("json");
+    let path = "/api/schedule/2025-12-01T08:59";
+    let answer = server.call(Method::GET, path, None, None).await;
+    assert_eq!(answer.status.as_u16(), 200);
+    let table = answer.json();
     assert_eq!(
         table["showing"],
         json!({"state": "closed", "page": "closed.html"})
@@ -284,7 +286,7 @@ async fn a_kiosk_is_told_its_opening_hours_evaluated_from_its_own_clock() {
 
 #[tokio::test]
 async fn state_reports_display_pose_context_and_queues() {
-    let server = TestServer::start(&bundle("tests/fixtures/fig4-verbatim")).await;
+    let server = TestApp::start(&bundle("tests/fixtures/fig4-verbatim")).await;
     server.trigger("WELCOME", json!({})).await;
     let (status, state) = server.get("/api/state").await;
     assert_eq!(status, 200);

@@ -8,7 +8,7 @@ use crate::common;
 use std::net::SocketAddr;
 use std::time::{Duration, Instant};
 
-use common::{DEADLINE, OPERATOR_TOKEN, TestServer, bundle};
+use common::{DEADLINE, OPERATOR_TOKEN, TestApp, TestServer, bundle};
 use docent::http::ConnectionLimits;
 use serde_json::{Value, json};
 use tokio::io::{AsyncReadExt, AsyncWriteExt};
@@ -60,7 +60,8 @@ async fn raw(addr: SocketAddr, request: &str) -> (u16, Value) {
 
 #[tokio::test]
 async fn bodies_that_are_not_json_objects_are_refused_and_trigger_nothing() {
-    let server = TestServer::start(&bundle("tests/fixtures/fig4-verbatim")).await;
+    // What a body says needs no connection: asked of the route table in process.
+    let server = TestApp::start(&bundle("tests/fixtures/fig4-verbatim")).await;
     for body in [
         json!(["TextChild", true, "ref"]),
         json!(42),

@@ -1,12 +1,14 @@
-//! `GET /api/report` against a real server: refused without the operator credential, and for
+//! `GET /api/report` through the server's route table in process (`TestApp`; over a real
+//! connection in `documented_limits.rs`): refused without the operator credential, and for
 //! a small bundle it lists every act (texts, commands, place, group, key), every page with the
 //! acts it offers and the acts that show it, every media file with the acts that project it
 //! and the pages naming it, and the live bundle's warnings. `GET /report` is the public shell.
 
 use crate::common;
 
-use common::{OPERATOR_TOKEN, TempBundle, TestServer};
-use serde_json::{Value, json};
+use axum::http::Method;
+use common::{OPERATOR_TOKEN, TempBundle, TestApp};
+use serde_json::json;
 
 /// A 1×1 PNG: a real picture, whatever the check sniffs.
 const PNG: &[u8] = b"\x89\x50\x4e\x47\x0d\x0a\x1a\x0a\x00\x00\x00\x0d\x49\x48\x44\x52\x00\x00\x00\x01\x00\x00\x00\x01\x08\x06\x00\x00\x00\x1f\x15\xc4\x89\x00\x00\x00\x0d\x49\x44\x41\x54\x78\xda\x63\x64\x60\xf8\x5f\x0f\x00\x02\x87\x01\x80\xeb\x47\xba\x92\x00\x00\x00\x00\x49\x45\x4e\x44\xae\x42\x60\x82";
@@ -37,28 +39,19 @@ fn fixture() -> TempBundle {
 #[tokio::test]
 async fn the_report_needs_the_operator_credential() {
     let bundle = fixture();
-    let server = TestServer::start(bundle.path()).await;
-    let http = reqwest::Client::new();
-    let none = http
-        .get(server.url("/api/report"))
-        .send()
-        .await
-        .expect("GET");
-    assert_eq!(none.status().as_u16(), 401);
-    assert!(none.headers().contains_key("www-authenticate"));
-    let body: Value = none.json().await.expect("json");
-    assert!(body.get("acts").is_none(), "{body}");
-    let wrong = http
-        .get(server.url("/api/report"))
-        .bearer_auth("not-the-operator-credential")
-        .send()
-        .await
-        .expect("GET");
-    assert_eq!(wrong.status().as_u16(), 401);
+    let server = TestApp::start(bundle.path()).await;
+    let none = server.call(Method::GET, "/api/report", None, None).await;
+    assert_eq!(none.status.as_u16(), 401);
+    assert!(none.headers.contains_key("www-authenticate"));
+    let body = none.json();
+    assert!(body.is_object() && body.get("acts").is_none(), "{body}");
+    let wrong = "not-the-operator-credential";
+    let wrong = (server.call(Method::GET, "/api/report", None, Some(wrong))).await;
+    assert_eq!(wrong.status.as_u16(), 401);
     // The page itself is public and carries no content.
-    let page = http.get(server.url("/report")).send().await.expect("GET");
-    assert_eq!(page.status().as_u16(), 200);
-    let html = page.text().await.expect("text");
+    let page = server.call(Method::GET, "/report", None, None).await;
+    assert_eq!(page.status.as_u16(), 200);
+    let html = page.text();
     assert!(html.contains(r#"data-api="/api/report""#));
     assert!(!html.contains("Welcome to the museum") && !html.contains(OPERATOR_TOKEN));
     server.stop().await;
@@ -67,7 +60,7 @@ async fn the_report_needs_the_operator_credential() {
 #[tokio::test]
 async fn the_report_lists_acts_pages_media_and_problems() {
     let bundle = fixture();
-    let server = TestServer::start(bundle.path()).await;
+    let server = TestApp::start(bundle.path()).await;
     let (status, report) = server.get("/api/report").await;
     assert_eq!(status, 200, "{report}");
     assert_eq!(report["home"], "index.html");

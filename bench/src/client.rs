@@ -1,6 +1,6 @@
 //! Docent's websocket protocol as the benchmark speaks it: connecting with a `hello`, waiting
 //! for `welcome`, the `trigger` and `done` frames, and reading the few fields of a server frame
-//! that the benchmark needs (`docs/PROTOCOL.md`, `server/ws/protocol.rs`).
+//! that the benchmark needs (`docs/PROTOCOL.md`, `server/protocol/client_frames.rs`).
 
 use std::time::Duration;
 

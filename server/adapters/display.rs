@@ -24,16 +24,15 @@ mod adopt;
 mod books;
 
 pub use docent_protocol::ProjectorState;
+pub use docent_protocol::state::Display;
 use std::sync::{Arc, Mutex, Weak};
 use std::time::Duration;
 
-use serde::Serialize;
 use tokio::sync::{Notify, broadcast};
 use tokio::time::Instant;
 use tokio_util::sync::CancellationToken;
 
 use crate::adapters::Outcome;
-use crate::content::{Area, MediaKind};
 use crate::events::{ClientRole, EventKind, Hub};
 use crate::lifecycle::Lifecycle;
 use crate::sync::lock;
@@ -45,24 +44,6 @@ use books::{Awaiting, Books, Showing};
 
 /// How many display frames a slow client may fall behind before it is resynchronised.
 const DISPLAY_CHANNEL_CAPACITY: usize = 256;
-
-/// What the touchscreen and projector show.
-#[derive(Clone, Debug, Default, PartialEq, Serialize)]
-pub struct Display {
-    /// Page under `pages/` on the touchscreen.
-    pub page: Option<String>,
-    /// File under `media/` on the projector; `None` is black.
-    pub projector: Option<String>,
-    /// Whether the projector shows `projector` as a picture or plays it as a video.
-    pub projector_kind: Option<MediaKind>,
-    /// The `HIGHLIGHT` argument lit on the projector instead of a file, as written; `None`
-    /// when cleared.
-    pub highlight: Option<String>,
-    /// The areas of `highlight`, parsed at load: what the projector draws.
-    pub highlight_areas: Option<Vec<Area>>,
-    /// What the projector reported about `projector` or `highlight`.
-    pub projector_state: ProjectorState,
-}
 
 /// A touchscreen or a projector.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]

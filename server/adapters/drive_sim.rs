@@ -14,19 +14,7 @@ use crate::content::{Args, Verb};
 use crate::events::{EventKind, Hub};
 use crate::lifecycle::Lifecycle;
 use crate::sync::lock;
-
-/// Where the base is.
-#[derive(Clone, Copy, Debug, Default, PartialEq, Serialize)]
-pub struct Pose {
-    /// Metres.
-    pub x: f64,
-    /// Metres.
-    pub y: f64,
-    /// Degrees, counter-clockwise from the x axis.
-    pub heading: f64,
-    /// Whether it is driving.
-    pub moving: bool,
-}
+pub use docent_protocol::state::Pose;
 
 /// A waypoint: position and optional final heading.
 #[derive(Clone, Copy, Debug, PartialEq, Serialize)]

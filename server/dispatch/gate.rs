@@ -14,17 +14,9 @@ use crate::content::config::Channel;
 use crate::dispatch::channels::{Decision, LaneStatus, Waiting};
 use crate::dispatch::state::{State, Turn};
 use crate::dispatch::{Dispatcher, priority};
-use crate::events::{EventKind, Source};
+use crate::events::EventKind;
 use crate::sync::lock;
-
-/// Who speaks now, for the kiosks' "speaking" state.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub struct Speaking {
-    /// The source of the speech running now.
-    pub source: Source,
-    /// The client that triggered it, if a websocket client did.
-    pub client: Option<u64>,
-}
+pub use docent_protocol::server_frames::Speaking;
 
 /// The client that asked for a change, answered with the notice of it: after every screen was
 /// told, as the protocol promises.

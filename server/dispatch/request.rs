@@ -1,10 +1,9 @@
 //! What callers give the dispatcher and what they get back; the HTTP and websocket layers
 //! turn these into their own wire formats.
 
-use serde::Serialize;
-
 use crate::events::Source;
 use crate::wire::ErrorCode;
+pub use docent_protocol::server_frames::{ResolvedCommand, Triggered};
 
 /// A request to trigger an act.
 #[derive(Clone, Debug)]
@@ -35,42 +34,6 @@ impl TriggerRequest {
             client: None,
         }
     }
-}
-
-/// One resolved command, as reported to the caller.
-#[derive(Clone, Debug, PartialEq, Serialize)]
-pub struct ResolvedCommand {
-    /// The command's id (matches `command` frames and events).
-    pub id: u64,
-    /// The verb.
-    pub verb: String,
-    /// The argument, `null` when there is none.
-    pub arg: Option<String>,
-}
-
-/// The outcome of a successful trigger.
-#[derive(Clone, Debug, Serialize)]
-pub struct Triggered {
-    /// The trigger's id.
-    pub trigger: u64,
-    /// The caller's reference, echoed.
-    #[serde(rename = "ref")]
-    pub reference: Option<String>,
-    /// The act's label.
-    pub label: String,
-    /// The context that applied.
-    pub context: String,
-    /// The variant whose text was chosen (`Text` on fallback); `null` when the act has none.
-    pub variant: Option<String>,
-    /// Index of the chosen alternative.
-    pub alternative: Option<usize>,
-    /// The chosen text.
-    pub text: Option<String>,
-    /// The language of the chosen text (the default one when it has no translation into the
-    /// visitor's); `null` when the act has no text.
-    pub language: Option<crate::content::Language>,
-    /// Every command in order, the implicit `SAY` first.
-    pub commands: Vec<ResolvedCommand>,
 }
 
 /// Why a trigger or a context change was refused.

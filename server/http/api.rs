@@ -20,7 +20,7 @@ use crate::http::auth::Authorized;
 use crate::http::body::RequestBody;
 use crate::state::AppState;
 use crate::wire::ErrorCode;
-use crate::ws::protocol::PROTOCOL_VERSION;
+use crate::ws::protocol::{PROTOCOL_VERSION, TriggerOptions};
 
 /// `GET /healthz`
 pub async fn health(State(state): State<AppState>) -> Json<Value> {
@@ -113,17 +113,6 @@ pub async fn list_acts(State(state): State<AppState>) -> impl IntoResponse {
     Json(json!({ "contexts": bundle.contexts, "acts": acts })).into_response()
 }
 
-#[derive(Deserialize, Default)]
-#[serde(deny_unknown_fields)]
-struct TriggerBody {
-    #[serde(default)]
-    context: Option<String>,
-    #[serde(default)]
-    interrupt: bool,
-    #[serde(default, rename = "ref")]
-    reference: Option<String>,
-}
-
 /// `POST /api/acts/{label}/trigger` (credential needed): 202 with the trigger id and resolved
 /// commands.
 pub async fn trigger_act(
@@ -136,7 +125,7 @@ pub async fn trigger_act(
         AppError::bad_request(format!("the act label in the address is not right: {e}"))
     })?;
     let example = r#"{"context": "TextGroup", "interrupt": true, "ref": "b1"}"#;
-    let body: TriggerBody = body.object(example)?.unwrap_or_default();
+    let body: TriggerOptions = body.object(example)?.unwrap_or_default();
     if let Some(failure) = state.hub.log_failure() {
         return Err(AppError::log_unwritable(failure.refusal()));
     }

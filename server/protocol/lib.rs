@@ -1,7 +1,9 @@
-//! `docent-protocol`: every format Docent writes for another program to read, and only those:
-//! the events (each corpus line and each `event` frame, [`events`]), the codes of `error`
-//! frames and HTTP error bodies ([`ErrorCode`]), the frames adapters are sent
-//! ([`frames`]), what the projector and a fleet link report, and the versions of both formats.
+//! `docent-protocol`: every format Docent exchanges with another program, and only those:
+//! the events (each corpus line and each `event` frame, [`events`]), the websocket frames
+//! clients send ([`client_frames`]) and are sent ([`server_frames`], with the [`state`] they
+//! are welcomed with), the codes of `error` frames and HTTP error bodies ([`ErrorCode`]), the
+//! frames adapters are sent ([`frames`]), what the projector and a fleet link report, and the
+//! versions of both formats.
 //! A compatibility boundary: change a shape only with a version bump (`docs/PROTOCOL.md`,
 //! `docs/CORPUS.md`).
 //!
@@ -12,14 +14,28 @@
 //! - `events/`: [`events::EventKind`] and its parts, one file per family (`origin.rs`: who
 //!   triggered; `session.rs`: why a session ended; `recording.rs`; `robot.rs`;
 //!   `robot_link.rs`; `touch.rs`; `attract.rs`), and `stamped.rs`, the [`events::Event`] line.
+//! - `client_frames`: [`client_frames::ClientFrame`], what a websocket client sends (its
+//!   `hello` and `trigger` as structs of their own), and the HTTP trigger's body,
+//!   [`client_frames::TriggerOptions`].
+//! - `server_frames`: one function per frame Docent sends a client (`welcome`, answers,
+//!   notices, `event`), and the data they carry ([`server_frames::Triggered`], also the HTTP
+//!   trigger's answer).
+//! - `state`: [`state::StateView`], the state a client is welcomed with, and its parts
+//!   ([`state::Display`], [`state::Pose`], [`state::ReloadView`]).
+//! - `documented_frames` (tests only): the frames against docs/PROTOCOL.md's examples.
 //! - `error_code`: [`ErrorCode`], every code an `error` frame or an HTTP error body carries.
 //! - `frames`: the `command` and `cancel` frames adapters and screens are sent.
 //! - `projector`: [`ProjectorState`]; `fleet_link`: a robot's broker link as shown.
 
+pub mod client_frames;
 pub mod events;
 pub mod fleet_link;
 pub mod frames;
+pub mod server_frames;
+pub mod state;
 
+#[cfg(test)]
+mod documented_frames;
 mod error_code;
 mod projector;
 

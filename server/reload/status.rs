@@ -5,21 +5,9 @@
 
 use std::sync::Mutex;
 
-use serde::Serialize;
-
 use crate::content::Diagnostic;
 use crate::sync::lock;
-
-/// The live-reload part of the state a client is welcomed with (`state.reload`).
-#[derive(Clone, Debug, Default, PartialEq, Serialize)]
-pub struct ReloadView {
-    /// The problems of the last save when it was refused; `None` once a good save is live.
-    pub refused: Option<Vec<Diagnostic>>,
-    /// Why the bundle folder cannot be watched (deleted, renamed, a watcher error).
-    pub trouble: Option<String>,
-    /// Settings changed since start-up that are not in effect yet, as sentences.
-    pub not_applied: Vec<String>,
-}
+pub use docent_protocol::state::ReloadView;
 
 /// The shared live-reload status. Cheap to read; changed only by the reload loop.
 #[derive(Debug, Default)]

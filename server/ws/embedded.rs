@@ -111,7 +111,7 @@ impl EmbeddedSession {
 /// Why `frame` cannot come from a client that is not connected, if it cannot.
 fn needs_connection(frame: &ClientFrame) -> Option<&'static str> {
     match frame {
-        ClientFrame::Trigger { .. }
+        ClientFrame::Trigger(_)
         | ClientFrame::Stop { .. }
         | ClientFrame::Context { .. }
         | ClientFrame::Language { .. }

@@ -18,7 +18,9 @@ use crate::events::ClientRole;
 use crate::state::ClientLinks;
 use crate::wire::outbox::Frame;
 use crate::ws::Captions;
-use crate::ws::protocol::{NotCarriedOut, language_frame, outcome_frame, speaking_frame};
+use crate::ws::protocol::{
+    NotCarriedOut, OutcomeFrame, language_frame, outcome_frame, speaking_frame,
+};
 
 /// Delivers `notices` through `links` until `shutdown`; `captions` and `settings` (the live
 /// bundle's `captions:`) greet a joining kiosk with the caption in force.
@@ -49,7 +51,16 @@ pub async fn deliver(
                     Outcome::Failed(reason) => (NotCarriedOut::Failed, reason),
                     Outcome::Done => continue,
                 };
-                let frame = outcome_frame(&command, kind, reason, ended_by_visitor);
+                let frame = outcome_frame(&OutcomeFrame {
+                    command: command.id,
+                    trigger: command.act.trigger,
+                    reference: command.act.reference.as_deref(),
+                    label: &command.act.label,
+                    verb: command.verb.as_str(),
+                    outcome: kind,
+                    reason,
+                    ended_by_visitor,
+                });
                 // A client that has left learns nothing; the corpus has the outcome either
                 // way. Not an answer: it rides along with the client's next frames (within
                 // 2 ms).

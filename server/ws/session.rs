@@ -18,7 +18,7 @@ use crate::ws::client::Client;
 use crate::ws::diagnose::diagnose;
 use crate::ws::hello::{self, Hello, Refused};
 use crate::ws::protocol::{ClientFrame, MAX_FRAME_BYTES};
-use crate::ws::triggers::{self, RefusedRun, Trigger};
+use crate::ws::triggers::{self, RefusedRun};
 use crate::ws::writer::Feed;
 use crate::ws::{attract, initiative, recording, reports, robot, signal};
 
@@ -112,22 +112,7 @@ impl Session {
         let (client, role) = (&self.client, self.role);
         match frame {
             ClientFrame::Hello(frame) => self.hello(Hello::from(frame)),
-            ClientFrame::Trigger {
-                label,
-                context,
-                interrupt,
-                reference,
-                via,
-                element,
-            } => {
-                let trigger = Trigger {
-                    label,
-                    context,
-                    interrupt,
-                    reference,
-                    via,
-                    element,
-                };
+            ClientFrame::Trigger(trigger) => {
                 let run = triggers::trigger(client, role, trigger, self.refusals_logged);
                 self.record(run);
             }

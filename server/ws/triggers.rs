@@ -15,22 +15,12 @@ use crate::dispatch::{Answer, TriggerRequest};
 use crate::events::{ClientRole, EventKind, KioskCause, element_description};
 use crate::wire::ErrorCode;
 use crate::ws::client::Client;
-use crate::ws::protocol::{context_frame, language_frame, stopped_frame, triggered_frame};
+use crate::ws::protocol::{
+    TriggerFrame, context_frame, language_frame, stopped_frame, triggered_frame,
+};
 
 const TRIGGER_ROLES: [ClientRole; 3] = [ClientRole::Kiosk, ClientRole::Operator, ClientRole::Dm];
 const CONTROL_ROLES: [ClientRole; 2] = [ClientRole::Operator, ClientRole::Dm];
-
-/// What a `trigger` frame says.
-pub(super) struct Trigger {
-    pub(super) label: String,
-    pub(super) context: Option<String>,
-    pub(super) interrupt: bool,
-    pub(super) reference: Option<String>,
-    /// Why a kiosk sent it (a touch when it does not say).
-    pub(super) via: Option<KioskCause>,
-    /// The element a visitor touched.
-    pub(super) element: Option<String>,
-}
 
 /// What a frame did to the client's run of refused triggers, which is logged once (one
 /// `trigger.refused` per run, so a flood cannot flood the corpus). The session records it.
@@ -49,10 +39,10 @@ pub(super) enum RefusedRun {
 pub(super) fn trigger(
     client: &Client,
     role: Option<ClientRole>,
-    trigger: Trigger,
+    trigger: TriggerFrame,
     run_logged: bool,
 ) -> RefusedRun {
-    let Trigger {
+    let TriggerFrame {
         label,
         context,
         interrupt,

@@ -1,15 +1,19 @@
-//! Test helpers: a real Docent server on `127.0.0.1:0`, HTTP and websocket clients, temporary
+//! Test helpers: a real Docent server on `127.0.0.1:0`, HTTP and websocket clients, the same
+//! server's routes called in process without a socket (`app.rs`, [`TestApp`]), temporary
 //! bundles, and reading the corpus log. Waiting is always for an event, with a generous
 //! deadline only so that a broken build fails instead of hanging.
 
 #![allow(dead_code)] // `tests/flood.rs`, a binary of its own, uses a small part of them.
 
+pub mod app;
 pub mod channels;
 pub mod check;
 pub mod corpus;
 pub mod languages;
 pub mod process;
 
+#[allow(unused_imports)] // As `dead_code` above.
+pub use app::TestApp;
 #[allow(unused_imports)] // As `dead_code` above.
 pub use corpus::{corpus_text, json_lines, read_corpus, session_dirs};
 

@@ -1,15 +1,16 @@
 //! The frames Docent sends a websocket client (`welcome`, answers, notices, events), each
-//! built by one function; the client frames they answer are in the parent module.
+//! built by one function into its JSON text; the frames clients send are in
+//! `client_frames.rs`, the state they are welcomed with in `state.rs`.
 
 use serde::Serialize;
 
-use super::{MarkKind, StateView};
-use crate::adapters::Command;
-use crate::dispatch::ResolvedCommand;
-use crate::events::{ClientRole, Event, Source};
-use crate::wire::ErrorCode;
+use docent_content::Language;
 
-use super::PROTOCOL_VERSION;
+use crate::PROTOCOL_VERSION;
+use crate::client_frames::MarkKind;
+use crate::error_code::ErrorCode;
+use crate::events::{ClientRole, Event, Source};
+use crate::state::StateView;
 
 #[derive(Serialize)]
 #[serde(tag = "type", rename_all = "lowercase")]
@@ -46,7 +47,7 @@ enum ServerFrame<'a> {
     Language {
         #[serde(rename = "ref", skip_serializing_if = "Option::is_none")]
         reference: Option<&'a str>,
-        language: &'a crate::content::Language,
+        language: &'a Language,
     },
     Proposed {
         #[serde(rename = "ref")]
@@ -74,17 +75,7 @@ enum ServerFrame<'a> {
         pages: &'a [&'a str],
         shell: bool,
     },
-    Outcome {
-        command: u64,
-        trigger: u64,
-        #[serde(rename = "ref")]
-        reference: Option<&'a str>,
-        label: &'a str,
-        verb: &'a str,
-        outcome: NotCarriedOut,
-        reason: &'a str,
-        ended_by_visitor: bool,
-    },
+    Outcome(&'a OutcomeFrame<'a>),
     Speaking {
         speaking: bool,
         source: Option<Source>,
@@ -102,6 +93,75 @@ enum ServerFrame<'a> {
         reference: Option<&'a str>,
         suggestion: Option<&'a str>,
     },
+}
+
+/// One resolved command, as reported to the caller.
+#[derive(Clone, Debug, PartialEq, Serialize)]
+pub struct ResolvedCommand {
+    /// The command's id (matches `command` frames and events).
+    pub id: u64,
+    /// The verb.
+    pub verb: String,
+    /// The argument, `null` when there is none.
+    pub arg: Option<String>,
+}
+
+/// The outcome of a successful trigger: the `triggered` frame's fields, and the HTTP trigger's
+/// `202` answer.
+#[derive(Clone, Debug, Serialize)]
+pub struct Triggered {
+    /// The trigger's id.
+    pub trigger: u64,
+    /// The caller's reference, echoed.
+    #[serde(rename = "ref")]
+    pub reference: Option<String>,
+    /// The act's label.
+    pub label: String,
+    /// The context that applied.
+    pub context: String,
+    /// The variant whose text was chosen (`Text` on fallback); `null` when the act has none.
+    pub variant: Option<String>,
+    /// Index of the chosen alternative.
+    pub alternative: Option<usize>,
+    /// The chosen text.
+    pub text: Option<String>,
+    /// The language of the chosen text (the default one when it has no translation into the
+    /// visitor's); `null` when the act has no text.
+    pub language: Option<Language>,
+    /// Every command in order, the implicit `SAY` first.
+    pub commands: Vec<ResolvedCommand>,
+}
+
+/// What an `outcome` frame says: a command the client triggered ended without being carried
+/// out. The runtime fills it from its command.
+#[derive(Debug, Serialize)]
+pub struct OutcomeFrame<'a> {
+    /// The command's id.
+    pub command: u64,
+    /// Its trigger's id.
+    pub trigger: u64,
+    /// The trigger's `ref`.
+    #[serde(rename = "ref")]
+    pub reference: Option<&'a str>,
+    /// Its act's label.
+    pub label: &'a str,
+    /// Its verb.
+    pub verb: &'a str,
+    /// Cancelled or failed.
+    pub outcome: NotCarriedOut,
+    /// Why, in words.
+    pub reason: &'a str,
+    /// A visitor ended it (stopped speech, left the page): it needs no word to them.
+    pub ended_by_visitor: bool,
+}
+
+/// Who speaks now, for the kiosks' `speaking` frame.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct Speaking {
+    /// The source of the speech running now.
+    pub source: Source,
+    /// The client that triggered it, if a websocket client did.
+    pub client: Option<u64>,
 }
 
 /// How a command ended without being carried out, in an `outcome` frame.
@@ -135,7 +195,7 @@ pub fn state_frame(state: &StateView) -> String {
 }
 
 /// `triggered`: the answer to a trigger.
-pub fn triggered_frame(t: &crate::dispatch::Triggered) -> String {
+pub fn triggered_frame(t: &Triggered) -> String {
     encode(&ServerFrame::Triggered {
         reference: t.reference.as_deref(),
         trigger: t.trigger,
@@ -159,7 +219,7 @@ pub fn context_frame(reference: Option<&str>, context: &str) -> String {
 }
 
 /// `language`: the answer to a language change, and what kiosks are told of every change.
-pub fn language_frame(reference: Option<&str>, language: &crate::content::Language) -> String {
+pub fn language_frame(reference: Option<&str>, language: &Language) -> String {
     encode(&ServerFrame::Language {
         reference,
         language,
@@ -224,27 +284,13 @@ pub fn error_frame(
 }
 
 /// `outcome`: a command the client triggered ended without being carried out, and why.
-pub fn outcome_frame(
-    c: &Command,
-    outcome: NotCarriedOut,
-    reason: &str,
-    ended_by_visitor: bool,
-) -> String {
-    encode(&ServerFrame::Outcome {
-        command: c.id,
-        trigger: c.act.trigger,
-        reference: c.act.reference.as_deref(),
-        label: &c.act.label,
-        verb: c.verb.as_str(),
-        outcome,
-        reason,
-        ended_by_visitor,
-    })
+pub fn outcome_frame(outcome: &OutcomeFrame<'_>) -> String {
+    encode(&ServerFrame::Outcome(outcome))
 }
 
 /// `speaking`: speech started (who asked for it; `stoppable` when visitors started it and may
 /// stop it) or stopped.
-pub fn speaking_frame(now: Option<crate::dispatch::Speaking>) -> String {
+pub fn speaking_frame(now: Option<Speaking>) -> String {
     encode(&ServerFrame::Speaking {
         speaking: now.is_some(),
         source: now.map(|n| n.source),

@@ -1,0 +1,67 @@
+//! The state a websocket client is sent on `welcome` and after falling behind (`state`
+//! frames), and the plain data it is made of. The runtime keeps these values current
+//! (`adapters::display`, the drives, `reload::status`); here is only their serialized shape.
+
+use serde::Serialize;
+
+use docent_content::{Area, Diagnostic, Language, MediaKind};
+
+use crate::ProjectorState;
+
+/// The state a client gets on `welcome` and after falling behind.
+#[derive(Debug, Serialize)]
+pub struct StateView {
+    /// What the touchscreen and projector show.
+    pub display: Display,
+    /// The drive's pose: the simulated base's, or the ROS robot's last reported one.
+    pub pose: Option<Pose>,
+    /// The current context.
+    pub context: String,
+    /// The visitor's language.
+    pub language: Language,
+    /// Live reload: a refused save's problems, a folder that cannot be watched, settings not
+    /// yet in effect (the operator console's banner).
+    pub reload: ReloadView,
+}
+
+/// What the touchscreen and projector show.
+#[derive(Clone, Debug, Default, PartialEq, Serialize)]
+pub struct Display {
+    /// Page under `pages/` on the touchscreen.
+    pub page: Option<String>,
+    /// File under `media/` on the projector; `None` is black.
+    pub projector: Option<String>,
+    /// Whether the projector shows `projector` as a picture or plays it as a video.
+    pub projector_kind: Option<MediaKind>,
+    /// The `HIGHLIGHT` argument lit on the projector instead of a file, as written; `None`
+    /// when cleared.
+    pub highlight: Option<String>,
+    /// The areas of `highlight`, parsed at load: what the projector draws.
+    pub highlight_areas: Option<Vec<Area>>,
+    /// What the projector reported about `projector` or `highlight`.
+    pub projector_state: ProjectorState,
+}
+
+/// Where the base is.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Serialize)]
+pub struct Pose {
+    /// Metres.
+    pub x: f64,
+    /// Metres.
+    pub y: f64,
+    /// Degrees, counter-clockwise from the x axis.
+    pub heading: f64,
+    /// Whether it is driving.
+    pub moving: bool,
+}
+
+/// The live-reload part of the state a client is welcomed with (`state.reload`).
+#[derive(Clone, Debug, Default, PartialEq, Serialize)]
+pub struct ReloadView {
+    /// The problems of the last save when it was refused; `None` once a good save is live.
+    pub refused: Option<Vec<Diagnostic>>,
+    /// Why the bundle folder cannot be watched (deleted, renamed, a watcher error).
+    pub trouble: Option<String>,
+    /// Settings changed since start-up that are not in effect yet, as sentences.
+    pub not_applied: Vec<String>,
+}
