@@ -10,6 +10,10 @@
 //! `DRIVE_STOP` preempts everything first; an interrupting trigger first clears speech of its
 //! priority or lower. A kiosk's tap on an act already speaking is refused; visitors may stop
 //! their own speech and leaving a page ends it (`visitors`).
+//!
+//! Everything this decides by sits in one `State` under one lock (`state`); a request holds it
+//! as a `Turn`, with the bundle live then, from its first check to its last hand-over. What
+//! clients are to be told is queued as a [`Notice`] in that turn, never called into.
 
 mod channels;
 mod choose;
