@@ -129,8 +129,6 @@ impl Server {
         );
         let intake = crate::robot::run_intake(state.clone(), robot_intake);
         state.life.spawn(intake);
-        let languages = Arc::clone(&state.dispatcher).reset_language_after_sessions();
-        state.life.spawn(languages);
         let live = Arc::clone(&state.dispatcher);
         let notices = crate::ws::deliver_notices(
             state.dispatcher.notices(),

@@ -140,7 +140,10 @@ impl AppState {
         let hub = dispatcher.hub().clone();
         let display = Arc::clone(&devices.display);
         let shown = Box::new(move || display.snapshot());
-        let visits = Arc::new(Visits::new(hub.clone(), shown));
+        // A session's end returns the visitor's language to the default in the same step.
+        let live = Arc::clone(&dispatcher);
+        let after_end = Box::new(move || live.back_to_default());
+        let visits = Arc::new(Visits::new(hub.clone(), shown, after_end));
         // Sessions a touch started end when visitors stop touching (the live bundle's setting).
         let live = Arc::clone(&dispatcher);
         let idle = Arc::clone(&visits)
@@ -154,9 +157,11 @@ impl AppState {
         let links = ClientLinks(Arc::clone(&clients));
         let captions = crate::ws::Captions::new(links.clone());
         let live = Arc::clone(&dispatcher);
+        let speech = Arc::clone(&dispatcher);
         let follow = Arc::clone(&captions).follow(
             hub.subscribe(),
             move || live.bundle().config.captions,
+            move || speech.saying_now(),
             life.shutdown.clone(),
         );
         life.spawn(follow);

@@ -143,23 +143,39 @@ async fn a_kiosk_switches_only_to_a_language_its_page_offers_and_a_session_end_r
         (Some("not-offered"), Some("k2"))
     );
 
-    // The next visitors start in the default language; the kiosks are told.
+    // The next visitors start in the default language; the kiosks are told. The visitor's tap
+    // on the language button began a session: starting the next one ends it, and its end
+    // resets the language in the same step, before the next session starts.
     op.send(json!({"type": "mark", "mark": "session_start"}))
-        .await;
-    op.event("session.started").await;
-    op.send(json!({"type": "mark", "mark": "session_end"}))
         .await;
     let reset = op.event("language.changed").await;
     assert_eq!(
         (&reset["language"], &reset["source"]),
         (&json!("en"), &json!("server"))
     );
+    op.event("session.started").await;
     let told = kiosk
         .recv_where(|f| f["type"] == "language" && f["language"] == "en")
         .await;
     assert!(told.get("ref").is_none(), "a notice, not an answer: {told}");
 
-    server.stop().await;
+    let corpus = server.stop().await;
+    let order: Vec<&str> = corpus
+        .iter()
+        .filter_map(|e| e["type"].as_str())
+        .filter(|t| ["session.started", "session.ended", "language.changed"].contains(t))
+        .collect();
+    assert_eq!(
+        order,
+        [
+            "session.started",  // by the kiosk's tap on the language button
+            "language.changed", // to German, within that session
+            "session.ended",    // by the operator's next session
+            "language.changed", // back to English, in the same step
+            "session.started",
+            "session.ended", // the server stopping
+        ]
+    );
 }
 
 #[tokio::test]

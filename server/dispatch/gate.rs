@@ -238,6 +238,15 @@ impl Dispatcher {
         }
     }
 
+    /// The `SAY` on the speech channel now (its id and text), if one runs: what a caption
+    /// that fell behind the events shows instead of guessing (`ws::captions`).
+    pub fn saying_now(&self) -> Option<(u64, Arc<str>)> {
+        let state = lock(&self.state);
+        let running = state.lanes.get(&Channel::Speech)?.running()?;
+        let text = running.args.say_text().or(running.arg.as_deref())?;
+        Some((running.id, Arc::from(text)))
+    }
+
     /// Every channel that has carried a command: what runs and what waits, by channel name.
     pub fn channel_status(&self) -> std::collections::BTreeMap<String, LaneStatus> {
         (lock(&self.state).lanes.iter())

@@ -4,8 +4,6 @@
 //! lacks it. Every change is a `language.changed` event and a `language` frame to the kiosks,
 //! which then show their page in the new language.
 
-use std::sync::Arc;
-
 use crate::content::{Bundle, Language, Located, Variant};
 use crate::dispatch::state::State;
 use crate::dispatch::{Dispatcher, TriggerError};
@@ -128,27 +126,10 @@ impl Dispatcher {
         self.publish_language(state, default, Source::Server, None);
     }
 
-    /// Follows the hub: when a visitor session ends, the next visitors start in the
-    /// bundle's default language. Runs until shutdown. Session ends come without loss
-    /// ([`crate::events::Hub::follow`]): one missed would greet the next visitors in the last
-    /// ones' language, and a lag guessed as an end would switch the current ones' mid-visit.
-    pub async fn reset_language_after_sessions(self: Arc<Self>) {
-        let mut ends = self
-            .hub
-            .follow(|kind| matches!(kind, EventKind::SessionEnded { .. }));
-        let shutdown = self.life.shutdown.clone();
-        loop {
-            tokio::select! {
-                end = ends.recv() => match end {
-                    Some(_) => self.back_to_default(),
-                    None => return,
-                },
-                () = shutdown.cancelled() => return,
-            }
-        }
-    }
-
-    fn back_to_default(&self) {
+    /// Back to the bundle's default language, when a visitor session ended: the next
+    /// visitors start in it. Called by the session's end itself (`operator::Visits`), in the
+    /// same step, so no end is missed and none is taken for another.
+    pub fn back_to_default(&self) {
         let mut turn = self.turn();
         let default = turn.bundle.config.languages.default_language().clone();
         if turn.state.language != default {

@@ -239,3 +239,22 @@ async fn a_drive_replaced_by_another_act_ends_the_rest_of_its_act() {
         "{reason}"
     );
 }
+
+#[tokio::test(start_paused = true)]
+async fn what_the_speech_channel_says_now_is_its_running_say_until_it_ends() {
+    let mut rig = rig("speech: {adapter: log}\n");
+    assert_eq!(rig.dispatcher.saying_now(), None);
+    let first = rig.trigger("A", Source::Operator, false);
+    let second = rig.trigger("B", Source::Operator, false);
+    assert_eq!(
+        rig.dispatcher.saying_now(),
+        Some((first, Arc::from(LONG))),
+        "the first runs, the second waits"
+    );
+    assert_eq!(rig.next_of(first).await.0, "started");
+    assert_eq!(rig.next_of(first).await.0, "done");
+    assert_eq!(rig.next_of(second).await.0, "started");
+    assert_eq!(rig.dispatcher.saying_now().map(|(id, _)| id), Some(second));
+    assert_eq!(rig.next_of(second).await.0, "done");
+    assert_eq!(rig.dispatcher.saying_now(), None);
+}

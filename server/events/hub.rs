@@ -1,7 +1,7 @@
 //! The event hub: stamps events and fans them out. The corpus writer gets every event (the log
 //! must not lose anything) by taking, in one swap, all events published since its last batch;
 //! websocket subscribers get them through a bounded broadcast channel and handle lag
-//! themselves; the components that carry out a decision (recordings, the language reset)
+//! themselves; the components that carry out a decision (recordings)
 //! follow the few kinds they act on without loss ([`Hub::follow`]). The writer reports how far the log is written through a `watch`, so that an
 //! acknowledgement can wait until its event is in the file ([`Hub::logged`]).
 

@@ -20,6 +20,11 @@ use crate::sync::lock;
 /// What the screens show now (the display state's snapshot).
 pub type Shown = Box<dyn Fn() -> Display + Send + Sync>;
 
+/// What a session's end does in the same step, after `session.ended` is published: the next
+/// visitors start in the bundle's default language (`Dispatcher::back_to_default`). A step,
+/// not a follower of the hub, so no end can be missed or come late.
+pub type AfterEnd = Box<dyn Fn() + Send + Sync>;
+
 /// The visitor groups an operator can note.
 pub const VISITOR_GROUPS: [&str; 3] = ["single", "group", "children"];
 
@@ -41,6 +46,8 @@ pub struct Visits {
     hub: Hub,
     /// What the screens show now: a session's start says it, so its pages begin there.
     shown: Shown,
+    /// What every session's end does too.
+    after_end: AfterEnd,
     inner: Mutex<Inner>,
     /// A session started by a touch: the idle watch has a new deadline to keep.
     started_by_touch: Notify,
@@ -81,11 +88,12 @@ struct Current {
 
 impl Visits {
     /// No session yet; starts and ends are published to `hub`, each start with what `shown`
-    /// says the screens show.
-    pub fn new(hub: Hub, shown: Shown) -> Self {
+    /// says the screens show, and each end followed by `after_end`.
+    pub fn new(hub: Hub, shown: Shown, after_end: AfterEnd) -> Self {
         Visits {
             hub,
             shown,
+            after_end,
             inner: Mutex::default(),
             started_by_touch: Notify::new(),
         }
@@ -269,6 +277,7 @@ impl Visits {
             client,
             reason,
         });
+        (self.after_end)();
     }
 }
 
@@ -287,7 +296,7 @@ mod tests {
     #[test]
     fn starting_a_session_ends_the_running_one() {
         let (hub, _feed) = Hub::new();
-        let visits = Visits::new(hub, Box::new(Display::default));
+        let visits = Visits::new(hub, Box::new(Display::default), Box::new(|| {}));
         let settings = CorpusSettings::default();
         assert_eq!(visits.current(), None);
         assert_eq!(visits.start(&settings, Source::Operator, Some(1)), 1);
@@ -305,9 +314,30 @@ mod tests {
     }
 
     #[test]
+    fn every_end_of_a_session_is_followed_by_its_step_at_once() {
+        let (hub, _corpus) = Hub::new();
+        let steps = Arc::new(std::sync::atomic::AtomicUsize::new(0));
+        let counted = Arc::clone(&steps);
+        let after_end = Box::new(move || {
+            counted.fetch_add(1, std::sync::atomic::Ordering::SeqCst);
+        });
+        let visits = Visits::new(hub, Box::new(Display::default), after_end);
+        let settings = CorpusSettings::default();
+        let ends = || steps.load(std::sync::atomic::Ordering::SeqCst);
+        visits.start(&settings, Source::Operator, None);
+        assert_eq!(ends(), 0, "a start ends nothing");
+        visits.start(&settings, Source::Operator, None);
+        assert_eq!(ends(), 1, "the next session ended the first");
+        visits.end(Source::Operator, None, SessionEnd::Marked);
+        assert_eq!(ends(), 2);
+        assert_eq!(visits.end(Source::Operator, None, SessionEnd::Marked), None);
+        assert_eq!(ends(), 2, "no session, no end");
+    }
+
+    #[test]
     fn consent_needs_a_session_and_once_withdrawn_stays_withdrawn() {
         let (hub, _feed) = Hub::new();
-        let visits = Visits::new(hub, Box::new(Display::default));
+        let visits = Visits::new(hub, Box::new(Display::default), Box::new(|| {}));
         let refused = visits.set_consent(Consent::Declined, Source::Operator, 1);
         assert_eq!(refused, Err(ConsentRefused::NoSession));
         visits.start(&CorpusSettings::default(), Source::Operator, Some(1));
@@ -330,7 +360,7 @@ mod tests {
     #[test]
     fn a_touch_starts_a_session_only_when_the_site_says_so() {
         let (hub, _feed) = Hub::new();
-        let visits = Visits::new(hub, Box::new(Display::default));
+        let visits = Visits::new(hub, Box::new(Display::default), Box::new(|| {}));
         let marked = CorpusSettings {
             session_start: SessionStart::Marked,
             ..touch_starts(Duration::from_secs(60))
@@ -347,7 +377,11 @@ mod tests {
     async fn a_session_a_touch_started_ends_after_the_idle_time_without_a_touch() {
         let (hub, _feed) = Hub::new();
         let mut events = hub.subscribe();
-        let visits = Arc::new(Visits::new(hub, Box::new(Display::default)));
+        let visits = Arc::new(Visits::new(
+            hub,
+            Box::new(Display::default),
+            Box::new(|| {}),
+        ));
         let idle = Duration::from_secs(120);
         let shutdown = CancellationToken::new();
         let watch = tokio::spawn(

@@ -81,6 +81,13 @@ impl Now {
         }
     }
 
+    /// Starts again from what the speech channel runs now (`saying`), after events were
+    /// missed: the texts of `SAY`s queued meanwhile are gone, so those are not captioned.
+    fn resync(&mut self, saying: Option<(u64, Arc<str>)>) {
+        self.texts.clear();
+        self.shown = saying;
+    }
+
     /// The caption `role` is to show under `settings`: id and text, or none.
     fn for_role(&self, role: ClientRole, settings: CaptionSettings) -> Option<(u64, &str)> {
         let on = match role {
@@ -103,12 +110,14 @@ impl Captions {
         })
     }
 
-    /// Follows `events` until `shutdown`; `settings` reads the live bundle's `captions:`.
-    /// Subscribe before any client connects, so that no `SAY` is missed.
+    /// Follows `events` until `shutdown`; `settings` reads the live bundle's `captions:`,
+    /// `saying` the `SAY` the speech channel runs now (read when the events were too many to
+    /// follow). Subscribe before any client connects, so that no `SAY` is missed.
     pub async fn follow(
         self: Arc<Self>,
         mut events: broadcast::Receiver<Arc<Event>>,
         settings: impl Fn() -> CaptionSettings + Send + 'static,
+        saying: impl Fn() -> Option<(u64, Arc<str>)> + Send + 'static,
         shutdown: CancellationToken,
     ) {
         loop {
@@ -119,12 +128,14 @@ impl Captions {
             match event {
                 Ok(event) => self.take(&event.kind, settings()),
                 Err(RecvError::Lagged(missed)) => {
-                    // What runs is unknown now: no caption beats a stale one. The next
-                    // `SAY` that starts is captioned again.
-                    tracing::warn!(missed, "captions fell behind the events; caption cleared");
+                    // The events missed cannot be replayed: the caption is read from what
+                    // the speech channel runs now, and the texts are followed afresh.
+                    tracing::warn!(
+                        missed,
+                        "captions fell behind the events; caption read from the speech channel"
+                    );
                     let mut now = lock(&self.now);
-                    now.texts.clear();
-                    now.shown = None;
+                    now.resync(saying());
                     self.tell_changes(&mut now, settings());
                 }
                 Err(RecvError::Closed) => return,
@@ -255,6 +266,21 @@ mod tests {
             now.for_role(ClientRole::Projector, ALL_ON),
             Some((2, "two"))
         );
+    }
+
+    #[test]
+    fn after_missed_events_the_caption_is_what_the_speech_channel_runs_until_it_ends() {
+        let mut now = Now::default();
+        now.take(&sent(1, "SAY", "one"));
+        now.take(&started(1));
+        // Events of 1's end and 2's start were missed; the speech channel runs 2.
+        now.resync(Some((2, Arc::from("two"))));
+        assert_eq!(now.for_role(ClientRole::Kiosk, ALL_ON), Some((2, "two")));
+        assert!(!now.take(&done(1)), "an end missed before does not clear");
+        assert!(now.take(&done(2)));
+        assert_eq!(now.for_role(ClientRole::Kiosk, ALL_ON), None);
+        now.resync(None);
+        assert_eq!(now.for_role(ClientRole::Kiosk, ALL_ON), None);
     }
 
     #[test]

@@ -353,14 +353,20 @@ impl WsClient {
         self.recv_where(|f| f["type"] == kind).await
     }
 
-    /// The next frame matching `pred`, skipping others.
+    /// The next frame matching `pred`, skipping others, within one deadline for the whole
+    /// search (frames that do not match, such as other events, do not extend it).
     pub async fn recv_where(&mut self, pred: impl Fn(&Value) -> bool) -> Value {
-        loop {
-            let frame = self.recv().await;
-            if pred(&frame) {
-                return frame;
+        let search = async {
+            loop {
+                let frame = self.recv().await;
+                if pred(&frame) {
+                    return frame;
+                }
             }
-        }
+        };
+        within(DEADLINE, search)
+            .await
+            .expect("a matching frame within the deadline")
     }
 
     /// The next event (operator clients) matching `pred`.
@@ -378,14 +384,20 @@ impl WsClient {
     /// Events up to and including the first matching `pred`.
     pub async fn events_until(&mut self, pred: impl Fn(&Value) -> bool) -> Vec<Value> {
         let mut seen = Vec::new();
-        loop {
-            let frame = self.recv_type("event").await;
-            let event = frame["event"].clone();
-            let last = pred(&event);
-            seen.push(event);
-            if last {
-                return seen;
+        let search = async {
+            loop {
+                let frame = self.recv_type("event").await;
+                let event = frame["event"].clone();
+                let last = pred(&event);
+                seen.push(event);
+                if last {
+                    return;
+                }
             }
-        }
+        };
+        within(DEADLINE, search)
+            .await
+            .expect("the awaited event within the deadline");
+        seen
     }
 }
