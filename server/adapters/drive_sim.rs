@@ -102,6 +102,7 @@ impl Base {
             y,
             heading,
             moving,
+            frame: None,
         });
     }
 

@@ -1,6 +1,9 @@
 //! One event log read line by line, as `docent corpus` needs it: how many events of each
 //! type, the first and the last (their time and session clock), and every line that is not
-//! an event, by its line number. A last line without its `\n` is the one a crash may cut
+//! an event, by its line number. A line is read only as far as its stamps and type
+//! (`docent_protocol::events::Head`): any object with a string `type` counts, so that a list
+//! of a large corpus stays cheap; the first and last lines can be read whole
+//! ([`LineStamp::event`]). A last line without its `\n` is the one a crash may cut
 //! short (docs/CORPUS.md, "The last line after a kill"): it is set aside as incomplete, not
 //! counted and not called damage; any other line that is not an event is damage.
 
@@ -8,7 +11,7 @@ use std::collections::BTreeMap;
 use std::fmt;
 use std::io::{self, BufRead};
 
-use serde::Deserialize;
+use docent_protocol::events::{EventKind, Head, Line, Logged};
 
 /// At most this many bad lines are kept one by one; the rest are only counted, so a file of
 /// garbage cannot fill the memory with complaints.
@@ -43,6 +46,19 @@ pub struct LineStamp {
     pub time: Option<String>,
     /// Its `session_us`, if it has one (lines in a session's log do).
     pub session_us: Option<u64>,
+    /// The line as written, without its `\n`.
+    pub line: String,
+}
+
+impl LineStamp {
+    /// The event, read whole through the protocol's types; `None` when its type is newer
+    /// than this Docent's or its fields do not read.
+    pub fn event(&self) -> Option<EventKind> {
+        match Line::parse(self.line.as_bytes()).ok()?.event {
+            Logged::Event(kind) => Some(kind),
+            Logged::Newer(_) => None,
+        }
+    }
 }
 
 /// A line that is not an event, by its number (from 1).
@@ -84,15 +100,6 @@ impl fmt::Display for LineFault {
             LineFault::NotAnEvent => write!(f, "JSON, but not an event (no `type`)"),
         }
     }
-}
-
-/// The fields of an event line that a scan reads; serde_json checks the whole line anyway.
-#[derive(Deserialize)]
-struct Line {
-    #[serde(rename = "type")]
-    kind: Option<String>,
-    time: Option<String>,
-    session_us: Option<u64>,
 }
 
 impl LogScan {
@@ -139,7 +146,8 @@ fn parse(line: &[u8]) -> Result<LineStamp, LineFault> {
     if line.is_empty() {
         return Err(LineFault::Empty);
     }
-    let parsed: Line = serde_json::from_slice(line).map_err(|e| match e.classify() {
+    // serde_json checks the whole line's syntax, reading only the head's fields.
+    let parsed = Head::parse(line).map_err(|e| match e.classify() {
         serde_json::error::Category::Data => LineFault::NotAnEvent,
         serde_json::error::Category::Eof => LineFault::CutShort {
             column: e.column().max(1),
@@ -153,6 +161,7 @@ fn parse(line: &[u8]) -> Result<LineStamp, LineFault> {
         kind,
         time: parsed.time,
         session_us: parsed.session_us,
+        line: String::from_utf8_lossy(line).into_owned(),
     })
 }
 

@@ -11,7 +11,9 @@
 //! Map:
 //! - `events/`: [`events::EventKind`] and its parts, one file per family (`origin.rs`: who
 //!   triggered; `session.rs`: why a session ended; `recording.rs`; `robot.rs`;
-//!   `robot_link.rs`; `touch.rs`; `attract.rs`), and `stamped.rs`, the [`events::Event`] line.
+//!   `robot_link.rs`; `touch.rs`; `attract.rs`), `stamped.rs`, the [`events::Event`] line, and
+//!   `line.rs`, the same line read back ([`events::Line`]).
+//! - `open`: [`Open`], a code as written by a newer Docent, read back.
 //! - `error_code`: [`ErrorCode`], every code an `error` frame or an HTTP error body carries.
 //! - `frames`: the `command` and `cancel` frames adapters and screens are sent.
 //! - `projector`: [`ProjectorState`]; `fleet_link`: a robot's broker link as shown.
@@ -21,9 +23,11 @@ pub mod fleet_link;
 pub mod frames;
 
 mod error_code;
+mod open;
 mod projector;
 
 pub use error_code::ErrorCode;
+pub use open::Open;
 pub use projector::ProjectorState;
 
 /// The protocol version sent in `welcome`. 4: `command` frames carry the parsed `args`.

@@ -1,0 +1,156 @@
+//! A corpus line read back, through the types that wrote it: [`Head`], the stamps and type
+//! every line begins with (`stamped.rs` writes them), and [`Logged`], what happened: an
+//! [`EventKind`], or a type newer than this Docent, passed over by name so that a log with
+//! newer types still reads. A line of a known type whose fields do not read is an error,
+//! naming the field, as serde says it.
+
+use std::fmt;
+
+use serde::de::value::MapDeserializer;
+use serde::{Deserialize, Deserializer};
+
+use super::EventKind;
+use super::recording::RecordingEvent;
+
+/// The fields every corpus line begins with, read alone: the hub's stamps and the `type`. A
+/// reader that only counts and places lines (`docent corpus list`) reads no more of them.
+#[derive(Clone, Debug, Default, PartialEq, Deserialize)]
+pub struct Head {
+    /// Format version.
+    pub v: Option<u32>,
+    /// Sequence number within the run.
+    pub seq: Option<u64>,
+    /// Wall-clock time, RFC 3339 UTC.
+    pub time: Option<String>,
+    /// Microseconds since the server started.
+    pub mono_us: Option<u64>,
+    /// Microseconds on the session clock (a session's log only; format 3 on).
+    pub session_us: Option<u64>,
+    /// The event type.
+    #[serde(rename = "type")]
+    pub kind: Option<String>,
+}
+
+/// What a corpus line says happened.
+#[derive(Debug)]
+pub enum Logged {
+    /// An event of a type this Docent knows.
+    Event(EventKind),
+    /// A type this Docent does not know (a newer one's), by name; its fields are not read.
+    Newer(String),
+}
+
+/// A whole corpus line: what happened, then the stamps (`Head` reads after `Logged`, which
+/// leaves the fields it read for it).
+#[derive(Debug, Deserialize)]
+pub struct Line {
+    /// What happened.
+    #[serde(flatten)]
+    pub event: Logged,
+    /// The stamps and type.
+    #[serde(flatten)]
+    pub head: Head,
+}
+
+impl Line {
+    /// Reads one line (without its `\n`).
+    pub fn parse(line: &[u8]) -> Result<Line, serde_json::Error> {
+        serde_json::from_slice(line)
+    }
+}
+
+impl Head {
+    /// Reads the stamps and type of one line (without its `\n`), and no other field.
+    pub fn parse(line: &[u8]) -> Result<Head, serde_json::Error> {
+        serde_json::from_slice(line)
+    }
+}
+
+impl<'de> Deserialize<'de> for Logged {
+    fn deserialize<D: Deserializer<'de>>(deserializer: D) -> Result<Self, D::Error> {
+        use serde::de::Error;
+        let line = serde_json::Value::deserialize(deserializer)?;
+        let Some(name) = line.get("type").and_then(serde_json::Value::as_str) else {
+            return Err(D::Error::missing_field("type"));
+        };
+        if !is_event_type(name) {
+            return Ok(Logged::Newer(name.to_owned()));
+        }
+        <EventKind as Deserialize>::deserialize(line)
+            .map(Logged::Event)
+            .map_err(D::Error::custom)
+    }
+}
+
+/// Whether `name` is an event type this Docent knows: an [`EventKind`] or a recording's.
+pub fn is_event_type(name: &str) -> bool {
+    has_type::<EventKind>(name) || has_type::<RecordingEvent>(name)
+}
+
+/// Whether the internally tagged enum `T` has a variant tagged `name`: asks `T`'s own
+/// derived `Deserialize` with an object that has only that `type`. An unknown tag is the one
+/// thing serde reports as an unknown variant there (every known one misses fields or reads),
+/// so the names are serde's, written once in the enum.
+pub(super) fn has_type<T: Tagged>(name: &str) -> bool {
+    let probe = MapDeserializer::<_, Probe>::new(std::iter::once(("type", name)));
+    !matches!(T::probe(probe), Err(Probe::UnknownType))
+}
+
+/// An enum tagged by `type`, with its derived deserializer.
+pub(super) trait Tagged {
+    /// The derived deserializer's answer for `probe`.
+    fn probe<'a>(
+        probe: MapDeserializer<'a, std::iter::Once<(&'a str, &'a str)>, Probe>,
+    ) -> Result<(), Probe>;
+}
+
+impl Tagged for EventKind {
+    fn probe<'a>(
+        probe: MapDeserializer<'a, std::iter::Once<(&'a str, &'a str)>, Probe>,
+    ) -> Result<(), Probe> {
+        // The derived one (inherent, `remote = "Self"`), without recordings.
+        EventKind::deserialize(probe).map(drop)
+    }
+}
+
+impl Tagged for RecordingEvent {
+    fn probe<'a>(
+        probe: MapDeserializer<'a, std::iter::Once<(&'a str, &'a str)>, Probe>,
+    ) -> Result<(), Probe> {
+        <RecordingEvent as Deserialize>::deserialize(probe).map(drop)
+    }
+}
+
+/// What a probe of a type name found: the one error that matters, and any other.
+#[derive(Debug)]
+pub(super) enum Probe {
+    /// The enum has no variant of that name.
+    UnknownType,
+    /// Anything else (a known type whose fields are missing).
+    Other,
+}
+
+impl fmt::Display for Probe {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        f.write_str(match self {
+            Probe::UnknownType => "unknown type",
+            Probe::Other => "a known type",
+        })
+    }
+}
+
+impl std::error::Error for Probe {}
+
+impl serde::de::Error for Probe {
+    fn custom<T: fmt::Display>(_: T) -> Self {
+        Probe::Other
+    }
+
+    fn unknown_variant(_: &str, _: &'static [&'static str]) -> Self {
+        Probe::UnknownType
+    }
+}
+
+#[cfg(test)]
+#[path = "line_tests.rs"]
+mod tests;
