@@ -11,7 +11,7 @@ use std::collections::BTreeMap;
 use std::fmt;
 use std::io::{self, BufRead};
 
-use docent_protocol::events::{EventKind, Head, Line, Logged};
+use docent_protocol::events::{EventKind, Head, Line, LineEvent};
 
 /// At most this many bad lines are kept one by one; the rest are only counted, so a file of
 /// garbage cannot fill the memory with complaints.
@@ -55,8 +55,8 @@ impl LineStamp {
     /// than this Docent's or its fields do not read.
     pub fn event(&self) -> Option<EventKind> {
         match Line::parse(self.line.as_bytes()).ok()?.event {
-            Logged::Event(kind) => Some(kind),
-            Logged::Newer(_) => None,
+            LineEvent::Event(kind) => Some(kind),
+            LineEvent::Newer(_) => None,
         }
     }
 }

@@ -13,7 +13,7 @@ use std::collections::{BTreeMap, HashMap};
 use std::sync::Arc;
 
 use docent_protocol::EVENT_FORMAT_VERSION;
-use docent_protocol::events::{ActRef, EventKind, Head, Line, Logged, Source};
+use docent_protocol::events::{ActRef, EventKind, Head, Line, LineEvent, Source};
 
 mod parts;
 
@@ -86,7 +86,7 @@ impl TimelineReader {
         let event = Line::parse(line).map_err(|e| LineProblem(plain(&e)))?.event;
         self.last_us = self.last_us.max(at);
         self.explicit_touches |= v >= EXPLICIT_TOUCHES;
-        if let Logged::Event(kind) = event {
+        if let LineEvent::Event(kind) = event {
             self.take(at, kind);
         }
         Ok(())

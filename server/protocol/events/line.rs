@@ -1,5 +1,5 @@
 //! A corpus line read back, through the types that wrote it: [`Head`], the stamps and type
-//! every line begins with (`stamped.rs` writes them), and [`Logged`], what happened: an
+//! every line begins with (`stamped.rs` writes them), and [`LineEvent`], what happened: an
 //! [`EventKind`], or a type newer than this Docent, passed over by name so that a log with
 //! newer types still reads. A line of a known type whose fields do not read is an error,
 //! naming the field, as serde says it.
@@ -33,20 +33,20 @@ pub struct Head {
 
 /// What a corpus line says happened.
 #[derive(Debug)]
-pub enum Logged {
+pub enum LineEvent {
     /// An event of a type this Docent knows.
     Event(EventKind),
     /// A type this Docent does not know (a newer one's), by name; its fields are not read.
     Newer(String),
 }
 
-/// A whole corpus line: what happened, then the stamps (`Head` reads after `Logged`, which
+/// A whole corpus line: what happened, then the stamps (`Head` reads after `LineEvent`, which
 /// leaves the fields it read for it).
 #[derive(Debug, Deserialize)]
 pub struct Line {
     /// What happened.
     #[serde(flatten)]
-    pub event: Logged,
+    pub event: LineEvent,
     /// The stamps and type.
     #[serde(flatten)]
     pub head: Head,
@@ -66,7 +66,7 @@ impl Head {
     }
 }
 
-impl<'de> Deserialize<'de> for Logged {
+impl<'de> Deserialize<'de> for LineEvent {
     fn deserialize<D: Deserializer<'de>>(deserializer: D) -> Result<Self, D::Error> {
         use serde::de::Error;
         let line = serde_json::Value::deserialize(deserializer)?;
@@ -74,10 +74,10 @@ impl<'de> Deserialize<'de> for Logged {
             return Err(D::Error::missing_field("type"));
         };
         if !is_event_type(name) {
-            return Ok(Logged::Newer(name.to_owned()));
+            return Ok(LineEvent::Newer(name.to_owned()));
         }
         <EventKind as Deserialize>::deserialize(line)
-            .map(Logged::Event)
+            .map(LineEvent::Event)
             .map_err(D::Error::custom)
     }
 }

@@ -348,8 +348,8 @@ fn variant(kind: &EventKind) -> usize {
 fn known(line: &str) -> (Head, EventKind) {
     let read = Line::parse(line.as_bytes()).unwrap_or_else(|e| panic!("{e}: {line}"));
     match read.event {
-        Logged::Event(kind) => (read.head, kind),
-        Logged::Newer(name) => panic!("{name} taken for a newer type: {line}"),
+        LineEvent::Event(kind) => (read.head, kind),
+        LineEvent::Newer(name) => panic!("{name} taken for a newer type: {line}"),
     }
 }
 
@@ -474,7 +474,7 @@ fn lines_of_the_older_formats_still_read() {
 fn a_type_newer_than_this_docent_is_passed_over_by_name() {
     let line = r#"{"v":4,"seq":1,"session_us":5,"type":"robot.dance","style":"waltz"}"#;
     let read = Line::parse(line.as_bytes()).unwrap();
-    assert!(matches!(&read.event, Logged::Newer(name) if name == "robot.dance"));
+    assert!(matches!(&read.event, LineEvent::Newer(name) if name == "robot.dance"));
     assert_eq!(read.head.session_us, Some(5));
     assert!(!is_event_type("robot.dance"));
     assert!(is_event_type("recording.started") && is_event_type("server.stopping"));

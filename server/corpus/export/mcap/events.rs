@@ -4,7 +4,7 @@
 //! Read through the protocol's types (`docent_protocol::events::Line`), as the timeline is.
 
 use docent_protocol::ProjectorState;
-use docent_protocol::events::{EventKind, Line, Logged};
+use docent_protocol::events::{EventKind, Line, LineEvent};
 
 /// Foxglove's `LogLevel`, as `/docent/log` gives each event type (`UNKNOWN` and `FATAL` are
 /// never given: every event type has its level, and none stops Docent).
@@ -23,9 +23,9 @@ pub enum LogLevel {
 
 impl LogLevel {
     /// The level of an event (a type newer than this Docent's is `INFO`).
-    pub fn of(event: &Logged) -> LogLevel {
+    pub fn of(event: &LineEvent) -> LogLevel {
         use EventKind::*;
-        let Logged::Event(kind) = event else {
+        let LineEvent::Event(kind) = event else {
             return LogLevel::Info;
         };
         match kind {
@@ -103,7 +103,7 @@ pub fn read(log: &[u8]) -> Result<Vec<LogEvent<'_>>, (usize, String)> {
             (read.head.session_us).ok_or_else(|| damaged("the line has no `session_us`".into()))?;
         let (mut pose, mut projection) = (None, None);
         match &read.event {
-            Logged::Event(EventKind::Pose {
+            LineEvent::Event(EventKind::Pose {
                 x,
                 y,
                 heading,
@@ -123,7 +123,7 @@ pub fn read(log: &[u8]) -> Result<Vec<LogEvent<'_>>, (usize, String)> {
                     frame: frame.clone().unwrap_or_else(|| DEFAULT_FRAME.to_owned()),
                 });
             }
-            Logged::Event(EventKind::DisplayChanged {
+            LineEvent::Event(EventKind::DisplayChanged {
                 projector,
                 highlight,
                 projector_state,
