@@ -4,7 +4,7 @@
 //! is the only reader of the log for exports, so the formats cannot disagree about what
 //! happened; `tiers.rs` lays it out as tiers, `csv.rs` as rows.
 //!
-//! Each line is read through the protocol's own types (`docent_protocol::events::Line`, the
+//! Each line is read through the protocol's own types (`docent_protocol::events::LineEvent`, the
 //! `EventKind` the server wrote it with): a renamed event type or field does not compile here,
 //! or fails the corpus tests, instead of emptying a tier. Types newer than this Docent are
 //! passed over, so a log with them still exports.
@@ -13,7 +13,7 @@ use std::collections::{BTreeMap, HashMap};
 use std::sync::Arc;
 
 use docent_protocol::EVENT_FORMAT_VERSION;
-use docent_protocol::events::{ActRef, EventKind, Head, Line, LineEvent, Source};
+use docent_protocol::events::{ActRef, EventKind, Head, LineEvent, Source};
 
 mod parts;
 
@@ -83,7 +83,7 @@ impl TimelineReader {
                     .into(),
             ));
         };
-        let event = Line::parse(line).map_err(|e| LineProblem(plain(&e)))?.event;
+        let event = LineEvent::parse(line, &head).map_err(|e| LineProblem(plain(&e)))?;
         self.last_us = self.last_us.max(at);
         self.explicit_touches |= v >= EXPLICIT_TOUCHES;
         if let LineEvent::Event(kind) = event {

@@ -40,22 +40,21 @@ pub enum LineEvent {
     Newer(String),
 }
 
-/// A whole corpus line: what happened, then the stamps (`Head` reads after `LineEvent`, which
-/// leaves the fields it read for it).
-#[derive(Debug, Deserialize)]
+/// A whole corpus line: its stamps and type, and what happened.
+#[derive(Debug)]
 pub struct Line {
-    /// What happened.
-    #[serde(flatten)]
-    pub event: LineEvent,
     /// The stamps and type.
-    #[serde(flatten)]
     pub head: Head,
+    /// What happened.
+    pub event: LineEvent,
 }
 
 impl Line {
     /// Reads one line (without its `\n`).
     pub fn parse(line: &[u8]) -> Result<Line, serde_json::Error> {
-        serde_json::from_slice(line)
+        let head = Head::parse(line)?;
+        let event = LineEvent::parse(line, &head)?;
+        Ok(Line { head, event })
     }
 }
 
@@ -66,20 +65,51 @@ impl Head {
     }
 }
 
-impl<'de> Deserialize<'de> for LineEvent {
-    fn deserialize<D: Deserializer<'de>>(deserializer: D) -> Result<Self, D::Error> {
-        use serde::de::Error;
-        let line = serde_json::Value::deserialize(deserializer)?;
-        let Some(name) = line.get("type").and_then(serde_json::Value::as_str) else {
-            return Err(D::Error::missing_field("type"));
+impl LineEvent {
+    /// Reads what happened on `line`, whose stamps and type `head` read: the event of the
+    /// type `head` names, straight from the line's bytes into the enum that has that type
+    /// (no intermediate value: exports read every line of an hour's log this way).
+    pub fn parse(line: &[u8], head: &Head) -> Result<LineEvent, serde_json::Error> {
+        let Some(name) = head.kind.as_deref() else {
+            // serde's own words, with the column.
+            return serde_json::from_slice::<Typed>(line).map(|_| LineEvent::Newer(String::new()));
         };
-        if !is_event_type(name) {
-            return Ok(LineEvent::Newer(name.to_owned()));
+        if has_type::<RecordingEvent>(name) {
+            let read: Flat<RecordingEvent> = serde_json::from_slice(line)?;
+            Ok(LineEvent::Event(EventKind::Recording(read.kind)))
+        } else if has_type::<EventKind>(name) {
+            let read: Flat<Derived> = serde_json::from_slice(line)?;
+            Ok(LineEvent::Event(read.kind.0))
+        } else {
+            Ok(LineEvent::Newer(name.to_owned()))
         }
-        <EventKind as Deserialize>::deserialize(line)
-            .map(LineEvent::Event)
-            .map_err(D::Error::custom)
     }
+}
+
+/// A line read into `T`, its other fields (the stamps) left over. The object around `T`
+/// makes serde_json say where a field of `T` went wrong (the end of the line), as it does
+/// for any struct.
+#[derive(Deserialize)]
+struct Flat<T> {
+    #[serde(flatten)]
+    kind: T,
+}
+
+/// An [`EventKind`] read by serde's derived (inherent) deserializer: every type but the
+/// recordings', which [`LineEvent::parse`] reads as [`RecordingEvent`].
+struct Derived(EventKind);
+
+impl<'de> Deserialize<'de> for Derived {
+    fn deserialize<D: Deserializer<'de>>(deserializer: D) -> Result<Self, D::Error> {
+        EventKind::deserialize(deserializer).map(Derived)
+    }
+}
+
+/// A line that must have a `type`.
+#[derive(Deserialize)]
+struct Typed {
+    #[serde(rename = "type")]
+    _kind: serde::de::IgnoredAny,
 }
 
 /// Whether `name` is an event type this Docent knows: an [`EventKind`] or a recording's.
