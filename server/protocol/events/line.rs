@@ -5,6 +5,7 @@
 //! naming the field, as serde says it.
 
 use std::fmt;
+use std::sync::OnceLock;
 
 use serde::de::value::MapDeserializer;
 use serde::{Deserialize, Deserializer};
@@ -117,53 +118,61 @@ pub fn is_event_type(name: &str) -> bool {
     has_type::<EventKind>(name) || has_type::<RecordingEvent>(name)
 }
 
-/// Whether the internally tagged enum `T` has a variant tagged `name`: asks `T`'s own
-/// derived `Deserialize` with an object that has only that `type`. An unknown tag is the one
-/// thing serde reports as an unknown variant there (every known one misses fields or reads),
-/// so the names are serde's, written once in the enum.
+/// Whether the internally tagged enum `T` has a variant tagged `name`.
 pub(super) fn has_type<T: Tagged>(name: &str) -> bool {
-    let probe = MapDeserializer::<_, Probe>::new(std::iter::once(("type", name)));
-    !matches!(T::probe(probe), Err(Probe::UnknownType))
+    T::names().contains(&name)
 }
 
-/// An enum tagged by `type`, with its derived deserializer.
+/// The tags of the internally tagged enum `T`'s variants, as serde's derived `Deserialize`
+/// knows them: it is asked to read an object whose `type` is no tag (empty), and answers
+/// that the variant is unknown, listing those it expects. So the names are serde's, written
+/// once in the enum.
+fn tags_of(read: fn(Probing<'_>) -> Result<(), Probe>) -> &'static [&'static str] {
+    match read(MapDeserializer::new(std::iter::once(("type", "")))) {
+        Err(Probe::UnknownType(tags)) => tags,
+        _ => &[],
+    }
+}
+
+/// An object holding only a `type`, for [`tags_of`].
+type Probing<'a> = MapDeserializer<'a, std::iter::Once<(&'a str, &'a str)>, Probe>;
+
+/// An enum tagged by `type`, with the tags its derived deserializer knows.
 pub(super) trait Tagged {
-    /// The derived deserializer's answer for `probe`.
-    fn probe<'a>(
-        probe: MapDeserializer<'a, std::iter::Once<(&'a str, &'a str)>, Probe>,
-    ) -> Result<(), Probe>;
+    /// Its tags (asked once).
+    fn names() -> &'static [&'static str];
 }
 
 impl Tagged for EventKind {
-    fn probe<'a>(
-        probe: MapDeserializer<'a, std::iter::Once<(&'a str, &'a str)>, Probe>,
-    ) -> Result<(), Probe> {
+    fn names() -> &'static [&'static str] {
+        static TAGS: OnceLock<&'static [&'static str]> = OnceLock::new();
         // The derived one (inherent, `remote = "Self"`), without recordings.
-        EventKind::deserialize(probe).map(drop)
+        TAGS.get_or_init(|| tags_of(|probe| EventKind::deserialize(probe).map(drop)))
     }
 }
 
 impl Tagged for RecordingEvent {
-    fn probe<'a>(
-        probe: MapDeserializer<'a, std::iter::Once<(&'a str, &'a str)>, Probe>,
-    ) -> Result<(), Probe> {
-        <RecordingEvent as Deserialize>::deserialize(probe).map(drop)
+    fn names() -> &'static [&'static str] {
+        static TAGS: OnceLock<&'static [&'static str]> = OnceLock::new();
+        TAGS.get_or_init(|| {
+            tags_of(|probe| <RecordingEvent as Deserialize>::deserialize(probe).map(drop))
+        })
     }
 }
 
-/// What a probe of a type name found: the one error that matters, and any other.
+/// What a probe of a type name found: the tags serde expected, or anything else.
 #[derive(Debug)]
 pub(super) enum Probe {
-    /// The enum has no variant of that name.
-    UnknownType,
-    /// Anything else (a known type whose fields are missing).
+    /// The enum has no variant of that name; these are its tags.
+    UnknownType(&'static [&'static str]),
+    /// Anything else.
     Other,
 }
 
 impl fmt::Display for Probe {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
         f.write_str(match self {
-            Probe::UnknownType => "unknown type",
+            Probe::UnknownType(_) => "unknown type",
             Probe::Other => "a known type",
         })
     }
@@ -176,8 +185,8 @@ impl serde::de::Error for Probe {
         Probe::Other
     }
 
-    fn unknown_variant(_: &str, _: &'static [&'static str]) -> Self {
-        Probe::UnknownType
+    fn unknown_variant(_: &str, expected: &'static [&'static str]) -> Self {
+        Probe::UnknownType(expected)
     }
 }
 
