@@ -7,6 +7,7 @@
 use std::fmt;
 use std::sync::OnceLock;
 
+use serde::de::DeserializeOwned;
 use serde::de::value::MapDeserializer;
 use serde::{Deserialize, Deserializer};
 
@@ -76,20 +77,24 @@ impl LineEvent {
             return serde_json::from_slice::<Typed>(line).map(|_| LineEvent::Newer(String::new()));
         };
         if has_type::<RecordingEvent>(name) {
-            let read: Flat<RecordingEvent> = serde_json::from_slice(line)?;
-            Ok(LineEvent::Event(EventKind::Recording(read.kind)))
+            read::<RecordingEvent>(line).map(|r| LineEvent::Event(EventKind::Recording(r)))
         } else if has_type::<EventKind>(name) {
-            let read: Flat<Derived> = serde_json::from_slice(line)?;
-            Ok(LineEvent::Event(read.kind.0))
+            read::<Derived>(line).map(|kind| LineEvent::Event(kind.0))
         } else {
             Ok(LineEvent::Newer(name.to_owned()))
         }
     }
 }
 
-/// A line read into `T`, its other fields (the stamps) left over. The object around `T`
-/// makes serde_json say where a field of `T` went wrong (the end of the line), as it does
-/// for any struct.
+/// `line` read into `T` (its stamps passed over). A line that does not read is read again
+/// inside an object ([`Flat`]), for serde_json to say where it went wrong, as it does for
+/// any struct: a field error of a tagged enum has no column otherwise.
+fn read<T: DeserializeOwned>(line: &[u8]) -> Result<T, serde_json::Error> {
+    serde_json::from_slice(line)
+        .or_else(|_| serde_json::from_slice::<Flat<T>>(line).map(|f| f.kind))
+}
+
+/// A line read into `T` inside an object, for the column of what is wrong.
 #[derive(Deserialize)]
 struct Flat<T> {
     #[serde(flatten)]
