@@ -375,6 +375,10 @@ fn every_variant_is_written_and_read_back_the_same_through_the_same_type() {
             "read back as written: {line}"
         );
         assert_eq!(variant(&read), n);
+        // The same through `Deserialize` itself, as any other program reads an event.
+        let written = serde_json::to_string(&event.kind).unwrap();
+        let direct: EventKind = serde_json::from_str(&written).unwrap();
+        assert_eq!(serde_json::to_string(&direct).unwrap(), written);
         let type_name = serde_json::to_value(&event.kind).unwrap()["type"].clone();
         let expected = Head {
             v: Some(crate::EVENT_FORMAT_VERSION),
