@@ -73,8 +73,9 @@ impl LineEvent {
     /// (no intermediate value: exports read every line of an hour's log this way).
     pub fn parse(line: &[u8], head: &Head) -> Result<LineEvent, serde_json::Error> {
         let Some(name) = head.kind.as_deref() else {
-            // serde's own words, with the column.
-            return serde_json::from_slice::<Typed>(line).map(|_| LineEvent::Newer(String::new()));
+            // No `type` (or `null`): serde's own words, with the column.
+            let missing = serde_json::from_slice::<Typed>(line).err();
+            return Err(missing.unwrap_or_else(|| serde::de::Error::missing_field("type")));
         };
         if has_type::<RecordingEvent>(name) {
             read::<RecordingEvent>(line).map(|r| LineEvent::Event(EventKind::Recording(r)))
@@ -111,11 +112,11 @@ impl<'de> Deserialize<'de> for Derived {
     }
 }
 
-/// A line that must have a `type`.
+/// A line that must have a `type`, a string.
 #[derive(Deserialize)]
 struct Typed {
     #[serde(rename = "type")]
-    _kind: serde::de::IgnoredAny,
+    _kind: String,
 }
 
 /// Whether `name` is an event type this Docent knows: an [`EventKind`] or a recording's.

@@ -519,6 +519,10 @@ fn a_known_type_whose_fields_do_not_read_names_the_field() {
         problem(r#"{"v":3,"session_us":1}"#),
         "missing field `type` at line 1 column 22"
     );
+    assert_eq!(
+        problem(r#"{"v":3,"type":null}"#),
+        "invalid type: null, expected a string at line 1 column 18"
+    );
 }
 
 #[test]
