@@ -6,7 +6,7 @@
 //! newest lacks has its default here, said beside it. Two fields are not read back, because
 //! no reader needs them and their types are the content model's, which only writes them: a
 //! `command.sent`'s parsed `args` (read as none) and a `bundle.refused`'s `diagnostics` (read
-//! as empty). Every other field reads back as written (`tests` below write and read every
+//! as empty). Every other field reads back as written (`line_tests.rs` writes and reads every
 //! variant).
 
 use std::borrow::Cow;
