@@ -46,7 +46,7 @@ pub struct LineStamp {
     pub time: Option<String>,
     /// Its `session_us`, if it has one (lines in a session's log do).
     pub session_us: Option<u64>,
-    /// The line as written, without its `\n`.
+    /// The line as written, without its `\n` (kept for the first and the last event).
     pub line: String,
 }
 
@@ -107,31 +107,49 @@ impl LogScan {
     pub fn read(mut log: impl BufRead) -> io::Result<LogScan> {
         let mut scan = LogScan::default();
         let mut bytes = Vec::new();
+        // The last event's line, kept in one buffer rather than copied for every line.
+        let mut last = Vec::new();
         let mut number = 0;
         loop {
             bytes.clear();
             if log.read_until(b'\n', &mut bytes)? == 0 {
-                return Ok(scan);
+                return Ok(scan.with_last_line(&last));
             }
             number += 1;
             let Some(line) = bytes.strip_suffix(b"\n") else {
                 scan.incomplete_last_line = Some(number);
-                return Ok(scan);
+                return Ok(scan.with_last_line(&last));
             };
             match parse(line) {
-                Ok(stamp) => scan.add(stamp),
+                Ok(stamp) => {
+                    scan.add(stamp, line);
+                    last.clear();
+                    last.extend_from_slice(line);
+                }
                 Err(fault) => scan.add_bad(number, fault),
             }
         }
     }
 
-    fn add(&mut self, stamp: LineStamp) {
+    fn add(&mut self, stamp: LineStamp, line: &[u8]) {
         self.events += 1;
         *self.by_type.entry(stamp.kind.clone()).or_default() += 1;
         if self.first.is_none() {
-            self.first = Some(stamp.clone());
+            let line = String::from_utf8_lossy(line).into_owned();
+            self.first = Some(LineStamp {
+                line,
+                ..stamp.clone()
+            });
         }
         self.last = Some(stamp);
+    }
+
+    /// The scan with its last event's line.
+    fn with_last_line(mut self, line: &[u8]) -> LogScan {
+        if let Some(last) = &mut self.last {
+            last.line = String::from_utf8_lossy(line).into_owned();
+        }
+        self
     }
 
     fn add_bad(&mut self, line: u64, fault: LineFault) {
@@ -161,7 +179,8 @@ fn parse(line: &[u8]) -> Result<LineStamp, LineFault> {
         kind,
         time: parsed.time,
         session_us: parsed.session_us,
-        line: String::from_utf8_lossy(line).into_owned(),
+        // Kept for the first and last events only (`LogScan::read`).
+        line: String::new(),
     })
 }
 
@@ -196,6 +215,13 @@ mod tests {
         );
         assert!(log.bad_lines.is_empty());
         assert_eq!(log.incomplete_last_line, None);
+        assert_eq!(
+            (first.line.as_str(), last.line.as_str()),
+            (
+                r#"{"type":"session.started","time":"2026-11-24T10:15:02.629Z","session_us":0}"#,
+                r#"{"type":"session.ended","session_us":1776}"#
+            )
+        );
     }
 
     #[test]
