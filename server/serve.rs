@@ -111,7 +111,7 @@ impl Server {
         hub.publish(EventKind::ServerStarted {
             bundle: bundle.root.display().to_string(),
             bundle_hash: crate::content::corpus_fingerprint(&bundle.root),
-            version: env!("CARGO_PKG_VERSION"),
+            version: env!("CARGO_PKG_VERSION").into(),
             seed: options.seed,
         });
         let proxies = TrustedProxies::new(bundle.config.server.trusted_proxies.clone());

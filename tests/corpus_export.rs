@@ -14,6 +14,8 @@ mod coded;
 mod damaged;
 #[path = "corpus_export/expected.rs"]
 mod expected;
+#[path = "corpus_export/fixture.rs"]
+mod fixture;
 #[path = "../bench/export_session.rs"]
 mod generated;
 #[path = "corpus_export/mcap.rs"]

@@ -90,6 +90,7 @@ impl Base {
             y,
             heading,
             moving,
+            frame: None,
         });
     }
 

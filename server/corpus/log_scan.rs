@@ -1,6 +1,9 @@
 //! One event log read line by line, as `docent corpus` needs it: how many events of each
 //! type, the first and the last (their time and session clock), and every line that is not
-//! an event, by its line number. A last line without its `\n` is the one a crash may cut
+//! an event, by its line number. A line is read only as far as its stamps and type
+//! (`docent_protocol::events::Head`): any object with a string `type` counts, so that a list
+//! of a large corpus stays cheap; the first and last lines can be read whole
+//! ([`LineStamp::event`]). A last line without its `\n` is the one a crash may cut
 //! short (docs/CORPUS.md, "The last line after a kill"): it is set aside as incomplete, not
 //! counted and not called damage; any other line that is not an event is damage.
 
@@ -8,7 +11,7 @@ use std::collections::BTreeMap;
 use std::fmt;
 use std::io::{self, BufRead};
 
-use serde::Deserialize;
+use docent_protocol::events::{EventKind, Head, Line, LineEvent};
 
 /// At most this many bad lines are kept one by one; the rest are only counted, so a file of
 /// garbage cannot fill the memory with complaints.
@@ -43,6 +46,19 @@ pub struct LineStamp {
     pub time: Option<String>,
     /// Its `session_us`, if it has one (lines in a session's log do).
     pub session_us: Option<u64>,
+    /// The line as written, without its `\n` (kept for the first and the last event).
+    pub line: String,
+}
+
+impl LineStamp {
+    /// The event, read whole through the protocol's types; `None` when its type is newer
+    /// than this Docent's or its fields do not read.
+    pub fn event(&self) -> Option<EventKind> {
+        match Line::parse(self.line.as_bytes()).ok()?.event {
+            LineEvent::Event(kind) => Some(kind),
+            LineEvent::Newer(_) => None,
+        }
+    }
 }
 
 /// A line that is not an event, by its number (from 1).
@@ -86,45 +102,54 @@ impl fmt::Display for LineFault {
     }
 }
 
-/// The fields of an event line that a scan reads; serde_json checks the whole line anyway.
-#[derive(Deserialize)]
-struct Line {
-    #[serde(rename = "type")]
-    kind: Option<String>,
-    time: Option<String>,
-    session_us: Option<u64>,
-}
-
 impl LogScan {
     /// Reads every line of `log`.
     pub fn read(mut log: impl BufRead) -> io::Result<LogScan> {
         let mut scan = LogScan::default();
         let mut bytes = Vec::new();
+        // The last event's line, kept in one buffer rather than copied for every line.
+        let mut last = Vec::new();
         let mut number = 0;
         loop {
             bytes.clear();
             if log.read_until(b'\n', &mut bytes)? == 0 {
-                return Ok(scan);
+                return Ok(scan.with_last_line(&last));
             }
             number += 1;
             let Some(line) = bytes.strip_suffix(b"\n") else {
                 scan.incomplete_last_line = Some(number);
-                return Ok(scan);
+                return Ok(scan.with_last_line(&last));
             };
             match parse(line) {
-                Ok(stamp) => scan.add(stamp),
+                Ok(stamp) => {
+                    scan.add(stamp, line);
+                    last.clear();
+                    last.extend_from_slice(line);
+                }
                 Err(fault) => scan.add_bad(number, fault),
             }
         }
     }
 
-    fn add(&mut self, stamp: LineStamp) {
+    fn add(&mut self, stamp: LineStamp, line: &[u8]) {
         self.events += 1;
         *self.by_type.entry(stamp.kind.clone()).or_default() += 1;
         if self.first.is_none() {
-            self.first = Some(stamp.clone());
+            let line = String::from_utf8_lossy(line).into_owned();
+            self.first = Some(LineStamp {
+                line,
+                ..stamp.clone()
+            });
         }
         self.last = Some(stamp);
+    }
+
+    /// The scan with its last event's line.
+    fn with_last_line(mut self, line: &[u8]) -> LogScan {
+        if let Some(last) = &mut self.last {
+            last.line = String::from_utf8_lossy(line).into_owned();
+        }
+        self
     }
 
     fn add_bad(&mut self, line: u64, fault: LineFault) {
@@ -139,7 +164,8 @@ fn parse(line: &[u8]) -> Result<LineStamp, LineFault> {
     if line.is_empty() {
         return Err(LineFault::Empty);
     }
-    let parsed: Line = serde_json::from_slice(line).map_err(|e| match e.classify() {
+    // serde_json checks the whole line's syntax, reading only the head's fields.
+    let parsed = Head::parse(line).map_err(|e| match e.classify() {
         serde_json::error::Category::Data => LineFault::NotAnEvent,
         serde_json::error::Category::Eof => LineFault::CutShort {
             column: e.column().max(1),
@@ -153,6 +179,8 @@ fn parse(line: &[u8]) -> Result<LineStamp, LineFault> {
         kind,
         time: parsed.time,
         session_us: parsed.session_us,
+        // Kept for the first and last events only (`LogScan::read`).
+        line: String::new(),
     })
 }
 
@@ -187,6 +215,13 @@ mod tests {
         );
         assert!(log.bad_lines.is_empty());
         assert_eq!(log.incomplete_last_line, None);
+        assert_eq!(
+            (first.line.as_str(), last.line.as_str()),
+            (
+                r#"{"type":"session.started","time":"2026-11-24T10:15:02.629Z","session_us":0}"#,
+                r#"{"type":"session.ended","session_us":1776}"#
+            )
+        );
     }
 
     #[test]

@@ -282,7 +282,7 @@ mod tests {
         let started = EventKind::ServerStarted {
             bundle: "/bundles/tour".into(),
             bundle_hash: Some("sha256:00".into()),
-            version: "0.1.0",
+            version: "0.1.0".into(),
             seed: None,
         };
         let day = corpus.join("days/2026-11-18/11-06-41Z.jsonl");

@@ -8,6 +8,8 @@ use std::fs::File;
 use std::io::{self, BufReader};
 use std::path::{Path, PathBuf};
 
+use docent_protocol::events::EventKind;
+
 use crate::layout::{SESSION_EVENTS, SESSION_MANIFEST};
 use crate::log_lock::{LogLock, log_lock};
 use crate::log_scan::LogScan;
@@ -155,7 +157,9 @@ impl SessionFolder {
     pub fn ended(&self) -> bool {
         match &self.manifest {
             Some(manifest) => manifest.ended.is_some(),
-            None => self.last_event_is("session.ended"),
+            None => self
+                .last_event()
+                .is_some_and(|last| matches!(last, EventKind::SessionEnded { .. })),
         }
     }
 
@@ -191,9 +195,8 @@ impl SessionFolder {
             return Some(&manifest.started.time);
         }
         let first = self.log.as_ref()?.first.as_ref()?;
-        (first.kind == "session.started")
-            .then_some(first.time.as_deref())
-            .flatten()
+        let started = matches!(first.event()?, EventKind::SessionStarted { .. });
+        started.then_some(first.time.as_deref()).flatten()
     }
 
     /// Its length on the session clock when it ended: the `session_us` of its last line.
@@ -219,10 +222,9 @@ impl SessionFolder {
         self.log.as_ref().map_or(0, |log| log.events)
     }
 
-    fn last_event_is(&self, kind: &str) -> bool {
-        (self.log.as_ref())
-            .and_then(|log| log.last.as_ref())
-            .is_some_and(|last| last.kind == kind)
+    /// The log's last event, read whole.
+    fn last_event(&self) -> Option<EventKind> {
+        self.log.as_ref()?.last.as_ref()?.event()
     }
 }
 
@@ -269,7 +271,12 @@ mod tests {
         dir
     }
 
-    const ENDED_LOG: &str = "{\"type\":\"session.started\",\"session_us\":0}\n{\"type\":\"session.ended\",\"session_us\":1776}\n";
+    const ENDED_LOG: &str = concat!(
+        r#"{"v":4,"seq":28,"time":"2026-11-24T10:15:02.629Z","mono_us":6121454,"session_us":0,"type":"session.started","session":1,"source":"operator","client":2,"consent":"recorded","page":null,"projector":null}"#,
+        "\n",
+        r#"{"v":4,"seq":32,"time":"2026-11-24T10:15:04.405Z","mono_us":6123230,"session_us":1776,"type":"session.ended","session":1,"source":"operator","client":2,"reason":"marked"}"#,
+        "\n",
+    );
 
     #[test]
     fn an_ended_session_is_ended_with_its_length_on_the_session_clock() {

@@ -77,7 +77,7 @@ impl Dispatcher {
             verb: command.verb.to_string(),
             arg: command.arg.as_deref().map(str::to_owned),
             args: Arc::clone(&command.args),
-            adapter: adapter.map_or("none", |a| a.name()),
+            adapter: adapter.map_or("none", |a| a.name()).into(),
         });
         let channel = Channel::of(&command.verb);
         let (Some(_), Some(channel)) = (adapter, channel) else {

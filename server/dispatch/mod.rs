@@ -364,7 +364,7 @@ impl Dispatcher {
             source: req.source,
             client: req.client,
             label: req.label.clone(),
-            code: error.code(),
+            code: error.code().into(),
             message: error.to_string(),
         });
         error

@@ -134,7 +134,7 @@ impl Sequence {
             verb: command.verb.to_string(),
             arg: command.arg.as_deref().map(str::to_owned),
             args: Arc::clone(&command.args),
-            adapter: "dispatcher",
+            adapter: "dispatcher".into(),
         });
         let pause = match *command.args {
             Args::Wait { pause } => pause,

@@ -306,7 +306,7 @@ fn log_refusal(state: &AppState, broker: &str, role: ClientRole, refusal: Refusa
     );
     state.hub.publish(EventKind::ClientRefused {
         role,
-        code,
+        code: code.into(),
         address,
         unlogged,
     });

@@ -99,7 +99,7 @@ pub(crate) fn log_refusal(
         hub.publish(EventKind::RequestRefused {
             method,
             path,
-            code,
+            code: code.into(),
             address,
             unlogged,
         });

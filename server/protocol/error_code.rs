@@ -2,10 +2,10 @@
 //! error body. A compatibility boundary: the codes are listed in `docs/PROTOCOL.md`'s two
 //! error tables, and a test holds the enum and the tables to the same set.
 
-use serde::Serialize;
+use serde::{Deserialize, Serialize};
 
 /// A stable error code; serialised as its kebab-case name (`frame-too-large`).
-#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, Serialize)]
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, Serialize, Deserialize)]
 #[serde(rename_all = "kebab-case")]
 pub enum ErrorCode {
     /// `bad-request`: A request body or address that is not right.

@@ -1,10 +1,10 @@
 //! Whether a robot's link to the fleet's MQTT broker is up, as the `fleet.link` event and
 //! operators show it.
 
-use serde::Serialize;
+use serde::{Deserialize, Serialize};
 
 /// Whether the link to the broker is up, as operators are shown it.
-#[derive(Clone, Debug, Serialize, PartialEq, Eq)]
+#[derive(Clone, Debug, Serialize, Deserialize, PartialEq, Eq)]
 pub struct LinkView {
     /// The broker, without any login.
     pub broker: String,
@@ -16,7 +16,7 @@ pub struct LinkView {
 }
 
 /// The state of a broker link.
-#[derive(Clone, Copy, Debug, Serialize, PartialEq, Eq)]
+#[derive(Clone, Copy, Debug, Serialize, Deserialize, PartialEq, Eq)]
 #[serde(rename_all = "lowercase")]
 pub enum LinkState {
     /// Not connected yet.

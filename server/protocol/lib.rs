@@ -13,7 +13,9 @@
 //! Map:
 //! - `events/`: [`events::EventKind`] and its parts, one file per family (`origin.rs`: who
 //!   triggered; `session.rs`: why a session ended; `recording.rs`; `robot.rs`;
-//!   `robot_link.rs`; `touch.rs`; `attract.rs`), and `stamped.rs`, the [`events::Event`] line.
+//!   `robot_link.rs`; `touch.rs`; `attract.rs`), `stamped.rs`, the [`events::Event`] line, and
+//!   `line.rs`, the same line read back ([`events::Line`]).
+//! - `open`: [`Open`], a code as written by a newer Docent, read back.
 //! - `client_frames`: [`client_frames::ClientFrame`], what a websocket client sends (its
 //!   `hello` and `trigger` as structs of their own), and the HTTP trigger's body,
 //!   [`client_frames::TriggerOptions`].
@@ -37,9 +39,11 @@ pub mod state;
 #[cfg(test)]
 mod documented_frames;
 mod error_code;
+mod open;
 mod projector;
 
 pub use error_code::ErrorCode;
+pub use open::Open;
 pub use projector::ProjectorState;
 
 /// The protocol version sent in `welcome`. 4: `command` frames carry the parsed `args`.

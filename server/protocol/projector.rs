@@ -1,10 +1,10 @@
 //! What the projector reports doing, as `/api/state`, `display.changed` events and operators
 //! show it.
 
-use serde::Serialize;
+use serde::{Deserialize, Serialize};
 
 /// What the projector is doing with what the display state names, as it reported.
-#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize)]
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize, Deserialize)]
 #[serde(rename_all = "snake_case")]
 pub enum ProjectorState {
     /// Nothing on screen.

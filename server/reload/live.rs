@@ -235,7 +235,7 @@ impl Reloader {
         tracing::error!("{message}");
         self.state.reload.trouble(message.clone());
         self.state.hub.publish(EventKind::BundleWatchFailed {
-            code: "folder-missing",
+            code: "folder-missing".into(),
             message,
         });
     }
@@ -247,7 +247,7 @@ impl Reloader {
         tracing::error!("{message}");
         self.state.reload.trouble(message.clone());
         self.state.hub.publish(EventKind::BundleWatchFailed {
-            code: "watcher-error",
+            code: "watcher-error".into(),
             message,
         });
     }

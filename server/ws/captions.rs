@@ -210,7 +210,7 @@ mod tests {
                 text: text.to_owned(),
                 language: None,
             }),
-            adapter: "log",
+            adapter: "log".into(),
         }
     }
 

@@ -292,7 +292,7 @@ fn log_refusal(client: &Client, role: ClientRole, refusal: Refusal) {
     );
     client.state.hub.publish(EventKind::ClientRefused {
         role,
-        code,
+        code: code.into(),
         address,
         unlogged,
     });

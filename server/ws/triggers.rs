@@ -157,7 +157,7 @@ fn log_refused(client: &Client, role: ClientRole, label: String, code: ErrorCode
         source: role.source(),
         client: Some(client.id),
         label,
-        code,
+        code: code.into(),
         message,
     });
 }

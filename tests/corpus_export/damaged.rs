@@ -108,7 +108,7 @@ fn a_damaged_line_stops_the_export_at_its_file_and_line_and_writes_nothing() {
     assert_eq!(
         error.to_string(),
         format!(
-            "{}:3: the session's log is damaged: missing field `trigger` (column 67). Nothing \
+            "{}:3: the session's log is damaged: missing field `verb` (column 67). Nothing \
              was exported; repair or remove that line (keep a copy of the original) and export \
              again",
             log.display()

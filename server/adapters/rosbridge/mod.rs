@@ -86,6 +86,7 @@ impl Robot {
             y,
             heading,
             moving,
+            frame: None,
         });
     }
 }

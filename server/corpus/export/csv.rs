@@ -32,7 +32,7 @@ pub fn write(timeline: &Timeline, annotations: &[Annotation]) -> Vec<u8> {
         let row = [
             seconds(u.start_us),
             seconds(u.end_us),
-            u.source.clone(),
+            u.source.as_str().to_owned(),
             u.label.clone(),
             u.variant.clone().unwrap_or_default(),
             u.alternative.map(|n| n.to_string()).unwrap_or_default(),
@@ -113,7 +113,7 @@ mod tests {
             end_us: 3_250_000,
             text: "Hello, \"friends\"\nand all".into(),
             label: "WELCOME".into(),
-            source: "kiosk".into(),
+            source: docent_protocol::events::Source::Kiosk,
             variant: Some("Text".into()),
             alternative: Some(1),
             outcome: Outcome::Done,

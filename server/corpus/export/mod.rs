@@ -16,7 +16,6 @@
 mod csv;
 mod eaf;
 mod error;
-mod log_line;
 mod mcap;
 mod textgrid;
 mod tiers;

@@ -150,7 +150,7 @@ mod tests {
             end_us: 2_000_000,
             text: "Say \"cheese\"".into(),
             label: "PHOTO".into(),
-            source: "kiosk".into(),
+            source: docent_protocol::events::Source::Kiosk,
             variant: None,
             alternative: None,
             outcome: crate::export::timeline::Outcome::Done,

@@ -3,10 +3,17 @@
 //! each placed on the session clock (`session_us`, microseconds from `session.started`). This
 //! is the only reader of the log for exports, so the formats cannot disagree about what
 //! happened; `tiers.rs` lays it out as tiers, `csv.rs` as rows.
+//!
+//! Each line is read through the protocol's own types (`docent_protocol::events::LineEvent`, the
+//! `EventKind` the server wrote it with): a renamed event type or field does not compile here,
+//! or fails the corpus tests, instead of emptying a tier. Types newer than this Docent are
+//! passed over, so a log with them still exports.
 
 use std::collections::{BTreeMap, HashMap};
+use std::sync::Arc;
 
-use crate::export::log_line::{CommandFields, EXPLICIT_TOUCHES, Event, KNOWN_FORMAT, LogLine};
+use docent_protocol::EVENT_FORMAT_VERSION;
+use docent_protocol::events::{ActRef, EventKind, Head, LineEvent, Source};
 
 mod parts;
 
@@ -15,13 +22,17 @@ pub use parts::{
     UNKNOWN_TEXT, Utterance,
 };
 
+/// The first event format whose visitors' touches are `touch` events; before it, a kiosk's
+/// `act.triggered` and a page change no `DISPLAY_PAGE` asked for are taken for touches.
+const EXPLICIT_TOUCHES: u32 = 4;
+
 /// A command as its events told it so far.
 struct Pending {
     verb: String,
     arg: Option<String>,
     trigger: u64,
     label: String,
-    source: String,
+    source: Source,
     first_us: u64,
     sent_us: Option<u64>,
     started_us: Option<u64>,
@@ -51,40 +62,47 @@ pub struct TimelineReader {
 }
 
 impl TimelineReader {
-    /// Reads one line of the log (without its `\n`).
+    /// Reads one line of the log (without its `\n`): its stamps first (a line of a newer
+    /// format or of a day log is told as such, whatever its fields), then its event.
     pub fn read_line(&mut self, line: &[u8]) -> Result<(), LineProblem> {
-        let line = LogLine::parse(line).map_err(LineProblem)?;
-        if line.v > KNOWN_FORMAT {
+        let head = Head::parse(line).map_err(|e| LineProblem(plain(&e)))?;
+        let Some(v) = head.v else {
+            let missing = <serde_json::Error as serde::de::Error>::missing_field("v");
+            return Err(LineProblem(format!("{missing} (column {})", line.len())));
+        };
+        if v > EVENT_FORMAT_VERSION {
             return Err(LineProblem(format!(
-                "event format {} is newer than this Docent reads ({KNOWN_FORMAT}): export it \
-                 with the Docent that wrote it",
-                line.v
+                "event format {v} is newer than this Docent reads ({EVENT_FORMAT_VERSION}): \
+                 export it with the Docent that wrote it"
             )));
         }
-        let Some(at) = line.session_us else {
+        let Some(at) = head.session_us else {
             return Err(LineProblem(
                 "the line has no `session_us`: this is not a session's log (a day log's \
                  events belong to no session)"
                     .into(),
             ));
         };
+        let event = LineEvent::parse(line, &head).map_err(|e| LineProblem(plain(&e)))?;
         self.last_us = self.last_us.max(at);
-        self.explicit_touches |= line.v >= EXPLICIT_TOUCHES;
-        self.take(at, line.event);
+        self.explicit_touches |= v >= EXPLICIT_TOUCHES;
+        if let LineEvent::Event(kind) = event {
+            self.take(at, kind);
+        }
         Ok(())
     }
 
-    fn take(&mut self, at: u64, event: Event) {
+    fn take(&mut self, at: u64, event: EventKind) {
         match event {
-            Event::ActTriggered {
-                trigger,
-                source,
-                label,
+            EventKind::ActTriggered {
+                act,
                 variant,
                 alternative,
                 text,
+                ..
             } => {
-                if source == "kiosk" && !self.explicit_touches {
+                let label = act.label.to_string();
+                if act.source == Source::Kiosk && !self.explicit_touches {
                     let what = Touched::Act {
                         label: label.clone(),
                     };
@@ -94,28 +112,32 @@ impl TimelineReader {
                 let chosen = ChosenText {
                     text,
                     variant,
-                    alternative,
+                    alternative: alternative.map(|a| a as u64),
                     said: false,
                 };
-                self.chosen.insert(trigger, chosen);
+                self.chosen.insert(act.trigger, chosen);
             }
-            Event::TriggerRefused {
-                source,
+            EventKind::TriggerRefused {
+                source: Source::Kiosk,
                 label,
                 code,
-            } if source == "kiosk" => {
+                ..
+            } => {
                 // The touch that asked for it (logged just before) was refused.
                 let asked = self.timeline.touches.last_mut().filter(|t| {
                     self.explicit_touches
                         && matches!(&t.what, Touched::Act { label: l } if *l == label)
                 });
-                let what = Touched::Refused { label, code };
+                let what = Touched::Refused {
+                    label,
+                    code: code.to_string(),
+                };
                 match asked {
                     Some(touch) => touch.what = what,
                     None => self.timeline.touches.push(Touch { at_us: at, what }),
                 }
             }
-            Event::Touch { act, link } => {
+            EventKind::Touch { act, link, .. } => {
                 let what = match (act, link) {
                     (Some(label), _) => Touched::Act { label },
                     (None, Some(page)) => Touched::Page { page },
@@ -123,58 +145,78 @@ impl TimelineReader {
                 };
                 self.timeline.touches.push(Touch { at_us: at, what });
             }
-            Event::TriggerRefused { .. } | Event::Other => {}
-            Event::CommandSent(c) => self.command(at, c).sent_us = Some(at),
-            Event::CommandStarted(c) => self.command(at, c).started_us = Some(at),
-            Event::CommandDone(c) => self.command(at, c).end = Some((at, Outcome::Done)),
-            Event::CommandFailed(mut c) => {
-                let reason = c.reason.take().unwrap_or_default();
-                self.command(at, c).end = Some((at, Outcome::Failed(reason)));
+            EventKind::CommandSent {
+                command,
+                act,
+                verb,
+                arg,
+                ..
+            } => {
+                let pending = self.command(at, command, &act, verb);
+                pending.sent_us = Some(at);
+                if arg.is_some() {
+                    pending.arg = arg;
+                }
             }
-            Event::CommandCancelled(mut c) => {
-                let reason = c.reason.take().unwrap_or_default();
-                self.command(at, c).end = Some((at, Outcome::Cancelled(reason)));
+            EventKind::CommandStarted { command, act, verb } => {
+                self.command(at, command, &act, verb).started_us = Some(at);
             }
-            Event::DisplayChanged { page } => self.page_changed(at, page),
-            Event::SituationMarked { situation } => {
+            EventKind::CommandDone { command, act, verb } => {
+                self.command(at, command, &act, verb).end = Some((at, Outcome::Done));
+            }
+            EventKind::CommandFailed {
+                command,
+                act,
+                verb,
+                reason,
+            } => {
+                self.command(at, command, &act, verb).end = Some((at, Outcome::Failed(reason)));
+            }
+            EventKind::CommandCancelled {
+                command,
+                act,
+                verb,
+                reason,
+            } => {
+                let end = Some((at, Outcome::Cancelled(reason)));
+                self.command(at, command, &act, verb).end = end;
+            }
+            EventKind::DisplayChanged { page, .. } => self.page_changed(at, page),
+            EventKind::SituationMarked { situation, .. } => {
                 let what = Marked::Situation(situation);
                 self.timeline.marks.push(Mark { at_us: at, what });
             }
-            Event::NoteWritten { text } => {
+            EventKind::NoteWritten { text, .. } => {
                 let what = Marked::Note(text);
                 self.timeline.marks.push(Mark { at_us: at, what });
             }
-            Event::VisitorGroup { group } => {
+            EventKind::VisitorGroup { group, .. } => {
                 let what = Marked::Group(group);
                 self.timeline.marks.push(Mark { at_us: at, what });
             }
-            Event::SessionStarted { page } => {
-                if let Some(page) = page {
-                    self.page = Some((at, page));
-                }
-            }
-            Event::SessionEnded => self.timeline.ended = true,
+            EventKind::SessionStarted {
+                page: Some(page), ..
+            } => self.page = Some((at, page)),
+            EventKind::SessionEnded { .. } => self.timeline.ended = true,
+            // Every other event draws nothing on the timeline (MCAP reads the lines again).
+            _ => {}
         }
     }
 
-    /// The command `fields` names, begun at `at` when this is its first event.
-    fn command(&mut self, at: u64, fields: CommandFields) -> &mut Pending {
-        self.timeline.labels.insert(fields.label.clone());
-        let pending = self.commands.entry(fields.command).or_insert(Pending {
-            verb: fields.verb,
+    /// The command `command` of the trigger `act`, begun at `at` when this is its first event.
+    fn command(&mut self, at: u64, command: u64, act: &Arc<ActRef>, verb: String) -> &mut Pending {
+        self.timeline.labels.insert(act.label.to_string());
+        self.commands.entry(command).or_insert(Pending {
+            verb,
             arg: None,
-            trigger: fields.trigger,
-            label: fields.label,
-            source: fields.source,
+            trigger: act.trigger,
+            label: act.label.to_string(),
+            source: act.source,
             first_us: at,
             sent_us: None,
             started_us: None,
             end: None,
-        });
-        if fields.arg.is_some() {
-            pending.arg = fields.arg;
-        }
-        pending
+        })
     }
 
     /// A `display.changed`: a new page begins when the touchscreen's page is another. A change
@@ -265,12 +307,20 @@ impl TimelineReader {
             end_us,
             text,
             label: c.label.clone(),
-            source: c.source.clone(),
+            source: c.source,
             variant,
             alternative,
             outcome,
         }
     }
+}
+
+/// serde_json's message without its "at line 1 column N" (a log line is one line; the column
+/// is given separately).
+fn plain(error: &serde_json::Error) -> String {
+    let message = error.to_string();
+    let cut = message.rfind(" at line ").unwrap_or(message.len());
+    format!("{} (column {})", &message[..cut], error.column())
 }
 
 #[cfg(test)]

@@ -7,14 +7,47 @@ fn read(lines: &[&str]) -> Timeline {
     read_format(3, lines)
 }
 
-/// Reads `lines` as written in event format `v`.
+/// Reads `lines` as written in event format `v`, each made whole first.
 fn read_format(v: u32, lines: &[&str]) -> Timeline {
     let mut reader = TimelineReader::default();
     for line in lines {
-        let line = format!("{{\"v\":{v},{}", &line[1..]);
+        let line = whole(v, line);
         reader.read_line(line.as_bytes()).expect(&line);
     }
     reader.finish()
+}
+
+/// `line` with `v` and the fields its type must have that it does not set, so that each
+/// test writes only what it is about (the server always writes them all).
+fn whole(v: u32, line: &str) -> String {
+    let mut fields: serde_json::Map<String, serde_json::Value> =
+        serde_json::from_str(line).expect(line);
+    let kind = fields["type"].as_str().unwrap_or_default().to_owned();
+    let mut missing = vec![("v", serde_json::json!(v))];
+    let act = [("at", serde_json::json!("acts.yaml:1"))];
+    match kind.as_str() {
+        "act.triggered" => missing.extend(act.into_iter().chain([
+            ("context", serde_json::json!("Text")),
+            ("interrupt", serde_json::json!(false)),
+        ])),
+        "command.sent" => missing.extend(act.into_iter().chain([
+            ("args", serde_json::json!({})),
+            ("adapter", serde_json::json!("log")),
+        ])),
+        "command.started" | "command.done" | "command.failed" | "command.cancelled" => {
+            missing.extend(act)
+        }
+        "trigger.refused" => missing.push(("message", serde_json::json!("refused"))),
+        "session.started" | "session.ended" => missing.extend([
+            ("session", serde_json::json!(1)),
+            ("source", serde_json::json!("operator")),
+        ]),
+        _ => {}
+    }
+    for (name, value) in missing {
+        fields.entry(name).or_insert(value);
+    }
+    serde_json::Value::Object(fields).to_string()
 }
 
 #[test]
@@ -179,10 +212,33 @@ fn a_line_that_is_not_a_session_line_says_why() {
     );
     assert_eq!(
         problem(r#"{"v":3,"session_us":1,"type":"command.done","command":2}"#),
-        "missing field `trigger` (column 56)"
+        "missing field `verb` (column 56)"
     );
     assert_eq!(
         problem(r#"{"v":3,"session_us":1,"type":"pose","x":1"#),
         "EOF while parsing an object (column 41)"
     );
+}
+
+#[test]
+fn a_newer_type_is_passed_over_and_a_newer_code_shown_as_written() {
+    let lines = [
+        r#"{"session_us":0,"type":"session.started","page":"index.html"}"#,
+        r#"{"session_us":3,"type":"robot.dance","style":"waltz","x":"left"}"#,
+        r#"{"session_us":5,"type":"trigger.refused","source":"kiosk","label":"TOUR","code":"too-sleepy"}"#,
+        r#"{"session_us":9,"type":"session.ended"}"#,
+    ];
+    let timeline = read_format(4, &lines);
+    let refused = Touched::Refused {
+        label: "TOUR".into(),
+        code: "too-sleepy".into(),
+    };
+    assert_eq!(
+        timeline.touches,
+        [Touch {
+            at_us: 5,
+            what: refused
+        }]
+    );
+    assert_eq!((timeline.end_us, timeline.ended), (9, true));
 }

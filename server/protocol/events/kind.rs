@@ -1,20 +1,35 @@
 //! The event types: [`EventKind`], one variant per thing that happens. Field names here are
 //! the corpus format; change them only with a version bump. Who asked (`origin.rs`) and the
 //! hub's stamps (`stamped.rs`) live beside it, so that this file is the format alone.
+//!
+//! The same enum reads the lines back (`line.rs`): every field a format version before the
+//! newest lacks has its default here, said beside it. Two fields are not read back, because
+//! no reader needs them and their types are the content model's, which only writes them: a
+//! `command.sent`'s parsed `args` (read as none) and a `bundle.refused`'s `diagnostics` (read
+//! as empty). Every other field reads back as written (`line_tests.rs` writes and reads every
+//! variant).
 
+use std::borrow::Cow;
 use std::sync::Arc;
 
-use serde::Serialize;
+use serde::{Deserialize, Deserializer, Serialize, Serializer};
 
 use super::origin::{ActRef, ClientRole, Source};
 use super::recording::RecordingEvent;
 use super::session::{Consent, SessionEnd};
-use crate::ErrorCode;
+use crate::{ErrorCode, Open};
 use docent_content::{Args, Language};
 
 /// One thing that happened. Serialized with `type` as the tag.
-#[derive(Debug, Serialize)]
-#[serde(tag = "type")]
+///
+/// (Serde derives its tagged variants as the inherent `EventKind::serialize` and
+/// `EventKind::deserialize`, `remote = "Self"`; the trait impls below add `Recording`, whose
+/// four types carry their own tag. A derived untagged variant would read every damaged line
+/// of another type as "matches no variant", losing which field is wrong. So read through
+/// the trait, `<EventKind as Deserialize>::deserialize`, or `serde_json::from_str`: the
+/// inherent one does not know recordings.)
+#[derive(Debug, Serialize, Deserialize)]
+#[serde(tag = "type", remote = "Self")]
 pub enum EventKind {
     /// Docent started serving a bundle.
     #[serde(rename = "server.started")]
@@ -25,7 +40,7 @@ pub enum EventKind {
         /// file could not be read for it (the reason is in Docent's output).
         bundle_hash: Option<String>,
         /// Docent's version.
-        version: &'static str,
+        version: Cow<'static, str>,
         /// The random seed, when reproducible runs were asked for.
         #[serde(skip_serializing_if = "Option::is_none")]
         seed: Option<u64>,
@@ -65,8 +80,8 @@ pub enum EventKind {
         client: Option<u64>,
         /// The label asked for.
         label: String,
-        /// The error code.
-        code: ErrorCode,
+        /// The error code (as written when a newer Docent's).
+        code: Open<ErrorCode>,
         /// Why.
         message: String,
     },
@@ -82,10 +97,12 @@ pub enum EventKind {
         verb: String,
         /// Argument as written.
         arg: Option<String>,
-        /// The argument parsed (the `args` of `command` frames; format 2).
+        /// The argument parsed (the `args` of `command` frames; format 2). Not read back: read
+        /// as none (`Args::None`), as format 1 lines, which lack it, are.
+        #[serde(skip_deserializing, default = "no_args")]
         args: Arc<Args>,
         /// The adapter it went to.
-        adapter: &'static str,
+        adapter: Cow<'static, str>,
     },
     /// An adapter started executing a command.
     #[serde(rename = "command.started")]
@@ -144,7 +161,9 @@ pub enum EventKind {
         projector: Option<String>,
         /// The `HIGHLIGHT` areas lit on the projector, as written; `None` when cleared.
         highlight: Option<String>,
-        /// What the projector reported about `projector` or `highlight`.
+        /// What the projector reported about `projector` or `highlight` (added within format
+        /// 2: older lines read as `black`).
+        #[serde(default)]
         projector_state: crate::ProjectorState,
     },
     /// A browser asked for a page that is not in the bundle (a broken link or `DISPLAY_PAGE`);
@@ -158,17 +177,26 @@ pub enum EventKind {
         /// when the browser did not say.
         from: Option<String>,
     },
-    /// The drive base's pose.
+    /// The drive base's pose. A line without its numbers (or with another value there)
+    /// reads them as NaN, which no line holds (JSON has none): the export that draws poses,
+    /// MCAP, calls that line damaged, and the others pass it over as before.
     #[serde(rename = "pose")]
     Pose {
         /// Metres.
+        #[serde(deserialize_with = "number", default = "not_a_number")]
         x: f64,
         /// Metres.
+        #[serde(deserialize_with = "number", default = "not_a_number")]
         y: f64,
         /// Degrees, counter-clockwise from the x axis.
+        #[serde(deserialize_with = "number", default = "not_a_number")]
         heading: f64,
         /// Whether it is driving.
         moving: bool,
+        /// The frame `x`, `y` and `heading` are in, when a line names one (the MCAP export
+        /// reads it, `map` when absent); Docent's own drives write none.
+        #[serde(default, skip_serializing_if = "Option::is_none")]
+        frame: Option<String>,
     },
     /// The drive reached its waypoint.
     #[serde(rename = "drive.arrived")]
@@ -261,7 +289,9 @@ pub enum EventKind {
         /// The marking client.
         #[serde(skip_serializing_if = "Option::is_none")]
         client: Option<u64>,
-        /// The consent it starts with (the site's `corpus.consent`).
+        /// The consent it starts with (the site's `corpus.consent`). Format 3 lines before
+        /// consent was logged lack it: read as `recorded`, the site's default then.
+        #[serde(default = "recorded")]
         consent: Consent,
         /// The page the touchscreen showed as it began (the session's pages start with it).
         page: Option<String>,
@@ -347,7 +377,8 @@ pub enum EventKind {
         /// The client that ended it.
         #[serde(skip_serializing_if = "Option::is_none")]
         client: Option<u64>,
-        /// Why it ended.
+        /// Why it ended (format 3). Format 1 and 2 lines lack it: read as `marked`.
+        #[serde(default = "marked")]
         reason: SessionEnd,
     },
     /// The operator noted who the visitors are.
@@ -413,6 +444,8 @@ pub enum EventKind {
     #[serde(rename = "bundle.refused")]
     BundleRefused {
         /// Every problem found, errors and warnings, as `docent check --format json` gives them.
+        /// Not read back (read as empty).
+        #[serde(skip_deserializing)]
         diagnostics: Vec<docent_content::Diagnostic>,
         /// Files changed since the last bundle went live, relative to the bundle folder.
         changed: Vec<String>,
@@ -424,7 +457,7 @@ pub enum EventKind {
     #[serde(rename = "bundle.watch-failed")]
     BundleWatchFailed {
         /// `folder-missing` or `watcher-error`.
-        code: &'static str,
+        code: Cow<'static, str>,
         /// What happened and what to do, in plain words.
         message: String,
     },
@@ -435,12 +468,12 @@ pub enum EventKind {
         /// The role it asked for.
         role: ClientRole,
         /// `unauthorized`, `bad-signature` (MQTT) or `too-many-attempts`.
-        code: ErrorCode,
+        code: Open<ErrorCode>,
         /// Its network address, when known (never for MQTT: the broker does not say).
         address: Option<String>,
         /// Credential refusals (websocket and HTTP) left out of the log just before this one,
         /// because refusals from many addresses came faster than they are logged.
-        #[serde(skip_serializing_if = "is_zero")]
+        #[serde(default, skip_serializing_if = "is_zero")]
         unlogged: u64,
     },
     /// An HTTP request's credential was refused (`401`, or the `429` that made its address
@@ -452,11 +485,11 @@ pub enum EventKind {
         /// The request's path (without the query), at most 256 bytes.
         path: String,
         /// `unauthorized` or `too-many-attempts`.
-        code: ErrorCode,
+        code: Open<ErrorCode>,
         /// The client's network address, when known.
         address: Option<String>,
         /// As for `client.refused`.
-        #[serde(skip_serializing_if = "is_zero")]
+        #[serde(default, skip_serializing_if = "is_zero")]
         unlogged: u64,
     },
     /// A websocket client said hello.
@@ -469,7 +502,7 @@ pub enum EventKind {
         /// Its self-given name.
         name: Option<String>,
         /// Verbs it serves (adapters).
-        #[serde(skip_serializing_if = "Vec::is_empty")]
+        #[serde(default, skip_serializing_if = "Vec::is_empty")]
         verbs: Vec<String>,
     },
     /// A websocket client left or was dropped.
@@ -488,9 +521,63 @@ pub enum EventKind {
     /// The link to the robot's rosbridge server went up or down.
     #[serde(rename = "robot.link")]
     RobotLink(super::RobotLinkEvent),
-    /// A recording started, stopped, failed or was deleted (`recording.*`, its own tag).
-    #[serde(untagged)]
+    /// A recording started, stopped, failed or was deleted (`recording.*`, its own tag;
+    /// written and read by the trait impls below).
+    #[serde(skip)]
     Recording(RecordingEvent),
+}
+
+impl Serialize for EventKind {
+    fn serialize<S: Serializer>(&self, serializer: S) -> Result<S::Ok, S::Error> {
+        match self {
+            EventKind::Recording(recording) => recording.serialize(serializer),
+            kind => EventKind::serialize(kind, serializer),
+        }
+    }
+}
+
+impl<'de> Deserialize<'de> for EventKind {
+    /// An event of a type this Docent knows; a line of another type is an error (a corpus
+    /// line's reader, `line.rs`, passes those over first).
+    fn deserialize<D: Deserializer<'de>>(deserializer: D) -> Result<Self, D::Error> {
+        use serde::de::Error;
+        // The line is read once into a value, to learn its type before choosing the enum.
+        let line = serde_json::Value::deserialize(deserializer)?;
+        let name = line.get("type").and_then(serde_json::Value::as_str);
+        let kind = match name {
+            Some(name) if super::line::has_type::<RecordingEvent>(name) => {
+                RecordingEvent::deserialize(line).map(EventKind::Recording)
+            }
+            _ => EventKind::deserialize(line),
+        };
+        kind.map_err(D::Error::custom)
+    }
+}
+
+/// A pose's number, or NaN for any other value.
+fn number<'de, D: Deserializer<'de>>(deserializer: D) -> Result<f64, D::Error> {
+    let value = serde_json::Value::deserialize(deserializer)?;
+    Ok(value.as_f64().unwrap_or(f64::NAN))
+}
+
+/// What a pose without a number reads as.
+fn not_a_number() -> f64 {
+    f64::NAN
+}
+
+/// What a line without `args` reads as.
+fn no_args() -> Arc<Args> {
+    Arc::new(Args::None {})
+}
+
+/// What a `session.started` without `consent` reads as.
+fn recorded() -> Consent {
+    Consent::Recorded
+}
+
+/// What a `session.ended` without `reason` reads as.
+fn marked() -> SessionEnd {
+    SessionEnd::Marked
 }
 
 impl EventKind {

@@ -3,10 +3,12 @@
 //! one [`EventKind`] enum, and the [`Event`] the runtime's hub stamps it into.
 //!
 //! The serialized form is a compatibility boundary: it is both the corpus log line and the
-//! `event` frame sent to operator and dialog-manager clients (see `docs/CORPUS.md`).
+//! `event` frame sent to operator and dialog-manager clients (see `docs/CORPUS.md`). The
+//! corpus reads its lines back through the same types ([`Line`]).
 
 mod attract;
 mod kind;
+mod line;
 mod origin;
 mod recording;
 mod robot;
@@ -17,6 +19,7 @@ mod touch;
 
 pub use attract::{AttractEnd, AttractState};
 pub use kind::EventKind;
+pub use line::{Head, Line, LineEvent, is_event_type};
 pub use origin::{ActRef, ClientRole, Source};
 pub use recording::{FailureCode, RecordingEvent, StopReason, Track};
 pub use robot::{ROBOT_EVENT_NAME_CHARS, RobotEvent, robot_event_name_problem};

@@ -4,10 +4,10 @@
 
 use std::sync::Arc;
 
-use serde::Serialize;
+use serde::{Deserialize, Serialize};
 
 /// Who asked for something: the trigger API's callers and the server itself.
-#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize)]
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize)]
 #[serde(rename_all = "lowercase")]
 pub enum Source {
     /// The HTTP API.
@@ -45,7 +45,7 @@ impl Source {
 }
 
 /// The role a websocket client declares in `hello`.
-#[derive(Clone, Copy, Debug, PartialEq, Eq, serde::Deserialize, Serialize)]
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Deserialize, Serialize)]
 #[serde(rename_all = "lowercase")]
 pub enum ClientRole {
     /// The touchscreen shell.
@@ -74,7 +74,7 @@ impl ClientRole {
 }
 
 /// What every command event says about the trigger it came from, shared by all its commands.
-#[derive(Debug, Serialize)]
+#[derive(Debug, Serialize, Deserialize)]
 pub struct ActRef {
     /// The trigger's id.
     pub trigger: u64,

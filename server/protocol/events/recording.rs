@@ -30,7 +30,7 @@ impl Track {
 }
 
 /// Why a recording stopped.
-#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize)]
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize)]
 #[serde(rename_all = "kebab-case")]
 pub enum StopReason {
     /// Its session ended.
@@ -92,7 +92,7 @@ pub enum FailureCode {
 }
 
 /// One recording event.
-#[derive(Debug, Serialize)]
+#[derive(Debug, Serialize, Deserialize)]
 #[serde(tag = "type")]
 pub enum RecordingEvent {
     /// A recording's first chunk began on the kiosk: where it lies on the session clock.

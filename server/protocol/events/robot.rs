@@ -4,12 +4,12 @@
 //! them to operators and dialog managers, and starts a visitor session on the ones
 //! `corpus.session_start_events` names.
 
-use serde::Serialize;
+use serde::{Deserialize, Serialize};
 
 pub use docent_content::names::{ROBOT_EVENT_NAME_CHARS, robot_event_name_problem};
 
 /// A robot event, as logged (`type` `robot`).
-#[derive(Clone, Debug, PartialEq, Serialize)]
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
 pub struct RobotEvent {
     /// The adapter process that sent it (absent for a ROS topic's).
     #[serde(skip_serializing_if = "Option::is_none")]

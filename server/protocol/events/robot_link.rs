@@ -2,10 +2,10 @@
 //! rosbridge connection is made (again), down with the reason when it is lost or cannot be
 //! made. Operators see it at once; researchers see in the log when the robot was unreachable.
 
-use serde::Serialize;
+use serde::{Deserialize, Serialize};
 
 /// Whether the link works.
-#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize)]
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize)]
 #[serde(rename_all = "lowercase")]
 pub enum LinkState {
     /// Connected; subscriptions and advertisements are (re)made.
@@ -15,7 +15,7 @@ pub enum LinkState {
 }
 
 /// A change of the link's state, as logged (`type` `robot.link`).
-#[derive(Clone, Debug, PartialEq, Serialize)]
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
 pub struct RobotLinkEvent {
     /// The new state.
     pub state: LinkState,

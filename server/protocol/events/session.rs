@@ -2,12 +2,12 @@
 //! why the session ended. Beside the event variants because the session keeper
 //! (`operator::Visits`), the corpus writer and `docent corpus` use them on their own.
 
-use serde::Serialize;
+use serde::{Deserialize, Serialize};
 
 pub use docent_content::Consent;
 
 /// Why a visitor session ended.
-#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize)]
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize)]
 #[serde(rename_all = "kebab-case")]
 pub enum SessionEnd {
     /// Its end was marked.

@@ -1,9 +1,10 @@
 //! Every line of a session's log as the MCAP export needs it: its place on the session clock,
 //! its type and the level the `foxglove.Log` channel gives it, and, for the events only this
 //! export draws (the timeline leaves them out), the robot's pose and what the projector shows.
+//! Read through the protocol's types (`docent_protocol::events::Line`), as the timeline is.
 
-use serde::Deserialize;
-use serde::de::IgnoredAny;
+use docent_protocol::ProjectorState;
+use docent_protocol::events::{EventKind, Line, LineEvent};
 
 /// Foxglove's `LogLevel`, as `/docent/log` gives each event type (`UNKNOWN` and `FATAL` are
 /// never given: every event type has its level, and none stops Docent).
@@ -21,53 +22,26 @@ pub enum LogLevel {
 }
 
 impl LogLevel {
-    /// The level of an event `kind` (its `type`).
-    pub fn of(kind: &str) -> LogLevel {
+    /// The level of an event (a type newer than this Docent's is `INFO`).
+    pub fn of(event: &LineEvent) -> LogLevel {
+        use EventKind::*;
+        let LineEvent::Event(kind) = event else {
+            return LogLevel::Info;
+        };
         match kind {
-            "pose" => LogLevel::Debug,
-            "command.failed" | "bundle.watch-failed" => LogLevel::Error,
-            "trigger.refused" | "command.cancelled" | "page.missing" | "client.refused"
-            | "request.refused" | "bundle.refused" | "stop" | "proposal.withdrawn" => {
-                LogLevel::Warning
-            }
+            Pose { .. } => LogLevel::Debug,
+            CommandFailed { .. } | BundleWatchFailed { .. } => LogLevel::Error,
+            TriggerRefused { .. }
+            | CommandCancelled { .. }
+            | PageMissing { .. }
+            | ClientRefused { .. }
+            | RequestRefused { .. }
+            | BundleRefused { .. }
+            | Stop { .. }
+            | ProposalWithdrawn { .. } => LogLevel::Warning,
             _ => LogLevel::Info,
         }
     }
-}
-
-/// A field read only for the event types that define it: another type may have a field of
-/// the same name holding something else, which is then passed over (`Other`).
-#[derive(Deserialize)]
-#[serde(untagged)]
-enum Lenient<T> {
-    Is(T),
-    Other(IgnoredAny),
-}
-
-/// A field of the event type that defines it: its value, `Ok(None)` when absent or `null`,
-/// `Err` when it holds something else.
-fn defined<T>(field: Option<Lenient<T>>) -> Result<Option<T>, ()> {
-    match field {
-        None => Ok(None),
-        Some(Lenient::Is(value)) => Ok(Some(value)),
-        Some(Lenient::Other(_)) => Err(()),
-    }
-}
-
-/// The fields of a line this export reads, in one pass: its place on the session clock, its
-/// type, and the fields of `pose` and `display.changed`.
-#[derive(Deserialize)]
-struct Fields {
-    session_us: Option<u64>,
-    #[serde(rename = "type")]
-    kind: String,
-    x: Option<Lenient<f64>>,
-    y: Option<Lenient<f64>>,
-    heading: Option<Lenient<f64>>,
-    frame: Option<Lenient<String>>,
-    projector: Option<Lenient<String>>,
-    highlight: Option<Lenient<String>>,
-    projector_state: Option<Lenient<String>>,
 }
 
 /// The robot's pose from a `pose` event.
@@ -91,7 +65,7 @@ pub struct Projection {
     /// The areas lit, as written.
     pub highlight: Option<String>,
     /// What the projector reported.
-    pub projector_state: Option<String>,
+    pub projector_state: Option<ProjectorState>,
 }
 
 /// One line of the log.
@@ -100,6 +74,8 @@ pub struct LogEvent<'a> {
     pub session_us: u64,
     /// Its `type`.
     pub kind: String,
+    /// Its level on `/docent/log`.
+    pub level: LogLevel,
     /// The line as written, without its `\n`.
     pub line: &'a str,
     /// Its pose, for a `pose`.
@@ -112,7 +88,8 @@ pub struct LogEvent<'a> {
 pub const DEFAULT_FRAME: &str = "map";
 
 /// Reads the log's whole lines (already read once into the timeline, so each is a corpus
-/// line); a `pose` without its position and heading is a damaged line, told with its number.
+/// line) through the protocol's types, as the timeline does; a `pose` without its position
+/// and heading is a damaged line, told with its number.
 pub fn read(log: &[u8]) -> Result<Vec<LogEvent<'_>>, (usize, String)> {
     let mut events = Vec::new();
     for (n, line) in log.split(|&b| b == b'\n').enumerate() {
@@ -120,54 +97,51 @@ pub fn read(log: &[u8]) -> Result<Vec<LogEvent<'_>>, (usize, String)> {
             continue;
         }
         let damaged = |problem: String| (n + 1, problem);
-        let line = std::str::from_utf8(line).map_err(|e| damaged(e.to_string()))?;
-        let f: Fields = serde_json::from_str(line).map_err(|e| damaged(e.to_string()))?;
-        let session_us = f
-            .session_us
-            .ok_or_else(|| damaged("the line has no `session_us`".into()))?;
+        let text = std::str::from_utf8(line).map_err(|e| damaged(e.to_string()))?;
+        let read = Line::parse(line).map_err(|e| damaged(e.to_string()))?;
+        let session_us =
+            (read.head.session_us).ok_or_else(|| damaged("the line has no `session_us`".into()))?;
         let (mut pose, mut projection) = (None, None);
-        match f.kind.as_str() {
-            "pose" => {
-                let numbers = (defined(f.x), defined(f.y), defined(f.heading));
-                let (Ok(Some(x)), Ok(Some(y)), Ok(Some(heading))) = numbers else {
+        match &read.event {
+            LineEvent::Event(EventKind::Pose {
+                x,
+                y,
+                heading,
+                frame,
+                ..
+            }) => {
+                // A number the line lacks reads as NaN (`EventKind::Pose`).
+                if [x, y, heading].iter().any(|n| n.is_nan()) {
                     return Err(damaged(
                         "a `pose` without its numbers `x`, `y` and `heading`".into(),
                     ));
-                };
-                let frame = defined(f.frame)
-                    .map_err(|()| damaged("a `pose` whose `frame` is not a string".into()))?;
+                }
                 pose = Some(Pose {
-                    x,
-                    y,
-                    heading,
-                    frame: frame.unwrap_or_else(|| DEFAULT_FRAME.to_owned()),
+                    x: *x,
+                    y: *y,
+                    heading: *heading,
+                    frame: frame.clone().unwrap_or_else(|| DEFAULT_FRAME.to_owned()),
                 });
             }
-            "display.changed" => {
-                let fields = (
-                    defined(f.projector),
-                    defined(f.highlight),
-                    defined(f.projector_state),
-                );
-                let (Ok(projector), Ok(highlight), Ok(projector_state)) = fields else {
-                    return Err(damaged(
-                        "a `display.changed` whose `projector`, `highlight` or \
-                         `projector_state` is neither a string nor null"
-                            .into(),
-                    ));
-                };
+            LineEvent::Event(EventKind::DisplayChanged {
+                projector,
+                highlight,
+                projector_state,
+                ..
+            }) => {
                 projection = Some(Projection {
-                    projector,
-                    highlight,
-                    projector_state,
+                    projector: projector.clone(),
+                    highlight: highlight.clone(),
+                    projector_state: Some(*projector_state),
                 });
             }
             _ => {}
         }
         events.push(LogEvent {
             session_us,
-            kind: f.kind,
-            line,
+            kind: read.head.kind.unwrap_or_default(),
+            level: LogLevel::of(&read.event),
+            line: text,
             pose,
             projection,
         });
@@ -182,13 +156,13 @@ mod tests {
     #[test]
     fn poses_and_projections_are_read_from_their_own_types_only() {
         let log = concat!(
-            r#"{"session_us":5,"type":"pose","x":1,"y":2.5,"heading":90.0,"moving":true}"#,
+            r#"{"v":4,"session_us":5,"type":"pose","x":1,"y":2.5,"heading":90.0,"moving":true}"#,
             "\n",
-            r#"{"session_us":6,"type":"pose","x":1,"y":2.5,"heading":0,"frame":"hall"}"#,
+            r#"{"v":4,"session_us":6,"type":"pose","x":1,"y":2.5,"heading":0,"moving":false,"frame":"hall"}"#,
             "\n",
-            r#"{"session_us":7,"type":"site.thing","x":"left","frame":{"a":1},"projector":3}"#,
+            r#"{"v":4,"session_us":7,"type":"site.thing","x":"left","frame":{"a":1},"projector":3}"#,
             "\n",
-            r#"{"session_us":8,"type":"display.changed","page":"a.html","projector":null,"highlight":"0 0 1 1"}"#,
+            r#"{"v":4,"session_us":8,"type":"display.changed","page":"a.html","projector":null,"highlight":"0 0 1 1","projector_state":"shown"}"#,
             "\n",
         );
         let events = read(log.as_bytes()).unwrap();
@@ -201,12 +175,12 @@ mod tests {
         let shown = events[3].projection.as_ref().unwrap();
         assert_eq!(shown.highlight.as_deref(), Some("0 0 1 1"));
         assert_eq!(
-            (shown.projector.as_ref(), shown.projector_state.as_ref()),
-            (None, None)
+            (shown.projector.as_ref(), shown.projector_state),
+            (None, Some(ProjectorState::Shown))
         );
         assert_eq!(events[3].line, log.lines().nth(3).unwrap());
 
-        let bad = "{\"session_us\":1,\"type\":\"pose\",\"x\":1,\"y\":2,\"heading\":\"north\"}\n";
+        let bad = "{\"v\":4,\"session_us\":1,\"type\":\"pose\",\"x\":1,\"y\":2,\"heading\":\"north\",\"moving\":true}\n";
         let (line, problem) = read(bad.as_bytes()).err().unwrap();
         assert_eq!(line, 1);
         assert_eq!(
@@ -217,9 +191,19 @@ mod tests {
 
     #[test]
     fn every_event_type_has_its_level() {
-        assert_eq!(LogLevel::of("pose"), LogLevel::Debug);
-        assert_eq!(LogLevel::of("command.failed"), LogLevel::Error);
-        assert_eq!(LogLevel::of("command.cancelled"), LogLevel::Warning);
-        assert_eq!(LogLevel::of("a.type.from.later"), LogLevel::Info);
+        let level = |line: &str| LogLevel::of(&Line::parse(line.as_bytes()).unwrap().event);
+        let pose = r#"{"v":4,"type":"pose","x":1,"y":2,"heading":0,"moving":false}"#;
+        assert_eq!(level(pose), LogLevel::Debug);
+        let command = r#""command":2,"trigger":1,"source":"http","label":"GO","at":"a.yaml:1","verb":"SAY","reason":"why""#;
+        let failed = format!(r#"{{"v":4,"type":"command.failed",{command}}}"#);
+        assert_eq!(level(&failed), LogLevel::Error);
+        let cancelled = format!(r#"{{"v":4,"type":"command.cancelled",{command}}}"#);
+        assert_eq!(level(&cancelled), LogLevel::Warning);
+        let done = r#"{"v":4,"type":"drive.arrived","x":1,"y":2}"#;
+        assert_eq!(level(done), LogLevel::Info);
+        assert_eq!(
+            level(r#"{"v":4,"type":"a.type.from.later"}"#),
+            LogLevel::Info
+        );
     }
 }

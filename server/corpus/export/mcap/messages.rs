@@ -4,11 +4,12 @@
 
 use serde::Serialize;
 
-use crate::export::mcap::events::{LogEvent, LogLevel, Pose, Projection as Projected};
+use crate::export::mcap::events::{LogEvent, Pose, Projection as Projected};
 use crate::export::timeline::{
     CommandRun, Mark as MarkEvent, Marked, Outcome, PageShown, Touch as TouchEvent, Touched,
     Utterance as Said,
 };
+use docent_protocol::ProjectorState;
 
 /// Foxglove's `Time`.
 #[derive(Serialize)]
@@ -45,7 +46,7 @@ impl<'a> Log<'a> {
     pub fn of(e: &'a LogEvent<'a>, ns: u64) -> Log<'a> {
         Log {
             timestamp: Time::of_ns(ns),
-            level: LogLevel::of(&e.kind) as u8,
+            level: e.level as u8,
             message: e.line,
             name: &e.kind,
             file: "",
@@ -142,7 +143,7 @@ impl<'a> From<&'a Said> for Utterance<'a> {
             end_us: u.end_us,
             text: &u.text,
             act: &u.label,
-            source: &u.source,
+            source: u.source.as_str(),
             variant: u.variant.as_deref(),
             alternative: u.alternative,
             outcome,
@@ -200,7 +201,7 @@ pub struct Projection<'a> {
     at_us: u64,
     projector: Option<&'a str>,
     highlight: Option<&'a str>,
-    projector_state: Option<&'a str>,
+    projector_state: Option<ProjectorState>,
 }
 
 impl<'a> Projection<'a> {
@@ -210,7 +211,7 @@ impl<'a> Projection<'a> {
             at_us,
             projector: p.projector.as_deref(),
             highlight: p.highlight.as_deref(),
-            projector_state: p.projector_state.as_deref(),
+            projector_state: p.projector_state,
         }
     }
 }

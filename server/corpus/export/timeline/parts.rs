@@ -4,6 +4,8 @@
 
 use std::collections::BTreeSet;
 
+use docent_protocol::events::Source;
+
 /// How a command ended, as its outcome event said.
 #[derive(Clone, Debug, PartialEq, Eq)]
 pub enum Outcome {
@@ -34,7 +36,7 @@ pub struct Utterance {
     /// The act whose command it was.
     pub label: String,
     /// Who triggered the act (`kiosk`, `operator`, `dm`, `http`).
-    pub source: String,
+    pub source: Source,
     /// The variant chosen, when this `SAY` says the act's chosen text.
     pub variant: Option<String>,
     /// The alternative chosen within the variant, likewise.

@@ -1,0 +1,542 @@
+//! Every event written and read back through the same types, lines of the older formats, and
+//! lines this Docent does not know.
+
+use std::sync::Arc;
+use std::time::{Duration, UNIX_EPOCH};
+
+use super::*;
+use crate::events::{
+    ActRef, AttractEnd, ClientRole, Consent, Event, FailureCode, LinkState, RecordingEvent,
+    RobotEvent, RobotLinkEvent, SessionEnd, Source, StopReason, Track,
+};
+use crate::fleet_link::{LinkState as BrokerState, LinkView};
+use crate::{ErrorCode, Open, ProjectorState};
+use docent_content::{Args, Language};
+
+fn act() -> Arc<ActRef> {
+    Arc::new(ActRef {
+        trigger: 4,
+        source: Source::Http,
+        client: Some(2),
+        reference: Some("visitor-42".into()),
+        label: "GREETING".into(),
+        at: "smalltalk.yaml:7".into(),
+    })
+}
+
+/// One event of every variant (with `args` none and no diagnostics, the two fields that are
+/// not read back), and, for each, its place in [`variant`].
+fn every_kind() -> Vec<EventKind> {
+    use EventKind::*;
+    let text = |s: &str| Some(s.to_owned());
+    vec![
+        ServerStarted {
+            bundle: "/srv/tour".into(),
+            bundle_hash: text("sha256:00"),
+            version: "0.1.0".into(),
+            seed: Some(7),
+        },
+        ServerStopping,
+        ActTriggered {
+            act: act(),
+            context: "TextChild".into(),
+            variant: text("Text"),
+            alternative: Some(1),
+            text: text("Hello"),
+            language: Language::parse("de"),
+            interrupt: true,
+        },
+        TriggerRefused {
+            source: Source::Kiosk,
+            client: Some(1),
+            label: "SECRET".into(),
+            code: ErrorCode::NotOffered.into(),
+            message: "no page offers it".into(),
+        },
+        CommandSent {
+            command: 5,
+            act: act(),
+            verb: "SAY".into(),
+            arg: text("Hello"),
+            args: Arc::new(Args::None {}),
+            adapter: "espeak".into(),
+        },
+        CommandStarted {
+            command: 5,
+            act: act(),
+            verb: "SAY".into(),
+        },
+        CommandDone {
+            command: 5,
+            act: act(),
+            verb: "SAY".into(),
+        },
+        CommandFailed {
+            command: 5,
+            act: act(),
+            verb: "SAY".into(),
+            reason: "no sound card".into(),
+        },
+        CommandCancelled {
+            command: 5,
+            act: act(),
+            verb: "SAY".into(),
+            reason: "stop request".into(),
+        },
+        DisplayChanged {
+            page: text("index.html"),
+            projector: text("film.mp4"),
+            highlight: None,
+            projector_state: ProjectorState::Playing,
+        },
+        PageMissing {
+            page: "gone.html".into(),
+            from: text("index.html"),
+        },
+        Pose {
+            x: 1.5,
+            y: -2.0,
+            heading: 90.0,
+            moving: true,
+            frame: None,
+        },
+        DriveArrived { x: 1.5, y: -2.0 },
+        ContextChanged {
+            source: Source::Operator,
+            context: "TextChild".into(),
+        },
+        LanguageChanged {
+            source: Source::Kiosk,
+            language: Language::parse("pt-br").unwrap(),
+        },
+        Stop {
+            source: Source::Server,
+            reason: "the server is shutting down".into(),
+        },
+        ProposalMade {
+            proposal: 1,
+            client: 3,
+            label: "TOUR".into(),
+            context: None,
+            reason: text("they asked"),
+        },
+        ProposalAccepted {
+            proposal: 1,
+            client: 2,
+            label: "TOUR".into(),
+            trigger: 9,
+        },
+        ProposalDismissed {
+            proposal: 1,
+            client: 2,
+            label: "TOUR".into(),
+        },
+        ProposalWithdrawn {
+            proposal: 1,
+            client: 3,
+            label: "TOUR".into(),
+            reason: "the dialog manager left".into(),
+        },
+        SessionStarted {
+            session: 1,
+            source: Source::Kiosk,
+            client: Some(1),
+            consent: Consent::Declined,
+            page: text("index.html"),
+            projector: None,
+        },
+        Touch {
+            client: 1,
+            page: text("index.html"),
+            element: text("button#start"),
+            act: text("TOUR"),
+            link: None,
+        },
+        AttractStarted { client: 1 },
+        AttractEnded {
+            client: 1,
+            by: AttractEnd::Schedule,
+        },
+        Robot(RobotEvent {
+            client: None,
+            topic: text("/people"),
+            event: "person.near".into(),
+            data: serde_json::json!({"distance": 1.2}),
+        }),
+        TopicRefused {
+            topic: "/pose".into(),
+            event: None,
+            reason: "no position".into(),
+        },
+        ReactionFailed {
+            reaction: 2,
+            event: "person.near".into(),
+            act: "HELLO".into(),
+            reason: "no distance".into(),
+        },
+        ConsentChanged {
+            session: 1,
+            consent: Consent::Withdrawn,
+            source: Source::Operator,
+            client: 2,
+        },
+        SessionEnded {
+            session: 1,
+            source: Source::Server,
+            client: None,
+            reason: SessionEnd::Idle,
+        },
+        VisitorGroup {
+            session: Some(1),
+            group: "children".into(),
+            context: text("TextChild"),
+            source: Source::Operator,
+            client: 2,
+        },
+        SituationMarked {
+            session: None,
+            situation: "laughter".into(),
+            source: Source::Dm,
+            client: 3,
+        },
+        NoteWritten {
+            session: Some(1),
+            text: "they laughed".into(),
+            source: Source::Operator,
+            client: 2,
+        },
+        BundleReloaded {
+            bundle_hash: None,
+            acts: 3,
+            contexts: 2,
+            page_acts: 1,
+            warnings: 0,
+            changed: vec!["acts.yaml".into()],
+            elapsed_ms: 12,
+            not_applied: vec!["server.port".into()],
+        },
+        BundleRefused {
+            diagnostics: Vec::new(),
+            changed: vec!["acts.yaml".into()],
+            elapsed_ms: 4,
+        },
+        BundleWatchFailed {
+            code: "folder-missing".into(),
+            message: "the folder is gone".into(),
+        },
+        ClientRefused {
+            role: ClientRole::Operator,
+            code: ErrorCode::Unauthorized.into(),
+            address: text("10.0.0.9"),
+            unlogged: 3,
+        },
+        RequestRefused {
+            method: "POST".into(),
+            path: "/api/stop".into(),
+            code: ErrorCode::TooManyAttempts.into(),
+            address: None,
+            unlogged: 0,
+        },
+        ClientConnected {
+            client: 4,
+            role: ClientRole::Adapter,
+            name: text("lights"),
+            verbs: vec!["LIGHTS".into()],
+        },
+        ClientLeft {
+            client: 4,
+            role: ClientRole::Adapter,
+            reason: "closed".into(),
+        },
+        FleetLink(LinkView {
+            broker: "mqtt://fleet.local".into(),
+            state: BrokerState::Down,
+            reason: text("refused"),
+        }),
+        RobotLink(RobotLinkEvent {
+            state: LinkState::Up,
+            url: "ws://robot.local:9090".into(),
+            reason: None,
+        }),
+        Recording(RecordingEvent::Started {
+            session: 1,
+            recording: 2,
+            client: 1,
+            track: Track::Audio,
+            file: "media/audio-2.webm".into(),
+            mime: "audio/webm;codecs=opus".into(),
+            start_us: 1500,
+            clock_error_us: 900,
+        }),
+        Recording(RecordingEvent::Stopped {
+            session: 1,
+            recording: 2,
+            file: "media/audio-2.webm".into(),
+            bytes: 4096,
+            chunks: 4,
+            reason: StopReason::NoFinalReport,
+        }),
+        Recording(RecordingEvent::Failed {
+            session: None,
+            recording: None,
+            client: 1,
+            code: FailureCode::PermissionDenied,
+            message: "denied".into(),
+        }),
+        Recording(RecordingEvent::Deleted {
+            session: 1,
+            files: vec!["media/audio-2.webm".into()],
+            consent: Consent::Withdrawn,
+        }),
+    ]
+}
+
+/// The variant's place, by an exhaustive match: a new variant does not compile here until it
+/// is added, and `every_variant_...` then fails until [`every_kind`] has one.
+fn variant(kind: &EventKind) -> usize {
+    use EventKind::*;
+    match kind {
+        ServerStarted { .. } => 0,
+        ServerStopping => 1,
+        ActTriggered { .. } => 2,
+        TriggerRefused { .. } => 3,
+        CommandSent { .. } => 4,
+        CommandStarted { .. } => 5,
+        CommandDone { .. } => 6,
+        CommandFailed { .. } => 7,
+        CommandCancelled { .. } => 8,
+        DisplayChanged { .. } => 9,
+        PageMissing { .. } => 10,
+        Pose { .. } => 11,
+        DriveArrived { .. } => 12,
+        ContextChanged { .. } => 13,
+        LanguageChanged { .. } => 14,
+        Stop { .. } => 15,
+        ProposalMade { .. } => 16,
+        ProposalAccepted { .. } => 17,
+        ProposalDismissed { .. } => 18,
+        ProposalWithdrawn { .. } => 19,
+        SessionStarted { .. } => 20,
+        Touch { .. } => 21,
+        AttractStarted { .. } => 22,
+        AttractEnded { .. } => 23,
+        Robot(_) => 24,
+        TopicRefused { .. } => 25,
+        ReactionFailed { .. } => 26,
+        ConsentChanged { .. } => 27,
+        SessionEnded { .. } => 28,
+        VisitorGroup { .. } => 29,
+        SituationMarked { .. } => 30,
+        NoteWritten { .. } => 31,
+        BundleReloaded { .. } => 32,
+        BundleRefused { .. } => 33,
+        BundleWatchFailed { .. } => 34,
+        ClientRefused { .. } => 35,
+        RequestRefused { .. } => 36,
+        ClientConnected { .. } => 37,
+        ClientLeft { .. } => 38,
+        FleetLink(_) => 39,
+        RobotLink(_) => 40,
+        Recording(RecordingEvent::Started { .. }) => 41,
+        Recording(RecordingEvent::Stopped { .. }) => 42,
+        Recording(RecordingEvent::Failed { .. }) => 43,
+        Recording(RecordingEvent::Deleted { .. }) => 44,
+    }
+}
+
+/// Reads a line, which must be an event this Docent knows.
+fn known(line: &str) -> (Head, EventKind) {
+    let read = Line::parse(line.as_bytes()).unwrap_or_else(|e| panic!("{e}: {line}"));
+    match read.event {
+        LineEvent::Event(kind) => (read.head, kind),
+        LineEvent::Newer(name) => panic!("{name} taken for a newer type: {line}"),
+    }
+}
+
+#[test]
+fn every_variant_is_written_and_read_back_the_same_through_the_same_type() {
+    let kinds = every_kind();
+    let places: Vec<usize> = kinds.iter().map(variant).collect();
+    assert_eq!(
+        places,
+        (0..=44).collect::<Vec<_>>(),
+        "one of each, in order"
+    );
+    let time = UNIX_EPOCH + Duration::from_millis(1_795_000_000_123);
+    for (n, kind) in kinds.into_iter().enumerate() {
+        let event = Event::new(n as u64 + 1, time, 42 + n as u64, kind);
+        let mut written = Vec::new();
+        event.write_line(&mut written, Some(40));
+        let line = std::str::from_utf8(&written).unwrap().trim_end();
+        let (head, read) = known(line);
+        assert_eq!(
+            serde_json::to_string(&read).unwrap(),
+            serde_json::to_string(&event.kind).unwrap(),
+            "read back as written: {line}"
+        );
+        assert_eq!(variant(&read), n);
+        // The same through `Deserialize` itself, as any other program reads an event.
+        let written = serde_json::to_string(&event.kind).unwrap();
+        let direct: EventKind = serde_json::from_str(&written).unwrap();
+        assert_eq!(serde_json::to_string(&direct).unwrap(), written);
+        let type_name = serde_json::to_value(&event.kind).unwrap()["type"].clone();
+        let expected = Head {
+            v: Some(crate::EVENT_FORMAT_VERSION),
+            seq: Some(n as u64 + 1),
+            time: Some("2026-11-18T11:06:40.123Z".into()),
+            mono_us: Some(42 + n as u64),
+            session_us: Some(2 + n as u64),
+            kind: type_name.as_str().map(str::to_owned),
+        };
+        assert_eq!(head, expected, "{line}");
+        assert_eq!(Head::parse(line.as_bytes()).unwrap(), expected);
+        assert!(is_event_type(expected.kind.as_deref().unwrap()));
+    }
+}
+
+#[test]
+fn the_two_fields_not_read_back_read_as_none_and_empty() {
+    let (_, sent) = known(
+        r#"{"v":4,"type":"command.sent","command":2,"trigger":1,"source":"http","label":"GO","at":"a.yaml:1","verb":"SET_WAYPOINT","arg":"1 2","args":{"x":1.0,"y":2.0,"heading":null},"adapter":"sim"}"#,
+    );
+    let EventKind::CommandSent { args, adapter, .. } = sent else {
+        panic!("{sent:?}")
+    };
+    assert_eq!((*args).clone(), Args::None {});
+    assert_eq!(adapter, "sim");
+    let (_, refused) = known(
+        r#"{"v":4,"type":"bundle.refused","diagnostics":[{"severity":"error","code":"x","message":"m","file":"a.yaml","line":1,"column":2}],"changed":["a.yaml"],"elapsed_ms":3}"#,
+    );
+    let EventKind::BundleRefused { diagnostics, .. } = refused else {
+        panic!("{refused:?}")
+    };
+    assert!(diagnostics.is_empty());
+}
+
+/// Lines as formats 1 to 3 wrote them (`docs/CORPUS.md`, "Common fields"): what each lacks
+/// reads as its default.
+#[test]
+fn lines_of_the_older_formats_still_read() {
+    // Format 1: `command.sent` without `args`.
+    let (head, sent) = known(
+        r#"{"v":1,"seq":3,"time":"2026-11-22T19:01:36.288Z","mono_us":5463977,"type":"command.sent","command":2,"trigger":1,"source":"http","label":"GREETING","at":"smalltalk.yaml:7","verb":"SAY","arg":"Hi!","adapter":"espeak"}"#,
+    );
+    assert_eq!((head.v, head.session_us), (Some(1), None));
+    assert!(matches!(sent, EventKind::CommandSent { command: 2, .. }));
+    // Format 2: a `display.changed` from before `projector_state`, a `session.ended` without
+    // its `reason`.
+    let (_, shown) = known(
+        r#"{"v":2,"seq":9,"time":"2026-11-22T19:01:37.000Z","mono_us":5500000,"type":"display.changed","page":"index.html","projector":null,"highlight":null}"#,
+    );
+    let EventKind::DisplayChanged {
+        page,
+        projector_state,
+        ..
+    } = shown
+    else {
+        panic!("{shown:?}")
+    };
+    assert_eq!(page.as_deref(), Some("index.html"));
+    assert_eq!(projector_state, ProjectorState::Black);
+    let (_, ended) = known(
+        r#"{"v":2,"seq":40,"time":"2026-11-22T19:09:00.000Z","mono_us":9000000,"type":"session.ended","session":1,"source":"operator","client":2}"#,
+    );
+    assert!(matches!(
+        ended,
+        EventKind::SessionEnded {
+            reason: SessionEnd::Marked,
+            ..
+        }
+    ));
+    // Format 3: a session's line, its `session.started` without `consent` and `page`, an
+    // `act.triggered` without `language`.
+    let (head, started) = known(
+        r#"{"v":3,"seq":5,"time":"2026-11-24T10:15:02.000Z","mono_us":100,"session_us":0,"type":"session.started","session":1,"source":"operator","client":1}"#,
+    );
+    assert_eq!(head.session_us, Some(0));
+    let EventKind::SessionStarted { consent, page, .. } = started else {
+        panic!("{started:?}")
+    };
+    assert_eq!((consent, page), (Consent::Recorded, None));
+    let (_, act) = known(
+        r#"{"v":3,"seq":6,"time":"2026-11-24T10:15:02.001Z","mono_us":1100,"session_us":1000,"type":"act.triggered","trigger":2,"source":"operator","client":1,"label":"TOUR","at":"acts.yaml:4","context":"Text","variant":"Text","alternative":0,"text":"Follow me","interrupt":false}"#,
+    );
+    let EventKind::ActTriggered {
+        act,
+        text,
+        language,
+        ..
+    } = act
+    else {
+        panic!("{act:?}")
+    };
+    assert_eq!((&*act.label, act.source), ("TOUR", Source::Operator));
+    assert_eq!((text.as_deref(), language), (Some("Follow me"), None));
+}
+
+#[test]
+fn a_type_newer_than_this_docent_is_passed_over_by_name() {
+    let line = r#"{"v":4,"seq":1,"session_us":5,"type":"robot.dance","style":"waltz"}"#;
+    let read = Line::parse(line.as_bytes()).unwrap();
+    assert!(matches!(&read.event, LineEvent::Newer(name) if name == "robot.dance"));
+    assert_eq!(read.head.session_us, Some(5));
+    assert!(!is_event_type("robot.dance") && !is_event_type(""));
+    assert!(is_event_type("recording.started") && is_event_type("server.stopping"));
+    // Every variant's tag, as serde's derived deserializers know them.
+    assert_eq!(
+        (EventKind::names().len(), RecordingEvent::names().len()),
+        (41, 4)
+    );
+}
+
+#[test]
+fn a_code_added_later_reads_as_written() {
+    let (_, refused) = known(
+        r#"{"v":4,"type":"trigger.refused","source":"kiosk","client":1,"label":"TOUR","code":"too-sleepy","message":"later"}"#,
+    );
+    let EventKind::TriggerRefused { code, .. } = refused else {
+        panic!("{refused:?}")
+    };
+    assert_eq!(code, Open::Newer("too-sleepy".into()));
+}
+
+#[test]
+fn a_known_type_whose_fields_do_not_read_names_the_field() {
+    let problem = |line: &str| Line::parse(line.as_bytes()).unwrap_err().to_string();
+    assert_eq!(
+        problem(r#"{"v":3,"session_us":1,"type":"command.done","command":2}"#),
+        "missing field `verb` at line 1 column 56"
+    );
+    assert_eq!(
+        problem(r#"{"v":3,"session_us":1,"type":"drive.arrived","x":1,"y":"north"}"#),
+        "invalid type: string \"north\", expected f64 at line 1 column 63"
+    );
+    assert_eq!(
+        problem(r#"{"v":3,"session_us":1,"type":"recording.stopped","session":1}"#),
+        "missing field `recording` at line 1 column 61"
+    );
+    assert_eq!(
+        problem(r#"{"v":3,"session_us":1}"#),
+        "missing field `type` at line 1 column 22"
+    );
+    assert_eq!(
+        problem(r#"{"v":3,"type":null}"#),
+        "invalid type: null, expected a string at line 1 column 18"
+    );
+}
+
+#[test]
+fn a_pose_without_its_numbers_reads_them_as_nan() {
+    let (_, pose) = known(r#"{"v":4,"type":"pose","x":1,"y":2,"heading":"north","moving":true}"#);
+    let EventKind::Pose { x, heading, .. } = pose else {
+        panic!("{pose:?}")
+    };
+    assert_eq!(x, 1.0);
+    assert!(heading.is_nan());
+    let (_, pose) = known(r#"{"v":4,"type":"pose","y":2,"moving":true,"frame":"hall"}"#);
+    let EventKind::Pose { x, frame, .. } = pose else {
+        panic!("{pose:?}")
+    };
+    assert!(x.is_nan());
+    assert_eq!(frame.as_deref(), Some("hall"));
+}
