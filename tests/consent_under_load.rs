@@ -14,11 +14,12 @@ use crate::common;
 use std::sync::atomic::{AtomicBool, Ordering};
 use std::sync::{Arc, Mutex};
 
-use common::{TempBundle, TestServer, WsClient, session_dirs};
+use common::{DEADLINE, TempBundle, TestServer, WsClient, session_dirs};
 use docent::corpus::export::{ExportFormat, ExportWarning, export_session};
 use docent::events::{Consent, EVENT_CHANNEL_CAPACITY, EventKind, Hub, SessionEnd, Source};
 use docent::state::AppState;
 use serde_json::{Value, json};
+use tokio::sync::watch;
 
 const ACTS: &str = "- Label: WELCOME\n  Text: [Hello!]\n";
 
@@ -183,6 +184,8 @@ async fn no_chunk_is_acknowledged_after_a_withdrawal_is_answered_and_the_export_
             }
         };
         let answered = Arc::new(AtomicBool::new(false));
+        // How many chunks the server stored (a 200 comes once a chunk is appended).
+        let (stored_tx, mut stored) = watch::channel(0);
         let uploader = tokio::spawn({
             let (server, record, answered) =
                 (Arc::clone(&server), record.clone(), Arc::clone(&answered));
@@ -199,23 +202,25 @@ async fn no_chunk_is_acknowledged_after_a_withdrawal_is_answered_and_the_export_
                         return after;
                     }
                     assert_eq!(status, 200, "chunk {seq}");
+                    stored_tx.send_replace(seq + 1);
                 }
                 after
             }
         });
         let flooders = [server.operator().await, server.operator().await]
             .map(|op| tokio::spawn(trigger_flood(op, 300)));
-        // Some chunks first, so that there is something to remove.
+        // Some chunks first, so that there is something to remove: four stored (4 KiB).
+        tokio::time::timeout(DEADLINE, stored.wait_for(|chunks| *chunks >= 4))
+            .await
+            .expect("four chunks stored within the deadline")
+            .expect("the uploader ended before four chunks were stored");
         let media = session_dirs(&server.corpus)
             .into_iter()
             .max()
             .unwrap()
             .join("media");
-        while !media.join("audio-1.webm").is_file()
-            || std::fs::metadata(media.join("audio-1.webm")).unwrap().len() < 4096
-        {
-            tokio::task::yield_now().await;
-        }
+        let audio = std::fs::metadata(media.join("audio-1.webm")).expect("the audio is written");
+        assert!(audio.len() >= 4096, "{} bytes", audio.len());
         op.send(json!({"type": "mark", "mark": "consent", "value": "withdrawn", "ref": "w"}))
             .await;
         op.recv_where(|f| f["type"] == "marked" && f["ref"] == "w")

@@ -35,7 +35,7 @@ async fn a_broker_restart_is_survived() {
     assert_eq!(state["fleet"]["link"]["state"], "down", "{state}");
 
     let restarted = Instant::now();
-    let broker = Mosquitto::start_on(broker.port);
+    broker.restart();
     operator
         .recv_where(|f| {
             f["type"] == "event"

@@ -1,6 +1,7 @@
 //! What the fleet tests share: a real mosquitto on a free loopback port (killed on drop), a
 //! `docent serve --mqtt` child process per robot (killed on drop), an MQTT test client
-//! whose messages are awaited with a deadline, never slept for, and the signing of fleet
+//! whose messages are awaited with a deadline, never slept for (nor does it sleep while the
+//! broker is down: it awaits the broker's coming back), and the signing of fleet
 //! commands written from docs/FLEET.md (HMAC-SHA256 with the `hmac` crate, not Docent's code),
 //! so that the format as documented is what the robots take.
 
@@ -13,7 +14,7 @@ use std::time::Duration;
 
 use rumqttc::{AsyncClient, Event, Incoming, MqttOptions, QoS};
 use serde_json::Value;
-use tokio::sync::mpsc;
+use tokio::sync::{mpsc, watch};
 
 use crate::common::{DEADLINE, DM_TOKEN, OPERATOR_TOKEN, process};
 
@@ -31,6 +32,11 @@ pub struct Mosquitto {
     child: Child,
     /// Its port.
     pub port: u16,
+    /// How many times it has come up (listening): what a [`TestClient`] whose connection
+    /// broke awaits a change of, instead of polling a broker that is down.
+    up: watch::Sender<u64>,
+    /// Its configuration file (in `_dir`), for [`Mosquitto::restart`].
+    conf: PathBuf,
     _dir: tempfile::TempDir,
     /// The test CA and the TLS listener's certificate, if it has one.
     certs: Option<tempfile::TempDir>,
@@ -45,15 +51,9 @@ fn free_port() -> u16 {
 }
 
 impl Mosquitto {
-    /// A broker on a free port.
+    /// A broker on a free port, once it listens.
     pub fn start() -> Self {
-        Mosquitto::start_on(free_port())
-    }
-
-    /// A broker on `port` (again, after [`Mosquitto::kill`]), once it listens: mosquitto
-    /// says so on stderr, which is awaited (with the deadline) rather than slept for.
-    pub fn start_on(port: u16) -> Self {
-        Mosquitto::start_with(port, "", 1)
+        Mosquitto::start_with(free_port(), "")
     }
 
     /// A broker on a free port and, on a second one, a TLS listener whose certificate (for
@@ -129,15 +129,14 @@ impl Mosquitto {
             "listener {tls_port} 127.0.0.1\ncafile {0}/ca.pem\ncertfile {0}/server.pem\nkeyfile {0}/server.key\n",
             dir.display()
         );
-        let mut broker = Mosquitto::start_with(free_port(), &tls, 2);
+        let mut broker = Mosquitto::start_with(free_port(), &tls);
         let ca = dir.join("ca.pem");
         broker.certs = Some(certs);
         (broker, tls_port, ca)
     }
 
-    /// mosquitto with a plain listener on `port` and `more` configuration, once it has opened
-    /// `listeners` listeners.
-    fn start_with(port: u16, more: &str, listeners: usize) -> Self {
+    /// mosquitto with a plain listener on `port` and `more` configuration, once it listens.
+    fn start_with(port: u16, more: &str) -> Self {
         let dir = tempfile::tempdir().expect("a temporary folder");
         let conf = dir.path().join("mosquitto.conf");
         let text = format!(
@@ -145,38 +144,21 @@ impl Mosquitto {
              listener {port} 127.0.0.1\n{more}"
         );
         std::fs::write(&conf, text).expect("config written");
-        let binary = ["/usr/sbin/mosquitto", "/usr/bin/mosquitto"]
-            .into_iter()
-            .find(|p| Path::new(p).exists())
-            .expect("mosquitto is installed (scripts/install-test-deps.sh)");
-        let mut child = Command::new(binary)
-            .arg("-c")
-            .arg(&conf)
-            .stdout(Stdio::null())
-            .stderr(Stdio::piped())
-            .spawn()
-            .expect("mosquitto starts");
-        let stderr = child.stderr.take().expect("stderr");
-        let (tx, rx) = std::sync::mpsc::channel();
-        std::thread::spawn(move || {
-            let mut opened = 0;
-            for line in BufReader::new(stderr).lines().map_while(Result::ok) {
-                if line.contains("Opening ipv4 listen socket") {
-                    opened += 1;
-                    if opened == listeners {
-                        let _ = tx.send(());
-                    }
-                }
-            }
-        });
-        rx.recv_timeout(DEADLINE)
-            .expect("mosquitto opens its listener within the deadline");
         Mosquitto {
-            child,
+            child: spawn_listening(&conf),
             port,
+            up: watch::channel(1).0,
+            conf,
             _dir: dir,
             certs: None,
         }
+    }
+
+    /// Starts it again on its port (after [`Mosquitto::kill`]) and returns once it listens,
+    /// having told its test clients that it is up again.
+    pub fn restart(&mut self) {
+        self.child = spawn_listening(&self.conf);
+        self.up.send_modify(|times| *times += 1);
     }
 
     /// The broker's address for `--mqtt`.
@@ -189,6 +171,58 @@ impl Mosquitto {
         let _ = self.child.kill();
         let _ = self.child.wait();
     }
+}
+
+/// mosquitto with the configuration `conf`, once all its listeners listen: it says so on stderr
+/// (`mosquitto version 2.0.11 running`, logged after it has bound them all; its earlier
+/// `Opening ipv4 listen socket on port N.` comes before the bind, so a client connecting then
+/// can be refused), which is awaited (with the deadline) rather than slept for. The rest of its
+/// output is drained, so that it never blocks on a full pipe.
+fn spawn_listening(conf: &Path) -> Child {
+    let binary = ["/usr/sbin/mosquitto", "/usr/bin/mosquitto"]
+        .into_iter()
+        .find(|p| Path::new(p).exists())
+        .expect("mosquitto is installed (scripts/install-test-deps.sh)");
+    let mut child = Command::new(binary)
+        .arg("-c")
+        .arg(conf)
+        .stdout(Stdio::null())
+        .stderr(Stdio::piped())
+        .spawn()
+        .expect("mosquitto starts");
+    let stderr = child.stderr.take().expect("stderr");
+    let (tx, rx) = std::sync::mpsc::channel();
+    std::thread::spawn(move || {
+        let mut said = Vec::new();
+        let mut running = Some(tx);
+        for line in BufReader::new(stderr).lines().map_while(Result::ok) {
+            let Some(tx) = &running else {
+                continue; // Drained.
+            };
+            if is_running(&line) {
+                let _ = tx.send(Ok(()));
+                running = None;
+            } else {
+                said.push(line);
+            }
+        }
+        // It ended before it was running: what it said is the reason.
+        if let Some(tx) = running {
+            let _ = tx.send(Err(said.join("\n")));
+        }
+    });
+    match rx.recv_timeout(DEADLINE) {
+        Ok(Ok(())) => child,
+        Ok(Err(said)) => panic!("mosquitto ended before it was running; it said:\n{said}"),
+        Err(_) => {
+            panic!("mosquitto did not log `mosquitto version ... running` within {DEADLINE:?}")
+        }
+    }
+}
+
+/// Whether `line` is mosquitto's `mosquitto version X running`.
+fn is_running(line: &str) -> bool {
+    line.contains("mosquitto version") && line.ends_with(" running")
 }
 
 impl Drop for Mosquitto {
@@ -291,7 +325,9 @@ pub struct TestClient {
 }
 
 impl TestClient {
-    /// Connects to `broker` as `id` and subscribes to `filters`.
+    /// Connects to `broker` as `id` and subscribes to `filters`. When the connection breaks
+    /// (the broker was killed), the client waits until the broker says it is up again (at once
+    /// if it already has) before rumqttc reconnects; it ends with the broker.
     pub fn connect(broker: &Mosquitto, id: &str, filters: &[&str]) -> Self {
         let mut options = MqttOptions::new(id, "127.0.0.1", broker.port);
         options.set_keep_alive(Duration::from_secs(5));
@@ -299,6 +335,8 @@ impl TestClient {
         let (tx, messages) = mpsc::unbounded_channel();
         let filters: Vec<String> = filters.iter().map(|f| (*f).to_owned()).collect();
         let subscriber = client.clone();
+        let mut up = broker.up.subscribe();
+        let id = id.to_owned();
         tokio::spawn(async move {
             loop {
                 match events.poll().await {
@@ -320,8 +358,13 @@ impl TestClient {
                         }
                     }
                     Ok(_) => {}
-                    // The broker is down: rumqttc reconnects at the next poll; a breath first.
-                    Err(_) => tokio::time::sleep(Duration::from_millis(50)).await,
+                    // The broker is down: rumqttc reconnects at the next poll, once it is up.
+                    Err(error) => {
+                        eprintln!("test client {id}: {error}; awaiting the broker");
+                        if up.changed().await.is_err() {
+                            return;
+                        }
+                    }
                 }
             }
         });

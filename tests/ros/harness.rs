@@ -1,19 +1,23 @@
 //! The ROS 2 side of a rosbridge test: `rosbridge-server-rs` on a free loopback port and the
 //! rclpy simulated base (`tests/ros/sim_base.py`), both in the test's own `ROS_DOMAIN_ID` out
 //! of `tests/ros/.venv` (made by `scripts/install-test-deps.sh`), killed when dropped. Ready
-//! means a pose message from the base reached a websocket client through rosbridge: polled
-//! with a deadline, never slept for.
+//! means rosbridge said it listens (its log line, read from its stderr) and then a pose message
+//! from the base reached a websocket client through it: each awaited with a deadline, never
+//! slept for.
 
 #![allow(dead_code)] // Each rosbridge test binary uses a different part.
 
+use std::io::{BufRead, BufReader};
 use std::net::TcpListener;
 use std::path::PathBuf;
 use std::process::{Child, Command, Stdio};
+use std::sync::{Arc, Mutex};
 use std::time::{Duration, Instant};
 
 use futures_util::{SinkExt, StreamExt};
 use serde_json::{Value, json};
 use tokio::net::TcpStream;
+use tokio::sync::oneshot;
 use tokio_tungstenite::tungstenite::Message;
 use tokio_tungstenite::{MaybeTlsStream, WebSocketStream, connect_async};
 
@@ -67,16 +71,57 @@ pub struct RosSide {
     base: Option<Child>,
 }
 
-/// Starts rosbridge on `port`.
-fn spawn_rosbridge(domain: u32, port: u16) -> Child {
+/// What rosbridge-server-rs logs (on stderr) once its websocket listener is bound, followed by
+/// ` address=127.0.0.1:PORT`.
+const ROSBRIDGE_LISTENING: &str = "rosbridge WebSocket server listening";
+
+/// Starts rosbridge on `port` and returns once it says it listens. Its stderr is read on a
+/// thread: the lines before that one are kept for the failure message, the rest drained (and
+/// dropped, as its output always was) so that it never blocks on a full pipe.
+async fn spawn_rosbridge(domain: u32, port: u16) -> Child {
     let bind = format!("127.0.0.1:{port}");
-    ros_command(
+    let mut child = ros_command(
         domain,
         "rosbridge-server-rs",
-        &["--bind", &bind, "--no-rosapi"],
+        &["--bind", &bind, "--no-rosapi", "--log-ansi", "false"],
     )
+    .stderr(Stdio::piped())
     .spawn()
-    .expect("rosbridge-server-rs starts")
+    .expect("rosbridge-server-rs starts");
+    let stderr = child.stderr.take().expect("rosbridge's stderr is piped");
+    let said = Arc::new(Mutex::new(Vec::new()));
+    let (listening, ready) = oneshot::channel();
+    let kept = Arc::clone(&said);
+    std::thread::spawn(move || {
+        let mut listening = Some(listening);
+        for line in BufReader::new(stderr).lines().map_while(Result::ok) {
+            if listening.is_none() {
+                continue;
+            }
+            if line.contains(ROSBRIDGE_LISTENING) {
+                if let Some(tx) = listening.take() {
+                    let _ = tx.send(());
+                }
+            } else if let Ok(mut kept) = kept.lock() {
+                kept.push(line);
+            }
+        }
+        // End of output: dropping an unsent `listening` tells the waiter rosbridge ended.
+    });
+    let outcome = tokio::time::timeout(ROS_DEADLINE, ready).await;
+    let said = said
+        .lock()
+        .map(|lines| lines.join("\n"))
+        .unwrap_or_default();
+    match outcome {
+        Ok(Ok(())) => child,
+        Ok(Err(_)) => panic!(
+            "rosbridge on port {port} ended before it logged {ROSBRIDGE_LISTENING:?}; it said:\n{said}"
+        ),
+        Err(_) => panic!(
+            "rosbridge on port {port} did not log {ROSBRIDGE_LISTENING:?} within {ROS_DEADLINE:?}; it said:\n{said}"
+        ),
+    }
 }
 
 impl RosSide {
@@ -92,7 +137,7 @@ impl RosSide {
             url: format!("ws://127.0.0.1:{port}"),
             port,
             domain,
-            rosbridge: Some(spawn_rosbridge(domain, port)),
+            rosbridge: Some(spawn_rosbridge(domain, port).await),
             base: Some(base),
         };
         ros.await_pose().await;
@@ -107,42 +152,28 @@ impl RosSide {
         }
     }
 
-    /// Starts rosbridge again on the same port; returns when it accepts connections.
+    /// Starts rosbridge again on the same port; returns when it says it listens.
     pub async fn restart_rosbridge(&mut self) -> Instant {
-        self.rosbridge = Some(spawn_rosbridge(self.domain, self.port));
-        let start = Instant::now();
-        while TcpStream::connect(("127.0.0.1", self.port)).await.is_err() {
-            assert!(
-                start.elapsed() < ROS_DEADLINE,
-                "rosbridge did not come back"
-            );
-            tokio::task::yield_now().await;
-            tokio::time::sleep(Duration::from_millis(5)).await;
-        }
+        self.rosbridge = Some(spawn_rosbridge(self.domain, self.port).await);
         Instant::now()
     }
 
-    /// Waits until a pose from the base comes through rosbridge.
+    /// Waits until a pose from the base comes through rosbridge, which listens already (so
+    /// connecting must succeed); the base may still be joining the ROS graph.
     pub async fn await_pose(&self) -> Value {
-        let start = Instant::now();
-        loop {
-            assert!(
-                start.elapsed() < ROS_DEADLINE,
-                "no pose from the simulated base through rosbridge at {}",
+        let mut client = RosClient::connect(&self.url)
+            .await
+            .unwrap_or_else(|e| panic!("rosbridge said it listens at {}, yet: {e}", self.url));
+        client
+            .subscribe("/amcl_pose", "geometry_msgs/msg/PoseWithCovarianceStamped")
+            .await;
+        match tokio::time::timeout(ROS_DEADLINE, client.next_on("/amcl_pose")).await {
+            Ok(Some(msg)) => msg,
+            Ok(None) => panic!("rosbridge at {} closed before a pose came", self.url),
+            Err(_) => panic!(
+                "no pose from the simulated base through rosbridge at {} within {ROS_DEADLINE:?}",
                 self.url
-            );
-            let Ok(mut client) = RosClient::connect(&self.url).await else {
-                tokio::time::sleep(Duration::from_millis(20)).await;
-                continue;
-            };
-            client
-                .subscribe("/amcl_pose", "geometry_msgs/msg/PoseWithCovarianceStamped")
-                .await;
-            if let Ok(Some(msg)) =
-                tokio::time::timeout(Duration::from_secs(3), client.next_on("/amcl_pose")).await
-            {
-                return msg;
-            }
+            ),
         }
     }
 }

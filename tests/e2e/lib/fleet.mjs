@@ -30,14 +30,17 @@ function awaitLine(child, stream, pattern, what) {
   });
 }
 
-/** mosquitto on 127.0.0.1:`port`, once it listens. */
+/**
+ * mosquitto on 127.0.0.1:`port`, once it listens: `mosquitto version X running` comes after it
+ * has bound its listeners (its earlier `Opening ipv4 listen socket` line comes before the bind).
+ */
 export async function startMosquitto(port, dir) {
   const conf = path.join(dir, 'mosquitto.conf');
   fs.writeFileSync(conf, `listener ${port} 127.0.0.1\nallow_anonymous true\npersistence false\nlog_dest stderr\nlog_type all\n`);
   const binary = ['/usr/sbin/mosquitto', '/usr/bin/mosquitto'].find((p) => fs.existsSync(p));
   assert.ok(binary, 'mosquitto is installed (scripts/install-test-deps.sh)');
   const child = spawn(binary, ['-c', conf], { stdio: ['ignore', 'ignore', 'pipe'] });
-  await awaitLine(child, 'stderr', /Opening ipv4 listen socket/, 'mosquitto listens');
+  await awaitLine(child, 'stderr', /mosquitto version \S+ running/, 'mosquitto listens');
   return child;
 }
 
