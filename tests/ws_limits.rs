@@ -143,7 +143,9 @@ async fn frames_beyond_a_connections_allowance_are_dropped_and_the_first_answere
             }
         };
         assert_eq!(refusal["code"], "rate-limited", "{refusal}");
-        assert!((400..flood).contains(&answered), "{answered} answered");
+        // The allowance is 400 at once, and the `hello` took one of them; more come back at
+        // 100 a second while the flood is read, so a slow run answers a few more.
+        assert!((399..flood).contains(&answered), "{answered} answered");
         // A connection that never said hello is held to it too: answered `hello-first`, then
         // one `rate-limited`.
         let mut stranger = server.connect().await;

@@ -106,6 +106,15 @@ impl Dispatcher {
         }
     }
 
+    /// Takes the state's lock for a request that began its checks in `bundle` (live then, or
+    /// replaced by a reload since): it goes on in that bundle, never in two.
+    fn turn_in(&self, bundle: Arc<Bundle>) -> Turn<'_> {
+        Turn {
+            state: lock(&self.state),
+            bundle,
+        }
+    }
+
     /// The bundle being served.
     pub fn bundle(&self) -> Arc<Bundle> {
         self.bundle.load_full()
@@ -139,7 +148,17 @@ impl Dispatcher {
     /// Triggers an act: resolves it, starts its commands, and says what was resolved. The
     /// whole trigger is one turn: checked, resolved, logged and handed over in one bundle.
     pub fn trigger(self: &Arc<Self>, req: TriggerRequest) -> Result<Triggered, TriggerError> {
-        let mut turn = self.turn();
+        self.trigger_in(self.bundle(), req)
+    }
+
+    /// [`Dispatcher::trigger`] in `bundle`, the one the caller checked the request against
+    /// (the kiosk's page offers, its session settings): a request never mixes two bundles.
+    pub fn trigger_in(
+        self: &Arc<Self>,
+        bundle: Arc<Bundle>,
+        req: TriggerRequest,
+    ) -> Result<Triggered, TriggerError> {
+        let mut turn = self.turn_in(bundle);
         let bundle = Arc::clone(&turn.bundle);
         // A visitor tapping an act already speaking gets an answer, not the text twice.
         if req.source == Source::Kiosk && speaking_act(&turn.state, &req.label) {

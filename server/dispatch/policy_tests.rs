@@ -258,3 +258,29 @@ async fn what_the_speech_channel_says_now_is_its_running_say_until_it_ends() {
     assert_eq!(rig.next_of(second).await.0, "done");
     assert_eq!(rig.dispatcher.saying_now(), None);
 }
+
+#[tokio::test(start_paused = true)]
+async fn a_request_checked_in_one_bundle_is_resolved_in_it_even_after_a_reload() {
+    let rig = rig("speech: {adapter: log}\n");
+    let checked = rig.dispatcher.bundle();
+    // A reload puts a bundle live whose act A says something else.
+    let (_dir, edited) = bundle("speech: {adapter: log}\n");
+    let mut edited = edited;
+    let index = edited.index["A"];
+    edited.acts[index].variants[0].alternatives[0].value = "edited".to_owned();
+    rig.dispatcher.replace_bundle(Arc::new(edited));
+    let request = TriggerRequest::new("A", Source::Kiosk);
+    let old = (rig.dispatcher.trigger_in(checked, request.clone())).expect("triggered");
+    assert_eq!(
+        old.text.as_deref(),
+        Some(LONG),
+        "resolved in the bundle it was checked in"
+    );
+    rig.dispatcher.stop(Source::Operator, "next");
+    let new = rig.dispatcher.trigger(request).expect("triggered");
+    assert_eq!(
+        new.text.as_deref(),
+        Some("edited"),
+        "a new request: the live bundle"
+    );
+}

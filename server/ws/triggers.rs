@@ -10,7 +10,7 @@
 use std::time::Instant;
 
 use crate::access::KioskAllowance;
-use crate::content::{BundleArea, resolve_in_bundle};
+use crate::content::{Bundle, BundleArea, resolve_in_bundle};
 use crate::dispatch::{Answer, TriggerRequest};
 use crate::events::{ClientRole, EventKind, KioskCause, element_description};
 use crate::wire::ErrorCode;
@@ -62,6 +62,8 @@ pub(super) fn trigger(
         log_refused(client, role, label, ErrorCode::Forbidden, message);
         return RefusedRun::Logged;
     };
+    // One bundle for the whole request: its checks here and the trigger itself.
+    let bundle = client.state.dispatcher.bundle();
     let mut run = RefusedRun::Unchanged;
     if allowed == ClientRole::Kiosk {
         if let Err(message) = kiosk_allowance(client, KioskAllowance::Visitor) {
@@ -79,7 +81,7 @@ pub(super) fn trigger(
             act: Some(label.clone()),
             link: None,
         });
-        if let Err(message) = offered(client, &label) {
+        if let Err(message) = offered(&bundle, &label) {
             let code = ErrorCode::NotOffered;
             client.reply_error(code, &message, reference.as_deref(), None);
             if let Some(touch) = touch {
@@ -94,8 +96,10 @@ pub(super) fn trigger(
         if let Some(touch) = touch {
             // Before the trigger's events, so that they are in the session it starts.
             let page = client.state.devices.display.snapshot().page;
-            let corpus = client.state.dispatcher.bundle().config.corpus;
-            client.state.visits.touched(&corpus, client.id);
+            client
+                .state
+                .visits
+                .touched(&bundle.config.corpus, client.id);
             touch.log(client, page);
         }
     } else if !client.log_writable(reference.as_deref()) {
@@ -109,7 +113,7 @@ pub(super) fn trigger(
         source: allowed.source(),
         client: Some(client.id),
     };
-    match client.state.dispatcher.trigger(request) {
+    match client.state.dispatcher.trigger_in(bundle, request) {
         Ok(t) => client.send_logged(triggered_frame(&t), reference.as_deref()),
         Err(e) => client.reply_error(
             e.code(),
@@ -123,8 +127,7 @@ pub(super) fn trigger(
 
 /// Whether a kiosk may trigger `label`: an act its pages offer, the idle act or an attract
 /// loop's act.
-fn offered(client: &Client, label: &str) -> Result<(), String> {
-    let bundle = client.state.dispatcher.bundle();
+fn offered(bundle: &Bundle, label: &str) -> Result<(), String> {
     let offered = bundle.page_acts.iter().any(|a| a == label)
         || bundle.config.kiosk_own_acts().any(|a| a == label);
     if !offered {
