@@ -10,12 +10,11 @@ use axum::Router;
 use axum::body::{Body, Bytes};
 use axum::extract::ConnectInfo;
 use axum::http::{HeaderMap, Method, Request, StatusCode, header};
-use docent::content::load_bundle;
 use docent::serve::{ServeOptions, Server};
 use serde_json::Value;
 use tower::ServiceExt;
 
-use super::{DEADLINE, OPERATOR_TOKEN, read_corpus, test_access, within};
+use super::{DEADLINE, OPERATOR_TOKEN, read_corpus, within};
 
 /// A started server whose routes are called without a listener.
 pub struct TestApp {
@@ -60,21 +59,7 @@ impl TestApp {
 
     /// Serves `bundle`, letting the test adjust the options.
     pub async fn start_with(bundle: &Path, adjust: impl FnOnce(&mut ServeOptions)) -> Self {
-        let report = load_bundle(bundle);
-        let loaded = report
-            .bundle
-            .unwrap_or_else(|| panic!("bundle has errors: {:#?}", report.diagnostics));
-        let corpus_dir = tempfile::tempdir().expect("corpus dir");
-        let mut options = ServeOptions {
-            seed: Some(1),
-            corpus_dir: corpus_dir.path().to_owned(),
-            corpus_sync: docent::corpus::DEFAULT_SYNC_INTERVAL,
-            speech_wav: None,
-            access: test_access(),
-            limits: docent::http::ConnectionLimits::default(),
-        };
-        adjust(&mut options);
-        let server = Server::start(loaded, &options).expect("server starts");
+        let (server, corpus_dir) = super::start_server(bundle, adjust);
         TestApp {
             router: server.router(),
             corpus: server.corpus_path(),

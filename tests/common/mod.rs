@@ -91,6 +91,30 @@ impl TempBundle {
     }
 }
 
+/// The server for `bundle`, with seed 1, the test credentials and a fresh corpus folder (kept
+/// while the returned folder lives), after `adjust` changed the options.
+pub fn start_server(
+    bundle: &Path,
+    adjust: impl FnOnce(&mut ServeOptions),
+) -> (Server, tempfile::TempDir) {
+    let report = load_bundle(bundle);
+    let loaded = report
+        .bundle
+        .unwrap_or_else(|| panic!("bundle has errors: {:#?}", report.diagnostics));
+    let corpus_dir = tempfile::tempdir().expect("corpus dir");
+    let mut options = ServeOptions {
+        seed: Some(1),
+        corpus_dir: corpus_dir.path().to_owned(),
+        corpus_sync: docent::corpus::DEFAULT_SYNC_INTERVAL,
+        speech_wav: None,
+        access: test_access(),
+        limits: docent::http::ConnectionLimits::default(),
+    };
+    adjust(&mut options);
+    let server = Server::start(loaded, &options).expect("server starts");
+    (server, corpus_dir)
+}
+
 /// A running server.
 pub struct TestServer {
     pub addr: std::net::SocketAddr,
@@ -120,21 +144,7 @@ impl TestServer {
         adjust: impl FnOnce(&mut ServeOptions),
         prepare: impl FnOnce(&Server),
     ) -> Self {
-        let report = load_bundle(bundle);
-        let loaded = report
-            .bundle
-            .unwrap_or_else(|| panic!("bundle has errors: {:#?}", report.diagnostics));
-        let corpus_dir = tempfile::tempdir().expect("corpus dir");
-        let mut options = ServeOptions {
-            seed: Some(1),
-            corpus_dir: corpus_dir.path().to_owned(),
-            corpus_sync: docent::corpus::DEFAULT_SYNC_INTERVAL,
-            speech_wav: None,
-            access: test_access(),
-            limits: docent::http::ConnectionLimits::default(),
-        };
-        adjust(&mut options);
-        let server = Server::start(loaded, &options).expect("server starts");
+        let (server, corpus_dir) = start_server(bundle, adjust);
         prepare(&server);
         let corpus = server.corpus_path();
         let listener = tokio::net::TcpListener::bind("127.0.0.1:0")
