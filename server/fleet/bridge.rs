@@ -113,6 +113,10 @@ struct Bridge {
 
 impl Bridge {
     async fn run(mut self, mut notes: mpsc::Receiver<LinkNote>, commands: mpsc::Sender<Verified>) {
+        // The state's battery comes from battery reports, followed without loss: a level
+        // missed under load would stand in the fleet view until the next report. The rest of
+        // the events are mirrored on `events` through the bounded broadcast (drops counted).
+        let mut batteries = self.state.hub.follow(robot_state::is_battery);
         let mut events = self.state.hub.subscribe();
         let shutdown = self.state.life.shutdown.clone();
         let cmd_topic = topic(&self.identity.robot, "cmd");
@@ -134,11 +138,14 @@ impl Bridge {
                     Some(LinkNote::Message { .. }) => {}
                     None => break,
                 },
+                Some(report) = batteries.recv() => {
+                    if let Some(battery) = robot_state::battery_of(&report) {
+                        self.battery = Some(battery);
+                        dirty = true;
+                    }
+                }
                 got = events.recv() => match got {
                     Ok(event) => {
-                        if let Some(battery) = robot_state::battery_of(&event) {
-                            self.battery = Some(battery);
-                        }
                         self.publish_event(event.json());
                         dirty = true;
                     }

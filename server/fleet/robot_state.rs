@@ -23,13 +23,22 @@ pub struct Battery {
     pub at_ms: u64,
 }
 
+/// Whether `kind` is a battery robot event (`battery`, `battery.*`): what the bridge follows
+/// without loss, at the robot's reporting pace.
+pub fn is_battery(kind: &EventKind) -> bool {
+    let EventKind::Robot(robot) = kind else {
+        return false;
+    };
+    let name = robot.event.as_str();
+    name == "battery" || name.starts_with("battery.")
+}
+
 /// The battery level `event` reports, if it is a battery robot event with a level.
 pub fn battery_of(event: &Event) -> Option<Battery> {
     let EventKind::Robot(robot) = &event.kind else {
         return None;
     };
-    let name = robot.event.as_str();
-    if name != "battery" && !name.starts_with("battery.") {
+    if !is_battery(&event.kind) {
         return None;
     }
     let data = &robot.data;
@@ -40,7 +49,7 @@ pub fn battery_of(event: &Event) -> Option<Battery> {
     };
     (0.0..=100.0).contains(&percent).then(|| Battery {
         percent,
-        event: name.to_owned(),
+        event: robot.event.as_str().to_owned(),
         at_ms: (event.time.duration_since(std::time::UNIX_EPOCH))
             .map_or(0, |d| u64::try_from(d.as_millis()).unwrap_or(u64::MAX)),
     })
@@ -119,5 +128,12 @@ mod tests {
             battery_of(&robot("battery", json!({"percent": "full"}))),
             None
         );
+    }
+
+    #[test]
+    fn the_bridge_follows_battery_reports_and_no_other_robot_event() {
+        let followed = |name: &str| is_battery(&robot(name, json!({"percent": 1})).kind);
+        assert!(followed("battery") && followed("battery.state"));
+        assert!(!followed("batterylow") && !followed("person.near"));
     }
 }
