@@ -13,7 +13,7 @@ use std::collections::{BTreeMap, HashMap};
 use std::sync::Arc;
 
 use docent_protocol::EVENT_FORMAT_VERSION;
-use docent_protocol::events::{ActRef, EventKind, Head, LineEvent, Source};
+use docent_protocol::events::{ActRef, EventKind, Head, LineEvent, Source, is_pose};
 
 mod parts;
 
@@ -83,10 +83,15 @@ impl TimelineReader {
                     .into(),
             ));
         };
-        let event = LineEvent::parse(line, &head).map_err(|e| LineProblem(plain(&e)))?;
+        // No tier draws the robot's poses, most of a log: their stamps are enough here (MCAP
+        // reads them whole, `export/mcap`).
+        let event = match head.kind.as_deref().is_some_and(is_pose) {
+            true => None,
+            false => Some(LineEvent::parse(line, &head).map_err(|e| LineProblem(plain(&e)))?),
+        };
         self.last_us = self.last_us.max(at);
         self.explicit_touches |= v >= EXPLICIT_TOUCHES;
-        if let LineEvent::Event(kind) = event {
+        if let Some(LineEvent::Event(kind)) = event {
             self.take(at, kind);
         }
         Ok(())

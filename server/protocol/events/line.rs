@@ -119,6 +119,25 @@ struct Typed {
     _kind: String,
 }
 
+/// Whether `name` is the `type` of a pose line ([`EventKind::Pose`], asked of serde once, so
+/// the name is written nowhere else). Readers that draw no poses (the tier exports) pass such
+/// lines over after their stamps: they are most of a log, and reading each whole costs.
+pub fn is_pose(name: &str) -> bool {
+    static POSE: OnceLock<String> = OnceLock::new();
+    let pose = POSE.get_or_init(|| {
+        let sample = EventKind::Pose {
+            x: 0.0,
+            y: 0.0,
+            heading: 0.0,
+            moving: false,
+            frame: None,
+        };
+        let written = serde_json::to_value(&sample).unwrap_or_default();
+        written["type"].as_str().unwrap_or_default().to_owned()
+    });
+    !pose.is_empty() && name == pose
+}
+
 /// Whether `name` is an event type this Docent knows: an [`EventKind`] or a recording's.
 pub fn is_event_type(name: &str) -> bool {
     has_type::<EventKind>(name) || has_type::<RecordingEvent>(name)

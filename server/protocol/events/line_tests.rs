@@ -540,3 +540,20 @@ fn a_pose_without_its_numbers_reads_them_as_nan() {
     assert!(x.is_nan());
     assert_eq!(frame.as_deref(), Some("hall"));
 }
+
+#[test]
+fn a_pose_line_is_told_by_the_type_its_writer_writes() {
+    let pose = EventKind::Pose {
+        x: 1.0,
+        y: 2.0,
+        heading: 90.0,
+        moving: false,
+        frame: None,
+    };
+    let event = crate::events::Event::new(1, UNIX_EPOCH + Duration::from_secs(1), 0, pose);
+    let head = Head::parse(event.json().as_bytes()).expect("a head");
+    assert!(head.kind.as_deref().is_some_and(is_pose), "{head:?}");
+    for other in ["act.triggered", "robot", "", "Pose"] {
+        assert!(!is_pose(other), "{other}");
+    }
+}

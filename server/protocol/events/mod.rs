@@ -19,7 +19,7 @@ mod touch;
 
 pub use attract::{AttractEnd, AttractState};
 pub use kind::EventKind;
-pub use line::{Head, Line, LineEvent, is_event_type};
+pub use line::{Head, Line, LineEvent, is_event_type, is_pose};
 pub use origin::{ActRef, ClientRole, Source};
 pub use recording::{FailureCode, RecordingEvent, StopReason, Track};
 pub use robot::{ROBOT_EVENT_NAME_CHARS, RobotEvent, robot_event_name_problem};
