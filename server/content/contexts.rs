@@ -1,8 +1,9 @@
 //! Contexts: the variant names (`TextGroup`, `TextChild`, ...) a bundle uses, and the checks
 //! that catch a misspelt one. A misspelt variant is not an error to YAML: the act simply has
 //! a variant no visitor is ever in, and a child hears the adult `Text`. With `contexts:` in
-//! docent.yaml an undeclared name is an error; without it, a name only one act uses, or one
-//! typing slip away from another, earns a "did you mean".
+//! docent.yaml an undeclared name is an error; without it, a name one typing slip away from
+//! another earns a "did you mean", and one that is not `Text` and a capitalised word a
+//! warning. A well-formed name only one act uses is a context like any other.
 
 use std::collections::{BTreeMap, BTreeSet};
 
@@ -52,8 +53,11 @@ pub(crate) fn check_declared(config: &SiteConfig, variants: &[Variant], out: &mu
     }
 }
 
-/// Without `contexts:`, every variant name is a context: a name one act alone uses, or one a
-/// slip away from a name more acts use, is most likely a typing error.
+/// Without `contexts:`, every variant name is a context, and a context one act alone uses is
+/// legitimate (the paper's own Fig. 4 has `TextGroup` and `TextFormally` once each). What is
+/// most likely a typing error: a name one slip away from a name at least as many acts use
+/// (`TextChlid` beside `TextChild`), or a name that does not read as `Text` and a word with a
+/// capital (`Textchild`, `Text_child`), which every context is written as.
 pub(crate) fn check_undeclared(config: &SiteConfig, acts: &[Act], out: &mut Vec<Diagnostic>) {
     if !config.contexts.is_empty() {
         return;
@@ -81,10 +85,11 @@ pub(crate) fn check_undeclared(config: &SiteConfig, acts: &[Act], out: &mut Vec<
                      (`contexts: [{meant}, ...]`) and Docent catches such slips as errors."
                 )
             }
-            None if places.len() == 1 => format!(
-                "Only this act has `{name}`, so no other act changes in the context `{name}`. If \
-                 it is a typing error, correct it. If it is wanted, list the contexts in \
-                 docent.yaml (`contexts: [{name}, ...]`) to confirm it."
+            None if !well_formed(suffix) => format!(
+                "`{name}` does not read as a context name: contexts are `Text` followed by a \
+                 word with a capital letter, such as `TextGroup` or `TextChild`. If it is a \
+                 typing error, correct it. If it is wanted, list the contexts in docent.yaml \
+                 (`contexts: [{name}, ...]`) to confirm it."
             ),
             None => continue,
         };
@@ -96,6 +101,13 @@ pub(crate) fn check_undeclared(config: &SiteConfig, acts: &[Act], out: &mut Vec<
             ));
         }
     }
+}
+
+/// Whether a context name's part after `Text` reads as a word with a capital (`Group`,
+/// `Formally`, `Älter`, `Child2`): how every context in the paper and the guide is written.
+fn well_formed(suffix: &str) -> bool {
+    suffix.chars().next().is_some_and(char::is_uppercase)
+        && suffix.chars().all(char::is_alphanumeric)
 }
 
 #[cfg(test)]
@@ -143,10 +155,16 @@ mod tests {
             "{}",
             found[0]
         );
-        let lonely = warnings(&[act(&["Text", "TextFormally"]), act(&["Text"])]);
+        // The paper's Fig. 4: each context used by one act, and no slip between them.
+        assert_eq!(
+            warnings(&[act(&["Text", "TextGroup", "TextFormally"]), act(&["Text"])]),
+            Vec::<String>::new()
+        );
+        let sloppy = warnings(&[act(&["Text", "Textchild"]), act(&["Text", "Text_Group"])]);
+        assert_eq!(sloppy.len(), 2, "{sloppy:?}");
         assert!(
-            lonely[0].contains("Only this act has `TextFormally`"),
-            "{lonely:?}"
+            sloppy[1].contains("`Textchild` does not read as a context name"),
+            "{sloppy:?}"
         );
         assert!(
             warnings(&[

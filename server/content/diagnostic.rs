@@ -60,6 +60,14 @@ diagnostic_codes! {
     /// The `home` page does not exist. An error when `home` is set in `docent.yaml`; a warning
     /// when the default `index.html` is missing.
     NoHomePage = "no-home-page",
+    /// Files computers and editors leave in copied folders (`._name` Mac resource forks,
+    /// `.DS_Store`, `Thumbs.db`, `desktop.ini`, editor backups `name~`, `.bak`, `.swp`, `.#name`)
+    /// were found and ignored: one warning for the whole bundle, saying how many of each.
+    IgnoredFiles = "ignored-files",
+    /// An acts file renamed so Docent does not read it (`acts.yaml.bak`, `acts.yaml.old`,
+    /// `acts.yml~`) holds acts no loaded acts file has: they are missing from the console and
+    /// the pages. Reported once per file, with how many acts it holds.
+    DisabledActsFile = "disabled-acts-file",
     /// YAML cannot read the file at this place: an unclosed quote or bracket, a `: ` inside
     /// unquoted text, a stray indentation, a `---` line, a value starting with `*`, `&`, `!`,
     /// `@`, or a file not saved as UTF-8. Only the broken act is skipped; the rest of the file

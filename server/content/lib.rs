@@ -34,6 +34,8 @@
 //!   length in spoken texts.
 //! - `suggest`: "did you mean" for labels, keys, verbs and file names.
 //! - `unused`: acts that nothing triggers.
+//! - `litter`: files copied folders and editors leave behind (`._name`, `.DS_Store`, `~`),
+//!   ignored with one warning, and acts files disabled by renaming.
 //! - `voices`: the languages no installed espeak-ng voice speaks (start-up and `docent check`).
 //! - `gather`: reading the acts files and pages on every core.
 //! - `load`: putting it together: `load_bundle`.
@@ -74,6 +76,7 @@ mod encoding;
 mod fingerprint;
 mod gather;
 mod highlight;
+mod litter;
 mod load;
 mod media;
 mod operator_check;

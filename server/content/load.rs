@@ -14,6 +14,7 @@ use crate::config_file::{ConfigFile, parse_config};
 use crate::contexts::{check_undeclared, contexts};
 use crate::diagnostic::Diagnostic;
 use crate::gather::{CheckedAct, CheckedFile, gather, on_reading_stack, read_limited};
+use crate::litter::Survey;
 use crate::model::{Act, Bundle, Located, Pos};
 use crate::operator_check::{KeyBindings, check_map, visitor_groups};
 use crate::pages::{PageLabels, check_reachable_languages};
@@ -77,6 +78,7 @@ fn load(root: &Path, replaced: &ActsReplacements) -> LoadReport {
         .iter()
         .any(|d| d.code == DiagnosticCode::ConfigSyntax || d.code == DiagnosticCode::FileEncoding);
     let names = acts_file_names(&root, &mut diagnostics);
+    let mut leftovers = Survey::find(&root);
     let mut config = settings.config;
     let gathered = gather(&root, &names, &config, replaced, &mut diagnostics);
     let checker = CommandChecker::new(&root, &config);
@@ -97,6 +99,13 @@ fn load(root: &Path, replaced: &ActsReplacements) -> LoadReport {
     }
     check_reaction_acts(&merged, &settings.reaction_acts, &mut diagnostics);
     check_map(&checker, &config, settings.map.as_ref(), &mut diagnostics);
+    leftovers.check_disabled(
+        &root,
+        &config,
+        &|label| merged.knows(label),
+        &mut diagnostics,
+    );
+    leftovers.report(&mut diagnostics);
     if !settings_unread {
         check_undeclared(&config, &merged.acts, &mut diagnostics);
         let idle = settings.idle_act.as_ref().map(|a| a.value.as_str());

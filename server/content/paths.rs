@@ -12,6 +12,8 @@ use std::fs;
 use std::path::{Path, PathBuf};
 use std::sync::Arc;
 
+use crate::litter::litter_kind;
+
 /// The bundle folders that files may be served from.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
 pub enum BundleArea {
@@ -197,13 +199,20 @@ fn find_entry(listing: Listing, name: &str) -> Result<(Entry, EntryType), PathEr
         .ok_or(PathError::NotFound)
 }
 
-/// Every file under `root/<area>`, as `/`-separated paths relative to the area folder,
+/// Every file under `root/<area>` but what computers and editors leave behind (`._name`,
+/// `.DS_Store`, backups: see `litter`), as `/`-separated paths relative to the area folder,
 /// sorted. Folder symlinks are not followed (no loops, nothing outside); used for "did you
 /// mean" and for finding pages to scan, never to decide access.
 pub(crate) fn list_files(root: &Path, area: BundleArea) -> Vec<String> {
+    list_files_and_litter(root, area).0
+}
+
+/// [`list_files`], and the leftover files it leaves out, both sorted.
+pub(crate) fn list_files_and_litter(root: &Path, area: BundleArea) -> (Vec<String>, Vec<String>) {
     const MAX_DEPTH: usize = 16;
     const MAX_FILES: usize = 100_000;
     let mut files = Vec::new();
+    let mut litter = Vec::new();
     let mut pending = vec![(root.join(area.dir_name()), String::new(), 0)];
     while let Some((dir, prefix, depth)) = pending.pop() {
         let Ok(listing) = fs::read_dir(&dir) else {
@@ -221,6 +230,12 @@ pub(crate) fn list_files(root: &Path, area: BundleArea) -> Vec<String> {
             };
             if kind.is_dir() && depth < MAX_DEPTH {
                 pending.push((entry.path(), rel, depth + 1));
+            } else if kind.is_dir() {
+                continue;
+            } else if litter_kind(&entry.file_name().to_string_lossy()).is_some() {
+                if litter.len() < MAX_FILES {
+                    litter.push(rel);
+                }
             } else if files.len() < MAX_FILES
                 && (kind.is_file() || (kind.is_symlink() && entry.path().is_file()))
             {
@@ -229,7 +244,8 @@ pub(crate) fn list_files(root: &Path, area: BundleArea) -> Vec<String> {
         }
     }
     files.sort();
-    files
+    litter.sort();
+    (files, litter)
 }
 
 #[cfg(test)]

@@ -31,8 +31,10 @@ pub fn render_diagnostics(root: &Path, diagnostics: &[Diagnostic], colour: Colou
         let source = sources
             .entry(d.file.as_str())
             .or_insert_with(|| std::fs::read_to_string(root.join(&d.file)).ok());
+        // A binary file that happens to be UTF-8 (a Mac's `._name`) has no line to show.
         let line = source
             .as_deref()
+            .filter(|s| !s.contains('\0'))
             .and_then(|s| s.lines().nth(d.line.saturating_sub(1) as usize));
         out.push_str(&render_one(&renderer, d, line));
         out.push_str("\n\n");

@@ -22,6 +22,7 @@ mod acts_yaml;
 mod attract;
 mod bundle;
 mod commands;
+mod copied_folders;
 mod language_mistakes;
 mod language_settings;
 mod load;

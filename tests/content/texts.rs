@@ -195,6 +195,31 @@ fn a_misspelt_context_gets_a_did_you_mean_without_declared_contexts() {
     );
 }
 
+/// Without `contexts:`, a context one act alone uses (the paper's `TextGroup`, `TextFormally`)
+/// is meant; one not written as `Text` and a capitalised word is most likely a slip.
+#[test]
+fn a_lonely_context_is_fine_and_a_badly_written_one_is_warned_about() {
+    let fig4 = yaml(&[
+        "- Label: WHERE_FROM",
+        "  Text: Where do you come from?",
+        "  TextGroup: Where are you from?",
+        "  TextFormally: May I ask from where you are?",
+        "- Label: OK",
+        "  Text: OK!",
+    ]);
+    assert_eq!(places(&check(bundle(&[("acts.yaml", &fig4)]).path())), []);
+    let sloppy = fig4.replace("TextFormally", "Textformally");
+    let report = check(bundle(&[("acts.yaml", &sloppy)]).path());
+    assert_eq!(places(&report), [place("context-typo", "acts.yaml:4:3")]);
+    assert!(
+        report.diagnostics[0]
+            .message
+            .contains("`Textformally` does not read as a context name"),
+        "{}",
+        report.diagnostics[0].message
+    );
+}
+
 #[test]
 fn acts_nothing_triggers_are_warned_about() {
     let dir = bundle(&[
