@@ -301,3 +301,22 @@ fn check_warns_at_a_translation_that_is_its_original_but_not_at_a_name() {
         "not at Mona Lisa: {out}"
     );
 }
+
+/// Not a shift: the row below has the same original, so the same translation is right.
+#[test]
+fn two_texts_with_the_same_original_may_share_a_translation() {
+    let bundle = TempBundle::new(
+        "- Label: THANKS\n  Text: Thank you very much\n  Text@de: Vielen herzlichen Dank\n\
+         - Label: THANKS_AGAIN\n  Text: Thank you very much\n",
+    )
+    .with_file("docent.yaml", "languages: [en, de]\n");
+    let table = "key,en,de\n\
+                 THANKS/Text/1,Thank you very much,Vielen herzlichen Dank\n\
+                 THANKS_AGAIN/Text/1,Thank you very much,Vielen herzlichen Dank\n";
+    let (code, out, err, _) = import(&bundle, "same.csv", table.as_bytes());
+    assert_eq!((code, err.as_str()), (0, ""), "{out}");
+    assert!(
+        out.contains(": 1 translation(s) added, 0 replaced, 1 unchanged."),
+        "{out}"
+    );
+}

@@ -159,7 +159,9 @@ pub fn shifted(
         .zip(["above", "below"])
         .filter_map(|(j, which)| Some((entries.get(j?)?, which)))
         .find(|(other, _)| {
+            // Two rows with the same original may rightly share a translation.
             other.key != entry.key
+                && other.source != entry.source
                 && existing(bundle, language, &other.key).is_some_and(|t| t.trim() == translation)
         })?;
     Some(format!(

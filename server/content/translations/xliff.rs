@@ -5,7 +5,9 @@
 //!
 //! Read back, only each unit's own `<source>` and `<target>` count (not those of
 //! `<alt-trans>` suggestions); a target holding inline markup (`<g>`, `<x/>`) is reported,
-//! since a spoken text cannot carry it.
+//! since a spoken text cannot carry it. A target's `state` that says it is unfinished (1.2's
+//! `new`, `needs-translation`, ...) is kept for the import to refuse (`refuse.rs`). XLIFF 2.0
+//! is read too (`<unit>`, its `<segment>`'s `state`, `srcLang`/`trgLang` on the root).
 //!
 //! Reading takes time in proportion to the file's size: each byte's line is counted once, as
 //! the reader goes (`Lines`), never from the start again for every element (which made a
