@@ -320,3 +320,25 @@ fn two_texts_with_the_same_original_may_share_a_translation() {
         "{out}"
     );
 }
+
+/// A heading dragged to another place without its column: the `de` heading now stands over
+/// the places of the originals.
+#[test]
+fn headings_moved_apart_from_their_columns_refuse_the_table() {
+    let bundle = bundle();
+    let table = "key,en,where,de\n\
+                 BYE/Text/1,\"Good bye, see you soon!\",Auf Wiedersehen!,acts.yaml:12\n";
+    let (code, out, err, file) = import(&bundle, "moved.csv", table.as_bytes());
+    assert_eq!((code, out.as_str()), (1, ""));
+    assert_eq!(
+        err,
+        format!(
+            "{}  {file}:2:4: row 2, cell D2: the German cell of BYE/Text/1 holds `acts.yaml:12`, \
+             a key or the place of an original (the `key` or `where` column), not a translation: \
+             the headings and the columns under them look moved apart. Keep each heading above \
+             its own column, as Docent wrote the table.\n",
+            refused(&file, 1)
+        )
+    );
+    assert_eq!(acts(&bundle), ACTS.as_bytes(), "byte for byte");
+}

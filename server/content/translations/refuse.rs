@@ -94,6 +94,15 @@ pub fn target(
              CAT tool, or empty its target, and export the file from the tool again."
         ));
     }
+    if translation.trim() == entry.key || is_place(translation) {
+        return Some(format!(
+            "{here}: the {target} cell of {key} holds `{}`, a key or the place of an original \
+             (the `key` or `where` column), not a translation: the headings and the columns \
+             under them look moved apart. Keep each heading above its own column, as Docent \
+             wrote the table.",
+            translation.trim()
+        ));
+    }
     let breaks = |t: &str| t.contains(['\n', '\r']);
     if breaks(translation) && !breaks(original) {
         return Some(format!(
@@ -111,6 +120,17 @@ pub fn target(
         ));
     }
     None
+}
+
+/// Whether `cell` is what the `where` column holds: an acts file and a line (`acts.yaml:3`).
+fn is_place(cell: &str) -> bool {
+    let Some((file, line)) = cell.trim().rsplit_once(':') else {
+        return false;
+    };
+    let yaml = [".yaml", ".yml"]
+        .iter()
+        .any(|e| file.to_ascii_lowercase().ends_with(e));
+    yaml && !line.is_empty() && line.bytes().all(|b| b.is_ascii_digit())
 }
 
 /// The start of `translation` that makes it a formula to a spreadsheet, in words, unless it
@@ -179,6 +199,16 @@ pub fn shifted(
 mod tests {
     use super::*;
     use crate::translations::Columns;
+
+    #[test]
+    fn the_place_of_an_original_is_told_from_a_text() {
+        for place in ["acts.yaml:3", "tour/rooms.YML:120"] {
+            assert!(is_place(place), "{place}");
+        }
+        for text in ["acts.yaml", "Open 10:00", "see acts.yaml: 3", "a.yaml:"] {
+            assert!(!is_place(text), "{text}");
+        }
+    }
 
     #[test]
     fn columns_are_named_as_a_spreadsheet_does() {
