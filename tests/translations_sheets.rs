@@ -342,3 +342,40 @@ fn headings_moved_apart_from_their_columns_refuse_the_table() {
     );
     assert_eq!(acts(&bundle), ACTS.as_bytes(), "byte for byte");
 }
+
+/// An XLIFF unit without its `<source>` cannot be checked against the bundle, and one whose
+/// id the bundle no longer has is stale: each refuses the file by the unit's line.
+#[test]
+fn xliff_units_without_a_source_or_with_a_stale_id_refuse_the_file() {
+    let bundle = bundle();
+    let xliff = r#"<?xml version="1.0" encoding="UTF-8"?>
+<xliff version="1.2" xmlns="urn:oasis:names:tc:xliff:document:1.2">
+  <file original="b" source-language="en" target-language="de" datatype="plaintext">
+    <body>
+      <trans-unit id="BYE/Text/1">
+        <target state="translated">Auf Wiedersehen!</target>
+      </trans-unit>
+      <trans-unit id="FAREWELL/Text/1">
+        <source>Farewell</source>
+        <target state="translated">Lebewohl</target>
+      </trans-unit>
+    </body>
+  </file>
+</xliff>
+"#;
+    let (code, out, err, file) = import(&bundle, "old.xlf", xliff.as_bytes());
+    assert_eq!((code, out.as_str()), (1, ""));
+    assert_eq!(
+        err,
+        format!(
+            "{}  {file}:5: unit BYE/Text/1: BYE/Text/1 has no English original (`<source>`), so \
+             Docent cannot check that the translation belongs to it. Keep each unit's source as \
+             exported.\n  {file}:8: unit FAREWELL/Text/1: FAREWELL/Text/1: the bundle has no act \
+             `FAREWELL` (renamed or removed since the table was made?); the table is older than \
+             the bundle. Export the table again and copy the translations into it, or correct \
+             the key as Docent wrote it.\n",
+            refused(&file, 2)
+        )
+    );
+    assert_eq!(acts(&bundle), ACTS.as_bytes(), "byte for byte");
+}
