@@ -379,3 +379,24 @@ fn xliff_units_without_a_source_or_with_a_stale_id_refuse_the_file() {
     );
     assert_eq!(acts(&bundle), ACTS.as_bytes(), "byte for byte");
 }
+
+/// A cell inserted with "shift cells down" pushes the last translation below the last key.
+#[test]
+fn a_translation_below_the_last_key_refuses_the_table() {
+    let bundle = bundle();
+    let table = "key,en,de\n\
+                 BYE/Text/1,\"Good bye, see you soon!\",\n\
+                 ,,Auf Wiedersehen!\n";
+    let (code, out, err, file) = import(&bundle, "down.csv", table.as_bytes());
+    assert_eq!((code, out.as_str()), (1, ""));
+    assert_eq!(
+        err,
+        format!(
+            "{}  {file}:3:1: row 3, cell A3: this row has a translation but no key: the rows or \
+             columns look shifted in the spreadsheet. Undo the move, so that each translation \
+             stands in the row of its key and original.\n",
+            refused(&file, 1)
+        )
+    );
+    assert_eq!(acts(&bundle), ACTS.as_bytes(), "byte for byte");
+}
