@@ -54,6 +54,7 @@ mod touchscreen_reports;
 mod translations;
 mod translations_refusals;
 mod translations_rows;
+mod translations_sheets;
 mod ws_adapter;
 mod ws_close_codes;
 mod ws_limits;

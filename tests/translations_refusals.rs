@@ -1,8 +1,9 @@
 //! Every refusal and every reported row of `docent translations`, with its exact words and
 //! exit status, and the acts file untouched where nothing may be written: a bundle with
 //! errors, a language not translated into, a table that cannot be read, an act written
-//! inline; unknown keys, empty cells, incomplete lists, changed originals, repeated keys and
-//! markup (status 3, the rest written). A translation the loader refuses is told by its row
+//! inline, a stale key, a moved original, a repeated key, a formula (status 1, each cell
+//! named, nothing written); empty cells, incomplete lists and markup (status 3, the rest
+//! written). Tables as Excel and LibreOffice save them are in `translations_sheets.rs`. A translation the loader refuses is told by its row
 //! in `translations_rows.rs`.
 
 use crate::common;
@@ -130,7 +131,7 @@ fn an_output_without_a_known_extension_needs_a_format() {
 #[test]
 fn tables_that_cannot_be_read_are_refused_with_how_to_fix_them() {
     let bundle = bundle();
-    let cases: [(&str, &[u8], &[&str], &str); 5] = [
+    let cases: [(&str, &[u8], &[&str], &str); 6] = [
         (
             "latin1.csv",
             b"key,en,de\nBYE/Text/1,Good bye,Tsch\xfcss\n",
@@ -144,6 +145,16 @@ fn tables_that_cannot_be_read_are_refused_with_how_to_fix_them() {
             &[],
             "the table has no `key` column (its first row has: id, en, de). Keep the first row \
              as Docent wrote it: key, en, the translated language, where",
+        ),
+        (
+            "nosource.csv",
+            b"key,English,de\nBYE/Text/1,Good bye,Tschuess\n",
+            &[],
+            "the table has no `en` column with the original texts (its first row has: key, \
+             English, de). Docent compares each row's original with the bundle's, so that a row \
+             moved in the spreadsheet is never imported under the wrong act: keep the `en` \
+             column and its heading as Docent wrote them (or export the table again and copy \
+             the translations into it)",
         ),
         (
             "two.csv",
@@ -181,7 +192,7 @@ fn tables_that_cannot_be_read_are_refused_with_how_to_fix_them() {
 fn an_act_written_inline_cannot_take_a_translation() {
     let bundle = TempBundle::new("- {Label: A, Text: Hello}\n")
         .with_file("docent.yaml", "languages: [en, de]\n");
-    let (code, _, err) = import(&bundle, "t.csv", b"key,de\nA/Text/1,Hallo\n", &[]);
+    let (code, _, err) = import(&bundle, "t.csv", b"key,en,de\nA/Text/1,Hello,Hallo\n", &[]);
     assert_eq!(
         (code, err.as_str()),
         (
@@ -193,19 +204,15 @@ fn an_act_written_inline_cannot_take_a_translation() {
 }
 
 #[test]
-fn rows_that_cannot_be_imported_are_each_reported_and_the_rest_written() {
+fn empty_cells_and_incomplete_lists_are_reported_and_the_rest_written() {
     let bundle = bundle();
     let table = "\
 key,en,de,where
 HELLO/Text/1,Hello,Grüß dich,acts.yaml:2
 HELLO/Text/3,Hey,Na,acts.yaml:2
-BYE/Text/1,Goodbye,Tschüss,acts.yaml:5
 THANKS/Text/1,Thank you,,acts.yaml:7
-NOPE/Text/1,x,y,
-HELLO/Other/1,x,y,
-BYE/Text/2,x,y,
-garbage,x,y,
-BYE/Text/1,Good bye,Ade,acts.yaml:5
+,,,a remark without a key
+BYE/Text/1,Good bye,Tschuess,acts.yaml:5
 ";
     let (code, out, err) = import(&bundle, "t.csv", table.as_bytes(), &[]);
     let file = bundle.path().join("t.csv");
@@ -213,33 +220,14 @@ BYE/Text/1,Good bye,Ade,acts.yaml:5
     assert_eq!(
         out,
         format!(
-            "German (de) from {}: 0 translation(s) added, 0 replaced, 0 unchanged.
-9 problem(s):
-  row 4: the English text of BYE/Text/1 changed since this table was made; check the translation (the table has \"Goodbye\", the bundle now \"Good bye\").
-  row 5: THANKS/Text/1 has no German translation (the cell is empty).
-  row 6: NOPE/Text/1: the bundle has no act `NOPE` (renamed or removed since the table was made?); the row is not imported.
-  row 7: HELLO/Other/1: the act `HELLO` has no `Other`; the row is not imported.
-  row 8: BYE/Text/2: `Text` of `BYE` has 1 text(s), so there is no number 2; the row is not imported.
-  row 9: `garbage` is not a text key (keys look like LABEL/Variant/N, e.g. GREETING/Text/1); the row is not imported.
-  row 10: BYE/Text/1 is given a second time (first at row 4) with another translation, so neither is imported.
+            "German (de) from {}: 1 translation(s) added, 0 replaced, 0 unchanged.
+Written: acts.yaml.
+2 problem(s):
+  row 4: THANKS/Text/1 has no German translation (the cell is empty).
   HELLO/Text keeps its current German texts: it has 3 texts, and a translation needs all of them, but the table has none for HELLO/Text/2.
-  BYE/Text stays untranslated: the table gives one of its texts twice, differently.
 ",
             file.display()
         )
-    );
-    assert_eq!(acts(&bundle), ACTS, "nothing complete to write");
-
-    let (code, out, _) = import(
-        &bundle,
-        "t2.csv",
-        b"key,en,de\nBYE/Text/1,Good bye,Tschuess\n",
-        &[],
-    );
-    assert_eq!(code, 0, "{out}");
-    assert!(
-        out.ends_with(": 1 translation(s) added, 0 replaced, 0 unchanged.\nWritten: acts.yaml.\n"),
-        "{out}"
     );
     assert_eq!(
         acts(&bundle),
@@ -248,6 +236,42 @@ BYE/Text/1,Good bye,Ade,acts.yaml:5
             "  Text: Good bye\n  Text@de: Tschuess\n"
         )
     );
+}
+
+/// A stale or edited key, an original that is not the bundle's and a key given twice each
+/// refuse the whole table with its cell: nothing is written, even for the rows that are fine.
+#[test]
+fn stale_keys_moved_rows_and_repeated_keys_refuse_the_whole_table() {
+    let bundle = bundle();
+    let table = "\
+key,en,de,where
+HELLO/Text/1,Hello,Grüß dich,acts.yaml:2
+BYE/Text/1,Goodbye,Tschüss,acts.yaml:5
+NOPE/Text/1,x,y,
+HELLO/Other/1,x,y,
+BYE/Text/2,x,y,
+garbage,x,y,
+THANKS/Text/1,Thank you,Danke,acts.yaml:7
+THANKS/Text/1,Thank you,Vielen Dank,acts.yaml:7
+";
+    let (code, out, err) = import(&bundle, "t.csv", table.as_bytes(), &[]);
+    let file = bundle.path().join("t.csv");
+    let f = file.display();
+    assert_eq!((code, out.as_str()), (1, ""));
+    assert_eq!(
+        err,
+        format!(
+            "docent: {f}: the table is not imported, and nothing was written: 6 cell(s) would put a text under the wrong act or write one that is no translation. Correct them in the table and import it again:
+  {f}:3:2: row 3, cell B3: the English original of BYE/Text/1 in the table is \"Goodbye\", the bundle's is \"Good bye\": the row was moved or sorted apart from its key, or the original changed since the table was made. Put the row back beside its key, or export the table again and check this translation against the new original.
+  {f}:4:1: row 4, cell A4: NOPE/Text/1: the bundle has no act `NOPE` (renamed or removed since the table was made?); the table is older than the bundle. Export the table again and copy the translations into it, or correct the key as Docent wrote it.
+  {f}:5:1: row 5, cell A5: HELLO/Other/1: the act `HELLO` has no `Other`; the table is older than the bundle. Export the table again and copy the translations into it, or correct the key as Docent wrote it.
+  {f}:6:1: row 6, cell A6: BYE/Text/2: `Text` of `BYE` has 1 text(s), so there is no number 2; the table is older than the bundle. Export the table again and copy the translations into it, or correct the key as Docent wrote it.
+  {f}:7:1: row 7, cell A7: `garbage` is not a text key (keys look like LABEL/Variant/N, e.g. GREETING/Text/1): the columns look shifted, or the key was edited. Keep the `key` column as Docent wrote it.
+  {f}:9:1: row 9, cell A9: THANKS/Text/1 is given a second time (first in row 8): a row copied or moved in the spreadsheet. Keep one row for each key and delete the other.
+"
+        )
+    );
+    assert_eq!(acts(&bundle), ACTS, "nothing written");
 }
 
 #[test]
@@ -317,8 +341,8 @@ fn a_bundle_of_one_language_is_told_how_to_add_another() {
 /// Regression (issue 24): formula cells went raw into the translations CSV and came back raw
 /// from it. Now every cell that starts with `=`, `+`, `-`, `@`, a tab or a carriage return is
 /// written with a `'` before it; read back, that `'` goes; a translation that still starts
-/// with `=`, `@`, a tab or a carriage return is refused by its row, one with `-` or `+` is a
-/// text like any other.
+/// with `=`, `@`, a tab or a carriage return refuses the table by its cell (issue 26: nothing
+/// is written), one with `-` or `+` is a text like any other.
 #[test]
 fn formula_cells_are_neutralised_in_the_csv_and_refused_on_import() {
     let acts = "\
@@ -358,19 +382,28 @@ fn formula_cells_are_neutralised_in_the_csv_and_refused_on_import() {
                   THANKS/Text/1,Thank you,\"\tDanke\"\r\n";
     let (code, out, err) = import(&bundle, "t.csv", filled.as_bytes(), &[]);
     let file = bundle.path().join("t.csv");
-    assert_eq!((code, err.as_str()), (3, ""), "{out}");
+    let f = file.display();
+    assert_eq!((code, out.as_str()), (1, ""), "{err}");
     assert_eq!(
-        out,
+        err,
         format!(
-            "German (de) from {}: 1 translation(s) added, 1 replaced, 0 unchanged.
-Written: acts.yaml.
-3 problem(s):
-  row 3: the German translation of PLUS/Text/1 starts with `=`, which a spreadsheet runs as a formula (a spoken text never starts so); it is not imported. Write the text without it.
-  row 5: the German translation of BYE/Text/1 starts with `@`, which a spreadsheet runs as a formula (a spoken text never starts so); it is not imported. Write the text without it.
-  row 6: the German translation of THANKS/Text/1 starts with a tab, which a spreadsheet runs as a formula (a spoken text never starts so); it is not imported. Write the text without it.
-",
-            file.display()
+            "docent: {f}: the table is not imported, and nothing was written: 3 cell(s) would put a text under the wrong act or write one that is no translation. Correct them in the table and import it again:
+  {f}:3:3: row 3, cell C3: the German translation of PLUS/Text/1 starts with `=`, which a spreadsheet runs as a formula (a spoken text never starts so). Write the text without it.
+  {f}:5:3: row 5, cell C5: the German translation of BYE/Text/1 starts with `@`, which a spreadsheet runs as a formula (a spoken text never starts so). Write the text without it.
+  {f}:6:3: row 6, cell C6: the German translation of THANKS/Text/1 starts with a tab, which a spreadsheet runs as a formula (a spoken text never starts so). Write the text without it.
+"
         )
+    );
+    let now = std::fs::read_to_string(bundle.path().join("acts.yaml")).expect("acts");
+    assert_eq!(now, acts, "nothing written");
+    let corrected = "key,en,de\r\n\
+                     SALE/Text/1,'-20 % for members,'-20 % für Mitglieder\r\n\
+                     MORE/Text/1,Two more rooms,+2 Räume oben\r\n";
+    let (code, out, err) = import(&bundle, "t.csv", corrected.as_bytes(), &[]);
+    assert_eq!((code, err.as_str()), (0, ""));
+    assert!(
+        out.ends_with(": 1 translation(s) added, 1 replaced, 0 unchanged.\nWritten: acts.yaml.\n"),
+        "{out}"
     );
     std::fs::remove_file(&file).expect("table removed");
     let again = export();

@@ -2,8 +2,9 @@
 //!
 //! Exit status (docs/AUTHORING.md, "Working with a translator"): 0 when done with nothing to
 //! report; 1 when refused or failed, with nothing written (a bundle with errors, a language
-//! not in `languages:`, a table that cannot be read, a result that would not load for a
-//! reason outside the written texts); 2 for a command line clap cannot read; 3 when an import
+//! not in `languages:`, a table that cannot be read, a cell that refuses the table (a shifted
+//! row or column, a stale or repeated key, an error value, a formula, an unfinished or copied
+//! target), a result that would not load for a reason outside the written texts); 2 for a command line clap cannot read; 3 when an import
 //! wrote what it could (or had nothing to write) but reported rows or texts that need a look,
 //! a translation left out for an error in its texts among them.
 
@@ -239,6 +240,19 @@ fn import(
         })?,
     };
     let plan = plan(&bundle, &target, &table);
+    if !plan.refusals.is_empty() {
+        let cells: Vec<String> = (plan.refusals.iter())
+            .map(|r| format!("  {}:{r}", file.display()))
+            .collect();
+        return Err(Refusal::Said(format!(
+            "{}: the table is not imported, and nothing was written: {} cell(s) would put \
+             a text under the wrong act or write one that is no translation. Correct them in \
+             the table and import it again:\n{}",
+            file.display(),
+            cells.len(),
+            cells.join("\n")
+        )));
+    }
     let saved = if plan.changes.is_empty() {
         Default::default()
     } else {

@@ -207,6 +207,11 @@ diagnostic_codes! {
     /// goes with text N (the translators' table pairs them by number), so a missing one leaves
     /// a text untranslated and an extra one never appears in a table.
     TranslationCount = "translation-count",
+    /// A translation is its original itself (`Text@de: [Welcome to the museum!]` beside `Text:
+    /// [Welcome to the museum!]`): copied, not translated, so a visitor in that language hears
+    /// the default language. A name, a number or a single word may stay the same
+    /// (`translations::same`).
+    TranslationSameAsOriginal = "translation-same-as-original",
     /// A page of the default language has no version in one of the bundle's other languages
     /// (once per page and language): a visitor in that language sees the default page.
     MissingPageTranslation = "missing-page-translation",

@@ -36,6 +36,51 @@ pub fn restore(cell: &str) -> &str {
     }
 }
 
+/// The error values Excel and LibreOffice show (and save into a CSV) where a formula failed,
+/// in English and as a German, French or Spanish Excel writes them (`#NV`, `#BEZUG!`,
+/// `#VALEUR!`, `#¡REF!`).
+pub const ERROR_VALUES: [&str; 27] = [
+    "#N/A",
+    "#REF!",
+    "#VALUE!",
+    "#NAME?",
+    "#DIV/0!",
+    "#NULL!",
+    "#NUM!",
+    "#SPILL!",
+    "#CALC!",
+    "#GETTING_DATA",
+    "#FIELD!",
+    "#NV",
+    "#BEZUG!",
+    "#WERT!",
+    "#ZAHL!",
+    "#ÜBERLAUF!",
+    "#VALEUR!",
+    "#NOM?",
+    "#NUL!",
+    "#NOMBRE!",
+    "#N/D",
+    "#¡REF!",
+    "#¡VALOR!",
+    "#¿NOMBRE?",
+    "#¡DIV/0!",
+    "#¡NULO!",
+    "#¡NUM!",
+];
+
+/// The spreadsheet error value `cell` holds (`#N/A`, `#REF!`, LibreOffice's `Err:502`), if
+/// it holds nothing else: what a formula leaves in a cell when a row or column it read was
+/// moved or deleted.
+pub fn error_value(cell: &str) -> Option<&str> {
+    let cell = cell.trim();
+    let known = ERROR_VALUES.iter().any(|e| e.eq_ignore_ascii_case(cell));
+    let libreoffice = cell
+        .strip_prefix("Err:")
+        .is_some_and(|n| !n.is_empty() && n.bytes().all(|b| b.is_ascii_digit()));
+    (known || libreoffice).then_some(cell)
+}
+
 /// The character of [`FORMULA_STARTS`] that `cell` starts with, if any.
 pub fn formula_start(cell: &str) -> Option<char> {
     cell.chars().next().filter(|c| FORMULA_STARTS.contains(c))
@@ -58,6 +103,24 @@ mod tests {
             let written = neutralise(cell);
             assert_eq!(written, format!("'{cell}"));
             assert_eq!(restore(&written), cell);
+        }
+    }
+
+    #[test]
+    fn error_values_are_told_from_texts() {
+        for cell in [
+            "#N/A",
+            " #ref! ",
+            "#NAME?",
+            "Err:502",
+            "#BEZUG!",
+            "#NV",
+            "#¡VALOR!",
+        ] {
+            assert_eq!(error_value(cell), Some(cell.trim()), "{cell:?}");
+        }
+        for cell in ["", "#1 in the hall", "N/A", "Err:", "Err:x", "#N/A or not"] {
+            assert_eq!(error_value(cell), None, "{cell:?}");
         }
     }
 

@@ -10,6 +10,7 @@ use crate::config::Languages;
 use crate::diagnostic::Diagnostic;
 use crate::language::{LANGUAGE_USAGE, Language};
 use crate::model::{Located, Pos, Translation, Variant};
+use crate::translations::same::may_stay_the_same;
 
 /// What the `@` of a text key names.
 pub(super) enum Suffix {
@@ -111,6 +112,7 @@ impl Pending {
             };
             if !translation.alternatives.is_empty() {
                 count_mismatch(&key, variant, &translation, out);
+                same_as_original(&key, variant, &translation, languages, out);
                 variant.translations.insert(language, translation);
             }
         }
@@ -178,4 +180,34 @@ fn count_mismatch(
         &translation.pos,
         message,
     ));
+}
+
+/// Warns at each text of the translation `key` that is its original itself (not a name, a
+/// number or a single word, which may stay the same): copied, not translated.
+fn same_as_original(
+    key: &str,
+    variant: &Variant,
+    translation: &Translation,
+    languages: &Languages,
+    out: &mut Vec<Diagnostic>,
+) {
+    let pairs = variant.alternatives.iter().zip(&translation.alternatives);
+    for (n, (original, translated)) in pairs.enumerate() {
+        let text = original.value.trim();
+        if translated.value.trim() != text || may_stay_the_same(text) {
+            continue;
+        }
+        let message = format!(
+            "Text {} of `{key}` is its `{}` original itself (\"{text}\"): copied, not \
+             translated, so a visitor in this language hears the original. Write the \
+             translation here (only a name, a number or a single word may stay the same).",
+            n + 1,
+            languages.default_language(),
+        );
+        out.push(Diagnostic::warning(
+            DiagnosticCode::TranslationSameAsOriginal,
+            &translated.pos,
+            message,
+        ));
+    }
 }

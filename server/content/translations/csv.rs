@@ -5,7 +5,8 @@
 //!
 //! Read back, the columns are found by their headings in any order (a translator may add a
 //! column for remarks), and a table saved with `;` or tabs between cells (Excel in many
-//! locales) is read too.
+//! locales) is read too. The originals' column must be there: each row's original is
+//! compared with the bundle's (`import.rs`), which is what tells a moved row.
 //!
 //! A cell a spreadsheet would run as a formula (one that starts with `=`, `+`, `-`, `@`, a tab
 //! or a carriage return) is written with a `'` before it (`crate::spreadsheet`), and that `'`
@@ -18,7 +19,7 @@ use crate::Language;
 use crate::spreadsheet::{neutralise, restore};
 
 use super::table::Row;
-use super::{Entry, Place, ReadError, ReadTable, line_of};
+use super::{Columns, Entry, Place, ReadError, ReadTable, line_of};
 
 /// The byte order mark that tells spreadsheets the file is UTF-8.
 const BOM: &[u8] = b"\xEF\xBB\xBF";
@@ -66,35 +67,50 @@ pub fn read_csv(
         .flexible(true)
         .has_headers(false)
         .from_reader(bytes);
-    let mut records = reader.records();
-    let header = match records.next() {
-        Some(Ok(header)) => header,
-        Some(Err(e)) => return Err(ReadError::Shape(format!("the table cannot be read: {e}"))),
-        None => return Err(ReadError::Shape("the table is empty".to_owned())),
-    };
+    let mut header = ::csv::StringRecord::new();
+    match reader.read_record(&mut header) {
+        Ok(true) => {}
+        Ok(false) => return Err(ReadError::Shape("the table is empty".to_owned())),
+        Err(e) => return Err(ReadError::Shape(format!("the table cannot be read: {e}"))),
+    }
     let headings: Vec<String> = header.iter().map(|h| h.trim().to_owned()).collect();
-    let columns = Columns::find(&headings, default, wanted)?;
+    let columns = find_columns(&headings, default, wanted)?;
     let mut table = ReadTable {
         language: headings[columns.target].clone(),
         entries: Vec::new(),
         notes: Vec::new(),
     };
-    if columns.source.is_none() {
-        table.notes.push(format!(
-            "The table has no `{default}` column with the original texts, so Docent cannot \
-             tell whether an original changed since the table was made."
-        ));
-    }
-    for (i, record) in records.enumerate() {
-        let row = i + 2;
-        let record = record
-            .map_err(|e| ReadError::Shape(format!("row {row} of the table cannot be read: {e}")))?;
+    let mut record = ::csv::StringRecord::new();
+    for row in 2.. {
+        // Where the reader stands before the row: its start, once the line break that ended
+        // the row before is passed (the record's own position is not its first byte).
+        let before = usize::try_from(reader.position().byte()).unwrap_or(usize::MAX);
+        let skipped = bytes.get(before..).unwrap_or_default();
+        let start = before
+            + skipped
+                .iter()
+                .take_while(|b| matches!(b, b'\r' | b'\n'))
+                .count();
+        match reader.read_record(&mut record) {
+            Ok(true) => {}
+            Ok(false) => break,
+            Err(e) => {
+                return Err(ReadError::Shape(format!(
+                    "row {row} of the table cannot be read: {e}"
+                )));
+            }
+        }
         if record.iter().all(|cell| cell.trim().is_empty()) {
             continue; // a blank row a spreadsheet kept at the end
         }
-        let cell = |i: usize| restore(record.get(i).unwrap_or_default()).to_owned();
+        // A line break inside a cell is a line feed, as Excel and LibreOffice type it; one
+        // saved as CRLF reads the same.
+        let cell = |i: usize| restore(record.get(i).unwrap_or_default()).replace("\r\n", "\n");
         table.entries.push(Entry {
             place: Place::Row(row),
+            line: line_of(bytes, start),
+            columns: Some(columns),
+            unfinished: None,
             key: cell(columns.key).trim().to_owned(),
             source: columns.source.map(cell),
             translation: cell(columns.target),
@@ -120,60 +136,61 @@ fn delimiter(bytes: &[u8]) -> u8 {
         .unwrap_or(b',')
 }
 
-/// Which column holds what.
-struct Columns {
-    key: usize,
-    source: Option<usize>,
-    target: usize,
-}
-
-impl Columns {
-    fn find(
-        headings: &[String],
-        default: &Language,
-        wanted: Option<&Language>,
-    ) -> Result<Columns, ReadError> {
-        let listed = headings.join(", ");
-        let position = |name: &str| headings.iter().position(|h| h.eq_ignore_ascii_case(name));
-        let Some(key) = position(KEY) else {
-            return Err(ReadError::Shape(format!(
-                "the table has no `key` column (its first row has: {listed}). Keep the first \
+/// Finds the columns by their headings.
+fn find_columns(
+    headings: &[String],
+    default: &Language,
+    wanted: Option<&Language>,
+) -> Result<Columns, ReadError> {
+    let listed = headings.join(", ");
+    let position = |name: &str| headings.iter().position(|h| h.eq_ignore_ascii_case(name));
+    let Some(key) = position(KEY) else {
+        return Err(ReadError::Shape(format!(
+            "the table has no `key` column (its first row has: {listed}). Keep the first \
                  row as Docent wrote it: key, {default}, the translated language, where"
-            )));
-        };
-        let source = position(default.as_str());
-        let languages: Vec<usize> = (headings.iter().enumerate())
-            .filter(|(i, h)| *i != key && Some(*i) != source && Language::parse(h).is_some())
-            .map(|(i, _)| i)
-            .collect();
-        let target = match wanted {
-            Some(wanted) => position(wanted.as_str()).ok_or_else(|| {
-                ReadError::Shape(format!(
-                    "the table has no `{wanted}` column (its first row has: {listed})"
-                ))
-            })?,
-            None => match languages.as_slice() {
-                [one] => *one,
-                [] => {
-                    return Err(ReadError::Shape(format!(
-                        "the table has no column of translations: its first row has {listed}, \
+        )));
+    };
+    let source = position(default.as_str());
+    let languages: Vec<usize> = (headings.iter().enumerate())
+        .filter(|(i, h)| *i != key && Some(*i) != source && Language::parse(h).is_some())
+        .map(|(i, _)| i)
+        .collect();
+    let target = match wanted {
+        Some(wanted) => position(wanted.as_str()).ok_or_else(|| {
+            ReadError::Shape(format!(
+                "the table has no `{wanted}` column (its first row has: {listed})"
+            ))
+        })?,
+        None => match languages.as_slice() {
+            [one] => *one,
+            [] => {
+                return Err(ReadError::Shape(format!(
+                    "the table has no column of translations: its first row has {listed}, \
                          and no heading other than `{default}` is a language tag such as `de`"
-                    )));
-                }
-                _ => {
-                    return Err(ReadError::Shape(format!(
-                        "the table has several columns of translations ({listed}): say which \
+                )));
+            }
+            _ => {
+                return Err(ReadError::Shape(format!(
+                    "the table has several columns of translations ({listed}): say which \
                          to import with --language"
-                    )));
-                }
-            },
-        };
-        Ok(Columns {
-            key,
-            source,
-            target,
-        })
-    }
+                )));
+            }
+        },
+    };
+    let Some(source) = source else {
+        return Err(ReadError::Shape(format!(
+            "the table has no `{default}` column with the original texts (its first row has: \
+                 {listed}). Docent compares each row's original with the bundle's, so that a row \
+                 moved in the spreadsheet is never imported under the wrong act: keep the \
+                 `{default}` column and its heading as Docent wrote them (or export the table \
+                 again and copy the translations into it)"
+        )));
+    };
+    Ok(Columns {
+        key,
+        source: Some(source),
+        target,
+    })
 }
 
 #[cfg(test)]

@@ -1,7 +1,10 @@
-//! A table read back, checked against the bundle: which rows name a text, which originals
-//! changed since the table was made, and which variants the table translates completely.
-//! A translation must have as many texts as its original, so a variant with a text missing
-//! keeps what it has (never a half list); every row left out is reported in words.
+//! A table read back, checked against the bundle: each row is matched by its key and its
+//! original compared with the bundle's current one, and which variants the table translates
+//! completely. Any cell that could put a text under the wrong act or write a text that is no
+//! translation (`refuse.rs`) refuses the whole table ([`Plan::refusals`]): nothing is written.
+//! An empty cell is a text not translated yet: reported, skipped. A translation must have as
+//! many texts as its original, so a variant with a text missing keeps what it has (never a
+//! half list).
 //!
 //! A translation that starts with `=`, `@`, a tab or a carriage return is refused: a
 //! spreadsheet runs such a cell as a formula (CSV injection), and a spoken text never starts
@@ -11,11 +14,11 @@
 use std::collections::BTreeMap;
 
 use crate::language::LANGUAGE_USAGE;
-use crate::spreadsheet::formula_start;
 use crate::{Bundle, Language, Languages};
 
+use super::refuse::{self, Part, at};
 use super::table::TextKey;
-use super::{Place, ReadTable};
+use super::{Entry, Place, ReadTable};
 
 /// What an import will do.
 #[derive(Debug, Default)]
@@ -24,8 +27,12 @@ pub struct Plan {
     pub changes: Vec<Change>,
     /// Translations the table has exactly as the bundle already does.
     pub unchanged: usize,
-    /// Everything reported: rows not imported, originals changed, incomplete variants.
+    /// Everything reported: rows not translated yet, incomplete variants.
     pub problems: Vec<String>,
+    /// Cells that refuse the whole table, each starting with its place (`5:3: row 4, cell
+    /// C4: …`, `9: unit KEY: …`; the file's name goes before): when there is one, nothing may
+    /// be written.
+    pub refusals: Vec<String>,
 }
 
 /// One variant's whole translation to write.
@@ -121,8 +128,6 @@ pub fn language_name(language: &Language) -> String {
 struct Slots {
     /// Each alternative's translation and where it was read; `None` when missing or empty.
     texts: Vec<Option<(String, Place)>>,
-    /// Some text was given twice, differently.
-    conflicting: bool,
 }
 
 /// Checks `table` against `bundle` for `language` (already checked with
@@ -136,89 +141,44 @@ pub fn plan(bundle: &Bundle, language: &Language, table: &ReadTable) -> Plan {
     };
     // By (act index, variant index): the bundle's order.
     let mut slots: BTreeMap<(usize, usize), Slots> = BTreeMap::new();
-    for entry in &table.entries {
-        let at = entry.place;
-        let Some(key) = TextKey::parse(&entry.key) else {
-            plan.problems.push(format!(
-                "{at}: `{}` is not a text key (keys look like LABEL/Variant/N, e.g. \
-                 GREETING/Text/1); the row is not imported.",
-                entry.key
-            ));
+    for (i, entry) in table.entries.iter().enumerate() {
+        let Some((key, act_index, variant_index, original)) =
+            matched(bundle, entry, &default, &mut plan.refusals)
+        else {
             continue;
         };
-        let Some(&act_index) = bundle.index.get(&key.label) else {
-            plan.problems.push(format!(
-                "{at}: {key}: the bundle has no act `{}` (renamed or removed since the table \
-                 was made?); the row is not imported.",
-                key.label
-            ));
-            continue;
-        };
-        let act = &bundle.acts[act_index];
-        let Some(variant_index) = act.variants.iter().position(|v| v.name == key.variant) else {
-            plan.problems.push(format!(
-                "{at}: {key}: the act `{}` has no `{}`; the row is not imported.",
-                key.label, key.variant
-            ));
-            continue;
-        };
-        let variant = &act.variants[variant_index];
-        let count = variant.alternatives.len();
-        if key.number > count {
-            plan.problems.push(format!(
-                "{at}: {key}: `{}` of `{}` has {count} text(s), so there is no number {}; the \
-                 row is not imported.",
-                key.variant, key.label, key.number
-            ));
-            continue;
-        }
-        let original = &variant.alternatives[key.number - 1].value;
-        if let Some(source) = &entry.source
-            && source != original
-        {
-            plan.problems.push(format!(
-                "{at}: the {default} text of {key} changed since this table was made; check the \
-                 translation (the table has \"{source}\", the bundle now \"{original}\")."
-            ));
-        }
+        let count = bundle.acts[act_index].variants[variant_index]
+            .alternatives
+            .len();
         let slot = slots
             .entry((act_index, variant_index))
             .or_insert_with(|| Slots {
                 texts: vec![None; count],
-                conflicting: false,
             });
         if entry.translation.trim().is_empty() {
-            let empty = match at {
+            let empty = match entry.place {
                 Place::Row(_) => "the cell is empty",
                 Place::Line(_) => "its target is empty",
             };
             plan.problems.push(format!(
-                "{at}: {key} has no {target} translation ({empty})."
+                "{}: {key} has no {target} translation ({empty}).",
+                entry.place
             ));
             continue;
         }
-        if let Some(start) = refused_start(&entry.translation) {
-            plan.problems.push(format!(
-                "{at}: the {target} translation of {key} starts with {start}, which a \
-                 spreadsheet runs as a formula (a spoken text never starts so); it is not \
-                 imported. Write the text without it."
-            ));
+        let refused = refuse::target(entry, &key, original, (&default, &target))
+            .or_else(|| refuse::shifted(bundle, language, &table.entries, i, &target));
+        if let Some(refusal) = refused {
+            plan.refusals.push(refusal);
             continue;
         }
         match &slot.texts[key.number - 1] {
-            Some((first, first_at)) => {
-                let differs = *first != entry.translation;
-                slot.conflicting |= differs;
-                let outcome = if differs {
-                    "with another translation, so neither is imported"
-                } else {
-                    "with the same translation"
-                };
-                plan.problems.push(format!(
-                    "{at}: {key} is given a second time (first at {first_at}) {outcome}."
-                ));
-            }
-            None => slot.texts[key.number - 1] = Some((entry.translation.clone(), at)),
+            Some((_, first_at)) => plan.refusals.push(format!(
+                "{}: {key} is given a second time (first in {first_at}): a row copied or \
+                 moved in the spreadsheet. Keep one row for each key and delete the other.",
+                at(entry, Part::Key)
+            )),
+            None => slot.texts[key.number - 1] = Some((entry.translation.clone(), entry.place)),
         }
     }
     for ((act_index, variant_index), slot) in slots {
@@ -234,16 +194,89 @@ pub fn plan(bundle: &Bundle, language: &Language, table: &ReadTable) -> Plan {
     plan
 }
 
-/// The start of `translation` that makes it a formula to a spreadsheet, in words, unless it
-/// is `-` or `+`, with which a text may start.
-fn refused_start(translation: &str) -> Option<&'static str> {
-    match formula_start(translation)? {
-        '=' => Some("`=`"),
-        '@' => Some("`@`"),
-        '\t' => Some("a tab"),
-        '\r' => Some("a carriage return"),
-        _ => None,
+/// The text `entry` names, as (key, act index, variant index, the bundle's original), if
+/// its key is one of the bundle's and its original the bundle's current one; else why not is
+/// added to `refusals` (nothing for a row with neither key nor translation: a remark).
+fn matched<'b>(
+    bundle: &'b Bundle,
+    entry: &Entry,
+    default: &str,
+    refusals: &mut Vec<String>,
+) -> Option<(TextKey, usize, usize, &'b str)> {
+    let here = at(entry, Part::Key);
+    let again = "Export the table again and copy the translations into it, or correct the key \
+                 as Docent wrote it";
+    if entry.key.is_empty() {
+        if !entry.translation.trim().is_empty() {
+            refusals.push(format!(
+                "{here}: this row has a translation but no key: the rows or columns look \
+                 shifted in the spreadsheet. Undo the move, so that each translation stands in \
+                 the row of its key and original."
+            ));
+        }
+        return None;
     }
+    let Some(key) = TextKey::parse(&entry.key) else {
+        refusals.push(format!(
+            "{here}: `{}` is not a text key (keys look like LABEL/Variant/N, e.g. \
+             GREETING/Text/1): the columns look shifted, or the key was edited. Keep the `key` \
+             column as Docent wrote it.",
+            entry.key
+        ));
+        return None;
+    };
+    let stale =
+        |why: String| format!("{here}: {key}: {why}; the table is older than the bundle. {again}.");
+    let Some(&act_index) = bundle.index.get(&key.label) else {
+        refusals.push(stale(format!(
+            "the bundle has no act `{}` (renamed or removed since the table was made?)",
+            key.label
+        )));
+        return None;
+    };
+    let act = &bundle.acts[act_index];
+    let Some(variant_index) = act.variants.iter().position(|v| v.name == key.variant) else {
+        let why = format!("the act `{}` has no `{}`", key.label, key.variant);
+        refusals.push(stale(why));
+        return None;
+    };
+    let count = act.variants[variant_index].alternatives.len();
+    if key.number > count {
+        refusals.push(stale(format!(
+            "`{}` of `{}` has {count} text(s), so there is no number {}",
+            key.variant, key.label, key.number
+        )));
+        return None;
+    }
+    let original = act.variants[variant_index].alternatives[key.number - 1]
+        .value
+        .as_str();
+    match &entry.source {
+        Some(source) if !same_text(source, original) => {
+            refusals.push(format!(
+                "{}: the {default} original of {key} in the table is \"{source}\", the bundle's \
+                 is \"{original}\": the row was moved or sorted apart from its key, or the \
+                 original changed since the table was made. Put the row back beside its key, or \
+                 export the table again and check this translation against the new original.",
+                at(entry, Part::Source)
+            ));
+            None
+        }
+        None => {
+            refusals.push(format!(
+                "{here}: {key} has no {default} original (`<source>`), so Docent cannot check \
+                 that the translation belongs to it. Keep each unit's source as exported."
+            ));
+            None
+        }
+        Some(_) => Some((key, act_index, variant_index, original)),
+    }
+}
+
+/// Whether a table's cell holds `original`: the same but for spaces at either end and the
+/// CRLF line breaks some spreadsheets save inside a cell.
+fn same_text(cell: &str, original: &str) -> bool {
+    cell.trim().replace("\r\n", "\n") == original.trim().replace("\r\n", "\n")
 }
 
 /// One variant's slots become a change, an unchanged translation or a problem.
@@ -264,12 +297,6 @@ fn settle(
         "stays untranslated".to_owned()
     };
     let name = format!("{}/{}", act.label, variant.name);
-    if slot.conflicting {
-        plan.problems.push(format!(
-            "{name} {keeps}: the table gives one of its texts twice, differently."
-        ));
-        return;
-    }
     let given: Vec<usize> = (slot.texts.iter().enumerate())
         .filter(|(_, t)| t.is_some())
         .map(|(i, _)| i + 1)

@@ -5,6 +5,9 @@
 //! - `table.rs`: the rows (one per text alternative), keyed `LABEL/Variant/N`.
 //! - `csv.rs` and `xliff.rs`: each format written and read back into [`Entry`]s.
 //! - `import.rs`: the entries checked against the bundle into whole translations to write.
+//! - `refuse.rs`: the cells that refuse a whole import (a shifted row or column, a stale or
+//!   repeated key, a spreadsheet's error value or formula, an unfinished or copied target).
+//! - `same.rs`: when a translation may equal its original (a name, a number).
 //! - `quote.rs`: a text as YAML must spell it to read back exactly.
 //! - `write.rs`: the edit of one acts file's text, touching nothing else.
 //! - `save.rs`: the result loaded in memory and checked, then written atomically.
@@ -16,6 +19,8 @@ pub mod csv;
 pub mod import;
 pub mod located;
 pub mod quote;
+pub mod refuse;
+pub mod same;
 pub mod save;
 pub mod table;
 pub mod write;
@@ -75,12 +80,30 @@ impl fmt::Display for Place {
     }
 }
 
+/// Which column of a CSV table holds what (0-based), so a message can name the cell.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct Columns {
+    /// The keys' column.
+    pub key: usize,
+    /// The originals' column, if the table has one.
+    pub source: Option<usize>,
+    /// The translations' column.
+    pub target: usize,
+}
+
 /// One text of a table read back: its key as written, the original it was made from (when
 /// the table carries it) and the translation (empty when the cell is).
 #[derive(Clone, Debug, PartialEq, Eq)]
 pub struct Entry {
     /// Where it was read.
     pub place: Place,
+    /// The line of the file its row or unit starts on (a CSV row may span several lines).
+    pub line: usize,
+    /// Its columns (CSV), to name a cell as the spreadsheet does (`C4`).
+    pub columns: Option<Columns>,
+    /// The XLIFF `state` that says its target is not finished (`needs-translation`, `new`,
+    /// XLIFF 2's `initial`), if the file says so.
+    pub unfinished: Option<String>,
     /// The key as written (`GREETING/TextChild/2`).
     pub key: String,
     /// The default language's text as exported, if the table has it.

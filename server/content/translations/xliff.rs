@@ -5,7 +5,9 @@
 //!
 //! Read back, only each unit's own `<source>` and `<target>` count (not those of
 //! `<alt-trans>` suggestions); a target holding inline markup (`<g>`, `<x/>`) is reported,
-//! since a spoken text cannot carry it.
+//! since a spoken text cannot carry it. A target's `state` that says it is unfinished (1.2's
+//! `new`, `needs-translation`, ...) is kept for the import to refuse (`refuse.rs`). XLIFF 2.0
+//! is read too (`<unit>`, its `<segment>`'s `state`, `srcLang`/`trgLang` on the root).
 //!
 //! Reading takes time in proportion to the file's size: each byte's line is counted once, as
 //! the reader goes (`Lines`), never from the start again for every element (which made a
@@ -238,7 +240,19 @@ struct Unit {
     target: Option<String>,
     /// The inline element found in the target, if any.
     markup: Option<String>,
+    /// The target's (or XLIFF 2 segment's) `state`, when it says the target is unfinished.
+    unfinished: Option<String>,
 }
+
+/// The `state`s that say a target is not translated yet: XLIFF 1.2's `new` and `needs-*`
+/// (but not `needs-review-*`, which are translations to review), XLIFF 2's `initial`.
+const UNFINISHED: [&str; 5] = [
+    "new",
+    "needs-translation",
+    "needs-adaptation",
+    "needs-l10n",
+    "initial",
+];
 
 impl Walk {
     fn open(&mut self, e: &BytesStart<'_>, line: usize) -> Result<(), ReadError> {
@@ -275,23 +289,31 @@ impl Walk {
                 self.target_language = target.or(self.target_language.take());
                 self.source_language = attribute("source-language").or(self.source_language.take());
             }
-            (_, "trans-unit") => {
+            // XLIFF 2 names the languages on the root element.
+            (None, "xliff") => {
+                self.target_language = attribute("trgLang");
+                self.source_language = attribute("srcLang");
+            }
+            (_, "trans-unit" | "unit") => {
                 self.unit = Some(Unit {
                     line,
                     id: attribute("id").unwrap_or_default(),
                     source: None,
                     target: None,
                     markup: None,
+                    unfinished: None,
                 });
             }
-            (Some("trans-unit"), "source") => {
+            (Some("unit"), "segment") => self.note_state(attribute("state")),
+            (Some("trans-unit" | "segment"), "source") => {
                 if let Some(unit) = &mut self.unit {
-                    unit.source = Some(String::new());
+                    unit.source.get_or_insert_default();
                 }
             }
-            (Some("trans-unit"), "target") => {
+            (Some("trans-unit" | "segment"), "target") => {
+                self.note_state(attribute("state"));
                 if let Some(unit) = &mut self.unit {
-                    unit.target = Some(String::new());
+                    unit.target.get_or_insert_default();
                 }
             }
             (Some("target"), _) if self.in_unit_part("target") => {
@@ -305,12 +327,21 @@ impl Walk {
         Ok(())
     }
 
+    /// Keeps a target's `state` when it says the target is unfinished.
+    fn note_state(&mut self, state: Option<String>) {
+        let unfinished = state.filter(|s| UNFINISHED.contains(&s.trim()));
+        if let (Some(unit), Some(state)) = (&mut self.unit, unfinished) {
+            unit.unfinished = Some(state);
+        }
+    }
+
     /// Whether the innermost open `part` (`source`, `target`) is the unit's own.
     fn in_unit_part(&self, part: &str) -> bool {
         let n = self.open.len();
         self.looked.set(self.looked.get() + n as u64);
         let found = self.open.iter().rposition(|name| name == part);
-        found.is_some_and(|i| i > 0 && self.open[i - 1] == "trans-unit" && i < n)
+        let parent = |i: usize| matches!(self.open[i - 1].as_str(), "trans-unit" | "segment");
+        found.is_some_and(|i| i > 0 && parent(i) && i < n)
     }
 
     fn text(&mut self, text: &str) {
@@ -331,7 +362,7 @@ impl Walk {
     }
 
     fn close(&mut self) {
-        if self.open.pop().as_deref() == Some("trans-unit")
+        if matches!(self.open.pop().as_deref(), Some("trans-unit" | "unit"))
             && let Some(unit) = self.unit.take()
         {
             let key = unit.id.trim().to_owned();
@@ -345,6 +376,9 @@ impl Walk {
             }
             self.table.push(Entry {
                 place: Place::Line(unit.line),
+                line: unit.line,
+                columns: None,
+                unfinished: unit.unfinished,
                 key,
                 source: unit.source,
                 translation: unit.target.unwrap_or_default(),

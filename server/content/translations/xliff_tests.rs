@@ -65,3 +65,45 @@ fn elements_nested_too_deep_are_refused_at_their_line() {
         within.notes
     );
 }
+
+/// Issue 26: a target a CAT tool marks unfinished keeps that `state` for the import to refuse,
+/// in XLIFF 1.2 (on the target) and 2.0 (on the segment); `translated` and
+/// `needs-review-translation` are finished.
+#[test]
+fn unfinished_states_are_kept_in_both_versions() {
+    let v12 = r#"<xliff version="1.2"><file source-language="en" target-language="de"><body>
+<trans-unit id="A/Text/1"><source>a</source><target state="new">x</target></trans-unit>
+<trans-unit id="B/Text/1"><source>b</source><target state="needs-review-translation">y</target></trans-unit>
+<trans-unit id="C/Text/1"><source>c</source><target state="translated">z</target></trans-unit>
+</body></file></xliff>"#;
+    let table = read_xliff(v12.as_bytes(), &en(), None).expect("read");
+    let states: Vec<Option<&str>> = (table.entries.iter())
+        .map(|e| e.unfinished.as_deref())
+        .collect();
+    assert_eq!(states, [Some("new"), None, None]);
+
+    let v20 = r#"<xliff version="2.0" srcLang="en" trgLang="de"><file id="f">
+<unit id="A/Text/1"><segment state="initial"><source>a</source><target>x</target></segment></unit>
+<unit id="B/Text/1"><segment state="final"><source>b</source><target>y</target></segment></unit>
+</file></xliff>"#;
+    let table = read_xliff(v20.as_bytes(), &en(), None).expect("read");
+    assert_eq!(table.language, "de");
+    let read: Vec<(&str, Option<&str>, &str, Option<&str>)> = (table.entries.iter())
+        .map(|e| {
+            let source = e.source.as_deref();
+            (
+                e.key.as_str(),
+                source,
+                e.translation.as_str(),
+                e.unfinished.as_deref(),
+            )
+        })
+        .collect();
+    assert_eq!(
+        read,
+        [
+            ("A/Text/1", Some("a"), "x", Some("initial")),
+            ("B/Text/1", Some("b"), "y", None)
+        ]
+    );
+}
