@@ -53,6 +53,12 @@ async fn every_bad_frame_gets_an_error_and_the_connection_stays_usable() {
         (r#"{"type":"dance"}"#.into(), "unknown-type"),
         (r#"{"type":"propose"}"#.into(), "bad-frame"),
         (r#"{"type":"mark","mark":"party"}"#.into(), "bad-frame"),
+        // Frame types added later are known too: malformed, not unknown.
+        (r#"{"type":"language"}"#.into(), "bad-frame"),
+        (
+            r#"{"type":"attract","state":"dancing"}"#.into(),
+            "bad-frame",
+        ),
         (r#"{"type":"hello","role":"pilot"}"#.into(), "bad-frame"),
         (r#"{"type":"hello","role":"adapter"}"#.into(), "no-verbs"),
         (

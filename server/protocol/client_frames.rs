@@ -273,3 +273,39 @@ pub enum MarkKind {
 fn yes() -> bool {
     true
 }
+
+/// The `type` of every frame a client may send, in [`ClientFrame`]'s order, asked of serde
+/// (`tags`): what an `unknown-type` error lists, never written a second time.
+pub fn frame_types() -> &'static [&'static str] {
+    static TYPES: std::sync::OnceLock<&'static [&'static str]> = std::sync::OnceLock::new();
+    TYPES.get_or_init(|| {
+        crate::tags::tags_of(|probe| {
+            <ClientFrame as serde::Deserialize>::deserialize(probe).map(drop)
+        })
+    })
+}
+
+#[cfg(test)]
+mod tags_tests {
+    use super::*;
+
+    /// The list an `unknown-type` error gives is every frame a client may send, each of which
+    /// reads as a frame (a malformed one then gets `bad-frame`, never `unknown-type`).
+    #[test]
+    fn every_frame_type_a_client_may_send_is_known_and_no_other() {
+        let types = frame_types();
+        assert_eq!(types.len(), 20, "{types:?}");
+        assert_eq!(types.first(), Some(&"hello"));
+        for t in ["language", "attract", "recording-started", "clock"] {
+            assert!(types.contains(&t), "{t} in {types:?}");
+        }
+        for t in types {
+            let frame = serde_json::json!({ "type": t, "zz_not_a_field": 1 });
+            let error = serde_json::from_value::<ClientFrame>(frame).expect_err("a bad frame");
+            assert!(
+                !error.to_string().contains("unknown variant"),
+                "{t}: {error}"
+            );
+        }
+    }
+}

@@ -28,6 +28,7 @@
 //! - `error_code`: [`ErrorCode`], every code an `error` frame or an HTTP error body carries.
 //! - `frames`: the `command` and `cancel` frames adapters and screens are sent.
 //! - `projector`: [`ProjectorState`]; `fleet_link`: a robot's broker link as shown.
+//! - `tags`: the type names of an enum tagged by `type`, asked of serde (never listed twice).
 
 pub mod client_frames;
 pub mod events;
@@ -41,6 +42,7 @@ mod documented_frames;
 mod error_code;
 mod open;
 mod projector;
+mod tags;
 
 pub use error_code::ErrorCode;
 pub use open::Open;

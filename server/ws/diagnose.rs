@@ -2,6 +2,7 @@
 //! known type with wrong fields. Only on the error path, so it may parse twice.
 
 use crate::wire::ErrorCode;
+use docent_protocol::client_frames::frame_types;
 
 /// Why a text frame could not be read: an error code, a message and the frame's `ref` if any.
 pub fn diagnose(text: &str, error: &serde_json::Error) -> (ErrorCode, String, Option<String>) {
@@ -19,8 +20,8 @@ pub fn diagnose(text: &str, error: &serde_json::Error) -> (ErrorCode, String, Op
             "every frame needs a \"type\" field".into(),
             reference,
         ),
-        Some(t) if !KNOWN_TYPES.contains(&t) => {
-            let known = KNOWN_TYPES.join(", ");
+        Some(t) if !frame_types().contains(&t) => {
+            let known = frame_types().join(", ");
             (
                 ErrorCode::UnknownType,
                 format!("unknown frame type {t:?}; known types: {known}"),
@@ -34,25 +35,3 @@ pub fn diagnose(text: &str, error: &serde_json::Error) -> (ErrorCode, String, Op
         ),
     }
 }
-
-/// Every frame type a client may send.
-const KNOWN_TYPES: [&str; 18] = [
-    "hello",
-    "trigger",
-    "stop",
-    "context",
-    "page",
-    "robot",
-    "propose",
-    "accept",
-    "dismiss",
-    "mark",
-    "signal",
-    "started",
-    "done",
-    "failed",
-    "clock",
-    "recording-started",
-    "recording-stopped",
-    "recording-failed",
-];

@@ -4,15 +4,14 @@
 //! newer types still reads. A line of a known type whose fields do not read is an error,
 //! naming the field, as serde says it.
 
-use std::fmt;
 use std::sync::OnceLock;
 
 use serde::de::DeserializeOwned;
-use serde::de::value::MapDeserializer;
 use serde::{Deserialize, Deserializer};
 
 use super::EventKind;
 use super::recording::RecordingEvent;
+use crate::tags::tags_of;
 
 /// The fields every corpus line begins with, read alone: the hub's stamps and the `type`. A
 /// reader that only counts and places lines (`docent corpus list`) reads no more of them.
@@ -148,20 +147,6 @@ pub(super) fn has_type<T: Tagged>(name: &str) -> bool {
     T::names().contains(&name)
 }
 
-/// The tags of the internally tagged enum `T`'s variants, as serde's derived `Deserialize`
-/// knows them: it is asked to read an object whose `type` is no tag (empty), and answers
-/// that the variant is unknown, listing those it expects. So the names are serde's, written
-/// once in the enum.
-fn tags_of(read: fn(Probing<'_>) -> Result<(), Probe>) -> &'static [&'static str] {
-    match read(MapDeserializer::new(std::iter::once(("type", "")))) {
-        Err(Probe::UnknownType(tags)) => tags,
-        _ => &[],
-    }
-}
-
-/// An object holding only a `type`, for [`tags_of`].
-type Probing<'a> = MapDeserializer<'a, std::iter::Once<(&'a str, &'a str)>, Probe>;
-
 /// An enum tagged by `type`, with the tags its derived deserializer knows.
 pub(super) trait Tagged {
     /// Its tags (asked once).
@@ -182,36 +167,6 @@ impl Tagged for RecordingEvent {
         TAGS.get_or_init(|| {
             tags_of(|probe| <RecordingEvent as Deserialize>::deserialize(probe).map(drop))
         })
-    }
-}
-
-/// What a probe of a type name found: the tags serde expected, or anything else.
-#[derive(Debug)]
-pub(super) enum Probe {
-    /// The enum has no variant of that name; these are its tags.
-    UnknownType(&'static [&'static str]),
-    /// Anything else.
-    Other,
-}
-
-impl fmt::Display for Probe {
-    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
-        f.write_str(match self {
-            Probe::UnknownType(_) => "unknown type",
-            Probe::Other => "a known type",
-        })
-    }
-}
-
-impl std::error::Error for Probe {}
-
-impl serde::de::Error for Probe {
-    fn custom<T: fmt::Display>(_: T) -> Self {
-        Probe::Other
-    }
-
-    fn unknown_variant(_: &str, expected: &'static [&'static str]) -> Self {
-        Probe::UnknownType(expected)
     }
 }
 
