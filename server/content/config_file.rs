@@ -268,6 +268,7 @@ impl Reader {
     fn top_level(&mut self, root: &Node, out: &mut ConfigFile) {
         // Read after the loop: a site command's channel needs `verbs:`, wherever it is written.
         let mut channels = None;
+        let mut priorities = None;
         let mut codebook = None;
         let mut drive = None;
         let mut languages = Vec::new();
@@ -322,7 +323,10 @@ impl Reader {
                 "operator" => self.operator(value, out),
                 "server" => self.server(value, &mut config.server),
                 "channels" => channels = Some(value),
-                "priorities" => self.priorities(value, config),
+                "priorities" => {
+                    priorities = Some(value);
+                    self.priorities(value, config);
+                }
                 "codebook" => codebook = Some(self.codebook(value)),
                 "reactions" => (config.reactions, out.reaction_acts) = self.reactions(value),
                 "mqtt" => self.mqtt(value, &mut config.mqtt),
@@ -335,6 +339,10 @@ impl Reader {
         self.rosbridge_drive_needs_url(drive, &out.config);
         if let Some(channels) = channels {
             self.channels(channels, &mut out.config);
+        }
+        // After `channels:`: whether visitors cut the operator off depends on speech's policy.
+        if let Some(priorities) = priorities {
+            self.visitors_over_operator(priorities, &out.config);
         }
         // Read last: without a `codebook:`, the operator's situations are its one tier.
         out.config.codebook =

@@ -251,6 +251,10 @@ diagnostic_codes! {
     /// (a weekday, or a special day): the kiosk cannot be in both. Reported at the range
     /// written second, once.
     ScheduleOverlap = "schedule-overlap",
+    /// `priorities:` in `docent.yaml` lets visitors' taps cut the operator off: the kiosk's
+    /// priority is above the operator's, or equal to it while speech is `when_busy: replace`.
+    /// Reported at `kiosk:` (else at `operator:`).
+    KioskOverOperator = "kiosk-over-operator",
     /// A reaction's `if:` in `docent.yaml` cannot be read: a field name missing, no comparison
     /// sign, text without double quotes, or words other than `and` between comparisons.
     /// Reported at the character concerned; the reaction is left out.

@@ -2,8 +2,12 @@
 //! with a command that arrives while another runs, and which trigger source wins. Read after
 //! `verbs:`, so a site verb's channel can be checked to exist wherever it is written.
 
+use crate::DiagnosticCode;
 use crate::acts_file::yaml::{Kind, Node};
-use crate::config::{Channel, ChannelPolicy, MAX_PRIORITY, MAX_QUEUE_LIMIT, SiteConfig, WhenBusy};
+use crate::config::{
+    Channel, ChannelPolicy, MAX_PRIORITY, MAX_QUEUE_LIMIT, Priorities, SiteConfig, WhenBusy,
+};
+use crate::diagnostic::Diagnostic;
 use crate::suggest::did_you_mean;
 
 use serde_json::{Value, json};
@@ -176,6 +180,50 @@ impl Reader {
     }
 }
 
+impl Reader {
+    /// Warns where `priorities:` lets visitors' taps cut the operator off: the kiosk above the
+    /// operator (a higher priority takes every channel over), or level with it while speech is
+    /// `when_busy: replace` (the latest utterance wins). Level with `queue`, the default, is
+    /// left alone: a visitor's speech then waits for the operator's. Reported at `kiosk:`, else
+    /// at `operator:` (whichever was written made the two meet).
+    pub(super) fn visitors_over_operator(&mut self, node: &Node, config: &SiteConfig) {
+        let Priorities {
+            operator, kiosk, ..
+        } = config.priorities;
+        let speech_replaces = config.channels.speech.when_busy == WhenBusy::Replace;
+        let message = if kiosk > operator {
+            format!(
+                "Visitors' taps (`kiosk: {kiosk}`) outrank the operator (`operator: \
+                 {operator}`): a visitor touching the screen cuts off what the operator has the \
+                 robot say, show or drive to, and the operator cannot take over. Give the kiosk \
+                 a lower number than the operator, e.g. `priorities: {{ operator: 3, kiosk: 1 }}` \
+                 (the defaults)."
+            )
+        } else if kiosk == operator && speech_replaces {
+            format!(
+                "Visitors' taps have the operator's priority ({kiosk}) and speech is \
+                 `when_busy: replace` under `channels:`: a visitor's tap cuts the operator's \
+                 speech off mid-sentence. Give the kiosk a lower number than the operator (e.g. \
+                 `kiosk: 1`), or let speech wait its turn with `speech: {{ when_busy: queue }}`."
+            )
+        } else {
+            return;
+        };
+        let Kind::Map(entries) = &node.kind else {
+            return;
+        };
+        let written = |name: &str| {
+            (entries.iter())
+                .find(|(key, _)| key.as_text() == Some(name))
+                .map(|(_, value)| value)
+        };
+        if let Some(at) = written("kiosk").or_else(|| written("operator")) {
+            let code = DiagnosticCode::KioskOverOperator;
+            (self.diagnostics).push(Diagnostic::warning(code, &at.pos, message));
+        }
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use crate::config_file::test_support::{parse, problems};
@@ -233,5 +281,28 @@ mod tests {
         let file = parse(text);
         assert_eq!(file.config.channels.speech, ChannelPolicy::queue(2));
         assert_eq!(file.config.priorities, Priorities::default());
+    }
+
+    #[test]
+    fn visitors_who_can_cut_the_operator_off_are_warned_at_the_kiosk() {
+        let located = |text: &str| -> Vec<(&str, u32, u32)> {
+            (problems(text).into_iter())
+                .map(|(code, line, col, _)| (code, line, col))
+                .collect()
+        };
+        // Above the operator: whatever the channels do.
+        let above = "home: a.html\npriorities:\n  operator: 2\n  kiosk: 4\n";
+        assert_eq!(located(above), [("kiosk-over-operator", 4, 10)]);
+        // Level, with speech replacing (channels written after priorities): the same warning.
+        let level = "priorities: { kiosk: 3 }\nchannels:\n  speech: { when_busy: replace }\n";
+        assert_eq!(located(level), [("kiosk-over-operator", 1, 22)]);
+        // Only `operator:` written, lowered to the kiosk's default 1.
+        let lowered = "channels: { speech: { when_busy: replace } }\npriorities: { operator: 1 }\n";
+        assert_eq!(located(lowered), [("kiosk-over-operator", 2, 25)]);
+        // Level with speech queueing (the default), or below: visitors wait their turn.
+        assert!(located("priorities: { kiosk: 3 }\n").is_empty());
+        assert!(located("priorities: { kiosk: 2, dm: 5 }\n").is_empty());
+        let found = problems(above);
+        assert!(found[0].3.contains("`kiosk: 4`"), "{found:?}");
     }
 }
