@@ -11,6 +11,7 @@ use crate::config::{AdapterKind, SiteConfig};
 use crate::diagnostic::Diagnostic;
 use crate::duration::parse_duration;
 use crate::model::Located;
+use crate::schedule::CalendarDate;
 
 mod access;
 pub(crate) mod attract;
@@ -54,6 +55,9 @@ pub(crate) struct ConfigFile {
     /// The pages and acts the attract loops and the schedule name, with their places
     /// (checked later, `attract::check_screen_refs`).
     pub screen_refs: attract::ScreenRefs,
+    /// Each `schedule: special_days:` date with its place (checked against today later,
+    /// `check_past_special_days`).
+    pub special_dates: Vec<Located<CalendarDate>>,
     /// Problems found.
     pub diagnostics: Vec<Diagnostic>,
 }
@@ -254,6 +258,7 @@ pub(crate) fn parse_config(file: &Arc<str>, bytes: &[u8]) -> ConfigFile {
     let mut reader = Reader {
         diagnostics: parsed.diagnostics,
         screen_refs: attract::ScreenRefs::default(),
+        special_dates: Vec::new(),
     };
     let mut out = ConfigFile::default();
     if let Some(root) = &parsed.root {
@@ -261,6 +266,7 @@ pub(crate) fn parse_config(file: &Arc<str>, bytes: &[u8]) -> ConfigFile {
     }
     out.diagnostics = reader.diagnostics;
     out.screen_refs = reader.screen_refs;
+    out.special_dates = reader.special_dates;
     out
 }
 

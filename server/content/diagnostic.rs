@@ -255,6 +255,10 @@ diagnostic_codes! {
     /// priority is above the operator's, or equal to it while speech is `when_busy: replace`.
     /// Reported at `kiosk:` (else at `operator:`).
     KioskOverOperator = "kiosk-over-operator",
+    /// A `schedule: special_days:` date in `docent.yaml` is before today (by the clock of the
+    /// computer running `docent check` or `docent serve`): most often last year's holiday,
+    /// whose special hours will never apply again. Reported at the date.
+    PastSpecialDay = "past-special-day",
     /// A reaction's `if:` in `docent.yaml` cannot be read: a field name missing, no comparison
     /// sign, text without double quotes, or words other than `and` between comparisons.
     /// Reported at the character concerned; the reaction is left out.

@@ -10,6 +10,7 @@ use crate::DiagnosticCode;
 use crate::commands::{CommandChecker, path_error_code};
 use crate::config::{Language, SiteConfig};
 use crate::config_file::attract::check_screen_refs;
+use crate::config_file::schedule::check_past_special_days;
 use crate::config_file::{ConfigFile, parse_config};
 use crate::contexts::{check_undeclared, contexts};
 use crate::diagnostic::Diagnostic;
@@ -19,6 +20,7 @@ use crate::model::{Act, Bundle, Located, Pos};
 use crate::operator_check::{KeyBindings, check_map, visitor_groups};
 use crate::pages::{PageLabels, check_reachable_languages};
 use crate::paths::{BundleArea, PathError};
+use crate::schedule::WallClock;
 use crate::suggest::did_you_mean;
 use crate::unused::check_unused;
 
@@ -99,6 +101,9 @@ fn load(root: &Path, replaced: &ActsReplacements) -> LoadReport {
     }
     check_reaction_acts(&merged, &settings.reaction_acts, &mut diagnostics);
     check_map(&checker, &config, settings.map.as_ref(), &mut diagnostics);
+    // The clock is read once, here: the check itself takes today, so tests fix the date.
+    let today = WallClock::now().date;
+    check_past_special_days(&settings.special_dates, today, &mut diagnostics);
     leftovers.check_disabled(
         &root,
         &config,

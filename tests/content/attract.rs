@@ -194,7 +194,8 @@ fn overlapping_ranges_of_a_special_day_are_reported() {
         "schedule:",
         "  closed: index.html",
         "  special_days:",
-        "    - {date: 2025-12-24, hours: '09:00-13:00, 12:00-14:00'}",
+        // A date to come, whenever the test runs: past dates are `past-special-day`.
+        "    - {date: 2999-12-24, hours: '09:00-13:00, 12:00-14:00'}",
     ];
     assert_eq!(
         problems(&lines, &[]),
@@ -276,9 +277,9 @@ fn bad_and_repeated_dates_are_reported() {
         "schedule:",
         "  closed: index.html",
         "  special_days:",
-        "    - {date: 2025-02-29, hours: closed}",
-        "    - {date: 2025-12-25, hours: closed}",
-        "    - {date: 2025-12-25, hours: 10:00-12:00}",
+        "    - {date: 2999-02-29, hours: closed}",
+        "    - {date: 2999-12-25, hours: closed}",
+        "    - {date: 2999-12-25, hours: 10:00-12:00}",
     ];
     assert_eq!(
         problems(&lines, &[]),
@@ -286,6 +287,23 @@ fn bad_and_repeated_dates_are_reported() {
             ("config-bad-value", "docent.yaml:4:14".to_owned()),
             ("config-bad-value", "docent.yaml:6:14".to_owned()),
         ]
+    );
+}
+
+#[test]
+fn last_years_special_days_are_warned_at_their_date() {
+    // 2001 is before any day this test runs on; the check with a fixed today is
+    // `config_file::schedule::past`'s unit test.
+    let lines = [
+        "schedule:",
+        "  closed: index.html",
+        "  special_days:",
+        "    - {date: 2001-12-25, hours: closed}",
+        "    - {date: 2999-12-25, hours: closed}",
+    ];
+    assert_eq!(
+        problems(&lines, &[]),
+        one("past-special-day", "docent.yaml:4:14")
     );
 }
 

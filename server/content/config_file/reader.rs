@@ -5,7 +5,8 @@
 use crate::DiagnosticCode;
 use crate::acts_file::yaml::{Kind, Node};
 use crate::diagnostic::Diagnostic;
-use crate::model::Pos;
+use crate::model::{Located, Pos};
+use crate::schedule::CalendarDate;
 use crate::suggest::did_you_mean;
 
 use super::section::{Field, Section, Shape};
@@ -16,6 +17,8 @@ pub(super) struct Reader {
     pub diagnostics: Vec<Diagnostic>,
     /// The pages and acts the kiosk's attract loops and schedule name, checked later.
     pub screen_refs: super::attract::ScreenRefs,
+    /// Each special day's date with its place (checked against today by the loader).
+    pub special_dates: Vec<Located<CalendarDate>>,
 }
 
 impl Reader {

@@ -9,7 +9,7 @@ use std::collections::BTreeMap;
 use crate::DiagnosticCode;
 use crate::acts_file::yaml::{Kind, Node};
 use crate::diagnostic::Diagnostic;
-use crate::model::Pos;
+use crate::model::{Located, Pos};
 use crate::schedule::{CalendarDate, DAY_MINUTES, OpenHours, Schedule, WEEKDAYS};
 
 use serde_json::{Value, json};
@@ -20,6 +20,9 @@ use super::section::{Field, Section, Shape};
 use crate::schema::section_schema;
 
 mod days;
+mod past;
+
+pub(crate) use past::check_past_special_days;
 
 /// The settings of `schedule:`.
 pub(crate) const SECTION: Section = Section {
@@ -352,6 +355,10 @@ impl Reader {
             self.bad(node, &message);
             return None;
         }
+        (self.special_dates).push(Located {
+            value: date,
+            pos: node.pos.clone(),
+        });
         Some(date)
     }
 
