@@ -15,7 +15,8 @@ use docent::cli::fleet as fleet_cli;
 use docent::cli::translations as translations_cli;
 use docent::content::config::AdapterKind;
 use docent::content::{
-    Colour, Diagnostic, load_bundle, no_voice_diagnostics, render_diagnostics, schema,
+    Colour, Diagnostic, espeak_speaks, load_bundle, no_voice_diagnostics, render_diagnostics,
+    schema,
 };
 use docent::http::ConnectionLimits;
 use docent::reload::ReloadOptions;
@@ -185,11 +186,12 @@ fn check(bundle: &Path, format: Format, deny_warnings: bool) -> anyhow::Result<E
     let mut report = load_bundle(bundle);
     // A bundle that speaks through espeak-ng: each language needs an installed voice. Asked of
     // espeak-ng here, not while loading (loading runs nothing); serving warns the same way.
+    // That is with `speech: {adapter: espeak}`, and without any adapter written where espeak-ng
+    // is installed (serve's default).
     if let Some(config) = report.bundle.as_ref().map(|b| &b.config)
-        && config.speech.adapter == Some(AdapterKind::Espeak)
-        && espeak_available()
+        && let Some(choice) = espeak_speaks(&config.speech, espeak_available())
     {
-        let missing = no_voice_diagnostics(config, &espeak_voices());
+        let missing = no_voice_diagnostics(config, &espeak_voices(), choice);
         report.diagnostics.extend(missing);
     }
     let (errors, warnings) = counts(&report.diagnostics);

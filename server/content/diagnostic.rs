@@ -219,7 +219,8 @@ diagnostic_codes! {
     /// button: visitors cannot choose it; only an operator or a dialog manager can. Reported at
     /// the language in `languages:`.
     LanguageUnreachable = "language-unreachable",
-    /// Only with `speech: {adapter: espeak}`, from `docent check` on the computer it runs on:
+    /// When espeak-ng speaks the bundle (`speech: {adapter: espeak}`, or no adapter written and
+    /// espeak-ng installed), from `docent check` on the computer it runs on:
     /// no installed espeak-ng voice speaks one of the bundle's languages (its voice in `speech:
     /// voices:`, or the language's own name, is not in `espeak-ng --voices`). Visitors in that
     /// language would hear espeak-ng's default voice.

@@ -107,4 +107,4 @@ pub use paths::{BundleArea, PathError, resolve_in_bundle};
 pub use render::{Colour, render_diagnostics};
 pub use speech::speaking_time;
 pub use suggest::closest;
-pub use voices::{no_voice_diagnostics, unspoken_languages};
+pub use voices::{EspeakChoice, espeak_speaks, no_voice_diagnostics, unspoken_languages};
