@@ -11,6 +11,7 @@ use crate::config::SiteConfig;
 use crate::diagnostic::Diagnostic;
 use crate::language::Language;
 
+use super::languages::StrayFolders;
 use super::scan::{PageScan, Value};
 use super::text::SourceText;
 
@@ -30,25 +31,21 @@ pub(super) fn attract_pages(config: &SiteConfig) -> BTreeSet<String> {
 }
 
 /// The language a page is shown in: that of its language folder (`pages/de/`), else the
-/// default. `None` for a page whose folder is not one of the bundle's languages' or when
-/// `languages:` is not written (the default is then a guess, not the author's word).
-fn folder_language<'c>(config: &'c SiteConfig, rel: &str) -> Option<&'c Language> {
-    if config.language_places.is_empty() {
+/// default. `None` for a page of a folder named like a language the bundle lacks (reported
+/// as `unknown-language`), or when `languages:` is not written (the default is then a
+/// guess, not the author's word).
+fn folder_language<'c>(
+    config: &'c SiteConfig,
+    stray: &StrayFolders,
+    rel: &str,
+) -> Option<&'c Language> {
+    if config.language_places.is_empty() || stray.page_fallback(rel).is_some() {
         return None;
     }
     let languages = &config.languages;
-    let translated = (languages.translated().iter()).find(|l| {
-        rel.strip_prefix(languages.page_folder(l).as_str())
-            .is_some()
-    });
-    match translated {
-        Some(language) => Some(language),
-        // `pages/xx/page.html` in a folder named like another language: not the default's.
-        None => match rel.split_once('/') {
-            Some((folder, _)) if Language::parse(folder).is_some() => None,
-            _ => Some(languages.default_language()),
-        },
-    }
+    (languages.translated().iter())
+        .find(|l| rel.starts_with(languages.page_folder(l).as_str()))
+        .or(Some(languages.default_language()))
 }
 
 /// `<html lang="en">` on a page of `pages/de/` (`rel`, inside `pages/`): warned at the
@@ -57,10 +54,11 @@ pub(super) fn check_lang(
     source: &SourceText,
     found: &PageScan,
     config: &SiteConfig,
+    stray: &StrayFolders,
     rel: &str,
     out: &mut Vec<Diagnostic>,
 ) {
-    let (Some(lang), Some(folder)) = (&found.lang, folder_language(config, rel)) else {
+    let (Some(lang), Some(folder)) = (&found.lang, folder_language(config, stray, rel)) else {
         return;
     };
     let Some(written) = Language::parse(&lang.text) else {

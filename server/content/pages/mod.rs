@@ -163,7 +163,14 @@ impl PageFile<'_, '_> {
             check_act_after(source, after, *has_act, out);
         }
         check_charset(source, &found.charsets, out);
-        behaviour::check_lang(source, &found, self.checker.config(), self.rel, out);
+        behaviour::check_lang(
+            source,
+            &found,
+            self.checker.config(),
+            self.stray,
+            self.rel,
+            out,
+        );
         behaviour::check_autoplay(source, &found, out);
         // A translation of an attract page is shown in the loop too.
         let shown_as = (self.checker.languages().page_fallback(self.rel)).unwrap_or(self.rel);
