@@ -135,10 +135,13 @@ fn a_form_on_a_page_of_a_schedule_ranges_attract_loop_is_told_too() {
     let files = [
         ("pages/index.html", "<p>Hi</p>"),
         ("pages/closed.html", "<p>Closed</p>"),
-        ("pages/sat.html", "<p>Sign up:</p> <input type=email>"),
+        (
+            "pages/sat.html",
+            "<input type=hidden name=from value=attract><p>Sign up:</p> <input type=email>",
+        ),
     ];
     assert_eq!(
         found("attract-page-form", &lines, &files),
-        ["pages/sat.html:1:17"]
+        ["pages/sat.html:1:60"]
     );
 }

@@ -93,12 +93,12 @@ pub(super) fn check_lang(
 pub(super) fn check_autoplay(source: &SourceText, found: &PageScan, out: &mut Vec<Diagnostic>) {
     for Value { text: element, at } in &found.autoplay_sound {
         let what = if element == "audio" {
-            "This sound starts"
+            "This sound starts by itself"
         } else {
-            "This film starts with its sound on"
+            "This film starts by itself, with its sound on,"
         };
         let message = format!(
-            "{what} by itself when the page opens, so it plays over whatever the robot is \
+            "{what} when the page opens, so it plays over whatever the robot is \
              saying. Add `muted` to the `<{element}>` (`<{element} autoplay muted>`), or remove \
              `autoplay` and start it from an act (`PROJECT` for the projector, or a \
              `data-act` button the visitor taps)."
@@ -117,7 +117,7 @@ pub(super) fn check_attract_form(source: &SourceText, found: &PageScan, out: &mu
         return;
     };
     let message = format!(
-        "This page is shown by the attract loop (`kiosk: attract: pages:` in docent.yaml), \
+        "This page is shown by the attract loop (`attract: pages:` in docent.yaml), \
          and the first touch ends the loop and goes back to the home page, so this \
          `<{element}>` can never be filled in. Move the form to a page visitors reach from \
          the home page, or take this page out of the attract loop."

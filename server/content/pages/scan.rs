@@ -262,6 +262,8 @@ fn read_behaviour(el: &Element<'_, '_>, name: &str, found: &mut PageScan) {
                 });
             }
         }
+        // A hidden input is filled by the page, not by a visitor.
+        "input" if attribute("type").is_some_and(|t| t.value().eq_ignore_ascii_case("hidden")) => {}
         "form" | "input" | "textarea" | "select" => found.form_fields.push(Value {
             text: name.to_owned(),
             at: el.source_location().bytes().start,
