@@ -305,6 +305,17 @@ diagnostic_codes! {
     /// The page's markup could not be followed to the end (rare: a `<script>` or `<textarea>`
     /// inside `<svg>` or `<select>`), so the rest was not checked.
     PageNotChecked = "page-not-checked",
+    /// A page's `<html lang>` names another language than its folder's: `lang="en"` on a page
+    /// of `pages/de/`, or another language's tag on a page of the default language (directly
+    /// in `pages/`). Checked when `languages:` is written; `en-gb` agrees with `en`.
+    PageLanguageMismatch = "page-language-mismatch",
+    /// A `<video autoplay>` or `<audio autoplay>` without `muted` on a page: its sound starts
+    /// by itself and plays over the robot's speech.
+    AutoplaySound = "autoplay-sound",
+    /// A page the attract loop shows (`kiosk: attract: pages:`, or a schedule range's) holds a
+    /// `<form>`, `<input>`, `<textarea>` or `<select>`: the first touch ends the loop and
+    /// returns home, so it can never be filled in. Once per page, at its first field.
+    AttractPageForm = "attract-page-form",
     /// A `PROJECT` file, or a picture, video or sound of a page, is in a format Chromium cannot
     /// show (see [Which picture and video formats
     /// work](#which-picture-and-video-formats-work-and-how-to-convert)), judged by its content;

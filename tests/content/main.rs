@@ -29,6 +29,7 @@ mod load;
 mod media;
 mod operator;
 mod operator_settings;
+mod page_behaviour;
 mod pages;
 mod paths;
 mod texts;

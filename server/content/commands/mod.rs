@@ -74,6 +74,11 @@ impl<'a> CommandChecker<'a> {
         self.root
     }
 
+    /// The site settings the bundle is checked against.
+    pub fn config(&self) -> &SiteConfig {
+        self.config
+    }
+
     /// The bundle's languages (pages in `pages/de/` fall back to `pages/`).
     pub fn languages(&self) -> &crate::config::Languages {
         &self.config.languages

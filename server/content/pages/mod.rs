@@ -4,15 +4,19 @@
 //!
 //! What a visitor would meet is reported: content hidden by something left open, broken
 //! `data-act` quoting, links to missing files, pictures and videos Chromium cannot show,
-//! pages not in UTF-8, unreadable `data-act-after` delays. Labels (`data-act` values and
+//! pages not in UTF-8, unreadable `data-act-after` delays; and what fights the robot or the
+//! kiosk (`behaviour`): a `lang` other than the page's folder's, sound that starts by itself,
+//! a form on an attract page. Labels (`data-act` values and
 //! `docent.trigger` literals) are returned for `load` to check against the acts.
 
+mod behaviour;
 mod languages;
 mod links;
 mod scan;
 mod script;
 mod text;
 
+use std::collections::BTreeSet;
 use std::sync::Arc;
 
 use crate::DiagnosticCode;
@@ -50,6 +54,7 @@ pub(crate) fn check_pages(checker: &CommandChecker<'_>, out: &mut Vec<Diagnostic
     let mut html_pages = Vec::new();
     let files = list_files(checker.root(), BundleArea::Pages);
     let stray = languages::StrayFolders::find(checker, &files);
+    let attract = behaviour::attract_pages(checker.config());
     for rel in files {
         let lower = rel.to_ascii_lowercase();
         let kind = match lower.rsplit_once('.').map(|(_, ext)| ext) {
@@ -73,6 +78,7 @@ pub(crate) fn check_pages(checker: &CommandChecker<'_>, out: &mut Vec<Diagnostic
             checker,
             rel: &rel,
             stray: &stray,
+            attract: &attract,
         };
         match kind {
             FileKind::Page => {
@@ -111,6 +117,8 @@ struct PageFile<'c, 'r> {
     rel: &'r str,
     /// Folders named like a language the bundle does not list (reported once, elsewhere).
     stray: &'r languages::StrayFolders,
+    /// The pages the attract loops show, inside `pages/`.
+    attract: &'r BTreeSet<String>,
 }
 
 impl PageFile<'_, '_> {
@@ -155,6 +163,20 @@ impl PageFile<'_, '_> {
             check_act_after(source, after, *has_act, out);
         }
         check_charset(source, &found.charsets, out);
+        behaviour::check_lang(
+            source,
+            &found,
+            self.checker.config(),
+            self.stray,
+            self.rel,
+            out,
+        );
+        behaviour::check_autoplay(source, &found, out);
+        // A translation of an attract page is shown in the loop too.
+        let shown_as = (self.checker.languages().page_fallback(self.rel)).unwrap_or(self.rel);
+        if self.attract.contains(self.rel) || self.attract.contains(shown_as) {
+            behaviour::check_attract_form(source, &found, out);
+        }
         for link in &found.links {
             if link.srcset {
                 for (url, offset) in srcset_urls(&link.value.text) {

@@ -85,6 +85,14 @@ pub(crate) struct PageScan {
     pub unclosed: Vec<Unclosed>,
     /// Why the tokenizer stopped early, if it did.
     pub stopped: Option<String>,
+    /// The `<html lang>` value: the language the page says it is in.
+    pub lang: Option<Value>,
+    /// `autoplay` attributes of `<video>` and `<audio>` elements without `muted`: sound
+    /// that starts by itself. `text` is the element's name.
+    pub autoplay_sound: Vec<Value>,
+    /// Form elements (`<form>`, `<input>`, `<textarea>`, `<select>`), at their `<`; `text`
+    /// is the element's name.
+    pub form_fields: Vec<Value>,
 }
 
 /// Elements whose content is text up to their own end tag (or inert, for `template`): left
@@ -174,6 +182,7 @@ fn watch_closing(el: &mut Element<'_, '_>, open: &Rc<RefCell<Vec<(Unclosed, bool
 
 fn read_element(el: &Element<'_, '_>, found: &mut PageScan) {
     let name = el.tag_name();
+    read_behaviour(el, &name, found);
     let mut has_act = false;
     let mut after = None;
     let mut http_equiv = false;
@@ -223,6 +232,43 @@ fn read_element(el: &Element<'_, '_>, found: &mut PageScan) {
     }
     if let (true, Some(content)) = (http_equiv, content) {
         found.charsets.push(charset_in_content(content));
+    }
+}
+
+/// What the page does on its own: its declared language, sound that starts by itself, and
+/// fields a visitor fills in.
+fn read_behaviour(el: &Element<'_, '_>, name: &str, found: &mut PageScan) {
+    let attribute = |wanted: &str| el.attributes().iter().find(|a| a.name() == wanted);
+    match name {
+        "html" => {
+            if let Some(lang) = attribute("lang") {
+                let at = (lang.value_source_location())
+                    .or_else(|| lang.name_source_location())
+                    .map_or(0, |l| l.bytes().start);
+                found.lang = Some(Value {
+                    text: lang.value(),
+                    at,
+                });
+            }
+        }
+        "video" | "audio" if attribute("muted").is_none() => {
+            // At the attribute's name: `autoplay` usually has no value.
+            if let Some(autoplay) = attribute("autoplay") {
+                found.autoplay_sound.push(Value {
+                    text: name.to_owned(),
+                    at: autoplay
+                        .name_source_location()
+                        .map_or(0, |l| l.bytes().start),
+                });
+            }
+        }
+        // A hidden input is filled by the page, not by a visitor.
+        "input" if attribute("type").is_some_and(|t| t.value().eq_ignore_ascii_case("hidden")) => {}
+        "form" | "input" | "textarea" | "select" => found.form_fields.push(Value {
+            text: name.to_owned(),
+            at: el.source_location().bytes().start,
+        }),
+        _ => {}
     }
 }
 
