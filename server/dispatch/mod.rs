@@ -38,6 +38,7 @@ pub(crate) fn log_dispatcher(bundle: crate::content::Bundle, hub: &Hub) -> Arc<D
 }
 mod language;
 mod request;
+mod rules;
 mod sequence;
 mod state;
 mod visitors;
@@ -54,10 +55,12 @@ pub use request::{ResolvedCommand, TriggerError, TriggerRequest, Triggered};
 
 use crate::adapters::{AdapterStatus, CancelScope, Command, Router};
 use crate::content::config::Channel;
-use crate::content::{Act, Args, Bundle, DEFAULT_VARIANT, Variant, Verb, closest};
+use crate::content::{Args, Bundle, DEFAULT_VARIANT, Verb};
 use crate::events::{ActRef, EventKind, Hub, Source};
 use crate::lifecycle::Lifecycle;
 use crate::sync::lock;
+pub use rules::variant_for;
+use rules::{known_context, priority, resolved, speaking_act, suggest};
 use sequence::Sequence;
 use state::{State, Turn};
 
@@ -401,63 +404,5 @@ impl Dispatcher {
 
     pub(crate) fn next_id(&self) -> u64 {
         self.next_id.fetch_add(1, Ordering::Relaxed)
-    }
-}
-
-/// `context` if `bundle` has it, else `unknown-context` with a suggestion.
-fn known_context(bundle: &Bundle, context: &str) -> Result<String, TriggerError> {
-    if bundle.contexts.iter().any(|c| c == context) {
-        return Ok(context.to_owned());
-    }
-    let suggestion = suggest(context, bundle.contexts.iter().map(String::as_str));
-    Err(TriggerError::UnknownContext {
-        context: context.to_owned(),
-        suggestion,
-    })
-}
-
-/// The priority of `source` in `bundle`'s settings.
-fn priority(bundle: &Bundle, source: Source) -> u8 {
-    let priorities = bundle.config.priorities;
-    match source {
-        Source::Kiosk => priorities.kiosk,
-        // A reaction acts on its own, as a dialog manager does.
-        Source::Dm | Source::Robot => priorities.dm,
-        Source::Http => priorities.http,
-        Source::Operator | Source::Projector | Source::Adapter | Source::Server => {
-            priorities.operator
-        }
-    }
-}
-
-/// Whether speech of act `label` is running or waiting.
-fn speaking_act(state: &State, label: &str) -> bool {
-    (state.lanes.get(&Channel::Speech)).is_some_and(|lane| lane.holds(|c| &*c.act.label == label))
-}
-
-/// The variant `act` speaks in `context`: the context's own, else `Text`; `None` when the act
-/// says nothing there. The one place this rule lives: the trigger applies it, and
-/// `GET /api/acts` sends its result per context so the console only looks it up.
-pub fn variant_for<'a>(act: &'a Act, context: &str) -> Option<&'a Variant> {
-    act.variant(context)
-        .or_else(|| act.variant(DEFAULT_VARIANT))
-}
-
-/// Labels and contexts longer than this get no suggestion: comparing them costs too much for
-/// what a client could send by the thousand.
-const MAX_SUGGESTED_LEN: usize = 128;
-
-/// The closest candidate to `word`, for a "did you mean".
-fn suggest<'a>(word: &str, candidates: impl IntoIterator<Item = &'a str>) -> Option<String> {
-    (word.len() <= MAX_SUGGESTED_LEN)
-        .then(|| closest(word, candidates).map(str::to_owned))
-        .flatten()
-}
-
-fn resolved(command: &Command) -> ResolvedCommand {
-    ResolvedCommand {
-        id: command.id,
-        verb: command.verb.to_string(),
-        arg: command.arg.as_deref().map(str::to_owned),
     }
 }
