@@ -13,7 +13,8 @@
 //!
 //! Everything this decides by sits in one `State` under one lock (`state`); a request holds it
 //! as a `Turn`, with the bundle live then, from its first check to its last hand-over. What
-//! clients are to be told is queued as a [`Notice`] in that turn, never called into.
+//! clients are to be told is queued as a [`Notice`] in that turn, never called into. The small
+//! rules a turn applies (a context known, a priority, the variant spoken) are in `rules`.
 
 mod channels;
 mod choose;
