@@ -292,6 +292,7 @@ fn serve(args: &ServeArgs) -> anyhow::Result<ExitCode> {
         access: setup.mode.clone(),
         limits: ConnectionLimits::default(),
         media_cache: (args.media_cache.clone()).unwrap_or_else(docent::media::default_folder),
+        media_tools: docent::media::Tools::find(),
     };
     let fleet_flags = docent::fleet::FleetFlags {
         url: args.mqtt.clone(),

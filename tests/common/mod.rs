@@ -110,6 +110,7 @@ pub fn start_server(
         access: test_access(),
         limits: docent::http::ConnectionLimits::default(),
         media_cache: corpus_dir.path().join("media-cache"),
+        media_tools: docent::media::Tools::find(),
     };
     adjust(&mut options);
     let server = Server::start(loaded, &options).expect("server starts");
