@@ -18,9 +18,18 @@ fn every_shipped_bundle_passes_the_check() {
         "poster-presenter",
     ] {
         let path = format!("dialogs/{bundle}");
-        let (code, out, _) = run_docent(&["check", &path, "--format", "json"]);
+        let (code, out, _) = run_docent(&["check", &path, "--format", "json", "--deny-warnings"]);
         let problems: Vec<Value> = serde_json::from_str(&out).unwrap();
-        assert_eq!((code, problems.len()), (0, 0), "{bundle}: {out}");
+        // Only notes: the paper's own MPEG-1 film, converted when served.
+        let notes: Vec<(&str, &str)> = (problems.iter())
+            .map(|p| (p["severity"].as_str().unwrap(), p["code"].as_str().unwrap()))
+            .collect();
+        let expected: &[(&str, &str)] = if bundle == "paper-fig4" {
+            &[("note", "media-converted")]
+        } else {
+            &[]
+        };
+        assert_eq!((code, notes.as_slice()), (0, expected), "{bundle}: {out}");
     }
 }
 
