@@ -7,7 +7,8 @@ use serde::Serialize;
 
 use crate::model::Pos;
 
-/// How bad a problem is: errors stop `docent serve`, warnings do not.
+/// How bad a problem is: errors stop `docent serve`, warnings do not, and notes are no
+/// mistake at all (so `docent check --deny-warnings` passes a bundle with notes only).
 #[derive(Clone, Copy, Debug, PartialEq, Eq, PartialOrd, Ord, Serialize)]
 #[serde(rename_all = "lowercase")]
 pub enum Severity {
@@ -15,6 +16,26 @@ pub enum Severity {
     Error,
     /// Worth fixing; the bundle still runs.
     Warning,
+    /// Something the author should know that is not a mistake (files ignored, media that
+    /// Docent converts); nothing needs fixing.
+    Note,
+}
+
+impl Severity {
+    /// The word `docent check` prints and `--format json` carries: `error`, `warning`, `note`.
+    pub fn as_str(self) -> &'static str {
+        match self {
+            Severity::Error => "error",
+            Severity::Warning => "warning",
+            Severity::Note => "note",
+        }
+    }
+}
+
+impl fmt::Display for Severity {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        f.write_str(self.as_str())
+    }
 }
 
 /// Defines [`DiagnosticCode`] and its words from one list, so a code is written once.
@@ -62,7 +83,7 @@ diagnostic_codes! {
     NoHomePage = "no-home-page",
     /// Files computers and editors leave in copied folders (`._name` Mac resource forks,
     /// `.DS_Store`, `Thumbs.db`, `desktop.ini`, editor backups `name~`, `.bak`, `.swp`, `.#name`)
-    /// were found and ignored: one warning for the whole bundle, saying how many of each.
+    /// were found and ignored: one note for the whole bundle, saying how many of each.
     IgnoredFiles = "ignored-files",
     /// An acts file renamed so Docent does not read it (`acts.yaml.bak`, `acts.yaml.old`,
     /// `acts.yml~`) holds acts no loaded acts file has: they are missing from the console and
@@ -353,7 +374,7 @@ impl PartialEq<&str> for DiagnosticCode {
 /// One problem, as `docent check` reports it.
 #[derive(Clone, Debug, PartialEq, Eq, Serialize)]
 pub struct Diagnostic {
-    /// Error or warning.
+    /// Error, warning or note.
     pub severity: Severity,
     /// Its stable code.
     pub code: DiagnosticCode,
@@ -378,6 +399,11 @@ impl Diagnostic {
         Self::at(Severity::Warning, code, pos, message)
     }
 
+    /// A note at `pos`: no mistake, something the author should know.
+    pub fn note(code: DiagnosticCode, pos: &Pos, message: impl Into<String>) -> Self {
+        Self::at(Severity::Note, code, pos, message)
+    }
+
     fn at(severity: Severity, code: DiagnosticCode, pos: &Pos, message: impl Into<String>) -> Self {
         Diagnostic {
             severity,
@@ -393,18 +419,19 @@ impl Diagnostic {
     pub fn is_error(&self) -> bool {
         self.severity == Severity::Error
     }
+
+    /// True for warnings (not for errors, nor for notes).
+    pub fn is_warning(&self) -> bool {
+        self.severity == Severity::Warning
+    }
 }
 
 impl fmt::Display for Diagnostic {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
-        let kind = match self.severity {
-            Severity::Error => "error",
-            Severity::Warning => "warning",
-        };
         write!(
             f,
-            "{}:{}:{}: {kind}[{}]: {}",
-            self.file, self.line, self.column, self.code, self.message
+            "{}:{}:{}: {}[{}]: {}",
+            self.file, self.line, self.column, self.severity, self.code, self.message
         )
     }
 }
