@@ -110,6 +110,11 @@ diagnostic_codes! {
     /// Two acts have the same label, in the same file or in different files. Reported at both
     /// places, each naming the other.
     DuplicateLabel = "duplicate-label",
+    /// An acts file repeats most labels of another acts file with texts in another language
+    /// (`acts_de.yaml` beside `acts.yaml`): a translation in a file of its own. Reported once,
+    /// at its first act, instead of a `duplicate-label` for each of its acts; its repeated acts
+    /// are not used. Translations go beside the original, as `Text@de:`.
+    TranslatedActsFile = "translated-acts-file",
     /// A key that is not `Label`, `Cmds`, `Group`, `Key` or a `Text...` key, often a typing or
     /// capital-letter slip (`Lable`, `label`, `textGroup`, `Commands`, `Grup`). The message
     /// suggests the right key when it can.

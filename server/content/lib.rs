@@ -87,6 +87,7 @@ pub mod size;
 mod speech;
 pub mod spreadsheet;
 mod suggest;
+mod translated_copy;
 pub mod translations;
 mod unused;
 mod voices;

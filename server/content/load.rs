@@ -22,6 +22,7 @@ use crate::pages::{PageLabels, check_reachable_languages};
 use crate::paths::{BundleArea, PathError};
 use crate::schedule::WallClock;
 use crate::suggest::did_you_mean;
+use crate::translated_copy::{TranslatedCopies, find_translated_copies};
 use crate::unused::check_unused;
 
 /// The name of the settings file at the top of a bundle.
@@ -84,7 +85,8 @@ fn load(root: &Path, replaced: &ActsReplacements) -> LoadReport {
     let mut config = settings.config;
     let gathered = gather(&root, &names, &config, replaced, &mut diagnostics);
     let checker = CommandChecker::new(&root, &config);
-    let mut merged = merge_acts(gathered.files, &mut diagnostics);
+    let copies = find_translated_copies(&gathered.files, &config, &mut diagnostics);
+    let mut merged = merge_acts(gathered.files, &copies, &mut diagnostics);
     check_page_labels(gathered.pages, &config, &mut merged, &mut diagnostics);
     check_home(&checker, &config, settings.home.as_ref(), &mut diagnostics);
     check_idle_act(&merged, settings.idle_act.as_ref(), &mut diagnostics);
@@ -218,7 +220,11 @@ impl Merged {
     }
 }
 
-fn merge_acts(files: Vec<CheckedFile>, out: &mut Vec<Diagnostic>) -> Merged {
+fn merge_acts(
+    files: Vec<CheckedFile>,
+    copies: &TranslatedCopies,
+    out: &mut Vec<Diagnostic>,
+) -> Merged {
     let mut merged = Merged::default();
     let mut keys = KeyBindings::default();
     // Later places of each label used more than once, reported at the first place at the end.
@@ -234,6 +240,10 @@ fn merge_acts(files: Vec<CheckedFile>, out: &mut Vec<Diagnostic>) -> Merged {
                 group,
                 key,
             } = act;
+            // A translation in a file of its own is told once, not as a duplicate per act.
+            if copies.leaves_out(&label.pos.file, &label.value) {
+                continue;
+            }
             if let Some(&first) = merged.index.get(&label.value) {
                 let first_pos = &merged.acts[first].pos;
                 let message = format!(

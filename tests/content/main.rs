@@ -34,4 +34,5 @@ mod operator_settings;
 mod page_behaviour;
 mod pages;
 mod paths;
+mod right_way;
 mod texts;

@@ -1,0 +1,295 @@
+//! An acts file that is another's translation: an author copies `acts.yaml` to `acts_de.yaml`
+//! (or `acts-de.yml`, `acts.de.yaml`, `tour_deutsch.yaml`) and translates the texts, keeping
+//! the labels. Docent reads each label once, so every act of the copy would be a
+//! `duplicate-label`, whose advice ("rename one of them") is the wrong way. Found before the
+//! acts are merged: such a file is told once, at its first act, that translations go beside
+//! the original as `Text@de:`, and its repeated acts are left out without a duplicate each.
+//!
+//! A file is a translated copy of another when more than half of its labels are the other's
+//! (at least two, or one in a file whose name carries a language) and its texts are in another
+//! language: its name carries a language other than the other's, or its texts differ from the
+//! originals in most repeated acts and are in another language by their common words (or share
+//! few words with them). A copy with the same texts is a real duplicate, and told as one.
+
+use std::collections::{BTreeMap, BTreeSet, HashSet};
+use std::fmt::Write as _;
+use std::sync::Arc;
+
+use crate::config::{Language, SiteConfig};
+use crate::diagnostic::{Diagnostic, DiagnosticCode};
+use crate::gather::{CheckedAct, CheckedFile};
+
+/// The acts files found to be translations of another, by file name, with the labels they
+/// repeat: those acts are left out of the bundle without a `duplicate-label` each.
+#[derive(Default)]
+pub(crate) struct TranslatedCopies {
+    repeated: BTreeMap<Arc<str>, HashSet<String>>,
+}
+
+impl TranslatedCopies {
+    /// Whether the act `label` of `file` is a translation of an act of another file.
+    pub(crate) fn leaves_out(&self, file: &str, label: &str) -> bool {
+        self.repeated.get(file).is_some_and(|l| l.contains(label))
+    }
+}
+
+/// One acts file as compared here: its name, labels and plain `Text` alternatives.
+struct FileTexts<'f> {
+    name: Arc<str>,
+    acts: &'f [CheckedAct],
+    /// The language its name carries (`acts_de.yaml`), if any.
+    named: Option<Language>,
+    /// The language its texts are in, by their common words, if clear.
+    guessed: Option<&'static str>,
+}
+
+/// Finds the acts files that translate another and tells each once.
+pub(crate) fn find_translated_copies(
+    files: &[CheckedFile],
+    config: &SiteConfig,
+    out: &mut Vec<Diagnostic>,
+) -> TranslatedCopies {
+    let default = config.languages.default_language();
+    let texts: Vec<FileTexts> = (files.iter())
+        .filter_map(|f| {
+            let first = f.acts.first()?;
+            let name = first.label.pos.file.clone();
+            Some(FileTexts {
+                named: language_in_name(&name, config),
+                guessed: guess_language(f.acts.iter().flat_map(plain_texts)),
+                name,
+                acts: &f.acts,
+            })
+        })
+        .collect();
+    let mut copies = TranslatedCopies::default();
+    for copy in &texts {
+        let Some(original) = (texts.iter())
+            .filter(|o| o.name != copy.name && !copies.repeated.contains_key(&o.name))
+            .find(|o| is_translation_of(copy, o, default))
+        else {
+            continue;
+        };
+        let repeated = repeated_labels(copy, original);
+        out.push(told(copy, original, repeated.len(), config));
+        copies.repeated.insert(copy.name.clone(), repeated);
+    }
+    copies
+}
+
+/// The labels of `copy` that `original` has too.
+fn repeated_labels(copy: &FileTexts, original: &FileTexts) -> HashSet<String> {
+    let theirs: HashSet<&str> = original
+        .acts
+        .iter()
+        .map(|a| a.label.value.as_str())
+        .collect();
+    (copy.acts.iter())
+        .map(|a| a.label.value.clone())
+        .filter(|l| theirs.contains(l.as_str()))
+        .collect()
+}
+
+fn is_translation_of(copy: &FileTexts, original: &FileTexts, default: &Language) -> bool {
+    let labels: BTreeSet<&str> = copy.acts.iter().map(|a| a.label.value.as_str()).collect();
+    let repeated = repeated_labels(copy, original).len();
+    let least = if copy.named.is_some() { 1 } else { 2 };
+    if repeated < least || repeated * 2 <= labels.len() {
+        return false;
+    }
+    match (&copy.named, &original.named) {
+        // `acts_de.yaml` beside `acts.yaml` or `acts_en.yaml`: the one named otherwise than the
+        // default language is the translation (of two named others, the first in file order).
+        (Some(mine), Some(theirs)) => mine != theirs && (theirs == default || mine != default),
+        (Some(mine), None) => mine != default,
+        (None, Some(_)) => false,
+        (None, None) => texts_in_another_language(copy, original, default),
+    }
+}
+
+/// Neither name says: the copy's texts differ from most originals, in another language by
+/// their common words (the original's being the default language, or unknown), or sharing few
+/// words with them.
+fn texts_in_another_language(copy: &FileTexts, original: &FileTexts, default: &Language) -> bool {
+    let mut compared = 0;
+    let mut differing = 0;
+    let (mut mine, mut theirs) = (HashSet::new(), HashSet::new());
+    for act in copy.acts {
+        let Some(other) = (original.acts.iter()).find(|o| o.label.value == act.label.value) else {
+            continue;
+        };
+        let (a, b): (Vec<&str>, Vec<&str>) =
+            (plain_texts(act).collect(), plain_texts(other).collect());
+        if a.is_empty() || b.is_empty() {
+            continue;
+        }
+        compared += 1;
+        differing += usize::from(a != b);
+        mine.extend(a.iter().flat_map(|t| words(t)));
+        theirs.extend(b.iter().flat_map(|t| words(t)));
+    }
+    if compared == 0 || differing * 2 <= compared {
+        return false;
+    }
+    match (copy.guessed, original.guessed) {
+        (Some(c), Some(o)) => c != o && (o == default.as_str() || c != default.as_str()),
+        (Some(c), None) => c != default.as_str(),
+        (None, Some(_)) => false,
+        (None, None) => {
+            let shared = mine.intersection(&theirs).count();
+            shared * 3 < mine.len().min(theirs.len())
+        }
+    }
+}
+
+/// The texts of an act's plain `Text` variant.
+fn plain_texts(act: &CheckedAct) -> impl Iterator<Item = &str> {
+    (act.variants.iter())
+        .filter(|v| v.name == "Text")
+        .flat_map(|v| v.alternatives.iter().map(|a| a.value.as_str()))
+}
+
+/// The words of a text, lower case, of letters only.
+fn words(text: &str) -> impl Iterator<Item = String> + '_ {
+    text.split(|c: char| !c.is_alphabetic())
+        .filter(|w| !w.is_empty())
+        .map(str::to_lowercase)
+}
+
+/// The language a file's name carries: a part of it (split at `_`, `-`, `.`, a space or a
+/// folder) that is one of the bundle's languages, a common language's tag, or a language's
+/// name (`acts_de.yaml`, `tour-FR.yml`, `acts.deutsch.yaml`). The first part is the file's own
+/// name, never a language (`de.yaml` is a file named "de").
+fn language_in_name(name: &str, config: &SiteConfig) -> Option<Language> {
+    let stem = name.rsplit_once('.').map_or(name, |(stem, _)| stem);
+    let mut parts = stem
+        .split(['_', '-', '.', ' ', '/'])
+        .filter(|p| !p.is_empty());
+    let first = parts.next();
+    let folder = name.contains('/').then_some(first).flatten();
+    folder.into_iter().chain(parts).find_map(|part| {
+        let lower = part.to_ascii_lowercase();
+        (config.languages.find(&lower).cloned())
+            .or_else(|| Language::common(&lower))
+            .or_else(|| Language::from_name(part))
+    })
+}
+
+/// Very common words of the languages most often written beside one another in a museum,
+/// enough to tell which one a file's texts are in.
+const COMMON_WORDS: &[(&str, &[&str])] = &[
+    (
+        "en",
+        &[
+            "the", "and", "is", "you", "this", "of", "to", "with", "here", "are", "it", "we",
+        ],
+    ),
+    (
+        "de",
+        &[
+            "der", "die", "das", "und", "ist", "sie", "ein", "eine", "nicht", "hier", "mit", "wir",
+            "ich", "zu",
+        ],
+    ),
+    (
+        "fr",
+        &[
+            "le", "la", "les", "et", "est", "vous", "une", "des", "ici", "avec", "nous", "je",
+        ],
+    ),
+    (
+        "es",
+        &[
+            "el", "los", "las", "y", "es", "usted", "una", "del", "aquí", "con", "nosotros", "yo",
+        ],
+    ),
+    (
+        "it",
+        &[
+            "il", "gli", "della", "e", "è", "una", "del", "qui", "con", "noi", "io", "sono",
+        ],
+    ),
+    (
+        "nl",
+        &[
+            "de", "het", "een", "en", "is", "u", "hier", "met", "wij", "ik", "van", "niet",
+        ],
+    ),
+];
+
+/// The language of `texts` by their common words: the one with most of them (at least three,
+/// and more than any other), or `None`.
+fn guess_language<'t>(texts: impl Iterator<Item = &'t str>) -> Option<&'static str> {
+    let mut counts = [0usize; COMMON_WORDS.len()];
+    for word in texts.flat_map(words) {
+        for (i, (_, common)) in COMMON_WORDS.iter().enumerate() {
+            counts[i] += usize::from(common.contains(&word.as_str()));
+        }
+    }
+    let best = (0..counts.len()).max_by_key(|&i| counts[i])?;
+    let second = (0..counts.len())
+        .filter(|&i| i != best)
+        .map(|i| counts[i])
+        .max();
+    (counts[best] >= 3 && Some(counts[best]) > second).then(|| COMMON_WORDS[best].0)
+}
+
+fn told(
+    copy: &FileTexts,
+    original: &FileTexts,
+    repeated: usize,
+    config: &SiteConfig,
+) -> Diagnostic {
+    let language = (copy.named.clone()).or_else(|| copy.guessed.and_then(Language::parse));
+    let first = &copy.acts[0];
+    let example = (copy.acts.iter())
+        .find(|a| original.acts.iter().any(|o| o.label.value == a.label.value))
+        .map_or(first.label.value.as_str(), |a| a.label.value.as_str());
+    let (file, theirs) = (&copy.name, &original.name);
+    let mut message = format!(
+        "`{file}` repeats {repeated} of its {} act label(s) from `{theirs}` (such as \
+         `{example}`) with texts in {}: it looks like a translation of `{theirs}`, and \
+         Docent reads each label once, so these acts of `{file}` are not used.",
+        copy.acts.len(),
+        language
+            .as_ref()
+            .map_or("another language".to_owned(), |l| {
+                Language::english_name(l).map_or(format!("`{l}`"), |n| format!("{n} (`{l}`)"))
+            }),
+    );
+    let tag = language.as_ref().map_or("de", Language::as_str);
+    let _ = write!(
+        message,
+        " Translations go beside the original, in `{theirs}`: under each act's `Text:` write \
+         `Text@{tag}:` with the translated texts (and `TextChild@{tag}:` under `TextChild:`)"
+    );
+    match &language {
+        None => message.push_str(
+            ", with the language's short tag after the `@` (`de`, `fr`), and add that tag to \
+             `languages:` in docent.yaml.",
+        ),
+        Some(l) if config.languages.find(l.as_str()).is_none() => {
+            let listed = (config.languages.all().iter())
+                .chain(std::iter::once(l))
+                .map(Language::as_str)
+                .collect::<Vec<_>>()
+                .join(", ");
+            let _ = write!(
+                message,
+                ", and list the language in docent.yaml: `languages: [{listed}]`."
+            );
+        }
+        Some(_) => message.push('.'),
+    }
+    let _ = write!(
+        message,
+        " For a translator, `docent translations export BUNDLE --language {tag}` writes a table \
+         of every text and `docent translations import` writes the filled table back. Then \
+         delete `{file}` or move it out of the bundle folder."
+    );
+    Diagnostic::error(
+        DiagnosticCode::TranslatedActsFile,
+        &first.label.pos,
+        message,
+    )
+}

@@ -1,0 +1,131 @@
+//! Messages that point the right way: mistakes whose first symptom used to be told as another
+//! mistake, with advice that made things worse. German acts in a file of their own (told as a
+//! duplicate label per act: "rename one of them"). Each test asserts the code, file, line and
+//! column, the words of the hint, and that the misleading knock-on messages are gone.
+
+use crate::common;
+
+use common::check::{bundle, check, places, yaml};
+use common::languages::{GERMAN_HOME, HOME, TWO};
+use docent_content::Severity;
+
+/// The English original: three acts.
+fn english() -> String {
+    yaml(&[
+        "- Label: WELCOME",
+        "  Text: Welcome to the museum! I am the robot of this house.",
+        "- Label: PAINTING",
+        "  Text:",
+        "    - This is the painting of the old harbour, made in 1872.",
+        "    - The old harbour, painted in 1872.",
+        "- Label: GOODBYE",
+        "  Text: Thank you for your visit, and goodbye!",
+    ])
+}
+
+/// The same acts, the texts translated into German, the labels kept.
+fn german() -> String {
+    yaml(&[
+        "# Deutsche Fassung",
+        "- Label: WELCOME",
+        "  Text: Willkommen im Museum! Ich bin der Roboter dieses Hauses.",
+        "- Label: PAINTING",
+        "  Text:",
+        "    - Das ist das Gemälde des alten Hafens, gemalt 1872.",
+        "    - Der alte Hafen, gemalt 1872.",
+        "- Label: GOODBYE",
+        "  Text: Danke für Ihren Besuch und auf Wiedersehen!",
+    ])
+}
+
+#[test]
+fn german_acts_in_their_own_file_are_told_once_to_go_beside_the_original_as_text_at_de() {
+    let (english, german) = (english(), german());
+    let dir = bundle(&[("acts.yaml", &english), ("acts_de.yaml", &german)]);
+    let report = check(dir.path());
+    // Once, at the copy's first act; no `duplicate-label` at either file.
+    assert_eq!(
+        places(&report),
+        [("translated-acts-file", "acts_de.yaml:2:10".to_owned())]
+    );
+    let told = &report.diagnostics[0];
+    assert_eq!(told.severity, Severity::Error);
+    for words in [
+        "`acts_de.yaml` repeats 3 of its 3 act label(s) from `acts.yaml` (such as `WELCOME`)",
+        "texts in German (`de`)",
+        "Translations go beside the original, in `acts.yaml`",
+        "write `Text@de:` with the translated texts",
+        "`languages: [en, de]`",
+        "docent translations export BUNDLE --language de",
+    ] {
+        assert!(told.message.contains(words), "{words}: {}", told.message);
+    }
+    assert!(!told.message.contains("rename"), "{}", told.message);
+}
+
+#[test]
+fn a_translated_copy_is_found_whatever_its_name_and_order_and_by_its_texts_alone() {
+    let (english, german) = (english(), german());
+    // `acts-de.yml` sorts before `acts.yaml`; the bundle already speaks German.
+    for copy in ["acts-de.yml", "acts.DE.yaml", "tour_deutsch.yaml"] {
+        let dir = bundle(&[
+            TWO,
+            HOME,
+            GERMAN_HOME,
+            ("acts.yaml", &english),
+            (copy, &german),
+        ]);
+        let report = check(dir.path());
+        let found: Vec<_> = places(&report)
+            .into_iter()
+            .filter(|(code, _)| *code != "missing-translation")
+            .collect();
+        assert_eq!(
+            found,
+            [("translated-acts-file", format!("{copy}:2:10"))],
+            "{copy}"
+        );
+        let message = &report.diagnostics[0].message;
+        assert!(
+            message.contains("`Text@de:`") && !message.contains("languages: ["),
+            "{copy}: {message}"
+        );
+    }
+    // No language in the name: the texts are German by their words.
+    let dir = bundle(&[("acts.yaml", &english), ("more.yaml", &german)]);
+    let report = check(dir.path());
+    assert_eq!(
+        places(&report),
+        [("translated-acts-file", "more.yaml:2:10".to_owned())]
+    );
+    assert!(report.diagnostics[0].message.contains("German (`de`)"));
+}
+
+#[test]
+fn a_copy_with_the_same_texts_or_few_shared_labels_is_still_a_duplicate_label() {
+    let english = english();
+    // An old copy saved under another name: real duplicates, told as such.
+    let dir = bundle(&[("acts.yaml", &english), ("acts_copy.yaml", &english)]);
+    let report = check(dir.path());
+    let codes: Vec<&str> = report.diagnostics.iter().map(|d| d.code.as_str()).collect();
+    assert_eq!(codes, ["duplicate-label"; 6], "{:#?}", report.diagnostics);
+    // One German act among three new ones: not a translation of the file.
+    let other = yaml(&[
+        "- Label: WELCOME",
+        "  Text: Willkommen im Museum! Ich bin der Roboter dieses Hauses.",
+        "- Label: TOUR",
+        "  Text: Folgen Sie mir bitte.",
+        "- Label: MAP",
+        "  Text: Hier ist der Plan.",
+        "- Label: CAFE",
+        "  Text: Das Café ist im Erdgeschoss.",
+    ]);
+    let dir = bundle(&[("acts.yaml", &english), ("tour.yaml", &other)]);
+    assert_eq!(
+        places(&check(dir.path())),
+        [
+            ("duplicate-label", "acts.yaml:1:10".to_owned()),
+            ("duplicate-label", "tour.yaml:1:10".to_owned()),
+        ]
+    );
+}
