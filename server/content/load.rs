@@ -22,7 +22,7 @@ use crate::pages::{PageLabels, check_reachable_languages};
 use crate::paths::{BundleArea, PathError};
 use crate::schedule::WallClock;
 use crate::suggest::did_you_mean;
-use crate::translated_copy::{TranslatedCopies, find_translated_copies};
+use crate::translated_copy::{TranslatedCopies, find_translated_copies, folder_acts_files};
 use crate::unused::check_unused;
 
 /// The name of the settings file at the top of a bundle.
@@ -85,7 +85,8 @@ fn load(root: &Path, replaced: &ActsReplacements) -> LoadReport {
     let mut config = settings.config;
     let gathered = gather(&root, &names, &config, replaced, &mut diagnostics);
     let checker = CommandChecker::new(&root, &config);
-    let copies = find_translated_copies(&gathered.files, &config, &mut diagnostics);
+    let in_folders = folder_acts_files(&root, &config);
+    let copies = find_translated_copies(&gathered.files, &in_folders, &config, &mut diagnostics);
     let mut merged = merge_acts(gathered.files, &copies, &mut diagnostics);
     check_page_labels(gathered.pages, &config, &mut merged, &mut diagnostics);
     check_home(&checker, &config, settings.home.as_ref(), &mut diagnostics);

@@ -4,6 +4,8 @@
 //! `duplicate-label`, whose advice ("rename one of them") is the wrong way. Found before the
 //! acts are merged: such a file is told once, at its first act, that translations go beside
 //! the original as `Text@de:`, and its repeated acts are left out without a duplicate each.
+//! The same for a copy put in a folder (`de/acts.yaml`), which Docent never reads: without
+//! this, its acts vanish without a word.
 //!
 //! A file is a translated copy of another when more than half of its labels are the other's
 //! (at least two, or one in a file whose name carries a language) and its texts are in another
@@ -11,13 +13,16 @@
 //! originals in most repeated acts and are in another language by their common words (or share
 //! few words with them). A copy with the same texts is a real duplicate, and told as one.
 
-use std::collections::{BTreeMap, BTreeSet, HashSet};
+use std::collections::{BTreeMap, HashMap, HashSet};
 use std::fmt::Write as _;
+use std::path::Path;
 use std::sync::Arc;
 
+use crate::acts_file::{ActsFile, read_acts_file};
 use crate::config::{Language, SiteConfig};
 use crate::diagnostic::{Diagnostic, DiagnosticCode};
-use crate::gather::{CheckedAct, CheckedFile};
+use crate::gather::{CheckedFile, read_limited};
+use crate::model::{Located, Variant};
 
 /// The acts files found to be translations of another, by file name, with the labels they
 /// repeat: those acts are left out of the bundle without a `duplicate-label` each.
@@ -33,39 +38,104 @@ impl TranslatedCopies {
     }
 }
 
-/// One acts file as compared here: its name, labels and plain `Text` alternatives.
+/// One acts file as compared here: its name, its acts' labels and texts.
 struct FileTexts<'f> {
     name: Arc<str>,
-    acts: &'f [CheckedAct],
-    /// The language its name carries (`acts_de.yaml`), if any.
+    acts: Vec<(&'f Located<String>, &'f [Variant])>,
+    labels: HashSet<&'f str>,
+    /// The language its name carries (`acts_de.yaml`, `de/acts.yaml`), if any.
     named: Option<Language>,
-    /// The language its texts are in, by their common words, if clear.
-    guessed: Option<&'static str>,
+    /// An acts file at the top of the bundle; `false` for one in a folder, which Docent does
+    /// not read (`de/acts.yaml`): only ever a copy, never an original.
+    loaded: bool,
 }
 
-/// Finds the acts files that translate another and tells each once.
+impl<'f> FileTexts<'f> {
+    fn new(
+        name: Arc<str>,
+        acts: Vec<(&'f Located<String>, &'f [Variant])>,
+        config: &SiteConfig,
+        loaded: bool,
+    ) -> Self {
+        FileTexts {
+            named: language_in_name(&name, config),
+            labels: acts.iter().map(|(l, _)| l.value.as_str()).collect(),
+            name,
+            acts,
+            loaded,
+        }
+    }
+}
+
+/// Acts files in folders at the top of the bundle (`de/acts.yaml`; not `pages/`, `media/` or
+/// hidden ones), read only to be compared: Docent reads acts files at the top alone.
+pub(crate) fn folder_acts_files(root: &Path, config: &SiteConfig) -> Vec<ActsFile> {
+    let mut names: Vec<String> = Vec::new();
+    for folder in std::fs::read_dir(root).into_iter().flatten().flatten() {
+        let Ok(folder_name) = folder.file_name().into_string() else {
+            continue;
+        };
+        let skipped =
+            folder_name.starts_with('.') || ["pages", "media"].contains(&folder_name.as_str());
+        if skipped || !folder.file_type().is_ok_and(|t| t.is_dir()) {
+            continue;
+        }
+        for entry in std::fs::read_dir(folder.path())
+            .into_iter()
+            .flatten()
+            .flatten()
+        {
+            let Ok(name) = entry.file_name().into_string() else {
+                continue;
+            };
+            let lower = name.to_ascii_lowercase();
+            let yaml = lower.ends_with(".yaml") || lower.ends_with(".yml");
+            if yaml && !name.starts_with('.') && entry.file_type().is_ok_and(|t| t.is_file()) {
+                names.push(format!("{folder_name}/{name}"));
+            }
+        }
+    }
+    names.sort();
+    (names.into_iter())
+        .filter_map(|name| {
+            let file: Arc<str> = Arc::from(name.as_str());
+            let bytes = read_limited(&root.join(&name), &file).ok()?;
+            Some(read_acts_file(
+                &file,
+                &bytes,
+                &config.speech,
+                &config.languages,
+            ))
+        })
+        .collect()
+}
+
+/// Finds the acts files that translate another and tells each once: the loaded `files`, and
+/// the unloaded `in_folders` (from [`folder_acts_files`]).
 pub(crate) fn find_translated_copies(
     files: &[CheckedFile],
+    in_folders: &[ActsFile],
     config: &SiteConfig,
     out: &mut Vec<Diagnostic>,
 ) -> TranslatedCopies {
     let default = config.languages.default_language();
-    let texts: Vec<FileTexts> = (files.iter())
-        .filter_map(|f| {
-            let first = f.acts.first()?;
-            let name = first.label.pos.file.clone();
-            Some(FileTexts {
-                named: language_in_name(&name, config),
-                guessed: guess_language(f.acts.iter().flat_map(plain_texts)),
-                name,
-                acts: &f.acts,
-            })
-        })
-        .collect();
+    let loaded = (files.iter()).filter_map(|f| {
+        let name = f.acts.first()?.label.pos.file.clone();
+        let acts = (f.acts.iter()).map(|a| (&a.label, a.variants.as_slice()));
+        Some(FileTexts::new(name, acts.collect(), config, true))
+    });
+    let unloaded = (in_folders.iter()).filter_map(|f| {
+        let acts: Vec<_> = (f.acts.iter())
+            .filter_map(|a| Some((a.label.as_ref()?, a.variants.as_slice())))
+            .collect();
+        let name = acts.first()?.0.pos.file.clone();
+        Some(FileTexts::new(name, acts, config, false))
+    });
+    let texts: Vec<FileTexts> = loaded.chain(unloaded).collect();
     let mut copies = TranslatedCopies::default();
     for copy in &texts {
         let Some(original) = (texts.iter())
-            .filter(|o| o.name != copy.name && !copies.repeated.contains_key(&o.name))
+            .filter(|o| o.loaded && o.name != copy.name && !copies.repeated.contains_key(&o.name))
             .find(|o| is_translation_of(copy, o, default))
         else {
             continue;
@@ -79,22 +149,16 @@ pub(crate) fn find_translated_copies(
 
 /// The labels of `copy` that `original` has too.
 fn repeated_labels(copy: &FileTexts, original: &FileTexts) -> HashSet<String> {
-    let theirs: HashSet<&str> = original
-        .acts
-        .iter()
-        .map(|a| a.label.value.as_str())
-        .collect();
-    (copy.acts.iter())
-        .map(|a| a.label.value.clone())
-        .filter(|l| theirs.contains(l.as_str()))
+    (copy.labels.iter())
+        .filter(|l| original.labels.contains(*l))
+        .map(|l| (*l).to_owned())
         .collect()
 }
 
 fn is_translation_of(copy: &FileTexts, original: &FileTexts, default: &Language) -> bool {
-    let labels: BTreeSet<&str> = copy.acts.iter().map(|a| a.label.value.as_str()).collect();
-    let repeated = repeated_labels(copy, original).len();
+    let repeated = copy.labels.intersection(&original.labels).count();
     let least = if copy.named.is_some() { 1 } else { 2 };
-    if repeated < least || repeated * 2 <= labels.len() {
+    if repeated < least || repeated * 2 <= copy.labels.len() {
         return false;
     }
     match (&copy.named, &original.named) {
@@ -111,31 +175,41 @@ fn is_translation_of(copy: &FileTexts, original: &FileTexts, default: &Language)
 /// their common words (the original's being the default language, or unknown), or sharing few
 /// words with them.
 fn texts_in_another_language(copy: &FileTexts, original: &FileTexts, default: &Language) -> bool {
-    let mut compared = 0;
-    let mut differing = 0;
-    let (mut mine, mut theirs) = (HashSet::new(), HashSet::new());
-    for act in copy.acts {
-        let Some(other) = (original.acts.iter()).find(|o| o.label.value == act.label.value) else {
+    let originals: HashMap<&str, &[Variant]> = (original.acts.iter())
+        .map(|(l, v)| (l.value.as_str(), *v))
+        .collect();
+    let (mut compared, mut differing) = (0, 0);
+    let (mut mine, mut theirs) = (Vec::new(), Vec::new());
+    for (label, variants) in &copy.acts {
+        let Some(other) = originals.get(label.value.as_str()) else {
             continue;
         };
-        let (a, b): (Vec<&str>, Vec<&str>) =
-            (plain_texts(act).collect(), plain_texts(other).collect());
+        let (a, b): (Vec<&str>, Vec<&str>) = (
+            plain_texts(variants).collect(),
+            plain_texts(other).collect(),
+        );
         if a.is_empty() || b.is_empty() {
             continue;
         }
         compared += 1;
         differing += usize::from(a != b);
-        mine.extend(a.iter().flat_map(|t| words(t)));
-        theirs.extend(b.iter().flat_map(|t| words(t)));
+        mine.extend(a);
+        theirs.extend(b);
     }
     if compared == 0 || differing * 2 <= compared {
         return false;
     }
-    match (copy.guessed, original.guessed) {
+    let guessed = (
+        guess_language(mine.iter().copied()),
+        guess_language(theirs.iter().copied()),
+    );
+    match guessed {
         (Some(c), Some(o)) => c != o && (o == default.as_str() || c != default.as_str()),
         (Some(c), None) => c != default.as_str(),
         (None, Some(_)) => false,
         (None, None) => {
+            let mine: HashSet<String> = mine.iter().flat_map(|t| words(t)).collect();
+            let theirs: HashSet<String> = theirs.iter().flat_map(|t| words(t)).collect();
             let shared = mine.intersection(&theirs).count();
             shared * 3 < mine.len().min(theirs.len())
         }
@@ -143,8 +217,8 @@ fn texts_in_another_language(copy: &FileTexts, original: &FileTexts, default: &L
 }
 
 /// The texts of an act's plain `Text` variant.
-fn plain_texts(act: &CheckedAct) -> impl Iterator<Item = &str> {
-    (act.variants.iter())
+fn plain_texts(variants: &[Variant]) -> impl Iterator<Item = &str> {
+    (variants.iter())
         .filter(|v| v.name == "Text")
         .flat_map(|v| v.alternatives.iter().map(|a| a.value.as_str()))
 }
@@ -240,16 +314,23 @@ fn told(
     repeated: usize,
     config: &SiteConfig,
 ) -> Diagnostic {
-    let language = (copy.named.clone()).or_else(|| copy.guessed.and_then(Language::parse));
-    let first = &copy.acts[0];
+    let guessed = || guess_language(copy.acts.iter().flat_map(|(_, v)| plain_texts(v)));
+    let language = (copy.named.clone()).or_else(|| guessed().and_then(Language::parse));
+    let first = copy.acts[0].0;
     let example = (copy.acts.iter())
-        .find(|a| original.acts.iter().any(|o| o.label.value == a.label.value))
-        .map_or(first.label.value.as_str(), |a| a.label.value.as_str());
+        .map(|(l, _)| l.value.as_str())
+        .find(|l| original.labels.contains(l))
+        .unwrap_or(first.value.as_str());
     let (file, theirs) = (&copy.name, &original.name);
+    let unread = if copy.loaded {
+        String::new()
+    } else {
+        " (and Docent reads acts files only at the top of the bundle folder)".to_owned()
+    };
     let mut message = format!(
         "`{file}` repeats {repeated} of its {} act label(s) from `{theirs}` (such as \
          `{example}`) with texts in {}: it looks like a translation of `{theirs}`, and \
-         Docent reads each label once, so these acts of `{file}` are not used.",
+         Docent reads each label once{unread}, so these acts of `{file}` are not used.",
         copy.acts.len(),
         language
             .as_ref()
@@ -287,9 +368,5 @@ fn told(
          of every text and `docent translations import` writes the filled table back. Then \
          delete `{file}` or move it out of the bundle folder."
     );
-    Diagnostic::error(
-        DiagnosticCode::TranslatedActsFile,
-        &first.label.pos,
-        message,
-    )
+    Diagnostic::error(DiagnosticCode::TranslatedActsFile, &first.pos, message)
 }

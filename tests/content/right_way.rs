@@ -91,6 +91,20 @@ fn a_translated_copy_is_found_whatever_its_name_and_order_and_by_its_texts_alone
             "{copy}: {message}"
         );
     }
+    // In a folder named for its language: Docent reads no acts file there, so before, its
+    // acts vanished without a word.
+    let dir = bundle(&[("acts.yaml", &english), ("de/acts.yaml", &german)]);
+    let report = check(dir.path());
+    assert_eq!(
+        places(&report),
+        [("translated-acts-file", "de/acts.yaml:2:10".to_owned())]
+    );
+    let message = &report.diagnostics[0].message;
+    assert!(
+        message.contains("reads acts files only at the top of the bundle folder")
+            && message.contains("`Text@de:`"),
+        "{message}"
+    );
     // No language in the name: the texts are German by their words.
     let dir = bundle(&[("acts.yaml", &english), ("more.yaml", &german)]);
     let report = check(dir.path());
