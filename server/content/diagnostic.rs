@@ -245,6 +245,12 @@ diagnostic_codes! {
     /// button: visitors cannot choose it; only an operator or a dialog manager can. Reported at
     /// the language in `languages:`.
     LanguageUnreachable = "language-unreachable",
+    /// `languages:` is written the wrong way round: its first language, the one of the plain
+    /// `Text:` keys, is the one the acts' translations are in (`Text@de:`), and a later one
+    /// has no translation at all, so the plain texts are in that one (`languages: [de, en]`
+    /// over English `Text:` and German `Text@de:`). Reported once, at the first language; the
+    /// acts and pages are checked in the order meant.
+    LanguagesReversed = "languages-reversed",
     /// When espeak-ng speaks the bundle (`speech: {adapter: espeak}`, or no adapter written and
     /// espeak-ng installed), from `docent check` on the computer it runs on:
     /// no installed espeak-ng voice speaks one of the bundle's languages (its voice in `speech:

@@ -76,6 +76,7 @@ mod encoding;
 mod fingerprint;
 mod gather;
 mod highlight;
+mod languages_order;
 mod litter;
 mod load;
 mod media;

@@ -15,6 +15,7 @@ use crate::config_file::{ConfigFile, parse_config};
 use crate::contexts::{check_undeclared, contexts};
 use crate::diagnostic::Diagnostic;
 use crate::gather::{CheckedAct, CheckedFile, gather, on_reading_stack, read_limited};
+use crate::languages_order::meant_languages;
 use crate::litter::Survey;
 use crate::model::{Act, Bundle, Located, Pos};
 use crate::operator_check::{KeyBindings, check_map, visitor_groups};
@@ -83,7 +84,15 @@ fn load(root: &Path, replaced: &ActsReplacements) -> LoadReport {
     let names = acts_file_names(&root, &mut diagnostics);
     let mut leftovers = Survey::find(&root);
     let mut config = settings.config;
-    let gathered = gather(&root, &names, &config, replaced, &mut diagnostics);
+    let mut found = Vec::new();
+    let mut gathered = gather(&root, &names, &config, replaced, &mut found);
+    // `languages:` the wrong way round: told once, then read as meant (no knock-on problems).
+    if let Some((meant, places)) = meant_languages(&config, &gathered.files, &mut diagnostics) {
+        (config.languages, config.language_places) = (meant, places);
+        found.clear();
+        gathered = gather(&root, &names, &config, replaced, &mut found);
+    }
+    diagnostics.append(&mut found);
     let checker = CommandChecker::new(&root, &config);
     let in_folders = folder_acts_files(&root, &config);
     let copies = find_translated_copies(&gathered.files, &in_folders, &config, &mut diagnostics);

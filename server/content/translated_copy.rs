@@ -217,7 +217,7 @@ fn texts_in_another_language(copy: &FileTexts, original: &FileTexts, default: &L
 }
 
 /// The texts of an act's plain `Text` variant.
-fn plain_texts(variants: &[Variant]) -> impl Iterator<Item = &str> {
+pub(crate) fn plain_texts(variants: &[Variant]) -> impl Iterator<Item = &str> {
     (variants.iter())
         .filter(|v| v.name == "Text")
         .flat_map(|v| v.alternatives.iter().map(|a| a.value.as_str()))
@@ -293,7 +293,7 @@ const COMMON_WORDS: &[(&str, &[&str])] = &[
 
 /// The language of `texts` by their common words: the one with most of them (at least three,
 /// and more than any other), or `None`.
-fn guess_language<'t>(texts: impl Iterator<Item = &'t str>) -> Option<&'static str> {
+pub(crate) fn guess_language<'t>(texts: impl Iterator<Item = &'t str>) -> Option<&'static str> {
     let mut counts = [0usize; COMMON_WORDS.len()];
     for word in texts.flat_map(words) {
         for (i, (_, common)) in COMMON_WORDS.iter().enumerate() {

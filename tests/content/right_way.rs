@@ -1,7 +1,9 @@
 //! Messages that point the right way: mistakes whose first symptom used to be told as another
 //! mistake, with advice that made things worse. German acts in a file of their own (told as a
-//! duplicate label per act: "rename one of them"). Each test asserts the code, file, line and
-//! column, the words of the hint, and that the misleading knock-on messages are gone.
+//! duplicate label per act: "rename one of them"); `languages:` the wrong way round (a
+//! `duplicate-key` at every translation, a `missing-translation` for every text, page problems,
+//! and nothing at `docent.yaml`). Each test asserts the code, file, line and column, the words
+//! of the hint, and that the misleading knock-on messages are gone.
 
 use crate::common;
 
@@ -141,5 +143,96 @@ fn a_copy_with_the_same_texts_or_few_shared_labels_is_still_a_duplicate_label() 
             ("duplicate-label", "acts.yaml:1:10".to_owned()),
             ("duplicate-label", "tour.yaml:1:10".to_owned()),
         ]
+    );
+}
+
+/// English `Text:` keys with German `Text@de:` translations, one act with a `TextChild` too.
+fn english_with_german() -> String {
+    yaml(&[
+        "- Label: WELCOME",
+        "  Text: Welcome to the museum! I am the robot of this house.",
+        "  Text@de: Willkommen im Museum! Ich bin der Roboter dieses Hauses.",
+        "- Label: PAINTING",
+        "  Text:",
+        "    - This is the painting of the old harbour, made in 1872.",
+        "    - The old harbour, painted in 1872.",
+        "  Text@de:",
+        "    - Das ist das Gemälde des alten Hafens, gemalt 1872.",
+        "    - Der alte Hafen, gemalt 1872.",
+        "  TextChild: A ship! Can you see the ship?",
+        "  TextChild@de: Ein Schiff! Siehst du das Schiff?",
+        "- Label: GOODBYE",
+        "  Text: Thank you for your visit, and goodbye!",
+        "  Text@de: Danke für Ihren Besuch und auf Wiedersehen!",
+    ])
+}
+
+#[test]
+fn languages_written_the_wrong_way_round_are_told_once_at_docent_yaml_and_nowhere_else() {
+    let acts = english_with_german();
+    let config =
+        "# The museum speaks English and German.\nlanguages: [de, en]\ncontexts: [TextChild]\n";
+    let dir = bundle(&[
+        ("docent.yaml", config),
+        HOME,
+        GERMAN_HOME,
+        ("acts.yaml", &acts),
+    ]);
+    let report = check(dir.path());
+    // Read as written: 4 errors and 7 warnings, a `duplicate-key` at each of the 4 `@de` keys,
+    // a `missing-translation` for each of the 4 texts, a `missing-page-translation` for both
+    // pages, and at docent.yaml only `language-unreachable` for `en`. Now: once, at `de`.
+    assert_eq!(
+        places(&report),
+        [("languages-reversed", "docent.yaml:2:13".to_owned())]
+    );
+    let told = &report.diagnostics[0];
+    assert_eq!(told.severity, Severity::Error);
+    for words in [
+        "`languages:` lists `de` first",
+        "3 act(s) have `Text@de:` translations and none has `Text@en:`",
+        "the plain texts are in English (`en`)",
+        "Write `languages: [en, de]`",
+    ] {
+        assert!(told.message.contains(words), "{words}: {}", told.message);
+    }
+    // Written the right way round, the same bundle has nothing to tell.
+    let fixed = config.replace("[de, en]", "[en, de]");
+    std::fs::write(dir.path().join("docent.yaml"), fixed).expect("write");
+    assert_eq!(places(&check(dir.path())), []);
+}
+
+#[test]
+fn a_german_bundle_with_english_translations_is_not_taken_for_a_reversed_one() {
+    // German plain texts and `Text@en:` translations, `languages: [de, en]`: as meant.
+    let acts = yaml(&[
+        "- Label: WELCOME",
+        "  Text: Willkommen im Museum! Ich bin der Roboter dieses Hauses.",
+        "  Text@en: Welcome to the museum! I am the robot of this house.",
+        "- Label: GOODBYE",
+        "  Text: Danke für Ihren Besuch und auf Wiedersehen!",
+        "  Text@en: Thank you for your visit, and goodbye!",
+    ]);
+    let english_home = (
+        "pages/index.html",
+        "<!doctype html><title>Start</title><button data-language=\"en\">English</button>",
+    );
+    let dir = bundle(&[
+        ("docent.yaml", "languages: [de, en]\n"),
+        english_home,
+        ("pages/en/index.html", "<!doctype html><title>Start</title>"),
+        ("acts.yaml", &acts),
+    ]);
+    assert_eq!(places(&check(dir.path())), []);
+    // One `Text@de` slipped into it (the default language's key twice) stays that mistake,
+    // at its line: the plain texts are German by their words.
+    let slipped = acts.replace(
+        "  Text@en: Thank you",
+        "  Text@de: Tschüss und bis bald!\n  Text@en: Thank you",
+    );
+    std::fs::write(dir.path().join("acts.yaml"), slipped).expect("write");
+    assert_eq!(
+        places(&check(dir.path())),
+        [("duplicate-key", "acts.yaml:6:3".to_owned())]
     );
 }
