@@ -188,6 +188,11 @@ diagnostic_codes! {
     /// character it found, such as `Ö`) or UTF-16 ("Unicode" in Notepad). Also for
     /// `docent.yaml`. A UTF-8 byte-order mark and Windows line ends (CRLF) are fine.
     FileEncoding = "file-encoding",
+    /// A `.yaml` file (an acts file or `docent.yaml`) is not plain text at all: a Word
+    /// document (`.docx`, `.doc`), an OpenDocument text (`.odt`), RTF, PDF, a spreadsheet,
+    /// a ZIP archive or another binary file saved under that name. Reported at line 1, naming
+    /// what the file is and how to save it as plain text.
+    NotPlainText = "not-plain-text",
     /// The text has an emoji (😊, ❤, ⭐). The robot reads it by its name, "smiling face with
     /// smiling eyes".
     SpeechEmoji = "speech-emoji",

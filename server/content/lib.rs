@@ -83,6 +83,7 @@ mod media;
 mod operator_check;
 mod pages;
 mod paths;
+mod plain_text;
 mod render;
 pub mod size;
 mod speech;

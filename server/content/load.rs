@@ -78,9 +78,10 @@ fn load(root: &Path, replaced: &ActsReplacements) -> LoadReport {
     let settings = read_settings(&root, &mut diagnostics);
     // A docent.yaml YAML could not read drops every setting (the idle act, the contexts):
     // warnings that follow from the defaults would only mislead.
-    let settings_unread = diagnostics
-        .iter()
-        .any(|d| d.code == DiagnosticCode::ConfigSyntax || d.code == DiagnosticCode::FileEncoding);
+    let settings_unread = diagnostics.iter().any(|d| {
+        use DiagnosticCode::{ConfigSyntax, FileEncoding, NotPlainText};
+        [ConfigSyntax, FileEncoding, NotPlainText].contains(&d.code)
+    });
     let names = acts_file_names(&root, &mut diagnostics);
     let mut leftovers = Survey::find(&root);
     let mut config = settings.config;

@@ -29,6 +29,7 @@ mod language_mistakes;
 mod language_settings;
 mod load;
 mod media;
+mod not_plain_text;
 mod operator;
 mod operator_settings;
 mod page_behaviour;
