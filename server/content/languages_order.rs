@@ -13,16 +13,39 @@
 //! not say) at least two acts, most of those with text, have a translation into the first.
 
 use std::collections::BTreeMap;
+use std::path::Path;
 
 use crate::config::{Language, Languages, SiteConfig};
 use crate::diagnostic::{Diagnostic, DiagnosticCode};
-use crate::gather::CheckedFile;
+use crate::gather::{CheckedFile, Gathered, gather};
+use crate::load::ActsReplacements;
 use crate::model::Located;
 use crate::translated_copy::{guess_language, plain_texts};
 
+/// The acts files (`names`) and pages read and checked, in the order of `languages:` as meant:
+/// when it is written the wrong way round (told in `out`), `config` takes the order meant and
+/// everything is read again, so the knock-on problems of the written order are not reported.
+pub(crate) fn gather_as_meant(
+    root: &Path,
+    names: &[String],
+    config: &mut SiteConfig,
+    replaced: &ActsReplacements,
+    out: &mut Vec<Diagnostic>,
+) -> Gathered {
+    let mut found = Vec::new();
+    let mut gathered = gather(root, names, config, replaced, &mut found);
+    if let Some((meant, places)) = meant_languages(config, &gathered.files, out) {
+        (config.languages, config.language_places) = (meant, places);
+        found.clear();
+        gathered = gather(root, names, config, replaced, &mut found);
+    }
+    out.append(&mut found);
+    gathered
+}
+
 /// The languages as meant, and their places, when `languages:` is written the wrong way round
 /// (reported in `out`); `None` when its order agrees with the acts.
-pub(crate) fn meant_languages(
+fn meant_languages(
     config: &SiteConfig,
     files: &[CheckedFile],
     out: &mut Vec<Diagnostic>,

@@ -7,6 +7,7 @@ use std::path::Path;
 use std::sync::Arc;
 
 use crate::DiagnosticCode;
+use crate::DiagnosticCode::{ConfigSyntax, FileEncoding, NotPlainText};
 use crate::commands::{CommandChecker, path_error_code};
 use crate::config::{Language, SiteConfig};
 use crate::config_file::attract::check_screen_refs;
@@ -14,8 +15,8 @@ use crate::config_file::schedule::check_past_special_days;
 use crate::config_file::{ConfigFile, parse_config};
 use crate::contexts::{check_undeclared, contexts};
 use crate::diagnostic::Diagnostic;
-use crate::gather::{CheckedAct, CheckedFile, gather, on_reading_stack, read_limited};
-use crate::languages_order::meant_languages;
+use crate::gather::{CheckedAct, CheckedFile, on_reading_stack, read_limited};
+use crate::languages_order::gather_as_meant;
 use crate::litter::Survey;
 use crate::model::{Act, Bundle, Located, Pos};
 use crate::operator_check::{KeyBindings, check_map, visitor_groups};
@@ -23,7 +24,7 @@ use crate::pages::{PageLabels, check_reachable_languages};
 use crate::paths::{BundleArea, PathError};
 use crate::schedule::WallClock;
 use crate::suggest::did_you_mean;
-use crate::translated_copy::{TranslatedCopies, find_translated_copies, folder_acts_files};
+use crate::translated_copy::{TranslatedCopies, find_translated_copies};
 use crate::unused::check_unused;
 
 /// The name of the settings file at the top of a bundle.
@@ -78,25 +79,14 @@ fn load(root: &Path, replaced: &ActsReplacements) -> LoadReport {
     let settings = read_settings(&root, &mut diagnostics);
     // A docent.yaml YAML could not read drops every setting (the idle act, the contexts):
     // warnings that follow from the defaults would only mislead.
-    let settings_unread = diagnostics.iter().any(|d| {
-        use DiagnosticCode::{ConfigSyntax, FileEncoding, NotPlainText};
-        [ConfigSyntax, FileEncoding, NotPlainText].contains(&d.code)
-    });
+    let unread = [ConfigSyntax, FileEncoding, NotPlainText];
+    let settings_unread = diagnostics.iter().any(|d| unread.contains(&d.code));
     let names = acts_file_names(&root, &mut diagnostics);
     let mut leftovers = Survey::find(&root);
     let mut config = settings.config;
-    let mut found = Vec::new();
-    let mut gathered = gather(&root, &names, &config, replaced, &mut found);
-    // `languages:` the wrong way round: told once, then read as meant (no knock-on problems).
-    if let Some((meant, places)) = meant_languages(&config, &gathered.files, &mut diagnostics) {
-        (config.languages, config.language_places) = (meant, places);
-        found.clear();
-        gathered = gather(&root, &names, &config, replaced, &mut found);
-    }
-    diagnostics.append(&mut found);
+    let gathered = gather_as_meant(&root, &names, &mut config, replaced, &mut diagnostics);
     let checker = CommandChecker::new(&root, &config);
-    let in_folders = folder_acts_files(&root, &config);
-    let copies = find_translated_copies(&gathered.files, &in_folders, &config, &mut diagnostics);
+    let copies = find_translated_copies(&root, &gathered.files, &config, &mut diagnostics);
     let mut merged = merge_acts(gathered.files, &copies, &mut diagnostics);
     check_page_labels(gathered.pages, &config, &mut merged, &mut diagnostics);
     check_home(&checker, &config, settings.home.as_ref(), &mut diagnostics);

@@ -69,7 +69,7 @@ impl<'f> FileTexts<'f> {
 
 /// Acts files in folders at the top of the bundle (`de/acts.yaml`; not `pages/`, `media/` or
 /// hidden ones), read only to be compared: Docent reads acts files at the top alone.
-pub(crate) fn folder_acts_files(root: &Path, config: &SiteConfig) -> Vec<ActsFile> {
+fn folder_acts_files(root: &Path, config: &SiteConfig) -> Vec<ActsFile> {
     let mut names: Vec<String> = Vec::new();
     for folder in std::fs::read_dir(root).into_iter().flatten().flatten() {
         let Ok(folder_name) = folder.file_name().into_string() else {
@@ -110,14 +110,15 @@ pub(crate) fn folder_acts_files(root: &Path, config: &SiteConfig) -> Vec<ActsFil
         .collect()
 }
 
-/// Finds the acts files that translate another and tells each once: the loaded `files`, and
-/// the unloaded `in_folders` (from [`folder_acts_files`]).
+/// Finds the acts files that translate another and tells each once: among the loaded `files`,
+/// and the acts files in folders of `root`, which are not loaded.
 pub(crate) fn find_translated_copies(
+    root: &Path,
     files: &[CheckedFile],
-    in_folders: &[ActsFile],
     config: &SiteConfig,
     out: &mut Vec<Diagnostic>,
 ) -> TranslatedCopies {
+    let in_folders = folder_acts_files(root, config);
     let default = config.languages.default_language();
     let loaded = (files.iter()).filter_map(|f| {
         let name = f.acts.first()?.label.pos.file.clone();
