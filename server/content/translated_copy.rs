@@ -167,7 +167,10 @@ fn is_translation_of(copy: &FileTexts, original: &FileTexts, default: &Language)
         // default language is the translation (of two named others, the first in file order).
         (Some(mine), Some(theirs)) => mine != theirs && (theirs == default || mine != default),
         (Some(mine), None) => mine != default,
-        (None, Some(_)) => false,
+        // `acts.yaml` beside `acts_en.yaml`, English the default: the texts tell.
+        (None, Some(theirs)) => {
+            theirs == default && texts_in_another_language(copy, original, default)
+        }
         (None, None) => texts_in_another_language(copy, original, default),
     }
 }

@@ -107,6 +107,12 @@ fn a_translated_copy_is_found_whatever_its_name_and_order_and_by_its_texts_alone
             && message.contains("`Text@de:`"),
         "{message}"
     );
+    // The original named for the default language, the copy for none: the texts tell.
+    let dir = bundle(&[("acts_en.yaml", &english), ("acts.yaml", &german)]);
+    assert_eq!(
+        places(&check(dir.path())),
+        [("translated-acts-file", "acts.yaml:2:10".to_owned())]
+    );
     // No language in the name: the texts are German by their words.
     let dir = bundle(&[("acts.yaml", &english), ("more.yaml", &german)]);
     let report = check(dir.path());
