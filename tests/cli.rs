@@ -146,6 +146,50 @@ fn deny_warnings_fails_a_bundle_with_only_warnings() {
 }
 
 #[test]
+fn a_bundle_copied_from_a_mac_passes_deny_warnings_with_a_note_on_what_was_ignored() {
+    let b = TempBundle::new("- Label: WELCOME\n  Text: [Hello]\n");
+    let forks = common::mac_copy::as_copied_from_a_mac(b.path());
+    assert_eq!(forks, 4, "acts.yaml, pages, media, pages/index.html");
+    let path = b.path().to_str().unwrap();
+
+    let (code, text, _) = run_docent(&["check", path, "--deny-warnings"]);
+    assert_eq!(code, 0, "{text}");
+    assert!(text.contains("note[ignored-files]"), "{text}");
+    assert!(
+        text.contains("0 error(s), 0 warning(s), 1 note(s)"),
+        "{text}"
+    );
+
+    let (code, out, _) = run_docent(&["check", path, "--format", "json", "--deny-warnings"]);
+    assert_eq!(code, 0, "{out}");
+    let problems: Vec<Value> = serde_json::from_str(&out).unwrap();
+    assert_eq!(problems.len(), 1, "{out}");
+    assert_eq!(
+        (&problems[0]["severity"], &problems[0]["code"]),
+        (&Value::from("note"), &Value::from("ignored-files")),
+        "{out}"
+    );
+    assert_eq!(problems[0]["file"], ".DS_Store", "{out}");
+    assert_eq!(
+        (&problems[0]["line"], &problems[0]["column"]),
+        (&1.into(), &1.into())
+    );
+
+    // A warning beside the note still fails it: notes are left out, not warnings.
+    std::fs::write(
+        b.path().join("acts.yaml"),
+        "- Label: WELCOME\n  Text: [Hello]\n- Label: B\n  Group: G\n  Text: [Hi]\n",
+    )
+    .unwrap();
+    let (code, text, _) = run_docent(&["check", path, "--deny-warnings"]);
+    assert_eq!(code, 1, "{text}");
+    assert!(
+        text.contains("0 error(s), 1 warning(s), 1 note(s)"),
+        "{text}"
+    );
+}
+
+#[test]
 fn serve_refuses_a_bundle_with_errors_and_lists_them() {
     let b = TempBundle::new(BROKEN);
     let (code, out, err) = run_docent(&[

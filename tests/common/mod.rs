@@ -10,6 +10,7 @@ pub mod channels;
 pub mod check;
 pub mod corpus;
 pub mod languages;
+pub mod mac_copy;
 pub mod process;
 
 #[allow(unused_imports)] // As `dead_code` above.

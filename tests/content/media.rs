@@ -67,8 +67,7 @@ fn notes(report: &docent_content::LoadReport) -> Vec<(&'static str, String)> {
     planned
 }
 
-// TEMP-NOTE: `Severity::Note` once the note severity lands.
-const NOTE: Severity = Severity::Warning;
+const NOTE: Severity = Severity::Note;
 
 #[test]
 fn a_quicktime_film_is_converted_when_served_and_the_check_says_so() {
