@@ -349,11 +349,10 @@ fn docent_check_asks_ffmpeg_and_says_when_it_is_missing() {
             )
         })
         .collect();
-    // TEMP-NOTE: "note" once the note severity lands.
     assert_eq!(
         found,
         [
-            ("media-converted", "warning", 3),
+            ("media-converted", "note", 3),
             ("media-undecodable", "error", 4)
         ]
     );
