@@ -137,6 +137,56 @@ fn deny_warnings_fails_a_bundle_with_only_warnings() {
 }
 
 #[test]
+fn check_ends_with_the_command_that_explains_its_first_problem() {
+    let b = TempBundle::new(BROKEN);
+    let (code, text, _) = run_docent(&["check", b.path().to_str().unwrap()]);
+    assert_eq!(code, 1, "{text}");
+    assert!(
+        text.trim_end()
+            .ends_with("For more about a problem, type: docent explain unknown-verb"),
+        "{text}"
+    );
+    // A bundle with nothing to report has no such line.
+    let (_, text, _) = run_docent(&["check", "dialogs/paper-fig4"]);
+    assert!(!text.contains("docent explain"), "{text}");
+}
+
+#[test]
+fn explain_prints_a_codes_entry_with_its_broken_example_and_fix() {
+    let (code, text, _) = run_docent(&["explain", "unknown-verb"]);
+    assert_eq!(code, 0, "{text}");
+    assert!(text.starts_with("unknown-verb (error)\n"), "{text}");
+    assert!(
+        text.contains("Verbs are in capitals"),
+        "the summary: {text}"
+    );
+    assert!(
+        text.contains("How to fix it: Correct the verb"),
+        "the fix: {text}"
+    );
+    assert!(
+        text.matches("```").count() >= 4,
+        "an example and its fix: {text}"
+    );
+    assert!(text.contains("docs/DIAGNOSTICS.md#unknown-verb"), "{text}");
+}
+
+#[test]
+fn explain_refuses_a_code_docent_lacks_and_names_the_nearest() {
+    let (code, out, err) = run_docent(&["explain", "unknown-vreb"]);
+    assert_eq!((code, out.as_str()), (1, ""));
+    assert!(err.contains("Did you mean `unknown-verb`?"), "{err}");
+    // Alone, it lists every code.
+    let (code, out, _) = run_docent(&["explain"]);
+    assert_eq!(code, 0);
+    let listed = docent::content::DiagnosticCode::ALL
+        .iter()
+        .filter(|c| out.contains(&format!("  {:<32} ", c.as_str())))
+        .count();
+    assert_eq!(listed, docent::content::DiagnosticCode::ALL.len(), "{out}");
+}
+
+#[test]
 fn serve_refuses_a_bundle_with_errors_and_lists_them() {
     let b = TempBundle::new(BROKEN);
     let (code, out, err) = run_docent(&[
