@@ -22,6 +22,11 @@ pub enum Severity {
 /// `diagnostics/CODE.md` (severity, kind, fix, then a broken example and its fix), compiled in:
 /// a code without its page does not build. `docent explain CODE` prints them and
 /// `docs/DIAGNOSTICS.md` is generated from them ([`crate::explain`]).
+///
+/// To add a code: its row here, its page (copy one of the same kind), then
+/// `DOCENT_BLESS=1 cargo test --locked -p docent-content --test content diagnostics_reference`
+/// rewrites `docs/DIAGNOSTICS.md`; without `DOCENT_BLESS` that test fails while the file is
+/// stale. A row's place here is its place in the reference's table.
 macro_rules! diagnostic_codes {
     ($($(#[doc = $doc:literal])* $variant:ident = $text:literal,)*) => {
         /// A problem's stable code (`duplicate-label`, `unknown-verb`, ...): what `docent check
