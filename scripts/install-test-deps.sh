@@ -4,7 +4,10 @@
 #   chromium           Debian's headless browser for the browser tests in tests/e2e (never a
 #                      browser download of Playwright's own: playwright-core drives /usr/bin/chromium);
 #   fonts-dejavu-core  the font the pages and screenshots are drawn with;
-#   ffmpeg             ffprobe and ffmpeg, which decode the recordings the browser test makes;
+#   ffmpeg             ffprobe and ffmpeg, which decode the recordings the browser test makes
+#                      and convert media Chromium cannot show (the media tests make real files);
+#   libheif-examples   heif-enc, which makes the HEIC photos of the media tests, and
+#                      heif-convert, which Docent decodes HEIC photos with;
 #   mosquitto          the MQTT broker the fleet tests start on a loopback port (and
 #                      mosquitto-clients, mosquitto_sub/pub, for trying the topics by hand);
 #   tests/e2e npm packages (playwright-core, ws, axe-core), with `npm ci` from package-lock.json when
@@ -27,6 +30,7 @@ command -v espeak-ng >/dev/null 2>&1 || packages+=(espeak-ng)
 dpkg-query -W -f='${Status}' fonts-dejavu-core 2>/dev/null | grep -q 'ok installed' ||
   packages+=(fonts-dejavu-core)
 command -v ffprobe >/dev/null 2>&1 || packages+=(ffmpeg)
+command -v heif-enc >/dev/null 2>&1 || packages+=(libheif-examples)
 command -v mosquitto >/dev/null 2>&1 || [ -x /usr/sbin/mosquitto ] || packages+=(mosquitto)
 command -v mosquitto_sub >/dev/null 2>&1 || packages+=(mosquitto-clients)
 if ! command -v python3 >/dev/null 2>&1; then

@@ -27,6 +27,8 @@
 //! - [`robot`]: robot events from adapter processes and ROS topics: logged, sessions, reactions.
 //! - [`translations`]: `docent translations export|import`, the texts as a table for a
 //!   translator (CSV or XLIFF) and the filled table written back into the acts files.
+//! - [`media`]: media files Chromium cannot show, converted with ffmpeg in the background and
+//!   served under their own names.
 //! - [`reload`]: live reload: watching the bundle folder, swapping in a good save, refusing a
 //!   broken one.
 //! - [`serve`]: wiring it together and running with graceful shutdown.
@@ -43,6 +45,7 @@ pub mod events;
 pub mod fleet;
 pub mod http;
 pub mod lifecycle;
+pub mod media;
 pub mod operator;
 pub mod recording;
 pub mod reload;

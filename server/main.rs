@@ -122,6 +122,11 @@ struct ServeArgs {
     /// Write speech as WAV files into this folder instead of playing it (no sound card).
     #[arg(long, value_name = "DIR")]
     speech_wav: Option<PathBuf>,
+    /// Folder for media converted for Chromium (pictures and films it cannot show as they
+    /// are), kept across restarts. Default: $CACHE_DIRECTORY/media under systemd, else
+    /// $XDG_CACHE_HOME/docent/media, else ~/.cache/docent/media.
+    #[arg(long, value_name = "DIR")]
+    media_cache: Option<PathBuf>,
     /// For authors: speak in the browser and open the kiosk and projector side by side.
     #[arg(long)]
     preview: bool,
@@ -199,6 +204,9 @@ fn check(bundle: &Path, format: Format, deny_warnings: bool) -> anyhow::Result<E
         let missing = no_voice_diagnostics(config, &espeak_voices(), choice);
         report.diagnostics.extend(missing);
     }
+    // The converters are asked about media to convert here too, not while loading.
+    let tools = docent::media::Tools::find();
+    docent::media::check_decodable(&report.conversions, &tools, &mut report.diagnostics);
     let (errors, warnings) = counts(&report.diagnostics);
     match format {
         Format::Json => println!("{}", serde_json::to_string_pretty(&report.diagnostics)?),
@@ -304,6 +312,7 @@ fn serve(args: &ServeArgs) -> anyhow::Result<ExitCode> {
         speech_wav: args.speech_wav.clone(),
         access: setup.mode.clone(),
         limits: ConnectionLimits::default(),
+        media_cache: (args.media_cache.clone()).unwrap_or_else(docent::media::default_folder),
     };
     let fleet_flags = docent::fleet::FleetFlags {
         url: args.mqtt.clone(),

@@ -18,9 +18,10 @@ use crate::content::config::{AdapterKind, SpeechConfig};
 use crate::content::{Bundle, BundleArea, resolve_in_bundle};
 use crate::corpus::CorpusWriter;
 use crate::dispatch::Dispatcher;
-use crate::events::{EventKind, Hub, SessionEnd, Source, StopReason};
+use crate::events::{ClientRole, EventKind, Hub, SessionEnd, Source, StopReason};
 use crate::http::{ConnectionLimits, app, serve_connections};
 use crate::lifecycle::Lifecycle;
+use crate::media::{Media, Tools};
 use crate::reload::ReloadOptions;
 use crate::robot::RobotInbox;
 use crate::state::AppState;
@@ -43,6 +44,8 @@ pub struct ServeOptions {
     pub access: AccessMode,
     /// Time limits for slow clients and caps on connections.
     pub limits: ConnectionLimits,
+    /// The media cache: converted media files ([`crate::media`]).
+    pub media_cache: PathBuf,
 }
 
 /// A server ready to run.
@@ -114,12 +117,20 @@ impl Server {
             version: env!("CARGO_PKG_VERSION").into(),
             seed: options.seed,
         });
+        let media = Media::start(
+            options.media_cache.clone(),
+            Tools::find(),
+            hub.clone(),
+            &life,
+        );
+        media.plan(&bundle);
+        warnings.extend(media.startup_warnings());
         let proxies = TrustedProxies::new(bundle.config.server.trusted_proxies.clone());
         let dispatcher = Dispatcher::new(Arc::new(bundle), router, hub, options.seed, life.clone());
         let access = Access::new(options.access.clone(), proxies);
         let corpus_dir = corpus.dir().to_owned();
         let folders = corpus.session_folders();
-        let state = AppState::new(
+        let mut state = AppState::new(
             dispatcher,
             Arc::new(devices),
             life,
@@ -127,6 +138,8 @@ impl Server {
             corpus_dir,
             folders,
         );
+        state.media = media;
+        state.life.spawn(tell_media(state.clone()));
         let intake = crate::robot::run_intake(state.clone(), robot_intake);
         state.life.spawn(intake);
         let live = Arc::clone(&state.dispatcher);
@@ -241,6 +254,24 @@ async fn wind_down(closing: Closing, corpus: CorpusWriter) -> io::Result<()> {
 }
 
 /// Decides the speech adapter and says why when it is not what the bundle asked for.
+/// Tells operator consoles every change of the media on its way to Chromium (`media` frame),
+/// until shutdown.
+async fn tell_media(state: AppState) {
+    let mut views = state.media.subscribe();
+    loop {
+        tokio::select! {
+            () = state.life.shutdown.cancelled() => return,
+            changed = views.changed() => {
+                if changed.is_err() {
+                    return;
+                }
+            }
+        }
+        let frame = crate::ws::protocol::media_frame(&views.borrow_and_update());
+        state.send_to_role(ClientRole::Operator, &frame);
+    }
+}
+
 fn speech_adapter(
     config: &SpeechConfig,
     output: &SpeechOutput,

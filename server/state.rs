@@ -16,7 +16,7 @@ use crate::http::{MissingPageReports, Replay};
 use crate::lifecycle::Lifecycle;
 use crate::operator::{Proposals, Visits};
 use crate::recording::Recordings;
-use crate::reload::ReloadStatus;
+use crate::reload::{ReloadStatus, ReloadView};
 use crate::robot::Reactions;
 use crate::sync::lock;
 use crate::wire::linger::Linger;
@@ -65,6 +65,8 @@ pub struct AppState {
     pub fleet: Arc<crate::fleet::FleetHandles>,
     /// The caption of what the robot is saying, told to screens and consoles (`ws::Captions`).
     pub captions: Arc<crate::ws::Captions>,
+    /// Media files converted for Chromium, served under their own names.
+    pub media: Arc<crate::media::Media>,
     clients: Arc<Clients>,
 }
 
@@ -191,6 +193,7 @@ impl AppState {
             reactions: Arc::default(),
             fleet: Arc::default(),
             captions,
+            media: crate::media::Media::idle(),
             clients,
             life,
         }
@@ -285,7 +288,10 @@ impl AppState {
                 .or_else(|| self.devices.rosbridge.as_ref().and_then(|r| r.pose())),
             context: self.dispatcher.context(),
             language: self.dispatcher.language(),
-            reload: self.reload.view(),
+            reload: ReloadView {
+                media: self.media.views(),
+                ..self.reload.view()
+            },
         }
     }
 }

@@ -83,17 +83,20 @@ function black() {
 
 /**
  * Why `src` could not be loaded, asking the server (a browser's media errors do not tell a
- * missing file from a broken one); null when the file itself is there.
+ * missing file from a broken one); null when the file itself is there. A file the server is
+ * still converting, or could not convert, is answered with the server's own words.
  */
 async function whyNotLoaded(src, file) {
   try {
-    const res = await fetch(src, { method: "HEAD", cache: "no-store" });
+    const res = await fetch(src, { cache: "no-store", headers: { Range: "bytes=0-0" } });
+    if (res.ok) return null;
+    const said = await res.json().then((body) => body?.error, () => null);
+    if (typeof said === "string" && said) return said;
     if (res.status === 404) return `the projector cannot find ${file} (404 Not Found)`;
-    if (!res.ok) return `the projector cannot load ${file} (HTTP ${res.status})`;
+    return `the projector cannot load ${file} (HTTP ${res.status})`;
   } catch (error) {
     return `the projector cannot load ${file}: ${error}`;
   }
-  return null;
 }
 
 /**

@@ -137,6 +137,7 @@ fn an_unknown_voice_is_reported_at_start_up() {
         speech_wav: None,
         access: common::test_access(),
         limits: docent::http::ConnectionLimits::default(),
+        media_cache: corpus.path().join("media-cache"),
     };
     let runtime = tokio::runtime::Runtime::new().unwrap();
     let server =

@@ -10,6 +10,7 @@ use serde::{Serialize, Serializer};
 use crate::duration::parse_duration;
 use crate::highlight::{Area, parse_highlight};
 use crate::language::Language;
+use crate::media::sniff::{Kind, Support, by_extension};
 use crate::model::Verb;
 
 /// What the projector does with a `PROJECT` file, decided by its name's ending (the media
@@ -28,7 +29,8 @@ pub(crate) const PROJECTOR_IMAGES: &[&str] = &["png", "jpg", "jpeg", "gif", "web
 pub(crate) const PROJECTOR_VIDEOS: &[&str] = &["webm", "mp4", "ogv"];
 
 impl MediaKind {
-    /// The kind the projector gives `file`, or `None` for an ending it does not show.
+    /// The kind the projector gives `file`, or `None` for an ending it does not show. A
+    /// format Docent converts (`.mpg`, `.tif`) is shown by what it becomes.
     pub fn of(file: &str) -> Option<MediaKind> {
         let ext = file.rsplit_once('.')?.1.to_ascii_lowercase();
         if PROJECTOR_IMAGES.contains(&ext.as_str()) {
@@ -36,7 +38,11 @@ impl MediaKind {
         } else if PROJECTOR_VIDEOS.contains(&ext.as_str()) {
             Some(MediaKind::Video)
         } else {
-            None
+            let format = by_extension(&ext).filter(|f| f.support == Support::Converted)?;
+            Some(match format.kind {
+                Kind::Image => MediaKind::Image,
+                Kind::Video | Kind::Audio => MediaKind::Video,
+            })
         }
     }
 }

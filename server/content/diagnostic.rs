@@ -345,11 +345,11 @@ diagnostic_codes! {
     /// home, so it can never be filled in (a hidden `<input>` does not count). Once per page, at
     /// its first field.
     AttractPageForm = "attract-page-form",
-    /// A `PROJECT` file, or a picture, video or sound of a page, is in a format Chromium cannot
-    /// show (see [Which picture and video formats
+    /// A `PROJECT` file, or a picture, video or sound of a page, is in a format neither
+    /// Chromium nor Docent's converter can show (MIDI; see [Which picture and video formats
     /// work](#which-picture-and-video-formats-work-and-how-to-convert)), judged by its content;
-    /// or a `PROJECT` file has an ending the projector does not show. The message gives the
-    /// `ffmpeg` command that converts it.
+    /// or a `PROJECT` file has an ending the projector does not show. The message says what to
+    /// do.
     MediaUnplayable = "media-unplayable",
     /// A file's content does not match its name. An error when the name makes it shown as the
     /// wrong thing (a video named `.png`, a picture used as a video); a warning when it still
@@ -358,6 +358,16 @@ diagnostic_codes! {
     /// A file named as a picture, video or sound holds something else (damaged, empty, or a web
     /// page saved under that name).
     MediaUnrecognised = "media-unrecognised",
+    /// A note: a picture, video or sound file Chromium cannot show as it is (MPEG-1/2 `.mpg`,
+    /// MPEG-TS, QuickTime `.mov`, AVI, Windows Media, Matroska, Flash, 3GP, Ogg Theora, HEIC,
+    /// TIFF, BMP, Photoshop, JPEG 2000, JPEG XL, AIFF, AMR, RealMedia), or a picture more than
+    /// 4096 pixels wide or high. Docent converts it once with ffmpeg when the bundle is served
+    /// and shows the result under the same name; the file itself is not changed. Becomes a
+    /// warning when ffmpeg is not installed on the computer running `docent check`.
+    MediaConverted = "media-converted",
+    /// A file Docent would convert (see `media-converted`) that ffmpeg cannot read: damaged,
+    /// cut short, or not what its name says. ffmpeg's own words are quoted.
+    MediaUndecodable = "media-undecodable",
 }
 
 impl Serialize for DiagnosticCode {
@@ -404,6 +414,12 @@ impl Diagnostic {
 
     /// A warning at `pos`.
     pub fn warning(code: DiagnosticCode, pos: &Pos, message: impl Into<String>) -> Self {
+        Self::at(Severity::Warning, code, pos, message)
+    }
+
+    /// A note at `pos`: worth knowing, not a mistake.
+    // TEMP-NOTE: a warning until the `note` severity lands.
+    pub fn note(code: DiagnosticCode, pos: &Pos, message: impl Into<String>) -> Self {
         Self::at(Severity::Warning, code, pos, message)
     }
 

@@ -19,6 +19,7 @@ use crate::config::SiteConfig;
 use crate::contexts::check_declared;
 use crate::diagnostic::Diagnostic;
 use crate::load::ActsReplacements;
+use crate::media::convert::Conversion;
 use crate::model::{CommandSpec, Located, Pos, Variant};
 use crate::pages::{PageLabels, check_pages};
 
@@ -73,6 +74,8 @@ pub(super) struct Gathered {
     pub files: Vec<CheckedFile>,
     /// The act labels the pages use.
     pub pages: PageLabels,
+    /// The media conversions the checks planned, each file once, in job order.
+    pub conversions: Vec<Conversion>,
 }
 
 /// One unit of work for a worker.
@@ -113,7 +116,7 @@ pub(super) fn gather(
         loop {
             let i = next.fetch_add(1, Ordering::Relaxed);
             let Some(&job) = jobs.get(i) else {
-                return done;
+                return (done, checker.media().take_planned());
             };
             let mut problems = Vec::new();
             let result = run(job, &checker, config, replaced, &mut problems);
@@ -126,12 +129,12 @@ pub(super) fn gather(
             .collect();
         // No thread could be started (a process limit): do the work here rather than fail.
         let mut results = if handles.is_empty() {
-            work()
+            vec![work()]
         } else {
             Vec::new()
         };
         for handle in handles {
-            results.extend(
+            results.push(
                 handle
                     .join()
                     .unwrap_or_else(|panic| std::panic::resume_unwind(panic)),
@@ -139,10 +142,20 @@ pub(super) fn gather(
         }
         results
     });
+    let mut conversions: Vec<Conversion> = Vec::new();
+    for (_, planned) in &mut results {
+        conversions.append(planned);
+    }
+    // Two workers may plan the same file: the first use in the bundle's order is kept.
+    conversions.sort_by(|a, b| (&a.pos, &a.path).cmp(&(&b.pos, &b.path)));
+    let mut seen = std::collections::HashSet::new();
+    conversions.retain(|c| seen.insert(c.path.clone()));
+    let mut results: Vec<_> = results.into_iter().flat_map(|(done, _)| done).collect();
     results.sort_by_key(|(i, ..)| *i);
     let mut gathered = Gathered {
         files: Vec::with_capacity(names.len()),
         pages: PageLabels::default(),
+        conversions,
     };
     for (_, result, mut problems) in results {
         out.append(&mut problems);

@@ -102,6 +102,7 @@ pub use fingerprint::{bundle_fingerprint, corpus_fingerprint};
 pub use highlight::{Area, Shape};
 pub use language::{Language, Languages};
 pub use load::{ActsReplacements, LoadReport, load_bundle, load_bundle_replacing};
+pub use media::convert::{Conversion, ConvertInto, ConvertWhy, OVERSIZED_SIDE, SCALED_SIDE};
 pub use model::{
     Act, Bundle, CommandSpec, DEFAULT_VARIANT, Located, Pos, Translation, Variant, Verb,
 };

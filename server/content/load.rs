@@ -16,6 +16,7 @@ use crate::contexts::{check_undeclared, contexts};
 use crate::diagnostic::Diagnostic;
 use crate::gather::{CheckedAct, CheckedFile, gather, on_reading_stack, read_limited};
 use crate::litter::Survey;
+use crate::media::convert::Conversion;
 use crate::model::{Act, Bundle, Located, Pos};
 use crate::operator_check::{KeyBindings, check_map, visitor_groups};
 use crate::pages::{PageLabels, check_reachable_languages};
@@ -34,6 +35,9 @@ pub struct LoadReport {
     pub bundle: Option<Bundle>,
     /// Errors and warnings, sorted by file, line and column.
     pub diagnostics: Vec<Diagnostic>,
+    /// The media conversions planned (also when the bundle has errors, so `docent check` can
+    /// ask ffmpeg about them); the bundle holds the same.
+    pub conversions: Vec<Conversion>,
 }
 
 /// Loads and checks the bundle in the folder `root`.
@@ -70,6 +74,7 @@ fn load(root: &Path, replaced: &ActsReplacements) -> LoadReport {
             return LoadReport {
                 bundle: None,
                 diagnostics,
+                conversions: Vec::new(),
             };
         }
     };
@@ -122,6 +127,14 @@ fn load(root: &Path, replaced: &ActsReplacements) -> LoadReport {
             .chain(reacting);
         check_unused(&merged.acts, referenced, &mut diagnostics);
     }
+    let conversions = gathered.conversions;
+    for conversion in &conversions {
+        diagnostics.push(Diagnostic::note(
+            DiagnosticCode::MediaConverted,
+            &conversion.pos,
+            conversion.describe(),
+        ));
+    }
     let contexts = contexts(&config, &merged.acts);
     config.operator.visitor_groups =
         visitor_groups(&contexts, &settings.visitor_groups, &mut diagnostics);
@@ -144,10 +157,12 @@ fn load(root: &Path, replaced: &ActsReplacements) -> LoadReport {
         config,
         contexts,
         diagnostics: diagnostics.clone(),
+        conversions: conversions.clone(),
     });
     LoadReport {
         bundle,
         diagnostics,
+        conversions,
     }
 }
 

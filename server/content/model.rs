@@ -235,6 +235,9 @@ pub struct Bundle {
     pub page_languages: Vec<(String, Language)>,
     /// The warnings found while loading (a bundle has no errors), for the content report.
     pub diagnostics: Vec<Diagnostic>,
+    /// Media files Docent converts before showing them (formats Chromium cannot show, and
+    /// pictures far larger than any screen), each once, where first used.
+    pub conversions: Vec<crate::media::convert::Conversion>,
 }
 
 impl Bundle {

@@ -1,6 +1,8 @@
 //! `/pages/...` and `/media/...`: files of the bundle being served. The path is checked by
 //! [`resolve_in_bundle`] (no `..`, no absolute paths, exact case, no symlink leading out),
-//! then served by tower-http's `ServeFile` (content type, ranges for video seeking). HTML pages
+//! then served by tower-http's `ServeFile` (content type, ranges for video seeking). A media
+//! file Chromium cannot show is served as converted ([`crate::media`]): the same address, the
+//! converted content and its type; until it is ready, a 503 saying how far it is. HTML pages
 //! under `/pages/` are the exception: the server adds the page script (`docent-page.js`, the
 //! `data-act` taps and the `docent` JS API) to them, so authors include nothing themselves.
 //! It goes first in `<head>` as a classic script, so `docent` exists before any script of the
@@ -10,7 +12,7 @@
 
 use axum::extract::rejection::PathRejection;
 use axum::extract::{Path, Request, State};
-use axum::http::{HeaderMap, header};
+use axum::http::{HeaderMap, HeaderValue, StatusCode, header};
 use axum::response::{IntoResponse, Response};
 use tower::ServiceExt;
 use tower_http::services::ServeFile;
@@ -18,7 +20,9 @@ use tower_http::services::ServeFile;
 use crate::content::{BundleArea, PathError, resolve_in_bundle};
 use crate::http::act_timers::with_act_timers;
 use crate::http::{AppError, missing_page};
+use crate::media::Served;
 use crate::state::AppState;
+use crate::wire::ErrorCode;
 
 /// `GET /pages/{path}`: a touchscreen page or its assets.
 pub async fn serve_page(
@@ -94,6 +98,24 @@ async fn serve(
             let message = format!("no such file: {rel} (the file is spelled {actual})");
             let error = AppError::not_found(message);
             return not_found(&state, area, &rel, req.headers(), error).await;
+        }
+    };
+    // A file Chromium cannot show is served converted, under its own name.
+    let file = match state.media.lookup(&file) {
+        Served::Original => file,
+        Served::Converted(converted) => converted,
+        Served::NotYet(reason) => {
+            return AppError::new(
+                StatusCode::SERVICE_UNAVAILABLE,
+                ErrorCode::MediaConverting,
+                reason,
+            )
+            .with_header(header::RETRY_AFTER, HeaderValue::from_static("5"))
+            .into_response();
+        }
+        Served::Failed(reason) => {
+            let code = ErrorCode::MediaUnconvertible;
+            return AppError::new(StatusCode::UNPROCESSABLE_ENTITY, code, reason).into_response();
         }
     };
     if area == BundleArea::Pages && is_html(&file) {

@@ -124,6 +124,12 @@ pub enum ErrorCode {
     ReplayedCommand,
     /// `no-credential`: The fleet view has no operator credential to sign a command with.
     NoCredential,
+    /// `media-converting`: A media file is still being converted for Chromium (HTTP 503 with
+    /// `Retry-After`); the message says how far it is.
+    MediaConverting,
+    /// `media-unconvertible`: A media file could not be converted for Chromium; the message
+    /// says why and what to do.
+    MediaUnconvertible,
 }
 
 impl ErrorCode {
@@ -187,6 +193,8 @@ impl ErrorCode {
         ErrorCode::StaleCommand,
         ErrorCode::ReplayedCommand,
         ErrorCode::NoCredential,
+        ErrorCode::MediaConverting,
+        ErrorCode::MediaUnconvertible,
     ];
 
     /// The code as sent (the same string serde writes), for events and logs.
@@ -250,6 +258,8 @@ impl ErrorCode {
             ErrorCode::StaleCommand => "stale-command",
             ErrorCode::ReplayedCommand => "replayed-command",
             ErrorCode::NoCredential => "no-credential",
+            ErrorCode::MediaConverting => "media-converting",
+            ErrorCode::MediaUnconvertible => "media-unconvertible",
         }
     }
 }

@@ -75,6 +75,9 @@ enum ServerFrame<'a> {
         pages: &'a [&'a str],
         shell: bool,
     },
+    Media {
+        files: &'a [crate::state::MediaView],
+    },
     Outcome(&'a OutcomeFrame<'a>),
     Speaking {
         speaking: bool,
@@ -266,6 +269,12 @@ pub fn signal_frame(from: u64, role: ClientRole, data: &serde_json::Value) -> St
 /// last one, `shell` says the kiosk shell's own settings changed (it reloads itself).
 pub fn changed_frame(pages: &[&str], shell: bool) -> String {
     encode(&ServerFrame::Changed { pages, shell })
+}
+
+/// `media`: to operators, the bundle's media files still converting or that failed, every
+/// time one moves on (empty once all are ready).
+pub fn media_frame(files: &[crate::state::MediaView]) -> String {
+    encode(&ServerFrame::Media { files })
 }
 
 /// `error`: what went wrong with a client's frame; the connection stays open.

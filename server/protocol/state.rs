@@ -64,4 +64,37 @@ pub struct ReloadView {
     pub trouble: Option<String>,
     /// Settings changed since start-up that are not in effect yet, as sentences.
     pub not_applied: Vec<String>,
+    /// Media files still converting, or that could not be converted; left out when none.
+    #[serde(skip_serializing_if = "Vec::is_empty")]
+    pub media: Vec<MediaView>,
+}
+
+/// A media file of the bundle on its way to Chromium (`state.reload.media` and the `media`
+/// frame): only files not ready are listed.
+#[derive(Clone, Debug, PartialEq, Serialize)]
+pub struct MediaView {
+    /// The file from the bundle folder (`media/Exhibit/video.mpg`).
+    pub file: String,
+    /// Its format as authors know it (`MPEG-1/2`, `HEIC`).
+    pub format: String,
+    /// How far it is.
+    pub state: MediaState,
+    /// Percent converted, when known (films).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub percent: Option<u8>,
+    /// Why it cannot be shown (`failed` only), with what to do.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub reason: Option<String>,
+}
+
+/// Where a media file is on its way to Chromium.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize)]
+#[serde(rename_all = "lowercase")]
+pub enum MediaState {
+    /// Queued behind other files.
+    Waiting,
+    /// ffmpeg is converting it.
+    Converting,
+    /// It cannot be converted: showing it fails with the reason.
+    Failed,
 }

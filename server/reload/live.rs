@@ -176,6 +176,7 @@ impl Reloader {
         );
         let old = self.state.dispatcher.replace_bundle(Arc::new(bundle));
         let new = self.state.dispatcher.bundle();
+        self.state.media.plan(&new);
         let elapsed_ms = self.since.take().map_or(0, millis);
         self.pending.clear();
         tracing::info!(acts, elapsed_ms, files = ?changed, "the saved bundle is live");

@@ -24,9 +24,8 @@ impl ReloadStatus {
     /// A good bundle went live: refusals and troubles are over.
     pub fn went_live(&self, not_applied: Vec<String>) {
         *lock(&self.view) = ReloadView {
-            refused: None,
-            trouble: None,
             not_applied,
+            ..ReloadView::default()
         };
     }
 
@@ -67,6 +66,7 @@ mod tests {
                 refused: None,
                 trouble: None,
                 not_applied: vec!["restart".into()],
+                media: Vec::new(),
             }
         );
     }

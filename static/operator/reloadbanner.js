@@ -2,10 +2,11 @@
 // errors is refused and the last good bundle keeps running; until a good save is live this
 // banner lists the problems, each at its file, line and column. It also says when the bundle
 // folder cannot be watched (deleted, renamed) and which changed settings are not in effect yet
-// (they need a restart). A console joining later reads the same from `welcome` (state.reload);
-// a console already connected follows the `bundle.*` events.
+// (they need a restart), and which media files are still being converted for Chromium or could
+// not be (state.reload.media, then `media` frames). A console joining later reads the same
+// from `welcome` (state.reload); a console already connected follows the `bundle.*` events.
 
-const EMPTY = { refused: null, trouble: null, not_applied: [] };
+const EMPTY = { refused: null, trouble: null, not_applied: [], media: [] };
 
 /**
  * @param {{element: HTMLElement, onReloaded: (event: object) => void}} options `element`: the
@@ -60,13 +61,43 @@ export function createReloadBanner({ element, onReloaded }) {
       }
       element.append(list);
     }
-    element.hidden = !view.refused && !view.trouble && view.not_applied.length === 0;
-    element.dataset.state = view.refused || view.trouble ? "refused" : "ok";
+    if (view.media.length > 0) {
+      element.append(paragraph("Media for the kiosk and projector:", "reload-title"));
+      const list = document.createElement("ul");
+      list.className = "reload-media";
+      list.append(...view.media.map(mediaLine));
+      element.append(list);
+    }
+    const failed = view.media.some((m) => m.state === "failed");
+    element.hidden =
+      !view.refused && !view.trouble && view.not_applied.length === 0 && view.media.length === 0;
+    element.dataset.state = view.refused || view.trouble || failed ? "refused" : "ok";
+  }
+
+  /** One media file on its way: the server's own words, nothing decided here. */
+  function mediaLine(m) {
+    const li = document.createElement("li");
+    li.dataset.state = m.state;
+    const file = document.createElement("strong");
+    file.textContent = m.file;
+    const how =
+      m.state === "failed"
+        ? ` cannot be shown: ${m.reason}`
+        : m.state === "converting"
+          ? ` (${m.format}) is being converted${m.percent == null ? "" : `: ${m.percent} %`}`
+          : ` (${m.format}) is waiting to be converted`;
+    li.append(file, how);
+    return li;
   }
 
   function onFrame(frame) {
     if ((frame.type === "welcome" || frame.type === "state") && frame.state?.reload) {
       view = { ...EMPTY, ...frame.state.reload };
+      render();
+      return;
+    }
+    if (frame.type === "media") {
+      view = { ...view, media: frame.files ?? [] };
       render();
       return;
     }
@@ -77,7 +108,7 @@ export function createReloadBanner({ element, onReloaded }) {
     } else if (e.type === "bundle.watch-failed") {
       view = { ...view, trouble: e.message ?? e.code };
     } else if (e.type === "bundle.reloaded") {
-      view = { ...EMPTY, not_applied: e.not_applied ?? [] };
+      view = { ...EMPTY, not_applied: e.not_applied ?? [], media: view.media };
       onReloaded(e);
     } else {
       return;

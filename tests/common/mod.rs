@@ -109,6 +109,7 @@ pub fn start_server(
         speech_wav: None,
         access: test_access(),
         limits: docent::http::ConnectionLimits::default(),
+        media_cache: corpus_dir.path().join("media-cache"),
     };
     adjust(&mut options);
     let server = Server::start(loaded, &options).expect("server starts");

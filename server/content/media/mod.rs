@@ -1,9 +1,10 @@
 //! Media by content: what a `PROJECT` file or a picture or video of a page really is (see
-//! [`sniff`]), whether the projector or a page can show it, and the `ffmpeg` command that
-//! converts it when not.
+//! [`sniff`]), whether the projector or a page can show it, and when not, whether Docent
+//! converts it when served (see [`convert`]) or the author must (the `ffmpeg` command).
 //!
 //! Each file is read once (the first few KB), however many acts and pages use it.
 
+pub mod convert;
 pub(crate) mod sniff;
 
 use std::cell::RefCell;
@@ -12,10 +13,11 @@ use std::io::Read;
 use std::path::{Path, PathBuf};
 
 use crate::DiagnosticCode;
-use crate::args::{PROJECTOR_IMAGES, PROJECTOR_VIDEOS};
+use crate::args::{MediaKind, PROJECTOR_IMAGES, PROJECTOR_VIDEOS};
 use crate::diagnostic::Diagnostic;
 use crate::model::Pos;
-use sniff::{Format, Kind, SNIFF_BYTES, by_extension};
+use convert::{Conversion, ConvertWhy};
+use sniff::{Format, Kind, SNIFF_BYTES, Support, by_extension};
 
 /// Where a file is shown, which decides what it must be.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -28,10 +30,11 @@ pub(crate) enum ShownBy {
     PagePlayer,
 }
 
-/// The first bytes of each media file, sniffed once.
+/// The first bytes of each media file, sniffed once, and the conversions planned.
 #[derive(Default)]
 pub(crate) struct MediaSniffs {
     formats: RefCell<HashMap<PathBuf, Option<&'static Format>>>,
+    planned: RefCell<Vec<Conversion>>,
 }
 
 impl MediaSniffs {
@@ -50,7 +53,8 @@ impl MediaSniffs {
     }
 
     /// Reports at `pos` why the file `shown` (named from the bundle root, e.g.
-    /// `media/film.mov`, found at `path`) cannot be shown where it is used, if it cannot.
+    /// `media/film.mov`, found at `path`) cannot be shown where it is used, if it cannot, and
+    /// plans its conversion when Docent can make it showable.
     pub fn check(
         &self,
         path: &Path,
@@ -66,9 +70,12 @@ impl MediaSniffs {
             .unwrap_or_default();
         let named = by_extension(&ext);
         let content = self.format_of(path);
+        // The projector picks a picture or a video element by the name: a name it does not
+        // know shows nothing, unless it names a format Docent converts (then the name says
+        // which element).
         if by == ShownBy::Projector
-            && !PROJECTOR_IMAGES.contains(&ext.as_str())
-            && !PROJECTOR_VIDEOS.contains(&ext.as_str())
+            && MediaKind::of(shown).is_none()
+            && !named.is_some_and(|n| n.support == Support::Converted)
         {
             let what = content.or(named);
             let advice = what.map_or(String::new(), |f| convert_advice(shown, f, by));
@@ -86,26 +93,15 @@ impl MediaSniffs {
             return;
         }
         match (content, named) {
-            (Some(real), _) if !real.shows => {
-                let disguise = match named {
-                    Some(n) if !real.extensions.contains(&ext.as_str()) => format!(
-                        " although its name ends in .{ext} (renaming a file does not change \
-                         what is inside: {} still cannot show it)",
-                        n.name
-                    ),
-                    _ => String::new(),
-                };
-                let message = format!(
-                    "`{shown}` is {}{disguise}, which Chromium on the kiosk and projector \
-                     cannot show.{}",
-                    described(real),
-                    convert_advice(shown, real, by)
-                );
-                out.push(Diagnostic::error(
-                    DiagnosticCode::MediaUnplayable,
-                    pos,
-                    message,
-                ));
+            (Some(real), _) if real.support == Support::No => unplayable(shown, real, by, pos, out),
+            (Some(real), _) if real.support == Support::Converted => {
+                // Converted by content: a QuickTime film named `.mp4` is converted too, but a
+                // picture where a film is expected would still never appear.
+                if shown_as_wrong_kind(real, &ext, by) {
+                    misnamed(shown, &ext, real, by, pos, out);
+                } else {
+                    self.plan(Conversion::of_format(path.to_owned(), shown, real, pos));
+                }
             }
             (Some(real), _) if !real.extensions.contains(&ext.as_str()) => {
                 misnamed(shown, &ext, real, by, pos, out);
@@ -124,19 +120,14 @@ impl MediaSniffs {
                     message,
                 ));
             }
-            (Some(_), _) => {}
-            (None, Some(name)) if !name.shows => {
-                let message = format!(
-                    "`{shown}` is named as {}, which Chromium on the kiosk and projector \
-                     cannot show.{}",
-                    described(name),
-                    convert_advice(shown, name, by)
-                );
-                out.push(Diagnostic::error(
-                    DiagnosticCode::MediaUnplayable,
-                    pos,
-                    message,
-                ));
+            (Some(real), _) => self.plan_if_oversized(path, shown, real, pos),
+            (None, Some(name)) if name.support == Support::No => {
+                unplayable(shown, name, by, pos, out);
+            }
+            // Not recognised by its first bytes, but named as a format Docent converts: ffmpeg
+            // reads more variants than the sniff knows, and says so if it cannot.
+            (None, Some(name)) if name.support == Support::Converted => {
+                self.plan(Conversion::of_format(path.to_owned(), shown, name, pos));
             }
             (None, Some(name)) => {
                 let message = format!(
@@ -154,6 +145,67 @@ impl MediaSniffs {
             }
             (None, None) => {}
         }
+    }
+
+    /// Plans `conversion` unless its file is planned already (the first use is kept).
+    fn plan(&self, conversion: Conversion) {
+        let mut planned = self.planned.borrow_mut();
+        if !planned.iter().any(|c| c.path == conversion.path) {
+            planned.push(conversion);
+        }
+    }
+
+    /// Plans scaling a picture Chromium shows but that is far larger than any screen.
+    fn plan_if_oversized(&self, path: &Path, shown: &str, format: &Format, pos: &Pos) {
+        // Animated GIFs and vector pictures are left alone; only photos and scans are scaled.
+        if ![sniff::PNG.name, sniff::JPEG.name, sniff::WEBP.name].contains(&format.name) {
+            return;
+        }
+        let Ok(size) = imagesize::size(path) else {
+            return;
+        };
+        let (Ok(width), Ok(height)) = (u32::try_from(size.width), u32::try_from(size.height))
+        else {
+            return;
+        };
+        if convert::is_oversized(width, height) {
+            self.plan(Conversion {
+                why: ConvertWhy::Oversized { width, height },
+                ..Conversion::of_format(path.to_owned(), shown, format, pos)
+            });
+        }
+    }
+
+    /// The conversions planned while checking, each file once, in the order first seen.
+    pub fn take_planned(&self) -> Vec<Conversion> {
+        std::mem::take(&mut self.planned.borrow_mut())
+    }
+}
+
+/// A format neither Chromium nor the converter can show.
+fn unplayable(shown: &str, format: &Format, by: ShownBy, pos: &Pos, out: &mut Vec<Diagnostic>) {
+    let message = format!(
+        "`{shown}` is {}, which Chromium on the kiosk and projector cannot show, and Docent \
+         cannot convert.{}",
+        described(format),
+        convert_advice(shown, format, by)
+    );
+    out.push(Diagnostic::error(
+        DiagnosticCode::MediaUnplayable,
+        pos,
+        message,
+    ));
+}
+
+/// Whether a file Docent converts is used where its kind never appears (a photo as a film).
+fn shown_as_wrong_kind(real: &Format, ext: &str, by: ShownBy) -> bool {
+    match by {
+        ShownBy::Projector => {
+            let as_image = by_extension(ext)
+                .map_or(PROJECTOR_IMAGES.contains(&ext), |f| f.kind == Kind::Image);
+            as_image != (real.kind == Kind::Image)
+        }
+        _ => wrong_kind(real.kind, by),
     }
 }
 

@@ -18,6 +18,18 @@ pub(crate) enum Kind {
     Audio,
 }
 
+/// Whether Chromium (the kiosk and the projector) can show a format.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub(crate) enum Support {
+    /// Chromium shows or plays it as it is.
+    Native,
+    /// Chromium cannot, but Docent converts it once, when the bundle is served, with
+    /// ffmpeg (libheif for HEIC photos) into a format Chromium plays.
+    Converted,
+    /// Neither Chromium nor the converter can: the author must convert it by hand.
+    No,
+}
+
 /// One file format Docent recognises.
 #[derive(Debug, PartialEq, Eq)]
 pub(crate) struct Format {
@@ -25,8 +37,8 @@ pub(crate) struct Format {
     pub name: &'static str,
     /// Picture, video or sound.
     pub kind: Kind,
-    /// Whether Chromium shows or plays it.
-    pub shows: bool,
+    /// Whether Chromium shows or plays it, or Docent converts it.
+    pub support: Support,
     /// File name endings that honestly name this format, the usual one first.
     pub extensions: &'static [&'static str],
 }
@@ -34,58 +46,59 @@ pub(crate) struct Format {
 const fn format(
     name: &'static str,
     kind: Kind,
-    shows: bool,
+    support: Support,
     extensions: &'static [&'static str],
 ) -> Format {
     Format {
         name,
         kind,
-        shows,
+        support,
         extensions,
     }
 }
 
 use Kind::{Audio, Image, Video};
+use Support::{Converted, Native, No};
 
-pub(crate) const PNG: Format = format("PNG", Image, true, &["png", "apng"]);
-pub(crate) const JPEG: Format = format("JPEG", Image, true, &["jpg", "jpeg", "jpe", "jfif"]);
-pub(crate) const GIF: Format = format("GIF", Image, true, &["gif"]);
-pub(crate) const WEBP: Format = format("WebP", Image, true, &["webp"]);
-pub(crate) const AVIF: Format = format("AVIF", Image, true, &["avif"]);
-pub(crate) const SVG: Format = format("SVG", Image, true, &["svg"]);
-pub(crate) const BMP: Format = format("BMP", Image, true, &["bmp"]);
-pub(crate) const ICO: Format = format("ICO", Image, true, &["ico", "cur"]);
-pub(crate) const WEBM: Format = format("WebM", Video, true, &["webm"]);
-pub(crate) const MATROSKA: Format = format("Matroska", Video, true, &["mkv", "mka"]);
-pub(crate) const MP4: Format = format("MP4", Video, true, &["mp4", "m4v", "m4a"]);
-pub(crate) const OGG: Format = format("Ogg", Audio, true, &["ogg", "oga", "opus", "ogv"]);
-pub(crate) const MP3: Format = format("MP3", Audio, true, &["mp3"]);
-pub(crate) const AAC: Format = format("AAC", Audio, true, &["aac"]);
-pub(crate) const WAV: Format = format("WAV", Audio, true, &["wav"]);
-pub(crate) const FLAC: Format = format("FLAC", Audio, true, &["flac"]);
+pub(crate) const PNG: Format = format("PNG", Image, Native, &["png", "apng"]);
+pub(crate) const JPEG: Format = format("JPEG", Image, Native, &["jpg", "jpeg", "jpe", "jfif"]);
+pub(crate) const GIF: Format = format("GIF", Image, Native, &["gif"]);
+pub(crate) const WEBP: Format = format("WebP", Image, Native, &["webp"]);
+pub(crate) const AVIF: Format = format("AVIF", Image, Native, &["avif"]);
+pub(crate) const SVG: Format = format("SVG", Image, Native, &["svg"]);
+pub(crate) const BMP: Format = format("BMP", Image, Converted, &["bmp"]);
+pub(crate) const ICO: Format = format("ICO", Image, Native, &["ico", "cur"]);
+pub(crate) const WEBM: Format = format("WebM", Video, Native, &["webm"]);
+pub(crate) const MATROSKA: Format = format("Matroska", Video, Converted, &["mkv", "mka"]);
+pub(crate) const MP4: Format = format("MP4", Video, Native, &["mp4", "m4v", "m4a"]);
+pub(crate) const OGG: Format = format("Ogg", Audio, Native, &["ogg", "oga", "opus", "ogv"]);
+pub(crate) const MP3: Format = format("MP3", Audio, Native, &["mp3"]);
+pub(crate) const AAC: Format = format("AAC", Audio, Native, &["aac"]);
+pub(crate) const WAV: Format = format("WAV", Audio, Native, &["wav"]);
+pub(crate) const FLAC: Format = format("FLAC", Audio, Native, &["flac"]);
 
-pub(crate) const QUICKTIME: Format = format("QuickTime", Video, false, &["mov", "qt"]);
-pub(crate) const HEIC: Format = format("HEIC", Image, false, &["heic", "heif", "hif"]);
-pub(crate) const TIFF: Format = format("TIFF", Image, false, &["tif", "tiff"]);
+pub(crate) const QUICKTIME: Format = format("QuickTime", Video, Converted, &["mov", "qt"]);
+pub(crate) const HEIC: Format = format("HEIC", Image, Converted, &["heic", "heif", "hif"]);
+pub(crate) const TIFF: Format = format("TIFF", Image, Converted, &["tif", "tiff"]);
 pub(crate) const MPEG_PS: Format = format(
     "MPEG-1/2",
     Video,
-    false,
+    Converted,
     &["mpg", "mpeg", "mpe", "m1v", "m2v", "vob"],
 );
-pub(crate) const MPEG_TS: Format = format("MPEG-TS", Video, false, &["ts", "mts", "m2ts"]);
-pub(crate) const AVI: Format = format("AVI", Video, false, &["avi"]);
-pub(crate) const ASF: Format = format("Windows Media", Video, false, &["wmv", "wma", "asf"]);
-pub(crate) const FLV: Format = format("Flash video", Video, false, &["flv", "f4v"]);
-pub(crate) const THREE_GP: Format = format("3GP", Video, false, &["3gp", "3g2"]);
-pub(crate) const OGG_THEORA: Format = format("Ogg Theora", Video, false, &["ogv"]);
-pub(crate) const PSD: Format = format("Photoshop", Image, false, &["psd"]);
-pub(crate) const JPEG_2000: Format = format("JPEG 2000", Image, false, &["jp2", "j2k", "jpf"]);
-pub(crate) const JPEG_XL: Format = format("JPEG XL", Image, false, &["jxl"]);
-pub(crate) const AIFF: Format = format("AIFF", Audio, false, &["aif", "aiff", "aifc"]);
-pub(crate) const MIDI: Format = format("MIDI", Audio, false, &["mid", "midi"]);
-pub(crate) const AMR: Format = format("AMR", Audio, false, &["amr"]);
-pub(crate) const REAL_MEDIA: Format = format("RealMedia", Video, false, &["rm", "rmvb", "ra"]);
+pub(crate) const MPEG_TS: Format = format("MPEG-TS", Video, Converted, &["ts", "mts", "m2ts"]);
+pub(crate) const AVI: Format = format("AVI", Video, Converted, &["avi"]);
+pub(crate) const ASF: Format = format("Windows Media", Video, Converted, &["wmv", "wma", "asf"]);
+pub(crate) const FLV: Format = format("Flash video", Video, Converted, &["flv", "f4v"]);
+pub(crate) const THREE_GP: Format = format("3GP", Video, Converted, &["3gp", "3g2"]);
+pub(crate) const OGG_THEORA: Format = format("Ogg Theora", Video, Converted, &["ogv"]);
+pub(crate) const PSD: Format = format("Photoshop", Image, Converted, &["psd"]);
+pub(crate) const JPEG_2000: Format = format("JPEG 2000", Image, Converted, &["jp2", "j2k", "jpf"]);
+pub(crate) const JPEG_XL: Format = format("JPEG XL", Image, Converted, &["jxl"]);
+pub(crate) const AIFF: Format = format("AIFF", Audio, Converted, &["aif", "aiff", "aifc"]);
+pub(crate) const MIDI: Format = format("MIDI", Audio, No, &["mid", "midi"]);
+pub(crate) const AMR: Format = format("AMR", Audio, Converted, &["amr"]);
+pub(crate) const REAL_MEDIA: Format = format("RealMedia", Video, Converted, &["rm", "rmvb", "ra"]);
 
 /// Every format, for looking a file name ending up.
 const ALL: &[&Format] = &[

@@ -461,6 +461,28 @@ pub enum EventKind {
         /// What happened and what to do, in plain words.
         message: String,
     },
+    /// A media file Chromium cannot show as it is was converted for it (into the media
+    /// cache; the file itself is unchanged). Not logged when the result was already cached.
+    #[serde(rename = "media.converted")]
+    MediaConverted {
+        /// The file from the bundle folder (`media/Exhibit/video.mpg`).
+        file: String,
+        /// Its format (`MPEG-1/2`, `HEIC`).
+        format: String,
+        /// Milliseconds the conversion took.
+        elapsed_ms: u64,
+        /// The converted file's size in bytes.
+        bytes: u64,
+    },
+    /// A media file could not be converted: showing it fails with this reason until the file
+    /// is replaced (or the missing converter installed).
+    #[serde(rename = "media.failed")]
+    MediaFailed {
+        /// The file from the bundle folder.
+        file: String,
+        /// Why, in words, with what to do.
+        reason: String,
+    },
     /// A websocket client's credential was refused (the connection was closed), or a command
     /// over MQTT was badly signed.
     #[serde(rename = "client.refused")]

@@ -288,6 +288,16 @@ fn every_kind() -> Vec<EventKind> {
             files: vec!["media/audio-2.webm".into()],
             consent: Consent::Withdrawn,
         }),
+        MediaConverted {
+            file: "media/Exhibit/video.mpg".into(),
+            format: "MPEG-1/2".into(),
+            elapsed_ms: 812,
+            bytes: 401_233,
+        },
+        MediaFailed {
+            file: "media/scan.tif".into(),
+            reason: "ffmpeg cannot read it (Invalid data found when processing input)".into(),
+        },
     ]
 }
 
@@ -341,6 +351,8 @@ fn variant(kind: &EventKind) -> usize {
         Recording(RecordingEvent::Stopped { .. }) => 42,
         Recording(RecordingEvent::Failed { .. }) => 43,
         Recording(RecordingEvent::Deleted { .. }) => 44,
+        MediaConverted { .. } => 45,
+        MediaFailed { .. } => 46,
     }
 }
 
@@ -359,7 +371,7 @@ fn every_variant_is_written_and_read_back_the_same_through_the_same_type() {
     let places: Vec<usize> = kinds.iter().map(variant).collect();
     assert_eq!(
         places,
-        (0..=44).collect::<Vec<_>>(),
+        (0..=46).collect::<Vec<_>>(),
         "one of each, in order"
     );
     let time = UNIX_EPOCH + Duration::from_millis(1_795_000_000_123);
@@ -485,7 +497,7 @@ fn a_type_newer_than_this_docent_is_passed_over_by_name() {
     // Every variant's tag, as serde's derived deserializers know them.
     assert_eq!(
         (EventKind::names().len(), RecordingEvent::names().len()),
-        (41, 4)
+        (43, 4)
     );
 }
 

@@ -30,7 +30,7 @@ impl LogLevel {
         };
         match kind {
             Pose { .. } => LogLevel::Debug,
-            CommandFailed { .. } | BundleWatchFailed { .. } => LogLevel::Error,
+            CommandFailed { .. } | BundleWatchFailed { .. } | MediaFailed { .. } => LogLevel::Error,
             TriggerRefused { .. }
             | CommandCancelled { .. }
             | PageMissing { .. }
