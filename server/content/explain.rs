@@ -322,10 +322,10 @@ DOCENT_BLESS=1 cargo test --locked -p docent-content --test content diagnostics_
 
 # Problems Docent reports
 
-Every problem `docent check` (and the console, the content report and `docent serve`)
-reports has a code, such as `unknown-verb`. This page lists them all: first a table for each
-kind of problem, then each problem one by one with a broken example and its fix. To read one
-in the terminal, type `docent explain` and the code:
+Every problem Docent reports (in `docent check`, `docent serve`, the operator console and the
+content report) has a code, such as `unknown-verb`. This page lists them all: first a table
+for each kind of problem, then each problem one by one with a broken example and its fix. To
+read one in the terminal, type `docent explain` and the code:
 
 ```text
 $ docent explain unknown-verb
