@@ -9,7 +9,8 @@
 # Safe to run again: it overwrites its outputs, and with the same ffmpeg and fonts it writes
 # byte-identical files (bitexact flags, single-threaded VP8). Text is drawn with the system's
 # default sans-serif font (fc-match); without fontconfig or any font, images keep their shapes
-# and lose their lettering. Videos are WebM (VP8 + Opus), because Chromium does not play .mpg.
+# and lose their lettering. Videos are WebM (VP8 + Opus), except the paper's own Fig. 4 film,
+# which is MPEG-1 as the paper has it (`docent serve` converts it for Chromium).
 set -euo pipefail
 
 cd "$(dirname "${BASH_SOURCE[0]}")"
@@ -113,6 +114,23 @@ save_webm() {
     check_webm "$1" "$2"
 }
 
+# save_mpeg OUT SECONDS AUDIO: like save_webm, but MPEG-1 video and MPEG audio in an MPEG
+# program stream (`.mpg`), the format of the paper's Fig. 4.
+save_mpeg() {
+    mkdir -p "$(dirname "$1")"
+    ffmpeg -nostdin -v error -y -filter_complex "${FG}[out]" -f lavfi -i "$3" \
+        -map "[out]" -map 0:a -t "$2" -pix_fmt yuv420p \
+        -c:v mpeg1video -b:v 400k -g 25 -threads 1 -c:a mp2 -b:a 64k -f mpeg \
+        -fflags +bitexact -flags:v +bitexact -flags:a +bitexact "$1"
+    local codecs
+    codecs=$(ffprobe -v error -show_entries stream=codec_name -of csv=p=0 "$1" | sort | tr '\n' ' ')
+    if [ "$codecs" != "mp2 mpeg1video " ]; then
+        echo "make-media.sh: $1 has codecs $codecs, want mpeg1video and mp2" >&2
+        exit 1
+    fi
+    echo "wrote $1 ($(stat -c %s "$1") bytes, $codecs)"
+}
+
 # Verifies a video with ffprobe: VP8 or VP9 video, Opus audio, the expected duration.
 check_webm() {
     local file=$1 want=$2 video audio duration
@@ -131,13 +149,13 @@ check_webm() {
 }
 
 # ---------------------------------------------------------------------------------------------
-# paper-fig4: the exhibit video of Fig. 4 (the paper's Exhibit/video.mpg), as WebM.
+# paper-fig4: the exhibit video of Fig. 4, the paper's Exhibit/video.mpg, as MPEG-1.
 paper_fig4() {
     FG="testsrc2=s=640x360:r=25:d=4,format=rgb24"
     box 0 250 640 110 0x000000@0.7
     txt 24 266 34 white "Exhibit video" "$FONT_BOLD"
     txt 24 312 22 white "Docent sample bundle, paper Fig. 4"
-    save_webm paper-fig4/media/Exhibit/video.webm 4 "sine=frequency=440:sample_rate=48000:duration=4,volume=0.2"
+    save_mpeg paper-fig4/media/Exhibit/video.mpg 4 "sine=frequency=440:sample_rate=44100:duration=4,volume=0.2"
 }
 
 # ---------------------------------------------------------------------------------------------

@@ -16,8 +16,8 @@ use docent::cli::fleet as fleet_cli;
 use docent::cli::translations as translations_cli;
 use docent::content::config::AdapterKind;
 use docent::content::{
-    Colour, Diagnostic, espeak_speaks, load_bundle, no_voice_diagnostics, render_diagnostics,
-    schema,
+    Colour, Diagnostic, Severity, espeak_speaks, load_bundle, no_voice_diagnostics,
+    render_diagnostics, schema,
 };
 use docent::http::ConnectionLimits;
 use docent::reload::ReloadOptions;
@@ -207,13 +207,22 @@ fn check(bundle: &Path, format: Format, deny_warnings: bool) -> anyhow::Result<E
     // The converters are asked about media to convert here too, not while loading.
     let tools = docent::media::Tools::find();
     docent::media::check_decodable(&report.conversions, &tools, &mut report.diagnostics);
-    let (errors, warnings) = counts(&report.diagnostics);
+    let Counts {
+        errors,
+        warnings,
+        notes,
+    } = counts(&report.diagnostics);
     match format {
         Format::Json => println!("{}", serde_json::to_string_pretty(&report.diagnostics)?),
         Format::Text => {
             print!("{}", render(bundle, &report.diagnostics));
+            // Notes are counted only when there are some: most bundles have none.
+            let notes = match notes {
+                0 => String::new(),
+                n => format!(", {n} note(s)"),
+            };
             println!(
-                "{}: {errors} error(s), {warnings} warning(s)",
+                "{}: {errors} error(s), {warnings} warning(s){notes}",
                 bundle.display()
             );
             if let Some(hint) = explain_hint(&report.diagnostics) {
@@ -221,6 +230,7 @@ fn check(bundle: &Path, format: Format, deny_warnings: bool) -> anyhow::Result<E
             }
         }
     }
+    // Notes are no mistake: a bundle copied from a Mac passes `--deny-warnings`.
     let failed = errors > 0 || (deny_warnings && warnings > 0);
     Ok(if failed {
         ExitCode::FAILURE
@@ -239,13 +249,14 @@ fn render(bundle: &Path, diagnostics: &[Diagnostic]) -> String {
     render_diagnostics(bundle, diagnostics, colour)
 }
 
-/// The line after the problems pointing to `docent explain`, with the first problem's code as
-/// the example (an author copies it as it is).
+/// The line after the problems pointing to `docent explain`, with the code of the first error
+/// (else warning, else note) as the example: an author copies it as it is, and wants the worst
+/// explained first.
 fn explain_hint(diagnostics: &[Diagnostic]) -> Option<String> {
-    let first = diagnostics.first()?;
+    let worst = diagnostics.iter().min_by_key(|d| d.severity)?;
     Some(format!(
         "For more about a problem, type: docent explain {}",
-        first.code
+        worst.code
     ))
 }
 
@@ -268,9 +279,25 @@ fn write_schema(which: Option<SchemaKind>, out: Option<&Path>) -> anyhow::Result
     Ok(ExitCode::SUCCESS)
 }
 
-fn counts(diagnostics: &[Diagnostic]) -> (usize, usize) {
-    let errors = diagnostics.iter().filter(|d| d.is_error()).count();
-    (errors, diagnostics.len() - errors)
+/// How many problems of each severity a check found.
+struct Counts {
+    errors: usize,
+    warnings: usize,
+    notes: usize,
+}
+
+fn counts(diagnostics: &[Diagnostic]) -> Counts {
+    let of = |severity| {
+        diagnostics
+            .iter()
+            .filter(|d| d.severity == severity)
+            .count()
+    };
+    Counts {
+        errors: of(Severity::Error),
+        warnings: of(Severity::Warning),
+        notes: of(Severity::Note),
+    }
 }
 
 fn serve(args: &ServeArgs) -> anyhow::Result<ExitCode> {
@@ -284,7 +311,7 @@ fn serve(args: &ServeArgs) -> anyhow::Result<ExitCode> {
     let report = load_bundle(bundle_dir);
     print!("{}", render(bundle_dir, &report.diagnostics));
     let Some(mut bundle) = report.bundle else {
-        let (errors, _) = counts(&report.diagnostics);
+        let errors = counts(&report.diagnostics).errors;
         eprintln!(
             "docent: {} has {errors} error(s); fix them and start again",
             bundle_dir.display()
@@ -313,6 +340,7 @@ fn serve(args: &ServeArgs) -> anyhow::Result<ExitCode> {
         access: setup.mode.clone(),
         limits: ConnectionLimits::default(),
         media_cache: (args.media_cache.clone()).unwrap_or_else(docent::media::default_folder),
+        media_tools: docent::media::Tools::find(),
     };
     let fleet_flags = docent::fleet::FleetFlags {
         url: args.mqtt.clone(),

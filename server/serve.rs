@@ -21,7 +21,7 @@ use crate::dispatch::Dispatcher;
 use crate::events::{ClientRole, EventKind, Hub, SessionEnd, Source, StopReason};
 use crate::http::{ConnectionLimits, app, serve_connections};
 use crate::lifecycle::Lifecycle;
-use crate::media::{Media, Tools};
+use crate::media::Media;
 use crate::reload::ReloadOptions;
 use crate::robot::RobotInbox;
 use crate::state::AppState;
@@ -46,6 +46,8 @@ pub struct ServeOptions {
     pub limits: ConnectionLimits,
     /// The media cache: converted media files ([`crate::media`]).
     pub media_cache: PathBuf,
+    /// The converters media files are converted with ([`crate::media::Tools::find`] on `PATH`).
+    pub media_tools: crate::media::Tools,
 }
 
 /// A server ready to run.
@@ -119,7 +121,7 @@ impl Server {
         });
         let media = Media::start(
             options.media_cache.clone(),
-            Tools::find(),
+            options.media_tools.clone(),
             hub.clone(),
             &life,
         );

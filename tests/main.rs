@@ -39,6 +39,7 @@ mod http_api;
 mod http_limits;
 mod languages;
 mod live_reload;
+mod media_conversion;
 mod operator_protocol;
 mod projector_video;
 mod recording_limits;

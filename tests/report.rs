@@ -2,7 +2,8 @@
 //! connection in `documented_limits.rs`): refused without the operator credential, and for
 //! a small bundle it lists every act (texts, commands, place, group, key), every page with the
 //! acts it offers and the acts that show it, every media file with the acts that project it
-//! and the pages naming it, and the live bundle's warnings. `GET /report` is the public shell.
+//! and the pages naming it, and the live bundle's warnings and notes. `GET /report` is the
+//! public shell.
 
 use crate::common;
 
@@ -113,6 +114,32 @@ async fn the_report_lists_acts_pages_media_and_problems() {
     assert_eq!(
         problems,
         [("warning", "unquoted-scalar", "acts.yaml", 11, 9)]
+    );
+    server.stop().await;
+}
+
+#[tokio::test]
+async fn the_report_lists_files_ignored_from_a_mac_copy_as_a_note() {
+    let bundle = fixture();
+    common::mac_copy::as_copied_from_a_mac(bundle.path());
+    let server = TestApp::start(bundle.path()).await;
+    let (status, report) = server.get("/api/report").await;
+    assert_eq!(status, 200, "{report}");
+    let problems: Vec<(&str, &str, &str)> = report["problems"]
+        .as_array()
+        .expect("problems")
+        .iter()
+        .map(|p| {
+            let text = |k: &str| p[k].as_str().unwrap_or("");
+            (text("severity"), text("code"), text("file"))
+        })
+        .collect();
+    assert_eq!(
+        problems,
+        [
+            ("note", "ignored-files", ".DS_Store"),
+            ("warning", "unquoted-scalar", "acts.yaml"),
+        ]
     );
     server.stop().await;
 }

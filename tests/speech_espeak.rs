@@ -138,6 +138,7 @@ fn an_unknown_voice_is_reported_at_start_up() {
         access: common::test_access(),
         limits: docent::http::ConnectionLimits::default(),
         media_cache: corpus.path().join("media-cache"),
+        media_tools: docent::media::Tools::find(),
     };
     let runtime = tokio::runtime::Runtime::new().unwrap();
     let server =

@@ -6,12 +6,14 @@
 //! expected is accepted. Commands are only collected here; `commands` checks them once the
 //! site settings are known.
 
+use std::collections::BTreeSet;
 use std::sync::Arc;
 
 use crate::DiagnosticCode;
 use crate::commands::WrittenCommand;
 use crate::config::{Languages, SpeechConfig};
 use crate::diagnostic::Diagnostic;
+use crate::language::Language;
 use crate::model::{DEFAULT_VARIANT, Located, Pos, Variant};
 use crate::suggest::closest;
 
@@ -36,6 +38,9 @@ pub(crate) struct WrittenAct {
     pub group: Option<String>,
     /// The console shortcut (`Key:`), upper case, with the place of its value.
     pub key: Option<Located<char>>,
+    /// Every language written after the `@` of its text keys (`Text@de:`), the default
+    /// language's too: what tells a `languages:` list written the wrong way round.
+    pub tagged: BTreeSet<Language>,
 }
 
 /// Everything read from one acts file.
@@ -169,6 +174,7 @@ fn read_act(node: &Node, reading: &Reading<'_>, out: &mut Vec<Diagnostic>) -> Op
         commands: Vec::new(),
         group: None,
         key: None,
+        tagged: BTreeSet::new(),
     };
     let mut seen: Vec<(&str, &Pos)> = Vec::new();
     let mut wrote_content = false;
@@ -190,6 +196,7 @@ fn read_act(node: &Node, reading: &Reading<'_>, out: &mut Vec<Diagnostic>) -> Op
         let written = name;
         let name = match name.split_once('@') {
             Some((base, tag)) if is_variant_key(base) => {
+                act.tagged.extend(Language::parse(tag));
                 match translations::suffix(name, tag, &key.pos, reading.languages, out) {
                     translations::Suffix::Default => base,
                     translations::Suffix::Other(language) => {

@@ -7,7 +7,8 @@ use serde::Serialize;
 
 use crate::model::Pos;
 
-/// How bad a problem is: errors stop `docent serve`, warnings do not.
+/// How bad a problem is: errors stop `docent serve`, warnings do not, and notes are no
+/// mistake at all (so `docent check --deny-warnings` passes a bundle with notes only).
 #[derive(Clone, Copy, Debug, PartialEq, Eq, PartialOrd, Ord, Serialize)]
 #[serde(rename_all = "lowercase")]
 pub enum Severity {
@@ -15,6 +16,26 @@ pub enum Severity {
     Error,
     /// Worth fixing; the bundle still runs.
     Warning,
+    /// Something the author should know that is not a mistake (files ignored, media that
+    /// Docent converts); nothing needs fixing.
+    Note,
+}
+
+impl Severity {
+    /// The word `docent check` prints and `--format json` carries: `error`, `warning`, `note`.
+    pub fn as_str(self) -> &'static str {
+        match self {
+            Severity::Error => "error",
+            Severity::Warning => "warning",
+            Severity::Note => "note",
+        }
+    }
+}
+
+impl fmt::Display for Severity {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        f.write_str(self.as_str())
+    }
 }
 
 /// Defines [`DiagnosticCode`] and its words from one list, so a code is written once. Each row's
@@ -85,7 +106,7 @@ diagnostic_codes! {
     NoHomePage = "no-home-page",
     /// Files computers and editors leave in copied folders (`._name` Mac resource forks,
     /// `.DS_Store`, `Thumbs.db`, `desktop.ini`, editor backups `name~`, `.bak`, `.swp`, `.#name`)
-    /// were found and ignored: one warning for the whole bundle, saying how many of each.
+    /// were found and ignored: one note for the whole bundle, saying how many of each.
     IgnoredFiles = "ignored-files",
     /// An acts file renamed so that Docent does not read it (`acts.yaml.bak`, `acts.yaml.old`,
     /// `acts.yaml.disabled`, `acts.yml~`, `acts.yaml.txt`) holds acts that no loaded acts file has:
@@ -114,6 +135,11 @@ diagnostic_codes! {
     /// Two acts have the same label, in the same file or in different files. Reported at both
     /// places, each naming the other.
     DuplicateLabel = "duplicate-label",
+    /// An acts file repeats most labels of another acts file with texts in another language
+    /// (`acts_de.yaml` beside `acts.yaml`): a translation in a file of its own. Reported once,
+    /// at its first act, instead of a `duplicate-label` for each of its acts; its repeated acts
+    /// are not used. Translations go beside the original, as `Text@de:`.
+    TranslatedActsFile = "translated-acts-file",
     /// A key that is not `Label`, `Cmds`, `Group`, `Key` or a `Text...` key, often a typing or
     /// capital-letter slip (`Lable`, `label`, `textGroup`, `Commands`, `Grup`). The message
     /// suggests the right key when it can.
@@ -187,6 +213,11 @@ diagnostic_codes! {
     /// character it found, such as `Ö`) or UTF-16 ("Unicode" in Notepad). Also for
     /// `docent.yaml`. A UTF-8 byte-order mark and Windows line ends (CRLF) are fine.
     FileEncoding = "file-encoding",
+    /// A `.yaml` file (an acts file or `docent.yaml`) is not plain text at all: a Word
+    /// document (`.docx`, `.doc`), an OpenDocument text (`.odt`), RTF, PDF, a spreadsheet,
+    /// a ZIP archive or another binary file saved under that name. Reported at line 1, naming
+    /// what the file is and how to save it as plain text.
+    NotPlainText = "not-plain-text",
     /// The text has an emoji (😊, ❤, ⭐). The robot reads it by its name, "smiling face with
     /// smiling eyes".
     SpeechEmoji = "speech-emoji",
@@ -247,6 +278,12 @@ diagnostic_codes! {
     /// button: visitors cannot choose it; only an operator or a dialog manager can. Reported at
     /// the language in `languages:`.
     LanguageUnreachable = "language-unreachable",
+    /// `languages:` is written the wrong way round: its first language, the one of the plain
+    /// `Text:` keys, is the one the acts' translations are in (`Text@de:`), and a later one
+    /// has no translation at all, so the plain texts are in that one (`languages: [de, en]`
+    /// over English `Text:` and German `Text@de:`). Reported once, at the first language; the
+    /// acts and pages are checked in the order meant.
+    LanguagesReversed = "languages-reversed",
     /// When espeak-ng speaks the bundle (`speech: {adapter: espeak}`, or no adapter written and
     /// espeak-ng installed), from `docent check` on the computer it runs on:
     /// no installed espeak-ng voice speaks one of the bundle's languages (its voice in `speech:
@@ -392,7 +429,7 @@ impl PartialEq<&str> for DiagnosticCode {
 /// One problem, as `docent check` reports it.
 #[derive(Clone, Debug, PartialEq, Eq, Serialize)]
 pub struct Diagnostic {
-    /// Error or warning.
+    /// Error, warning or note.
     pub severity: Severity,
     /// Its stable code.
     pub code: DiagnosticCode,
@@ -417,10 +454,9 @@ impl Diagnostic {
         Self::at(Severity::Warning, code, pos, message)
     }
 
-    /// A note at `pos`: worth knowing, not a mistake.
-    // TEMP-NOTE: a warning until the `note` severity lands.
+    /// A note at `pos`: no mistake, something the author should know.
     pub fn note(code: DiagnosticCode, pos: &Pos, message: impl Into<String>) -> Self {
-        Self::at(Severity::Warning, code, pos, message)
+        Self::at(Severity::Note, code, pos, message)
     }
 
     fn at(severity: Severity, code: DiagnosticCode, pos: &Pos, message: impl Into<String>) -> Self {
@@ -438,18 +474,19 @@ impl Diagnostic {
     pub fn is_error(&self) -> bool {
         self.severity == Severity::Error
     }
+
+    /// True for warnings (not for errors, nor for notes).
+    pub fn is_warning(&self) -> bool {
+        self.severity == Severity::Warning
+    }
 }
 
 impl fmt::Display for Diagnostic {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
-        let kind = match self.severity {
-            Severity::Error => "error",
-            Severity::Warning => "warning",
-        };
         write!(
             f,
-            "{}:{}:{}: {kind}[{}]: {}",
-            self.file, self.line, self.column, self.code, self.message
+            "{}:{}:{}: {}[{}]: {}",
+            self.file, self.line, self.column, self.severity, self.code, self.message
         )
     }
 }

@@ -93,7 +93,7 @@ pub(crate) fn not_utf8(bytes: &[u8]) -> Option<NotUtf8> {
 }
 
 /// A UTF-16 byte-order mark, or NUL bytes every other byte as in UTF-16 text without one.
-fn is_utf16(bytes: &[u8]) -> bool {
+pub(crate) fn is_utf16(bytes: &[u8]) -> bool {
     if bytes.starts_with(b"\xff\xfe") || bytes.starts_with(b"\xfe\xff") {
         return true;
     }

@@ -6,6 +6,7 @@
 //! read, and a file nested as deep as the parser's budget allows must be refused with a
 //! message, not crash the load on a small thread stack (tokio's blocking threads have 2 MiB).
 
+use std::collections::BTreeMap;
 use std::io::Read;
 use std::num::NonZeroUsize;
 use std::path::Path;
@@ -18,6 +19,7 @@ use crate::commands::CommandChecker;
 use crate::config::SiteConfig;
 use crate::contexts::check_declared;
 use crate::diagnostic::Diagnostic;
+use crate::language::Language;
 use crate::load::ActsReplacements;
 use crate::media::convert::Conversion;
 use crate::model::{CommandSpec, Located, Pos, Variant};
@@ -56,6 +58,8 @@ pub(super) struct CheckedFile {
     pub unread_labels: Vec<String>,
     /// Nothing of the file could be read: any label may be in it.
     pub unreadable: bool,
+    /// How many of its acts have a text key with each language after the `@` (`Text@de:`).
+    pub tagged: BTreeMap<Language, usize>,
 }
 
 /// An act with a label, its commands parsed and checked.
@@ -214,6 +218,10 @@ fn read_checked(
     };
     let mut read = read_acts_file(&file, &bytes, &config.speech, &config.languages);
     out.append(&mut read.diagnostics);
+    let mut tagged: BTreeMap<Language, usize> = BTreeMap::new();
+    for language in read.acts.iter().flat_map(|a| &a.tagged) {
+        *tagged.entry(language.clone()).or_default() += 1;
+    }
     let acts = read
         .acts
         .into_iter()
@@ -224,6 +232,7 @@ fn read_checked(
                 commands,
                 group,
                 key,
+                tagged: _,
             } = written;
             // An act without a usable label is reported by the reader and goes no further.
             let label = label?;
@@ -245,6 +254,7 @@ fn read_checked(
         acts,
         unread_labels: read.unread_labels,
         unreadable: read.unreadable,
+        tagged,
     })
 }
 

@@ -51,6 +51,24 @@ impl Language {
         Language::parse(tag)
     }
 
+    /// The tag `text` when it is one of the common languages Docent knows by name (`de`,
+    /// `FR`), so that a word such as `new` or `old` is not taken for a language.
+    pub fn common(text: &str) -> Option<Language> {
+        let lower = text.trim().to_ascii_lowercase();
+        let known = LANGUAGE_NAMES.iter().any(|(tag, _)| *tag == lower);
+        known.then(|| Language(lower.into()))
+    }
+
+    /// The language's English name (`German` for `de`, and for `de-at`), when Docent knows it.
+    pub fn english_name(&self) -> Option<String> {
+        let primary = self.0.split('-').next().unwrap_or(&self.0);
+        let (_, names) = LANGUAGE_NAMES.iter().find(|(tag, _)| *tag == primary)?;
+        let name = names.first()?;
+        let mut letters = name.chars();
+        let first = letters.next()?.to_uppercase();
+        Some(first.chain(letters).collect())
+    }
+
     /// The tag as Docent writes it (lower case).
     pub fn as_str(&self) -> &str {
         &self.0

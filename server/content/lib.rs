@@ -21,7 +21,8 @@
 //! - `pages`: checking HTML pages (acts, links, pictures, encoding, hidden content).
 //! - `media`: what a media file really is (by its first bytes) and whether Chromium shows it.
 //! - `paths`: resolving a relative path inside the bundle (shared with the HTTP file routes).
-//! - `encoding`: files not saved as UTF-8, explained.
+//! - `encoding`: files not saved as UTF-8, explained; `plain_text`: a `.yaml` file that is
+//!   no text at all (a Word document, RTF, PDF...), named.
 //! - `duration`: `2s`, `500ms`, `1.5m`; `size`: amounts of storage, `4 GB`, `1.5 GiB`.
 //! - `attract`, `schedule`: the kiosk's attract loop and opening hours, parsed once.
 //! - `highlight`: the areas of a `HIGHLIGHT` argument.
@@ -37,7 +38,11 @@
 //! - `suggest`: "did you mean" for labels, keys, verbs and file names.
 //! - `unused`: acts that nothing triggers.
 //! - `litter`: files copied folders and editors leave behind (`._name`, `.DS_Store`, `~`),
-//!   ignored with one warning, and acts files disabled by renaming.
+//!   ignored with one note, and acts files disabled by renaming.
+//! - `translated_copy`: an acts file that translates another (`acts_de.yaml`, `de/acts.yaml`),
+//!   told once instead of a duplicate label per act.
+//! - `languages_order`: `languages:` written the wrong way round, told once at `docent.yaml`
+//!   and read as meant.
 //! - `voices`: the languages no installed espeak-ng voice speaks (start-up and `docent check`).
 //! - `gather`: reading the acts files and pages on every core.
 //! - `load`: putting it together: `load_bundle`.
@@ -79,17 +84,20 @@ mod encoding;
 mod fingerprint;
 mod gather;
 mod highlight;
+mod languages_order;
 mod litter;
 mod load;
 mod media;
 mod operator_check;
 mod pages;
 mod paths;
+mod plain_text;
 mod render;
 pub mod size;
 mod speech;
 pub mod spreadsheet;
 mod suggest;
+mod translated_copy;
 pub mod translations;
 mod unused;
 mod voices;

@@ -3,7 +3,8 @@
 //! `.DS_Store`), opened on Windows (`Thumbs.db`, `desktop.ini`) or edited (`name~`, `.bak`,
 //! `.swp`, `.#name`). They are never content: the pages check, the media listing and the "did
 //! you mean" suggestions skip them (`paths::list_files`), and the whole lot is said once, as
-//! one warning, so a bundle from anywhere checks as its author sees it.
+//! one note (no mistake: `docent check --deny-warnings` passes), so a bundle from anywhere
+//! checks as its author sees it.
 //!
 //! An acts file disabled by renaming (`acts.yaml.bak`, `acts.yaml.old`, `acts.yml~`) is the
 //! exception: its acts silently vanish from the console and the pages, so each such file
@@ -23,7 +24,7 @@ use crate::gather::read_limited;
 use crate::model::Pos;
 use crate::paths::{BundleArea, list_files_and_litter};
 
-/// What kind of leftover a file is, in the order the warning names them.
+/// What kind of leftover a file is, in the order the note names them.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, PartialOrd, Ord)]
 pub(crate) enum Litter {
     /// `._name`: a Mac's AppleDouble file holding `name`'s Finder information.
@@ -40,7 +41,7 @@ pub(crate) enum Litter {
 }
 
 impl Litter {
-    /// How the warning names a number of them.
+    /// How the note names a number of them.
     fn described(self) -> &'static str {
         match self {
             Litter::MacResourceFork => "Mac resource fork(s) (`._` files)",
@@ -170,7 +171,7 @@ impl Survey {
         }
     }
 
-    /// The one warning naming every leftover file ignored, if there is any.
+    /// The one note naming every leftover file ignored, if there is any.
     pub(crate) fn report(mut self, out: &mut Vec<Diagnostic>) {
         if self.litter.is_empty() {
             return;
@@ -203,7 +204,7 @@ impl Survey {
              to keep the bundle tidy.",
         );
         let first = Pos::start_of(self.litter[0].0.as_str());
-        out.push(Diagnostic::warning(
+        out.push(Diagnostic::note(
             DiagnosticCode::IgnoredFiles,
             &first,
             message,

@@ -7,6 +7,7 @@ use std::path::Path;
 use std::sync::Arc;
 
 use crate::DiagnosticCode;
+use crate::DiagnosticCode::{ConfigSyntax, FileEncoding, NotPlainText};
 use crate::commands::{CommandChecker, path_error_code};
 use crate::config::{Language, SiteConfig};
 use crate::config_file::attract::check_screen_refs;
@@ -14,7 +15,8 @@ use crate::config_file::schedule::check_past_special_days;
 use crate::config_file::{ConfigFile, parse_config};
 use crate::contexts::{check_undeclared, contexts};
 use crate::diagnostic::Diagnostic;
-use crate::gather::{CheckedAct, CheckedFile, gather, on_reading_stack, read_limited};
+use crate::gather::{CheckedAct, CheckedFile, on_reading_stack, read_limited};
+use crate::languages_order::gather_as_meant;
 use crate::litter::Survey;
 use crate::media::convert::Conversion;
 use crate::model::{Act, Bundle, Located, Pos};
@@ -23,6 +25,7 @@ use crate::pages::{PageLabels, check_reachable_languages};
 use crate::paths::{BundleArea, PathError};
 use crate::schedule::WallClock;
 use crate::suggest::did_you_mean;
+use crate::translated_copy::{TranslatedCopies, find_translated_copies};
 use crate::unused::check_unused;
 
 /// The name of the settings file at the top of a bundle.
@@ -81,15 +84,15 @@ fn load(root: &Path, replaced: &ActsReplacements) -> LoadReport {
     let settings = read_settings(&root, &mut diagnostics);
     // A docent.yaml YAML could not read drops every setting (the idle act, the contexts):
     // warnings that follow from the defaults would only mislead.
-    let settings_unread = diagnostics
-        .iter()
-        .any(|d| d.code == DiagnosticCode::ConfigSyntax || d.code == DiagnosticCode::FileEncoding);
+    let unread = [ConfigSyntax, FileEncoding, NotPlainText];
+    let settings_unread = diagnostics.iter().any(|d| unread.contains(&d.code));
     let names = acts_file_names(&root, &mut diagnostics);
     let mut leftovers = Survey::find(&root);
     let mut config = settings.config;
-    let gathered = gather(&root, &names, &config, replaced, &mut diagnostics);
+    let gathered = gather_as_meant(&root, &names, &mut config, replaced, &mut diagnostics);
     let checker = CommandChecker::new(&root, &config);
-    let mut merged = merge_acts(gathered.files, &mut diagnostics);
+    let copies = find_translated_copies(&root, &gathered.files, &config, &mut diagnostics);
+    let mut merged = merge_acts(gathered.files, &copies, &mut diagnostics);
     check_page_labels(gathered.pages, &config, &mut merged, &mut diagnostics);
     check_home(&checker, &config, settings.home.as_ref(), &mut diagnostics);
     check_idle_act(&merged, settings.idle_act.as_ref(), &mut diagnostics);
@@ -233,7 +236,11 @@ impl Merged {
     }
 }
 
-fn merge_acts(files: Vec<CheckedFile>, out: &mut Vec<Diagnostic>) -> Merged {
+fn merge_acts(
+    files: Vec<CheckedFile>,
+    copies: &TranslatedCopies,
+    out: &mut Vec<Diagnostic>,
+) -> Merged {
     let mut merged = Merged::default();
     let mut keys = KeyBindings::default();
     // Later places of each label used more than once, reported at the first place at the end.
@@ -249,6 +256,10 @@ fn merge_acts(files: Vec<CheckedFile>, out: &mut Vec<Diagnostic>) -> Merged {
                 group,
                 key,
             } = act;
+            // A translation in a file of its own is told once, not as a duplicate per act.
+            if copies.leaves_out(&label.pos.file, &label.value) {
+                continue;
+            }
             if let Some(&first) = merged.index.get(&label.value) {
                 let first_pos = &merged.acts[first].pos;
                 let message = format!(

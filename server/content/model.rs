@@ -233,7 +233,8 @@ pub struct Bundle {
     /// The languages pages offer through `data-language` buttons: (page inside `pages/`,
     /// language). A kiosk may switch only to a language its page offers.
     pub page_languages: Vec<(String, Language)>,
-    /// The warnings found while loading (a bundle has no errors), for the content report.
+    /// The warnings and notes found while loading (a bundle has no errors), for the content
+    /// report.
     pub diagnostics: Vec<Diagnostic>,
     /// Media files Docent converts before showing them (formats Chromium cannot show, and
     /// pictures far larger than any screen), each once, where first used.

@@ -46,6 +46,7 @@ fn render_one(renderer: &Renderer, d: &Diagnostic, line: Option<&str>) -> String
     let level = match d.severity {
         Severity::Error => Level::ERROR,
         Severity::Warning => Level::WARNING,
+        Severity::Note => Level::NOTE,
     };
     let (what, hint) = split_message(&d.message);
     let place = format!("{}:{}:{}", d.file, d.line, d.column);

@@ -30,7 +30,7 @@ pub struct ContentReport {
     pub pages: Vec<PageReport>,
     /// Every file under `media/`, sorted.
     pub media: Vec<MediaReport>,
-    /// The live bundle's warnings (a live bundle has no errors).
+    /// The live bundle's warnings and notes (a live bundle has no errors).
     pub problems: Vec<Diagnostic>,
 }
 

@@ -189,7 +189,7 @@ impl Reloader {
             acts,
             contexts,
             page_acts,
-            warnings: diagnostics.len(),
+            warnings: diagnostics.iter().filter(|d| d.is_warning()).count(),
             changed: changed.clone(),
             elapsed_ms,
             not_applied,

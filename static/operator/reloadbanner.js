@@ -21,7 +21,9 @@ export function createReloadBanner({ element, onReloaded }) {
     li.dataset.code = d.code;
     const where = document.createElement("strong");
     where.textContent = `${d.file}, line ${d.line}, column ${d.column}`;
-    const kind = d.severity === "warning" ? "warning" : "error";
+    // A refused save lists errors, warnings and notes (files ignored, media converted); an
+    // unknown word is shown as an error, the safe side.
+    const kind = ["warning", "note"].includes(d.severity) ? d.severity : "error";
     li.append(where, `: ${d.message} (${kind}: ${d.code})`);
     return li;
   }
@@ -36,7 +38,7 @@ export function createReloadBanner({ element, onReloaded }) {
   function render() {
     element.replaceChildren();
     const refused = view.refused ?? [];
-    const errors = refused.filter((d) => d.severity !== "warning").length;
+    const errors = refused.filter((d) => !["warning", "note"].includes(d.severity)).length;
     if (view.refused) {
       element.append(
         paragraph(

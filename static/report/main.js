@@ -70,9 +70,12 @@ function show(report) {
   const started = performance.now();
   setState("rendering");
   byId("bundle-name").textContent = report.bundle;
-  const warnings = report.problems.length;
-  byId("summary").textContent = `${report.acts.length} acts, ${report.pages.length} pages, ${report.media.length} media files, ${warnings} problem${warnings === 1 ? "" : "s"}.`;
-  byId("problem-count").textContent = `(${warnings})`;
+  // Notes (files ignored, media converted) are listed with the problems but are none.
+  const notes = report.problems.filter((p) => p.severity === "note").length;
+  const warnings = report.problems.length - notes;
+  const noted = notes ? `, ${notes} note${notes === 1 ? "" : "s"}` : "";
+  byId("summary").textContent = `${report.acts.length} acts, ${report.pages.length} pages, ${report.media.length} media files, ${warnings} problem${warnings === 1 ? "" : "s"}${noted}.`;
+  byId("problem-count").textContent = `(${report.problems.length})`;
   byId("act-count").textContent = `(${report.acts.length})`;
   byId("page-count").textContent = `(${report.pages.length})`;
   byId("media-count").textContent = `(${report.media.length})`;

@@ -68,6 +68,11 @@ impl TestApp {
         }
     }
 
+    /// The server (its state, start-up warnings).
+    pub fn server(&self) -> &Server {
+        &self.server
+    }
+
     /// Sends `request` through the route table, from a loopback peer.
     pub async fn send(&self, mut request: Request<Body>) -> Answer {
         let peer = SocketAddr::from(([127, 0, 0, 1], 40000));

@@ -10,6 +10,7 @@ pub mod channels;
 pub mod check;
 pub mod corpus;
 pub mod languages;
+pub mod mac_copy;
 pub mod process;
 
 #[allow(unused_imports)] // As `dead_code` above.
@@ -110,6 +111,7 @@ pub fn start_server(
         access: test_access(),
         limits: docent::http::ConnectionLimits::default(),
         media_cache: corpus_dir.path().join("media-cache"),
+        media_tools: docent::media::Tools::find(),
     };
     adjust(&mut options);
     let server = Server::start(loaded, &options).expect("server starts");

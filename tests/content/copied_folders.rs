@@ -1,29 +1,15 @@
 //! Bundles from anywhere: a folder copied from a Mac (an AppleDouble `._name` beside every
 //! file, `.DS_Store` in every folder), opened on Windows or left with editor backups checks as
-//! its author sees it, with one warning naming what was ignored; and an acts file disabled by
-//! renaming is told once, with the acts it holds.
+//! its author sees it, with one note naming what was ignored (no warning: `--deny-warnings`
+//! passes it); and an acts file disabled by renaming is told once, with the acts it holds.
 
 use crate::common;
 
 use std::fs;
-use std::path::Path;
 
 use common::check::{check_all, places};
+use common::mac_copy::as_copied_from_a_mac;
 use docent_content::{Colour, Severity, render_diagnostics};
-
-/// What a Mac writes as `._name` on a disk that has no room for Finder information: an
-/// AppleDouble header (magic 00 05 16 07, version 2, "Mac OS X" filler, two entries) and
-/// the entries' bytes, mostly zeros.
-fn apple_double() -> Vec<u8> {
-    let mut bytes = vec![0x00, 0x05, 0x16, 0x07, 0x00, 0x02, 0x00, 0x00];
-    bytes.extend_from_slice(b"Mac OS X        ");
-    bytes.extend_from_slice(&[0x00, 0x02]);
-    bytes.extend_from_slice(&[0, 0, 0, 9, 0, 0, 0, 0x32, 0, 0, 0x0e, 0xb0]);
-    bytes.extend_from_slice(&[0, 0, 0, 2, 0, 0, 0x0e, 0xe2, 0, 0, 0x01, 0x1e]);
-    bytes.resize(4096, 0);
-    bytes[0x32..0x3a].copy_from_slice(b"TEXTR*ch");
-    bytes
-}
 
 /// A 1×1 PNG: a real picture, whatever the check sniffs.
 const PNG: &[u8] = b"\x89\x50\x4e\x47\x0d\x0a\x1a\x0a\x00\x00\x00\x0d\x49\x48\x44\x52\x00\x00\x00\x01\x00\x00\x00\x01\x08\x06\x00\x00\x00\x1f\x15\xc4\x89\x00\x00\x00\x0d\x49\x44\x41\x54\x78\xda\x63\x64\x60\xf8\x5f\x0f\x00\x02\x87\x01\x80\xeb\x47\xba\x92\x00\x00\x00\x00\x49\x45\x4e\x44\xae\x42\x60\x82";
@@ -53,32 +39,8 @@ fn clean_bundle() -> tempfile::TempDir {
     dir
 }
 
-/// Copies the bundle the way a Mac does onto a USB stick: `._name` beside every file and
-/// folder, `.DS_Store` in every folder.
-fn as_copied_from_a_mac(root: &Path) -> usize {
-    let mut written = 0;
-    let mut folders = vec![root.to_path_buf()];
-    while let Some(folder) = folders.pop() {
-        let names: Vec<_> = fs::read_dir(&folder)
-            .expect("list")
-            .flatten()
-            .map(|e| e.file_name().into_string().expect("name"))
-            .collect();
-        for name in names {
-            let path = folder.join(&name);
-            if path.is_dir() {
-                folders.push(path);
-            }
-            fs::write(folder.join(format!("._{name}")), apple_double()).expect("fork");
-            written += 1;
-        }
-        fs::write(folder.join(".DS_Store"), b"\0\0\0\x01Bud1\0\0\x10\0").expect("ds");
-    }
-    written
-}
-
 #[test]
-fn a_bundle_copied_from_a_mac_checks_clean_but_for_one_warning_on_what_was_ignored() {
+fn a_bundle_copied_from_a_mac_checks_clean_but_for_one_note_on_what_was_ignored() {
     let dir = clean_bundle();
     assert_eq!(places(&check_all(dir.path())), []);
     let forks = as_copied_from_a_mac(dir.path());
@@ -87,21 +49,19 @@ fn a_bundle_copied_from_a_mac_checks_clean_but_for_one_warning_on_what_was_ignor
 
     let report = check_all(dir.path());
     // The forks of the folders themselves (`._pages`, `._media`) are at the top; the rest lie
-    // beside the files in pages/ and media/. The warning is at the first ignored file.
+    // beside the files in pages/ and media/. The note is at the first ignored file.
     assert_eq!(
         places(&report),
         [("ignored-files", ".DS_Store:1:1".to_owned())]
     );
-    let warning = &report.diagnostics[0];
-    assert_eq!(warning.severity, Severity::Warning);
+    let note = &report.diagnostics[0];
+    assert_eq!(note.severity, Severity::Note);
     assert!(
-        warning.message.contains("ignored 10 file(s)")
-            && warning.message.contains("7 Mac resource fork(s)")
-            && warning
-                .message
-                .contains("3 Mac Finder settings (`.DS_Store`)"),
+        note.message.contains("ignored 10 file(s)")
+            && note.message.contains("7 Mac resource fork(s)")
+            && note.message.contains("3 Mac Finder settings (`.DS_Store`)"),
         "{}",
-        warning.message
+        note.message
     );
     assert!(report.bundle.is_some(), "the bundle is served");
     // Read as a page, `._index.html` would have been refused as a UTF-16 page: it is not read.
@@ -109,7 +69,9 @@ fn a_bundle_copied_from_a_mac_checks_clean_but_for_one_warning_on_what_was_ignor
     // Printed, the binary file shows its place, not its bytes.
     let printed = render_diagnostics(dir.path(), &report.diagnostics, Colour::Plain);
     assert!(
-        printed.contains("at .DS_Store:1:1") && !printed.contains('\0'),
+        printed.contains("note[ignored-files]")
+            && printed.contains("at .DS_Store:1:1")
+            && !printed.contains('\0'),
         "{printed}"
     );
 }

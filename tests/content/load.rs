@@ -111,8 +111,7 @@ fn the_papers_fig4_as_printed_loads_with_a_note_that_its_mpeg_video_is_converted
         problems,
         [(
             "media-converted",
-            // TEMP-NOTE: `Severity::Note` once the note severity lands.
-            Severity::Warning,
+            Severity::Note,
             "acts.yaml:25:15".to_owned()
         )]
     );

@@ -7,10 +7,12 @@
 mod check;
 #[path = "../common/languages.rs"]
 mod languages;
+#[path = "../common/mac_copy.rs"]
+mod mac_copy;
 
 /// The helpers shared with the root crate's tests, under the name those use.
 mod common {
-    pub(crate) use super::{check, languages};
+    pub(crate) use super::{check, languages, mac_copy};
 
     /// The repository's root (this crate is `server/content/`).
     pub fn repo() -> std::path::PathBuf {
@@ -28,9 +30,11 @@ mod language_mistakes;
 mod language_settings;
 mod load;
 mod media;
+mod not_plain_text;
 mod operator;
 mod operator_settings;
 mod page_behaviour;
 mod pages;
 mod paths;
+mod right_way;
 mod texts;

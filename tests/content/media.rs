@@ -67,8 +67,7 @@ fn notes(report: &docent_content::LoadReport) -> Vec<(&'static str, String)> {
     planned
 }
 
-// TEMP-NOTE: `Severity::Note` once the note severity lands.
-const NOTE: Severity = Severity::Warning;
+const NOTE: Severity = Severity::Note;
 
 #[test]
 fn a_quicktime_film_is_converted_when_served_and_the_check_says_so() {
@@ -212,7 +211,7 @@ fn pictures_far_larger_than_any_screen_are_scaled_and_phone_photos_are_not() {
 #[test]
 fn names_that_do_not_match_the_content_are_reported() {
     let png = shipped("poster-presenter/media/poster.png");
-    let webm = shipped("paper-fig4/media/Exhibit/video.webm");
+    let webm = shipped("museum-tour/media/card-punch.webm");
     let report = projecting(&[
         ("poster.jpeg", png.clone()),
         ("video.png", webm.clone()),
@@ -265,7 +264,7 @@ fn the_projector_only_shows_the_endings_it_knows() {
 fn real_playable_samples_pass_and_unrecognised_content_is_a_warning() {
     let report = projecting(&[
         ("poster.png", shipped("poster-presenter/media/poster.png")),
-        ("video.webm", shipped("paper-fig4/media/Exhibit/video.webm")),
+        ("video.webm", shipped("museum-tour/media/card-punch.webm")),
         ("card.webm", shipped("museum-tour/media/card-punch.webm")),
         ("clip.mp4", ftyp(b"isom", &[b"isom", b"avc1", b"mp41"])),
         ("broken.webm", b"<html>404 Not Found</html>".to_vec()),

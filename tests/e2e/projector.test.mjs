@@ -7,6 +7,7 @@
 // wait is for an event, with a deadline only.
 
 import assert from 'node:assert/strict';
+import { spawnSync } from 'node:child_process';
 import fs from 'node:fs';
 import path from 'node:path';
 import { after, before, test } from 'node:test';
@@ -86,6 +87,68 @@ test('with after_video: hold the projector keeps the last frame when a film ends
     } finally {
       removeTemp(bundle);
     }
+  }
+});
+
+test('the paper\'s MPEG-1 film is converted when served, plays on the projector, and PROJECT ends when it ends', { timeout: 90_000 }, async () => {
+  // Fig. 4 as printed: `PROJECT Exhibit/video.mpg`, a real MPEG-1 film made here with ffmpeg.
+  const bundle = makeBundle({
+    'docent.yaml': 'speech: {adapter: log}\n',
+    'acts.yaml': '- Label: RUN_VIDEO_EXHIBIT\n  Cmds:\n    - PROJECT Exhibit/video.mpg\n',
+    'pages/index.html': '<!DOCTYPE html><title>home</title>',
+  });
+  const film = path.join(bundle, 'media/Exhibit/video.mpg');
+  fs.mkdirSync(path.dirname(film), { recursive: true });
+  const made = spawnSync('ffmpeg', ['-v', 'error', '-y', '-f', 'lavfi', '-i', 'testsrc2=size=320x240:rate=25',
+    '-f', 'lavfi', '-i', 'sine=frequency=440', '-t', '3', '-c:v', 'mpeg1video', '-c:a', 'mp2', '-f', 'mpeg', film]);
+  assert.equal(made.status, 0, `ffmpeg made the film: ${made.stderr}`);
+  try {
+    await withServer(bundle, async ({ server, page, operator }) => {
+      const problems = watchProblems(page);
+      // Converted in the background: the operator sees it pending, then a `media` frame
+      // without files once it is ready (or nothing pending at all when it was that quick).
+      const pending = operator.welcome.state.reload.media ?? [];
+      if (pending.length > 0) await operator.waitFor((f) => f.type === 'media' && f.files.length === 0);
+      await openProjector(page, server, operator);
+      const [project] = commandIds(await server.trigger('RUN_VIDEO_EXHIBIT'));
+      const started = await operator.waitForEvent((e) => e.type === 'command.started' && e.command === project);
+      const playing = await page.waitForFunction(() => {
+        const video = document.querySelector('video');
+        return video && !video.paused && video.currentTime > 0 && { duration: video.duration, width: video.videoWidth };
+      }, null, { timeout: 20_000 });
+      const { duration, width } = await playing.jsonValue();
+      assert.ok(Math.abs(duration - 3) < 0.5, `the converted film lasts ${duration} s`);
+      assert.equal(width, 320);
+      const done = await operator.waitForEvent((e) => e.type === 'command.done' && e.command === project);
+      const playedMs = (done.mono_us - started.mono_us) / 1000;
+      assert.ok(playedMs >= duration * 1000 * 0.9, `PROJECT done after ${playedMs} ms, the film lasts ${duration} s`);
+      assert.deepEqual(problems, [], 'problems in the projector page');
+    });
+  } finally {
+    removeTemp(bundle);
+  }
+});
+
+test('a PROJECT of a film that cannot be converted fails with the server\'s reason', { timeout: 60_000 }, async () => {
+  const bundle = makeBundle({
+    'docent.yaml': 'speech: {adapter: log}\n',
+    'acts.yaml': '- Label: FILM\n  Cmds: [PROJECT cut.mov]\n',
+    'pages/index.html': '<!DOCTYPE html><title>home</title>',
+    'media/cut.mov': 'a download that stopped half way',
+  });
+  try {
+    await withServer(bundle, async ({ server, page, operator }) => {
+      const pending = operator.welcome.state.reload.media ?? [];
+      if (!pending.some((m) => m.state === 'failed')) {
+        await operator.waitFor((f) => f.type === 'media' && f.files.some((m) => m.state === 'failed'));
+      }
+      await openProjector(page, server, operator);
+      const [project] = commandIds(await server.trigger('FILM'));
+      const failed = await operator.waitForEvent(is('command.failed', project));
+      assert.match(failed.reason, /^media\/cut\.mov cannot be shown: ffmpeg cannot read it \(/);
+    });
+  } finally {
+    removeTemp(bundle);
   }
 });
 

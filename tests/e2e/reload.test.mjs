@@ -1,7 +1,8 @@
 // Live reload in headless Chromium: the real `docent` binary watches a bundle in a temporary
 // folder (watching is on by default). A kiosk showing a page reloads it when the page file is
 // saved; an operator console shows the banner for a save with errors, at the problem's file,
-// line and column, and hides it once a fixed save is live. Every wait is for an event, a frame
+// line and column (a note listed as a note, not counted as an error), and hides it once a
+// fixed save is live. Every wait is for an event, a frame
 // or an element, with a deadline only.
 
 import assert from 'node:assert/strict';
@@ -78,12 +79,16 @@ test('an operator console shows the banner for a broken save and hides it after 
       const banner = console.locator('#reload-banner');
       assert.equal(await banner.isHidden(), true);
 
+      // A Mac's `.DS_Store` beside the broken save: listed as a note, not counted as an error.
+      fs.writeFileSync(path.join(bundle, '.DS_Store'), '\0\0\0\u0001Bud1\0');
       fs.writeFileSync(path.join(bundle, 'acts.yaml'), BROKEN);
       await operator.waitForEvent((e) => e.type === 'bundle.refused');
       await banner.waitFor({ state: 'visible', timeout: DEADLINE_MS });
       const problem = banner.locator('li[data-code="unknown-verb"]');
       assert.match(await problem.textContent(), /^acts\.yaml, line 5, column 7: .*FLY_AWAY/);
       assert.match(await banner.textContent(), /1 error\(s\) and was not put live/);
+      const note = banner.locator('li[data-code="ignored-files"]');
+      assert.match(await note.textContent(), /^\.DS_Store, line 1, column 1: .*\(note: ignored-files\)$/);
 
       // A console opened now shows the same banner (from its welcome).
       const late = await context.newPage();

@@ -1,6 +1,6 @@
 // The content report (`GET /report`) in headless Chromium: signing in with the operator
 // credential shows a museum-tour act with its text, a page with the acts it offers, and the
-// live bundle's warning; printing hides the controls and keeps every act; a generated bundle of
+// live bundle's warnings and note; printing hides the controls and keeps every act; a generated bundle of
 // 10,000 acts renders completely (the time is printed as a test diagnostic). Every wait is for
 // an element or the page's `data-state`, with a deadline only.
 
@@ -45,9 +45,13 @@ async function signInAndWait(page, server, timeout = DEADLINE_MS) {
   return Date.now() - started;
 }
 
-test('signed in, the report shows acts with their texts, pages with their acts, and the warnings', { timeout: 60_000 }, async () => {
-  // One warning in the live bundle: an unquoted `yes` (kept as text, worth quoting).
-  const bundle = copyBundle('museum-tour', { 'spare.yaml': '- Label: SPARE\n  Group: Spare\n  Text: yes\n' });
+test('signed in, the report shows acts with their texts, pages with their acts, the warnings and a note', { timeout: 60_000 }, async () => {
+  // One warning in the live bundle: an unquoted `yes` (kept as text, worth quoting). And a
+  // Mac's `.DS_Store`, ignored with a note (no mistake).
+  const bundle = copyBundle('museum-tour', {
+    'spare.yaml': '- Label: SPARE\n  Group: Spare\n  Text: yes\n',
+    '.DS_Store': '\0\0\0\u0001Bud1\0\0\u0010\0',
+  });
   await withReport(bundle, async ({ server, page, problems }) => {
     const urls = [];
     page.on('request', (req) => urls.push(req.url()));
@@ -68,12 +72,16 @@ test('signed in, the report shows acts with their texts, pages with their acts, 
     }
     assert.match(await index.innerText(), /home/);
 
-    const warning = page.locator('#problems .problem');
+    const warning = page.locator('#problems .problem:not(.note)');
     // The spare act has only English, in a bundle that speaks German too.
     const warnings = await warning.allInnerTexts();
     assert.equal(warnings.length, 2, warnings.join('\n'));
     assert.match(warnings.join('\n'), /spare\.yaml:3:9 warning\[unquoted-scalar\]/);
     assert.match(warnings.join('\n'), /spare\.yaml:\d+:\d+ warning\[missing-translation\]/);
+    const notes = await page.locator('#problems .problem.note').allInnerTexts();
+    assert.equal(notes.length, 1, notes.join('\n'));
+    assert.match(notes[0], /^\.DS_Store:1:1 note\[ignored-files\] Docent ignored 1 file/);
+    assert.match(await page.locator('#summary').textContent(), /2 problems, 1 note\./);
 
     // The filter narrows the acts to those mentioning a word.
     await page.fill('#filter', 'card punch');

@@ -82,7 +82,7 @@ pub const COMMANDS: &[Mistake] = &[
             },
             replace(I, "PROJECT library-tour.webm", "PROJECT library-tour.mov"),
         ],
-        expect: &[("media-unplayable", "info.yaml:77:15")],
+        expect: &[("media-converted", "info.yaml:77:15")],
     },
     Mistake {
         name: "PROJECT of an iPhone photo (.heic)",
@@ -93,7 +93,7 @@ pub const COMMANDS: &[Mistake] = &[
             },
             replace(I, "PROJECT events-poster.png", "PROJECT IMG_2041.heic"),
         ],
-        expect: &[("media-unplayable", "info.yaml:23:15")],
+        expect: &[("media-converted", "info.yaml:23:15")],
     },
     Mistake {
         name: "PROJECT of a scanned poster (.tiff)",
@@ -104,7 +104,7 @@ pub const COMMANDS: &[Mistake] = &[
             },
             replace(I, "PROJECT events-poster.png", "PROJECT events-poster.tiff"),
         ],
-        expect: &[("media-unplayable", "info.yaml:23:15")],
+        expect: &[("media-converted", "info.yaml:23:15")],
     },
     Mistake {
         name: "PROJECT of the old DVD film (.mpg)",
@@ -115,6 +115,6 @@ pub const COMMANDS: &[Mistake] = &[
             },
             replace(I, "PROJECT library-tour.webm", "PROJECT library-tour.mpg"),
         ],
-        expect: &[("media-unplayable", "info.yaml:77:15")],
+        expect: &[("media-converted", "info.yaml:77:15")],
     },
 ];

@@ -18,6 +18,7 @@ use crate::DiagnosticCode;
 use crate::diagnostic::Diagnostic;
 use crate::encoding::not_utf8;
 use crate::model::Pos;
+use crate::plain_text::not_plain_text;
 
 mod fast;
 mod layout;
@@ -125,6 +126,14 @@ pub(crate) fn parse(
         );
         out.diagnostics.push(Diagnostic::error(
             DiagnosticCode::FileTooLarge,
+            &whole_file,
+            message,
+        ));
+        return out;
+    }
+    if let Some(message) = not_plain_text(bytes) {
+        (out.diagnostics).push(Diagnostic::error(
+            DiagnosticCode::NotPlainText,
             &whole_file,
             message,
         ));

@@ -57,11 +57,7 @@ fn offset_of(text: &str, line: u32, column: u32) -> Option<usize> {
 /// `row 12 (GOODBYE/Text/2): error[speech-placeholder]: …` and, for an error, what became of
 /// the variant (`outcome`).
 pub fn told_by_row(diagnostic: &Diagnostic, text: &WrittenText, outcome: Option<&str>) -> String {
-    let kind = if diagnostic.is_error() {
-        "error"
-    } else {
-        "warning"
-    };
+    let kind = diagnostic.severity;
     let mut said = format!(
         "{} ({}): {kind}[{}]: {}",
         text.place, text.key, diagnostic.code, diagnostic.message

@@ -430,7 +430,7 @@ pub enum EventKind {
         contexts: usize,
         /// Acts the new bundle's pages offer to a touchscreen.
         page_acts: usize,
-        /// Warnings the check found (errors would have refused it).
+        /// Warnings the check found (errors would have refused it; notes are not counted).
         warnings: usize,
         /// Files changed since the last bundle went live, relative to the bundle folder.
         changed: Vec<String>,
@@ -443,7 +443,8 @@ pub enum EventKind {
     /// A saved bundle had errors: it was refused and the last good one keeps running.
     #[serde(rename = "bundle.refused")]
     BundleRefused {
-        /// Every problem found, errors and warnings, as `docent check --format json` gives them.
+        /// Every problem found, errors, warnings and notes, as `docent check --format json`
+        /// gives them.
         /// Not read back (read as empty).
         #[serde(skip_deserializing)]
         diagnostics: Vec<docent_content::Diagnostic>,

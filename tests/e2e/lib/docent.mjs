@@ -84,8 +84,12 @@ export function freePort() {
  * `corpus` (a folder; default a new temporary one), `args` (more command-line arguments),
  * `env` (more environment; the credentials default to OPERATOR_TOKEN and DM_TOKEN).
  */
+/** One media cache for this test process, so the tests never write the user's own. */
+let mediaCache = null;
+
 export async function startDocent(bundle, { port = 0, corpus, args = [], env = {} } = {}) {
   const corpusDir = corpus ?? tempDir('docent-e2e-corpus-');
+  mediaCache ??= tempDir('docent-e2e-media-');
   const bin = docentBin();
   if (!fs.existsSync(bin)) {
     throw new Error(`no docent binary at ${bin}: run \`cargo build\` first or set DOCENT_BIN`);
@@ -98,6 +102,7 @@ export async function startDocent(bundle, { port = 0, corpus, args = [], env = {
       env: {
         ...process.env,
         RUST_LOG: process.env.RUST_LOG ?? 'docent=warn',
+        XDG_CACHE_HOME: mediaCache,
         DOCENT_OPERATOR_TOKEN: OPERATOR_TOKEN,
         DOCENT_DM_TOKEN: DM_TOKEN,
         ...env,

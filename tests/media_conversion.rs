@@ -1,0 +1,382 @@
+//! Media Chromium cannot show, converted by the real ffmpeg (and libheif for HEIC) when
+//! served: films and pictures made here with the same tools, served under their own names as
+//! WebM or WebP, kept in the cache across restarts, converted again when the file changes,
+//! and, when a file cannot be converted, the reason at its address, in the corpus and in the
+//! operator's state. The results are read back with ffprobe.
+
+use std::path::Path;
+use std::process::Command;
+
+use docent::events::EventKind;
+use docent::media::{MediaState, Tools};
+use serde_json::Value;
+
+use crate::common;
+use common::app::{Answer, TestApp};
+use common::{DEADLINE, TempBundle, within};
+
+/// Runs a media tool to success (ffmpeg, heif-enc), or fails the test with what it said.
+fn make(program: &str, args: &[&str]) {
+    let output = Command::new(program)
+        .args(args)
+        .output()
+        .unwrap_or_else(|e| panic!("{program} runs: {e}"));
+    assert!(
+        output.status.success(),
+        "{program} {args:?}: {}",
+        String::from_utf8_lossy(&output.stderr)
+    );
+}
+
+/// An MPEG-1 film with MPEG audio, as the paper's `video.mpg`: `seconds` long, a tone of
+/// `hz` (so two films differ).
+fn mpeg1(path: &Path, seconds: u32, hz: u32) {
+    let (seconds, tone) = (seconds.to_string(), format!("sine=frequency={hz}"));
+    let path = path.to_str().expect("a UTF-8 path");
+    make(
+        "ffmpeg",
+        &[
+            "-v",
+            "error",
+            "-y",
+            "-f",
+            "lavfi",
+            "-i",
+            "testsrc2=size=176x144:rate=25",
+            "-f",
+            "lavfi",
+            "-i",
+            &tone,
+            "-t",
+            &seconds,
+            "-c:v",
+            "mpeg1video",
+            "-c:a",
+            "mp2",
+            "-f",
+            "mpeg",
+            path,
+        ],
+    );
+}
+
+/// What ffprobe says of `bytes`: the format name and each stream's codec and size.
+fn probe(bytes: &[u8]) -> Value {
+    let dir = tempfile::tempdir().expect("temp dir");
+    let file = dir.path().join("served");
+    std::fs::write(&file, bytes).expect("write");
+    let output = Command::new("ffprobe")
+        .args(["-v", "error", "-show_entries"])
+        .arg("format=format_name:stream=codec_name,codec_type,width,height")
+        .args(["-of", "json"])
+        .arg(&file)
+        .output()
+        .expect("ffprobe runs");
+    assert!(output.status.success(), "ffprobe reads what was served");
+    serde_json::from_slice(&output.stdout).expect("ffprobe's JSON")
+}
+
+/// The codecs of the streams ffprobe found.
+fn codecs(probed: &Value) -> Vec<&str> {
+    (probed["streams"].as_array().expect("streams").iter())
+        .filter_map(|s| s["codec_name"].as_str())
+        .collect()
+}
+
+/// Waits until no planned file is waiting or converting (the worker is done with the plan).
+async fn settled(app: &TestApp) -> Vec<docent::media::MediaView> {
+    let mut views = app.server().state().media.subscribe();
+    let done = views.wait_for(|v| v.iter().all(|m| m.state == MediaState::Failed));
+    within(DEADLINE * 4, done)
+        .await
+        .expect("conversions settle in time")
+        .expect("the converter runs")
+        .clone()
+}
+
+const PROJECTS_THE_FILM: &str = "- Label: RUN_VIDEO_EXHIBIT\n  Text: Let me show you a video.\n  Cmds:\n    - PROJECT Exhibit/video.mpg\n";
+
+fn events<'a>(lines: &'a [Value], kind: &str) -> Vec<&'a Value> {
+    lines.iter().filter(|l| l["type"] == kind).collect()
+}
+
+#[tokio::test(flavor = "multi_thread", worker_threads = 2)]
+async fn the_papers_mpeg1_film_is_served_as_webm_under_its_name_and_kept_across_restarts() {
+    let bundle = TempBundle::new(PROJECTS_THE_FILM);
+    let film = bundle.path().join("media/Exhibit/video.mpg");
+    std::fs::create_dir_all(film.parent().expect("folder")).expect("mkdir");
+    mpeg1(&film, 2, 440);
+    let original = std::fs::read(&film).expect("read");
+    let cache = tempfile::tempdir().expect("cache");
+    let with_cache = |o: &mut docent::serve::ServeOptions| o.media_cache = cache.path().to_owned();
+
+    let app = TestApp::start_with(bundle.path(), with_cache).await;
+    assert!(settled(&app).await.is_empty(), "nothing failed");
+    let served: Answer = app.get_with("/media/Exhibit/video.mpg", &[]).await;
+    assert_eq!(served.status, 200);
+    assert_eq!(served.header("content-type"), "video/webm");
+    let probed = probe(&served.body);
+    assert!(
+        probed["format"]["format_name"]
+            .as_str()
+            .expect("name")
+            .contains("webm")
+    );
+    assert_eq!(codecs(&probed), ["vp9", "opus"]);
+    let first = app.stop().await;
+    let converted = events(&first, "media.converted");
+    assert_eq!(converted.len(), 1, "{converted:?}");
+    assert_eq!(converted[0]["file"], "media/Exhibit/video.mpg");
+    assert_eq!(converted[0]["format"], "MPEG-1/2");
+    assert_eq!(converted[0]["bytes"], served.body.len() as u64);
+    assert_eq!(
+        std::fs::read(&film).expect("read"),
+        original,
+        "the original is unchanged"
+    );
+
+    // A restart finds the film in the cache: served at once, nothing converted again.
+    let app = TestApp::start_with(bundle.path(), with_cache).await;
+    assert!(settled(&app).await.is_empty());
+    let again = app.get_with("/media/Exhibit/video.mpg", &[]).await;
+    assert_eq!(again.body, served.body, "the same converted film");
+    let second = app.stop().await;
+    assert!(
+        events(&second, "media.converted").is_empty(),
+        "taken from the cache"
+    );
+}
+
+#[tokio::test(flavor = "multi_thread", worker_threads = 2)]
+async fn heic_and_tiff_photos_and_an_oversized_scan_become_webp_that_fits_the_screen() {
+    let bundle = TempBundle::new(
+        "- Label: PHOTOS\n  Cmds:\n    - PROJECT photo.heic\n    - PROJECT scan.tif\n    - PROJECT wide.png\n",
+    );
+    let media = bundle.path().join("media");
+    let at = |name: &str| media.join(name).to_str().expect("UTF-8").to_owned();
+    let png = at("source.png");
+    make(
+        "ffmpeg",
+        &[
+            "-v",
+            "error",
+            "-y",
+            "-f",
+            "lavfi",
+            "-i",
+            "testsrc2=size=640x480",
+            "-frames:v",
+            "1",
+            &png,
+        ],
+    );
+    make("heif-enc", &["-q", "80", &png, "-o", &at("photo.heic")]);
+    std::fs::remove_file(&png).expect("remove");
+    make(
+        "ffmpeg",
+        &[
+            "-v",
+            "error",
+            "-y",
+            "-f",
+            "lavfi",
+            "-i",
+            "testsrc2=size=400x300",
+            "-frames:v",
+            "1",
+            &at("scan.tif"),
+        ],
+    );
+    make(
+        "ffmpeg",
+        &[
+            "-v",
+            "error",
+            "-y",
+            "-f",
+            "lavfi",
+            "-i",
+            "color=c=red:size=5000x300",
+            "-frames:v",
+            "1",
+            &at("wide.png"),
+        ],
+    );
+
+    let app = TestApp::start(bundle.path()).await;
+    assert!(settled(&app).await.is_empty(), "nothing failed");
+    let mut sizes = Vec::new();
+    for name in ["photo.heic", "scan.tif", "wide.png"] {
+        let served = app.get_with(&format!("/media/{name}"), &[]).await;
+        assert_eq!(served.status, 200, "{name}");
+        assert_eq!(served.header("content-type"), "image/webp", "{name}");
+        let probed = probe(&served.body);
+        let stream = &probed["streams"][0];
+        assert_eq!(stream["codec_name"], "webp", "{name}");
+        sizes.push((stream["width"].as_u64(), stream["height"].as_u64()));
+    }
+    assert_eq!(
+        sizes,
+        [
+            (Some(640), Some(480)),
+            (Some(400), Some(300)),
+            (Some(3840), Some(230)),
+        ],
+        "pictures keep their size unless far larger than a screen"
+    );
+    let lines = app.stop().await;
+    assert_eq!(events(&lines, "media.converted").len(), 3);
+}
+
+#[tokio::test(flavor = "multi_thread", worker_threads = 2)]
+async fn a_film_ffmpeg_cannot_read_fails_at_its_address_with_the_reason_and_is_logged() {
+    let bundle = TempBundle::new(PROJECTS_THE_FILM.replace("video.mpg", "cut.mov").as_str())
+        .with_file("media/Exhibit/cut.mov", "a download that stopped half way");
+    let app = TestApp::start(bundle.path()).await;
+    let failed = settled(&app).await;
+    assert_eq!(failed.len(), 1, "{failed:?}");
+    assert_eq!(failed[0].file, "media/Exhibit/cut.mov");
+    let reason = failed[0].reason.clone().expect("a reason");
+    assert!(reason.starts_with("ffmpeg cannot read it ("), "{reason}");
+
+    let answer = app.get_with("/media/Exhibit/cut.mov", &[]).await;
+    assert_eq!(answer.status, 422);
+    let body = answer.json();
+    assert_eq!(body["code"], "media-unconvertible");
+    assert_eq!(
+        body["error"],
+        format!("media/Exhibit/cut.mov cannot be shown: {reason}")
+    );
+    // The operator's state lists it too (what the console's banner shows).
+    let state = app.server().state().state_view();
+    assert_eq!(state.reload.media, failed);
+    let lines = app.stop().await;
+    let logged = events(&lines, "media.failed");
+    assert_eq!(logged.len(), 1);
+    assert_eq!(logged[0]["reason"], reason.as_str());
+}
+
+#[tokio::test(flavor = "multi_thread", worker_threads = 2)]
+async fn without_ffmpeg_the_start_says_so_and_the_film_fails_with_what_to_do() {
+    let bundle = TempBundle::new(PROJECTS_THE_FILM);
+    let film = bundle.path().join("media/Exhibit/video.mpg");
+    std::fs::create_dir_all(film.parent().expect("folder")).expect("mkdir");
+    mpeg1(&film, 1, 440);
+    let app = TestApp::start_with(bundle.path(), |o| o.media_tools = Tools::default()).await;
+    let warned: Vec<&String> = (app.server().warnings.iter())
+        .filter(|w| w.contains("media/Exhibit/video.mpg will not be shown"))
+        .collect();
+    assert_eq!(warned.len(), 1, "{:?}", app.server().warnings);
+    assert!(
+        warned[0].contains("sudo apt install ffmpeg"),
+        "{}",
+        warned[0]
+    );
+    let answer = app.get_with("/media/Exhibit/video.mpg", &[]).await;
+    assert_eq!(answer.status, 422);
+    assert!(
+        answer.json()["error"]
+            .as_str()
+            .is_some_and(|e| e.contains("ffmpeg is not installed")),
+        "{}",
+        answer.json()
+    );
+    app.stop().await;
+}
+
+#[tokio::test(flavor = "multi_thread", worker_threads = 2)]
+async fn a_film_replaced_while_serving_is_converted_again_and_its_new_content_served() {
+    let bundle = TempBundle::new(PROJECTS_THE_FILM);
+    let film = bundle.path().join("media/Exhibit/video.mpg");
+    std::fs::create_dir_all(film.parent().expect("folder")).expect("mkdir");
+    mpeg1(&film, 1, 440);
+    let app = TestApp::start(bundle.path()).await;
+    assert!(settled(&app).await.is_empty());
+    let before = app.get_with("/media/Exhibit/video.mpg", &[]).await.body;
+
+    // The author exports a longer film under the same name; live reload takes the new bundle.
+    let mut events_seen = app.server().state().hub.subscribe();
+    app.server().watch(docent::reload::ReloadOptions::default());
+    let replacement = bundle.path().join("new.mpg");
+    mpeg1(&replacement, 2, 880);
+    std::fs::rename(&replacement, &film).expect("replace the film");
+    let converted = async {
+        loop {
+            let event = events_seen.recv().await.expect("the hub runs");
+            if matches!(event.kind, EventKind::MediaConverted { .. }) {
+                return;
+            }
+        }
+    };
+    within(DEADLINE * 4, converted)
+        .await
+        .expect("the changed film is converted again");
+    let after = app.get_with("/media/Exhibit/video.mpg", &[]).await;
+    assert_eq!(after.status, 200);
+    assert_ne!(after.body, before, "the new film is served");
+    let lines = app.stop().await;
+    assert_eq!(events(&lines, "media.converted").len(), 2);
+}
+
+/// `docent check --format json BUNDLE` with `PATH` as given: exit status and problems.
+fn check_with_path(bundle: &Path, path: &std::ffi::OsStr) -> (i32, Vec<Value>) {
+    let output = Command::new(env!("CARGO_BIN_EXE_docent"))
+        .args(["check", "--format", "json"])
+        .arg(bundle)
+        .env("PATH", path)
+        .output()
+        .expect("docent runs");
+    let problems = serde_json::from_slice(&output.stdout).expect("JSON problems");
+    (output.status.code().expect("an exit status"), problems)
+}
+
+#[test]
+fn docent_check_asks_ffmpeg_and_says_when_it_is_missing() {
+    let bundle =
+        TempBundle::new("- Label: FILMS\n  Cmds:\n    - PROJECT good.mpg\n    - PROJECT cut.mov\n")
+            .with_file("media/cut.mov", "a download that stopped half way");
+    mpeg1(&bundle.path().join("media/good.mpg"), 1, 440);
+    let path = std::env::var_os("PATH").expect("PATH");
+
+    let (status, problems) = check_with_path(bundle.path(), &path);
+    let found: Vec<(&str, &str, u64)> = (problems.iter())
+        .map(|p| {
+            let code = p["code"].as_str().expect("code");
+            (
+                code,
+                p["severity"].as_str().expect("severity"),
+                p["line"].as_u64().expect("line"),
+            )
+        })
+        .collect();
+    // TEMP-NOTE: "note" once the note severity lands.
+    assert_eq!(
+        found,
+        [
+            ("media-converted", "warning", 3),
+            ("media-undecodable", "error", 4)
+        ]
+    );
+    assert_eq!(status, 1, "a file ffmpeg cannot read is an error");
+    let message = problems[1]["message"].as_str().expect("message");
+    assert!(
+        message.contains("ffmpeg cannot read it (moov atom not found"),
+        "{message}"
+    );
+
+    // On a computer without ffmpeg the note becomes a warning saying what to install.
+    let bare = tempfile::tempdir().expect("an empty PATH folder");
+    let (_, problems) = check_with_path(bundle.path(), bare.path().as_os_str());
+    let good = &problems[0];
+    assert_eq!(
+        (good["code"].as_str(), good["severity"].as_str()),
+        (Some("media-converted"), Some("warning"))
+    );
+    assert!(
+        good["message"]
+            .as_str()
+            .expect("message")
+            .contains("sudo apt install ffmpeg"),
+        "{good}"
+    );
+}
