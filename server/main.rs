@@ -11,6 +11,7 @@ use clap::{Parser, Subcommand, ValueEnum};
 use docent::access::{AccessMode, AccessSetup, Origin, decide_access};
 use docent::adapters::{espeak_available, espeak_voices};
 use docent::cli::corpus as corpus_cli;
+use docent::cli::explain as explain_cli;
 use docent::cli::fleet as fleet_cli;
 use docent::cli::translations as translations_cli;
 use docent::content::config::AdapterKind;
@@ -68,6 +69,9 @@ enum Cmd {
     /// Exit status 0 when done, 1 when refused (nothing written), 2 for a command line clap
     /// cannot read, 3 when done with problems reported (docs/AUTHORING.md).
     Translations(translations_cli::TranslationsArgs),
+    /// Explain a problem `docent check` reports, by its code: what it means, a broken example
+    /// and its fix (docs/DIAGNOSTICS.md); without a code, list every code.
+    Explain(explain_cli::ExplainArgs),
 }
 
 /// The schemas `docent schema` knows.
@@ -177,6 +181,7 @@ fn main() -> ExitCode {
         Cmd::Corpus(args) => return corpus_cli::run(&args),
         Cmd::Fleet(args) => fleet(&args),
         Cmd::Translations(args) => return translations_cli::run(&args),
+        Cmd::Explain(args) => return explain_cli::run(&args),
     };
     match result {
         Ok(code) => code,
@@ -220,6 +225,9 @@ fn check(bundle: &Path, format: Format, deny_warnings: bool) -> anyhow::Result<E
                 "{}: {errors} error(s), {warnings} warning(s){notes}",
                 bundle.display()
             );
+            if let Some(hint) = explain_hint(&report.diagnostics) {
+                println!("{hint}");
+            }
         }
     }
     // Notes are no mistake: a bundle copied from a Mac passes `--deny-warnings`.
@@ -239,6 +247,17 @@ fn render(bundle: &Path, diagnostics: &[Diagnostic]) -> String {
         Colour::Plain
     };
     render_diagnostics(bundle, diagnostics, colour)
+}
+
+/// The line after the problems pointing to `docent explain`, with the code of the first error
+/// (else warning, else note) as the example: an author copies it as it is, and wants the worst
+/// explained first.
+fn explain_hint(diagnostics: &[Diagnostic]) -> Option<String> {
+    let worst = diagnostics.iter().min_by_key(|d| d.severity)?;
+    Some(format!(
+        "For more about a problem, type: docent explain {}",
+        worst.code
+    ))
 }
 
 fn write_schema(which: Option<SchemaKind>, out: Option<&Path>) -> anyhow::Result<ExitCode> {
@@ -297,6 +316,9 @@ fn serve(args: &ServeArgs) -> anyhow::Result<ExitCode> {
             "docent: {} has {errors} error(s); fix them and start again",
             bundle_dir.display()
         );
+        if let Some(hint) = explain_hint(&report.diagnostics) {
+            eprintln!("{hint}");
+        }
         return Ok(ExitCode::FAILURE);
     };
     if mode == Mode::Preview {

@@ -296,7 +296,7 @@ fn check_warns_at_a_translation_that_is_its_original_but_not_at_a_name() {
         "{out}"
     );
     assert_eq!(
-        out.matches("translation-same-as-original").count(),
+        out.matches("[translation-same-as-original]").count(),
         1,
         "not at Mona Lisa: {out}"
     );

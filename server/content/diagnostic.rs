@@ -38,25 +38,48 @@ impl fmt::Display for Severity {
     }
 }
 
-/// Defines [`DiagnosticCode`] and its words from one list, so a code is written once.
+/// Defines [`DiagnosticCode`] and its words from one list, so a code is written once. Each row's
+/// doc comment is the code's one-paragraph summary, and each code has its page,
+/// `diagnostics/CODE.md` (severity, kind, fix, then a broken example and its fix), compiled in:
+/// a code without its page does not build. `docent explain CODE` prints them and
+/// `docs/DIAGNOSTICS.md` is generated from them ([`crate::explain`]).
+///
+/// To add a code: its row here, its page (copy one of the same kind), then
+/// `DOCENT_BLESS=1 cargo test --locked -p docent-content --test content diagnostics_reference`
+/// rewrites `docs/DIAGNOSTICS.md`; without `DOCENT_BLESS` that test fails while the file is
+/// stale. A row's place here is its place in the reference's table.
 macro_rules! diagnostic_codes {
-    ($($(#[$doc:meta])* $variant:ident = $text:literal,)*) => {
+    ($($(#[doc = $doc:literal])* $variant:ident = $text:literal,)*) => {
         /// A problem's stable code (`duplicate-label`, `unknown-verb`, ...): what `docent check
         /// --format json`, `/report` and the `bundle.refused` event carry, each explained in
-        /// `docs/AUTHORING.md` ("Problems, one by one").
+        /// `docs/DIAGNOSTICS.md` and by `docent explain CODE`.
         #[derive(Clone, Copy, Debug, PartialEq, Eq, PartialOrd, Ord, Hash)]
         pub enum DiagnosticCode {
-            $($(#[$doc])* $variant,)*
+            $($(#[doc = $doc])* $variant,)*
         }
 
         impl DiagnosticCode {
-            /// Every code, in the order of the guide's table.
+            /// Every code, in the order of the reference's tables.
             pub const ALL: &'static [DiagnosticCode] = &[$(DiagnosticCode::$variant,)*];
 
             /// The code as written (`duplicate-label`).
             pub fn as_str(self) -> &'static str {
                 match self {
                     $(DiagnosticCode::$variant => $text,)*
+                }
+            }
+
+            /// The lines of the code's doc comment above: its summary, as written.
+            pub(crate) fn summary_lines(self) -> &'static [&'static str] {
+                match self {
+                    $(DiagnosticCode::$variant => &[$($doc),*],)*
+                }
+            }
+
+            /// The code's page, `diagnostics/CODE.md`, as written.
+            pub(crate) fn page_source(self) -> &'static str {
+                match self {
+                    $(DiagnosticCode::$variant => include_str!(concat!("diagnostics/", $text, ".md")),)*
                 }
             }
         }
@@ -85,9 +108,11 @@ diagnostic_codes! {
     /// `.DS_Store`, `Thumbs.db`, `desktop.ini`, editor backups `name~`, `.bak`, `.swp`, `.#name`)
     /// were found and ignored: one note for the whole bundle, saying how many of each.
     IgnoredFiles = "ignored-files",
-    /// An acts file renamed so Docent does not read it (`acts.yaml.bak`, `acts.yaml.old`,
-    /// `acts.yml~`) holds acts no loaded acts file has: they are missing from the console and
-    /// the pages. Reported once per file, with how many acts it holds.
+    /// An acts file renamed so that Docent does not read it (`acts.yaml.bak`, `acts.yaml.old`,
+    /// `acts.yaml.disabled`, `acts.yml~`, `acts.yaml.txt`) holds acts that no loaded acts file has:
+    /// they are missing from the console and the pages. Once per file, naming how many acts it
+    /// holds and which are missing. A renamed copy whose acts are all loaded counts among the
+    /// `ignored-files`.
     DisabledActsFile = "disabled-acts-file",
     /// YAML cannot read the file at this place: an unclosed quote or bracket, a `: ` inside
     /// unquoted text, a stray indentation, a `---` line, a value starting with `*`, `&`, `!`,
@@ -210,13 +235,15 @@ diagnostic_codes! {
     /// warning above the limit; an error above four times the limit (2 minutes by default),
     /// which is usually a pasted document.
     SpeechTooLong = "speech-too-long",
-    /// Without `contexts:` in `docent.yaml`: a `Text...` key is one slip away from a name more
-    /// acts use (`TextChlid` beside `TextChild`; the message says "did you mean"), or only this
-    /// one act has it. A visitor in the context then hears the act's `Text`.
+    /// Without `contexts:` in `docent.yaml`: a `Text...` key is one slip away from a name at least
+    /// as many acts use (`TextChlid` beside `TextChild`; the message says "did you mean"), or is
+    /// not `Text` followed by a capitalised word (`Textchild`, `Text_child`). A visitor in the
+    /// context then hears the act's `Text`. A well-formed context only one act uses is fine.
     ContextTypo = "context-typo",
-    /// Nothing triggers the act: no page offers it (`data-act`), it is not the kiosk's
-    /// `idle_act`, and it has no `Group` or `Key` for the operator console. Only a dialog
-    /// manager asking for it by name would ever play it.
+    /// Only in a bundle where some acts have a `Group` or `Key` (the operator's acts are sorted
+    /// out): nothing triggers this act, which has neither. No page offers it (`data-act`) and it is
+    /// not the kiosk's `idle_act`. In a bundle without any `Group` or `Key`, an act no page offers
+    /// is the operator's button, as in the paper's Fig. 4, and not a problem.
     UnusedAct = "unused-act",
     /// A language in `languages:`, in `speech: voices:`, after the `@` of a text key or in
     /// `data-language` is not a short language tag. A language written by its name (`English`,
@@ -239,9 +266,10 @@ diagnostic_codes! {
     /// a text untranslated and an extra one never appears in a table.
     TranslationCount = "translation-count",
     /// A translation is its original itself (`Text@de: [Welcome to the museum!]` beside `Text:
-    /// [Welcome to the museum!]`): copied, not translated, so a visitor in that language hears
-    /// the default language. A name, a number or a single word may stay the same
-    /// (`translations::same`).
+    /// [Welcome to the museum!]`): copied, not translated, so a visitor in that language hears the
+    /// original. Reported at the text. A name, a number or a single word may stay the same: a text
+    /// without letters (`1642`, `10:00–18:00`), one word (`Rembrandt`, `OK`), or words that each
+    /// start with a capital letter (`Mona Lisa`, `Van Gogh Museum`).
     TranslationSameAsOriginal = "translation-same-as-original",
     /// A page of the default language has no version in one of the bundle's other languages
     /// (once per page and language): a visitor in that language sees the default page.
@@ -290,7 +318,7 @@ diagnostic_codes! {
     /// written second, once.
     ScheduleOverlap = "schedule-overlap",
     /// `priorities:` in `docent.yaml` lets visitors' taps cut the operator off: the kiosk's
-    /// priority is above the operator's, or equal to it while speech is `when_busy: replace`.
+    /// priority is higher than the operator's, or the same while speech is `when_busy: replace`.
     /// Reported at `kiosk:` (else at `operator:`).
     KioskOverOperator = "kiosk-over-operator",
     /// A `schedule: special_days:` date in `docent.yaml` is before today (by the clock of the
@@ -350,8 +378,9 @@ diagnostic_codes! {
     /// by itself and plays over the robot's speech.
     AutoplaySound = "autoplay-sound",
     /// A page the attract loop shows (`kiosk: attract: pages:`, or a schedule range's) holds a
-    /// `<form>`, `<input>`, `<textarea>` or `<select>`: the first touch ends the loop and
-    /// returns home, so it can never be filled in. Once per page, at its first field.
+    /// `<form>`, `<input>`, `<textarea>` or `<select>`: the first touch ends the loop and returns
+    /// home, so it can never be filled in (a hidden `<input>` does not count). Once per page, at
+    /// its first field.
     AttractPageForm = "attract-page-form",
     /// A `PROJECT` file, or a picture, video or sound of a page, is in a format neither
     /// Chromium nor Docent's converter can show (MIDI; see [Which picture and video formats

@@ -29,7 +29,9 @@
 //! - `operator_check`: what the operator console uses (act keys, map, visitor groups),
 //!   checked against the whole bundle.
 //! - `diagnostic`: a problem found, with its stable code, severity, place and message;
-//!   `render`: diagnostics drawn for people (source line, caret, hint).
+//!   `render`: diagnostics drawn for people (source line, caret, hint); `explain`: every
+//!   code explained, from its doc comment and its page `diagnostics/CODE.md` (`docent
+//!   explain`, `docs/DIAGNOSTICS.md`).
 //! - `reaction`: the site's `reactions:` to robot events, and the grammar of their `if:`.
 //! - `speech`: what the robot will really say: emoji, addresses, markup, placeholders and
 //!   length in spoken texts.
@@ -61,6 +63,7 @@ pub mod args;
 pub mod attract;
 pub mod config;
 pub mod diagnostic;
+pub mod explain;
 pub mod language;
 pub mod model;
 pub mod names;

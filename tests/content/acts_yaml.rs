@@ -1,15 +1,13 @@
 //! What `docent check` reports about acts files as YAML: syntax, keys, act shapes, labels,
 //! contexts and guessed values, every diagnostic at its exact file, line and column, with
-//! plain-language messages; and that every code has its row and entry in
-//! `docs/AUTHORING.md`. Commands: `content_commands.rs`; the bundle as a whole and files too
+//! plain-language messages (every code's row and entry in `docs/DIAGNOSTICS.md`:
+//! `diagnostics_reference.rs`). Commands: `content_commands.rs`; the bundle as a whole and files too
 //! large or deep: `content_bundle.rs`; paths, pages and settings: `content_paths.rs`.
 
 use crate::common;
 
-use std::fs;
-
 use common::check::{assert_plain, bundle, check, only, places, yaml};
-use docent_content::{DiagnosticCode, Severity};
+use docent_content::Severity;
 
 #[test]
 fn yaml_errors_are_reworded_located_and_do_not_hide_other_acts_or_files() {
@@ -246,60 +244,4 @@ fn an_act_with_variants_but_no_default_text_is_warned_about() {
     let d = only(&report, "no-default-text");
     assert_eq!(d.len(), 1, "{d:?}");
     assert_eq!((d[0].line, d[0].column), (2, 3));
-}
-
-#[test]
-fn every_diagnostic_code_is_in_the_authoring_guide() {
-    let root = common::repo();
-    let codes: Vec<&str> = DiagnosticCode::ALL.iter().map(|c| c.as_str()).collect();
-    let guide = fs::read_to_string(root.join("docs/AUTHORING.md")).expect("guide");
-    let missing: Vec<&&str> = codes
-        .iter()
-        .filter(|code| !guide.contains(&format!("| `{code}` |")))
-        .collect();
-    assert!(
-        missing.is_empty(),
-        "not in the table of docs/AUTHORING.md: {missing:?}"
-    );
-    // And the other way: a row of the table whose code Docent no longer has is stale.
-    let tabled: Vec<&str> = guide
-        .lines()
-        .filter_map(|l| l.strip_prefix("| `")?.split_once("` |").map(|(c, _)| c))
-        .filter(|c| c.contains('-') && c.chars().all(|ch| ch.is_ascii_lowercase() || ch == '-'))
-        .collect();
-    assert!(
-        tabled.len() >= codes.len(),
-        "the table's rows were not read: {tabled:?}"
-    );
-    let stale: Vec<&&str> = tabled.iter().filter(|c| !codes.contains(c)).collect();
-    assert!(
-        stale.is_empty(),
-        "in the table of docs/AUTHORING.md but not a code Docent has: {stale:?}"
-    );
-    // Each code also has its own entry in "Problems, one by one" (its heading is the anchor
-    // messages link to), with a broken example and its fix: at least two code blocks.
-    let (_, one_by_one) = guide
-        .split_once("\n## Problems, one by one\n")
-        .expect("a \"Problems, one by one\" section in docs/AUTHORING.md");
-    let without_example: Vec<&&str> = codes
-        .iter()
-        .filter(|code| {
-            let heading = format!("\n#### `{code}`\n");
-            let Some((_, entry)) = one_by_one.split_once(&heading) else {
-                return true;
-            };
-            // The entry ends at the next heading (a `#` comment inside an example does not).
-            let end = ["\n## ", "\n### ", "\n#### "]
-                .iter()
-                .filter_map(|next| entry.find(next))
-                .min()
-                .unwrap_or(entry.len());
-            entry[..end].matches("```").count() < 4
-        })
-        .collect();
-    assert!(
-        without_example.is_empty(),
-        "no entry with a broken example and its fix in \"Problems, one by one\" of \
-         docs/AUTHORING.md: {without_example:?}"
-    );
 }

@@ -25,6 +25,7 @@ mod attract;
 mod bundle;
 mod commands;
 mod copied_folders;
+mod diagnostics_reference;
 mod language_mistakes;
 mod language_settings;
 mod load;
