@@ -405,6 +405,10 @@ diagnostic_codes! {
     /// A file Docent would convert (see `media-converted`) that ffmpeg cannot read: damaged,
     /// cut short, or not what its name says. ffmpeg's own words are quoted.
     MediaUndecodable = "media-undecodable",
+    /// An SVG picture shown on the projector or with a page's `<img>` (or CSS) has a script
+    /// (`<script>`, or an `onload=`-style handler): a browser runs no script in a picture, so
+    /// what the script would draw stays blank. Once per file, at its first use.
+    SvgScript = "svg-script",
 }
 
 impl Serialize for DiagnosticCode {

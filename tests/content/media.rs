@@ -334,3 +334,28 @@ fn the_papers_original_mpeg_video_is_converted_by_its_name_when_its_content_is_u
     assert_eq!(notes(&report), [("MPEG-1/2", "acts.yaml:3:15".to_owned())]);
     loaded(report);
 }
+
+#[test]
+fn a_scripted_svg_shown_as_a_picture_is_told_once_and_a_plain_one_passes() {
+    let scripted = b"<?xml version=\"1.0\"?>\n<svg xmlns=\"http://www.w3.org/2000/svg\">\n<script>document.querySelector('svg').append(years())</script>\n</svg>\n".to_vec();
+    let handler = b"<svg xmlns=\"http://www.w3.org/2000/svg\"\n     onload=\"draw(evt)\"><g id=\"chart\"/></svg>".to_vec();
+    let plain =
+        b"<svg xmlns=\"http://www.w3.org/2000/svg\"><text>based on the map</text></svg>".to_vec();
+    let report = projecting(&[
+        ("timeline.svg", scripted.clone()),
+        ("chart.svg", handler),
+        ("map.svg", plain),
+        ("timeline.svg", scripted),
+    ]);
+    assert_eq!(
+        places(&report),
+        [
+            ("svg-script", "acts.yaml:3:15".to_owned()),
+            ("svg-script", "acts.yaml:4:15".to_owned()),
+        ],
+        "once per file, the plain drawing passes"
+    );
+    assert!(report.diagnostics[0].message.contains("`<script>`"));
+    assert!(report.diagnostics[1].message.contains("`onload=`"));
+    assert_eq!(report.diagnostics[0].severity, Severity::Warning);
+}

@@ -142,6 +142,13 @@ test('a PROJECT of a film that cannot be converted fails with the server\'s reas
       if (!pending.some((m) => m.state === 'failed')) {
         await operator.waitFor((f) => f.type === 'media' && f.files.some((m) => m.state === 'failed'));
       }
+      // The console's banner says it before anyone presses anything, in the server's words.
+      const consolePage = await page.context().newPage();
+      await signIn(consolePage, server);
+      const banner = consolePage.locator('#reload-banner');
+      await banner.locator('li[data-state="failed"]').waitFor({ timeout: 10_000 });
+      assert.match(await banner.textContent(), /media\/cut\.mov cannot be shown: ffmpeg cannot read it \(/);
+      assert.equal(await banner.getAttribute('data-state'), 'refused');
       await openProjector(page, server, operator);
       const [project] = commandIds(await server.trigger('FILM'));
       const failed = await operator.waitForEvent(is('command.failed', project));

@@ -35,6 +35,30 @@ pub(crate) enum ShownBy {
 pub(crate) struct MediaSniffs {
     formats: RefCell<HashMap<PathBuf, Option<&'static Format>>>,
     planned: RefCell<Vec<Conversion>>,
+    /// SVG files already looked at for scripts.
+    scripts_told: RefCell<std::collections::HashSet<PathBuf>>,
+}
+
+/// How much of an SVG is read to look for a script (drawings are rarely larger).
+const SVG_READ_BYTES: u64 = 4 << 20;
+
+/// The first script in an SVG's text, as found (`<script>`, `onload=`), if any.
+fn svg_script(text: &str) -> Option<String> {
+    let lower = text.to_ascii_lowercase();
+    if lower.contains("<script") {
+        return Some("`<script>`".to_owned());
+    }
+    // An event handler attribute: white space, `on`, letters, `=`.
+    let bytes = lower.as_bytes();
+    (1..bytes.len().saturating_sub(2))
+        .filter(|&i| bytes[i - 1].is_ascii_whitespace() && bytes[i..].starts_with(b"on"))
+        .find_map(|at| {
+            let end = (at + 2..bytes.len())
+                .find(|&i| !bytes[i].is_ascii_lowercase())
+                .unwrap_or(bytes.len());
+            (end > at + 2 && bytes.get(end) == Some(&b'='))
+                .then(|| format!("`{}=`", &lower[at..end]))
+        })
 }
 
 impl MediaSniffs {
@@ -120,6 +144,9 @@ impl MediaSniffs {
                     message,
                 ));
             }
+            (Some(real), _) if real.name == sniff::SVG.name => {
+                self.scripted_svg(path, shown, pos, out);
+            }
             (Some(real), _) => self.plan_if_oversized(path, shown, real, pos),
             (None, Some(name)) if name.support == Support::No => {
                 unplayable(shown, name, by, pos, out);
@@ -174,6 +201,30 @@ impl MediaSniffs {
                 ..Conversion::of_format(path.to_owned(), shown, format, pos)
             });
         }
+    }
+
+    /// Warns, once per file, when an SVG shown as a picture has a script: it never runs there.
+    fn scripted_svg(&self, path: &Path, shown: &str, pos: &Pos, out: &mut Vec<Diagnostic>) {
+        if !self.scripts_told.borrow_mut().insert(path.to_owned()) {
+            return;
+        }
+        let Ok(file) = std::fs::File::open(path) else {
+            return;
+        };
+        let mut text = Vec::new();
+        if file.take(SVG_READ_BYTES).read_to_end(&mut text).is_err() {
+            return;
+        }
+        let Some(script) = svg_script(&String::from_utf8_lossy(&text)) else {
+            return;
+        };
+        let message = format!(
+            "`{shown}` has a script ({script}), but the projector and a page's pictures show an \
+             SVG as a picture, and a browser runs no script in a picture: what the script would \
+             draw or animate stays blank. Open the drawing in its program and export it as a \
+             plain SVG or PNG, or put the animation into the page itself."
+        );
+        out.push(Diagnostic::warning(DiagnosticCode::SvgScript, pos, message));
     }
 
     /// The conversions planned while checking, each file once, in the order first seen.
@@ -344,6 +395,18 @@ fn converted_name(shown: &str, ext: &str) -> String {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn scripts_in_an_svg_are_found_and_words_are_not() {
+        let svg = "<svg>\n<rect\n  onload=\"draw()\"/></svg>";
+        assert_eq!(svg_script(svg).as_deref(), Some("`onload=`"));
+        assert_eq!(
+            svg_script("<svg><SCRIPT>x()</SCRIPT></svg>").as_deref(),
+            Some("`<script>`")
+        );
+        assert_eq!(svg_script("<svg><text>Go on = stay</text></svg>"), None);
+        assert_eq!(svg_script("<svg><text>based on the map</text></svg>"), None);
+    }
 
     #[test]
     fn converted_names_never_overwrite_the_original() {
