@@ -18,7 +18,7 @@ use crate::content::config::{AdapterKind, SpeechConfig};
 use crate::content::{Bundle, BundleArea, resolve_in_bundle};
 use crate::corpus::CorpusWriter;
 use crate::dispatch::Dispatcher;
-use crate::events::{ClientRole, EventKind, Hub, SessionEnd, Source, StopReason};
+use crate::events::{EventKind, Hub, SessionEnd, Source, StopReason};
 use crate::http::{ConnectionLimits, app, serve_connections};
 use crate::lifecycle::Lifecycle;
 use crate::media::Media;
@@ -141,7 +141,7 @@ impl Server {
             folders,
         );
         state.media = media;
-        state.life.spawn(tell_media(state.clone()));
+        state.life.spawn(crate::ws::tell_media(state.clone()));
         let intake = crate::robot::run_intake(state.clone(), robot_intake);
         state.life.spawn(intake);
         let live = Arc::clone(&state.dispatcher);
@@ -256,23 +256,6 @@ async fn wind_down(closing: Closing, corpus: CorpusWriter) -> io::Result<()> {
 }
 
 /// Decides the speech adapter and says why when it is not what the bundle asked for.
-/// Tells operator consoles every change of the media on its way to Chromium (`media` frame),
-/// until shutdown.
-async fn tell_media(state: AppState) {
-    let mut views = state.media.subscribe();
-    loop {
-        tokio::select! {
-            () = state.life.shutdown.cancelled() => return,
-            changed = views.changed() => {
-                if changed.is_err() {
-                    return;
-                }
-            }
-        }
-        let frame = crate::ws::protocol::media_frame(&views.borrow_and_update());
-        state.send_to_role(ClientRole::Operator, &frame);
-    }
-}
 
 fn speech_adapter(
     config: &SpeechConfig,

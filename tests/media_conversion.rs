@@ -379,3 +379,65 @@ fn docent_check_asks_ffmpeg_and_says_when_it_is_missing() {
         "{good}"
     );
 }
+
+#[tokio::test(flavor = "multi_thread", worker_threads = 2)]
+async fn a_kiosk_reloads_the_pages_that_show_a_picture_once_it_is_converted() {
+    // Two pages show the scan; a third does not. A new scan is saved while a kiosk is
+    // connected: live reload names the file, and once it is converted the kiosk is told
+    // the two pages, so one showing it fetches the picture that was missing meanwhile.
+    let scan_page = |title: &str| {
+        format!("<!doctype html><title>{title}</title><img src=\"images/scan.tif\" alt=\"scan\">")
+    };
+    let bundle = TempBundle::new("- Label: A\n  Text: Hi\n")
+        .with_file("pages/index.html", &scan_page("home"))
+        .with_file("pages/room.html", &scan_page("room"))
+        .with_file("pages/other.html", "<!doctype html><title>other</title>");
+    let tif = |name: &str, size: &str| {
+        let at = bundle.path().join(name);
+        let at = at.to_str().expect("UTF-8").to_owned();
+        let source = format!("testsrc2=size={size}");
+        make(
+            "ffmpeg",
+            &[
+                "-v",
+                "error",
+                "-y",
+                "-f",
+                "lavfi",
+                "-i",
+                &source,
+                "-frames:v",
+                "1",
+                &at,
+            ],
+        );
+    };
+    std::fs::create_dir_all(bundle.path().join("pages/images")).expect("mkdir");
+    tif("pages/images/scan.tif", "200x100");
+    let watch = |server: &docent::serve::Server| {
+        server.watch(docent::reload::ReloadOptions::default());
+    };
+    let server = common::TestServer::start_prepared(bundle.path(), |_| {}, watch).await;
+    let mut kiosk = server
+        .client(serde_json::json!({"type": "hello", "role": "kiosk"}))
+        .await;
+    tif("new-scan.tif", "300x150");
+    std::fs::rename(
+        bundle.path().join("new-scan.tif"),
+        bundle.path().join("pages/images/scan.tif"),
+    )
+    .expect("save the new scan");
+    let ready = kiosk
+        .recv_where(|f| {
+            f["type"] == "changed" && f["pages"] != serde_json::json!(["images/scan.tif"])
+        })
+        .await;
+    assert_eq!(
+        ready["pages"],
+        serde_json::json!(["index.html", "room.html"])
+    );
+    assert_eq!(ready["shell"], false);
+    let (status, _) = server.get("/pages/images/scan.tif").await;
+    assert_eq!(status, 200, "served converted");
+    server.stop().await;
+}

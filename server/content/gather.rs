@@ -150,10 +150,23 @@ pub(super) fn gather(
     for (_, planned) in &mut results {
         conversions.append(planned);
     }
-    // Two workers may plan the same file: the first use in the bundle's order is kept.
+    // Two workers may plan the same file: the first use in the bundle's order is kept, with
+    // the pages of both.
     conversions.sort_by(|a, b| (&a.pos, &a.path).cmp(&(&b.pos, &b.path)));
-    let mut seen = std::collections::HashSet::new();
-    conversions.retain(|c| seen.insert(c.path.clone()));
+    let mut merged: Vec<Conversion> = Vec::with_capacity(conversions.len());
+    for conversion in conversions {
+        match merged.iter_mut().find(|c| c.path == conversion.path) {
+            Some(first) => {
+                for page in conversion.pages {
+                    if !first.pages.contains(&page) {
+                        first.pages.push(page);
+                    }
+                }
+            }
+            None => merged.push(conversion),
+        }
+    }
+    let conversions = merged;
     let mut results: Vec<_> = results.into_iter().flat_map(|(done, _)| done).collect();
     results.sort_by_key(|(i, ..)| *i);
     let mut gathered = Gathered {

@@ -13,7 +13,8 @@
 //! `violation` maps a broken websocket frame to its RFC 6455 close code; `allowance` is what a
 //! connection without a credential may send (frames, pings), per connection.
 //! `notices` tells a client what became of its commands and kiosks who is speaking;
-//! `captions` tells the screens and consoles what is being said, while it is said.
+//! `captions` tells the screens and consoles what is being said, while it is said; `media`
+//! tells operators the media being converted, and kiosks the pages whose media became ready.
 //! `embedded` is the same session without a websocket, for other transports (MQTT).
 
 mod allowance;
@@ -25,6 +26,7 @@ mod diagnose;
 mod embedded;
 mod hello;
 mod initiative;
+mod media;
 mod notices;
 pub mod protocol;
 mod recording;
@@ -40,5 +42,6 @@ pub use allowance::{FRAME_BURST, FRAMES_PER_SECOND, PING_BURST, PINGS_PER_SECOND
 pub use captions::Captions;
 pub use connection::ws_upgrade;
 pub use embedded::EmbeddedSession;
+pub use media::tell_media;
 pub use notices::deliver as deliver_notices;
 pub use robot::ROBOT_DATA_BYTES;

@@ -57,6 +57,20 @@ pub struct Conversion {
     pub why: ConvertWhy,
     /// Where it is first shown (a `PROJECT` command or a page's attribute).
     pub pos: Pos,
+    /// The pages that show it, relative to `pages/` (a kiosk showing one reloads it when the
+    /// file is ready).
+    pub pages: Vec<String>,
+}
+
+impl Conversion {
+    /// Adds the page of `pos`, if `pos` is in a page, to [`pages`](Self::pages).
+    pub(crate) fn shown_at(&mut self, pos: &Pos) {
+        if let Some(page) = pos.file.strip_prefix("pages/")
+            && !self.pages.iter().any(|p| p == page)
+        {
+            self.pages.push(page.to_owned());
+        }
+    }
 }
 
 impl Conversion {
@@ -66,14 +80,17 @@ impl Conversion {
             Kind::Video => ConvertInto::Video,
             Kind::Audio => ConvertInto::Sound,
         };
-        Conversion {
+        let mut conversion = Conversion {
             path,
             shown: shown.to_owned(),
             format: format.name,
             into,
             why: ConvertWhy::Format,
             pos: pos.clone(),
-        }
+            pages: Vec::new(),
+        };
+        conversion.shown_at(pos);
+        conversion
     }
 
     /// In words, for `docent check`'s note: what will happen to the file and why.

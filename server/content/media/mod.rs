@@ -174,11 +174,13 @@ impl MediaSniffs {
         }
     }
 
-    /// Plans `conversion` unless its file is planned already (the first use is kept).
+    /// Plans `conversion` unless its file is planned already (the first use is kept, and the
+    /// page of this one added).
     fn plan(&self, conversion: Conversion) {
         let mut planned = self.planned.borrow_mut();
-        if !planned.iter().any(|c| c.path == conversion.path) {
-            planned.push(conversion);
+        match planned.iter_mut().find(|c| c.path == conversion.path) {
+            Some(known) => known.shown_at(&conversion.pos),
+            None => planned.push(conversion),
         }
     }
 
