@@ -256,7 +256,6 @@ async fn wind_down(closing: Closing, corpus: CorpusWriter) -> io::Result<()> {
 }
 
 /// Decides the speech adapter and says why when it is not what the bundle asked for.
-
 fn speech_adapter(
     config: &SpeechConfig,
     output: &SpeechOutput,
