@@ -35,8 +35,9 @@ pub(crate) enum ShownBy {
 pub(crate) struct MediaSniffs {
     formats: RefCell<HashMap<PathBuf, Option<&'static Format>>>,
     planned: RefCell<Vec<Conversion>>,
-    /// SVG files already looked at for scripts.
-    scripts_told: RefCell<std::collections::HashSet<PathBuf>>,
+    /// Pictures already looked into (an SVG for scripts, a photo for its size): once each,
+    /// however many pages show them.
+    looked_into: RefCell<std::collections::HashSet<PathBuf>>,
 }
 
 /// How much of an SVG is read to look for a script (drawings are rarely larger).
@@ -190,6 +191,14 @@ impl MediaSniffs {
         if ![sniff::PNG.name, sniff::JPEG.name, sniff::WEBP.name].contains(&format.name) {
             return;
         }
+        if !self.looked_into.borrow_mut().insert(path.to_owned()) {
+            // Sized already: if it is to be scaled, this page shows it too.
+            let mut planned = self.planned.borrow_mut();
+            if let Some(known) = planned.iter_mut().find(|c| c.path == path) {
+                known.shown_at(pos);
+            }
+            return;
+        }
         let Ok(size) = imagesize::size(path) else {
             return;
         };
@@ -207,7 +216,7 @@ impl MediaSniffs {
 
     /// Warns, once per file, when an SVG shown as a picture has a script: it never runs there.
     fn scripted_svg(&self, path: &Path, shown: &str, pos: &Pos, out: &mut Vec<Diagnostic>) {
-        if !self.scripts_told.borrow_mut().insert(path.to_owned()) {
+        if !self.looked_into.borrow_mut().insert(path.to_owned()) {
             return;
         }
         let Ok(file) = std::fs::File::open(path) else {
