@@ -11,17 +11,18 @@ mod cache;
 mod probe;
 mod recipe;
 mod run;
+mod worker;
 
 use std::collections::{HashMap, VecDeque};
 use std::path::{Path, PathBuf};
 use std::sync::{Arc, Mutex};
-use std::time::{Instant, SystemTime};
+use std::time::SystemTime;
 
-use indicatif::{MultiProgress, ProgressBar, ProgressStyle};
+use indicatif::MultiProgress;
 use tokio::sync::{Notify, watch};
 use tokio_util::sync::CancellationToken;
 
-use crate::content::{Bundle, Conversion, ConvertInto};
+use crate::content::{Bundle, Conversion};
 use crate::events::{EventKind, Hub};
 use crate::lifecycle::Lifecycle;
 use crate::sync::lock;
@@ -203,166 +204,6 @@ impl Media {
             .collect()
     }
 
-    /// The worker: converts queued files one after another until shutdown.
-    async fn work(self: Arc<Self>, shutdown: CancellationToken) {
-        loop {
-            let next = lock(&self.queue).pop_front();
-            let Some(path) = next else {
-                tokio::select! {
-                    () = shutdown.cancelled() => return,
-                    () = self.wake.notified() => continue,
-                }
-            };
-            let job = {
-                let entries = lock(&self.entries);
-                (entries.get(&path))
-                    .filter(|e| e.status == Status::Waiting)
-                    .map(|e| (e.conversion.clone(), e.cancel.clone()))
-            };
-            let Some((conversion, cancel)) = job else {
-                continue;
-            };
-            tokio::select! {
-                () = shutdown.cancelled() => return,
-                () = cancel.cancelled() => {}
-                () = self.convert(&conversion, &cancel) => {}
-            }
-        }
-    }
-
-    /// Converts one file and records the outcome, unless it was cancelled meanwhile.
-    async fn convert(&self, conversion: &Conversion, cancel: &CancellationToken) {
-        let started = Instant::now();
-        let bar = Bar(self.bar(conversion));
-        let outcome = self.produce(conversion, cancel, &bar.0).await;
-        drop(bar);
-        if cancel.is_cancelled() {
-            return;
-        }
-        let shown = &conversion.shown;
-        let status = match outcome {
-            Ok((file, made)) => {
-                let elapsed_ms = u64::try_from(started.elapsed().as_millis()).unwrap_or(u64::MAX);
-                let bytes = std::fs::metadata(&file).map_or(0, |m| m.len());
-                if made {
-                    tracing::info!(file = %shown, elapsed_ms, bytes, "media converted");
-                    self.publish(EventKind::MediaConverted {
-                        file: shown.clone(),
-                        format: conversion.format.to_owned(),
-                        elapsed_ms,
-                        bytes,
-                    });
-                } else {
-                    tracing::debug!(file = %shown, "media converted before, taken from the cache");
-                }
-                Status::Ready(file)
-            }
-            Err(reason) => {
-                tracing::warn!("{shown} cannot be shown: {reason}");
-                self.publish(EventKind::MediaFailed {
-                    file: shown.clone(),
-                    reason: reason.clone(),
-                });
-                Status::Failed(reason)
-            }
-        };
-        self.set(&conversion.path, cancel, status);
-    }
-
-    /// The converted file and whether it was made now (else found in the cache).
-    async fn produce(
-        &self,
-        conversion: &Conversion,
-        cancel: &CancellationToken,
-        bar: &ProgressBar,
-    ) -> Result<(PathBuf, bool), String> {
-        let (Some(ffmpeg), Some(ffprobe)) = (&self.tools.ffmpeg, &self.tools.ffprobe) else {
-            return Err(self
-                .tools
-                .missing_for(conversion.format)
-                .unwrap_or_default());
-        };
-        let source = conversion.path.clone();
-        let key = tokio::task::spawn_blocking(move || cache::content_key(&source))
-            .await
-            .map_err(|e| format!("reading it failed: {e}"))?
-            .map_err(|e| format!("it cannot be read: {e}"))?;
-        let heic = conversion.format == "HEIC";
-        let probe = if heic || conversion.into == ConvertInto::Picture {
-            recipe::Probe::default()
-        } else {
-            recipe::probe(ffprobe, &conversion.path)
-                .await
-                .map_err(|said| format!("ffmpeg cannot read it ({said})"))?
-        };
-        let recipe = recipe::choose(conversion.into, &probe);
-        let result = self
-            .cache
-            .join(cache::cached_name(&key, recipe.name(), recipe.ext()));
-        if result.is_file() {
-            return Ok((result, false));
-        }
-        std::fs::create_dir_all(&self.cache).map_err(|e| {
-            format!(
-                "the media cache {} cannot be made: {e}",
-                self.cache.display()
-            )
-        })?;
-        self.set(
-            &conversion.path,
-            cancel,
-            Status::Converting { percent: None },
-        );
-        let decoded = self.cache.join(format!("{key}.heic.png"));
-        let input = if heic {
-            let tool = self
-                .tools
-                .heif_convert
-                .as_deref()
-                .unwrap_or(Path::new("heif-convert"));
-            run::heif_to_png(tool, &conversion.path, &decoded).await?;
-            decoded.clone()
-        } else {
-            conversion.path.clone()
-        };
-        let partial = cache::partial(&result);
-        let args = recipe.ffmpeg_args(&input, &partial);
-        let mut shown_percent = None;
-        let converted = run::ffmpeg(ffmpeg, &args, probe.duration, |fraction| {
-            bar.set_position((fraction * 1000.0) as u64);
-            let percent = Some((fraction * 100.0) as u8);
-            if percent != shown_percent {
-                shown_percent = percent;
-                self.set(&conversion.path, cancel, Status::Converting { percent });
-            }
-        })
-        .await;
-        if heic {
-            let _ = std::fs::remove_file(&decoded);
-        }
-        if let Err(said) = converted {
-            let _ = std::fs::remove_file(&partial);
-            return Err(format!("ffmpeg cannot convert it ({said})"));
-        }
-        std::fs::rename(&partial, &result)
-            .map_err(|e| format!("the converted file cannot be kept in the cache: {e}"))?;
-        Ok((result, true))
-    }
-
-    /// A progress bar on the terminal (drawn only when standard error is one).
-    fn bar(&self, conversion: &Conversion) -> ProgressBar {
-        let bar = self.bars.add(ProgressBar::new(1000));
-        let style = ProgressStyle::with_template(
-            "converting {msg} [{bar:30}] {percent:>3} % ({elapsed}, {eta} left)",
-        )
-        .map(|s| s.progress_chars("=> "));
-        if let Ok(style) = style {
-            bar.set_style(style);
-        }
-        bar.set_message(conversion.shown.clone());
-        bar
-    }
-
     /// Sets the status of the entry at `path`, if it is still the one `cancel` belongs to.
     fn set(&self, path: &Path, cancel: &CancellationToken, status: Status) {
         let mut entries = lock(&self.entries);
@@ -382,16 +223,6 @@ impl Media {
         if let Some(hub) = &self.hub {
             hub.publish(kind);
         }
-    }
-}
-
-/// A progress bar cleared from the terminal when dropped, also when its conversion is
-/// stopped half way.
-struct Bar(ProgressBar);
-
-impl Drop for Bar {
-    fn drop(&mut self) {
-        self.0.finish_and_clear();
     }
 }
 
@@ -423,4 +254,95 @@ fn views_of(entries: &HashMap<PathBuf, Entry>) -> Vec<MediaView> {
         .collect();
     views.sort_by(|a, b| (&a.0.pos, &a.0.shown).cmp(&(&b.0.pos, &b.0.shown)));
     views.into_iter().map(|(_, view)| view).collect()
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// A bundle projecting `film.mpg` (its content `bytes`), loaded.
+    fn bundle_with_film(dir: &Path, bytes: &[u8]) -> Bundle {
+        std::fs::create_dir_all(dir.join("media")).expect("media");
+        std::fs::write(dir.join("media/film.mpg"), bytes).expect("film");
+        std::fs::write(
+            dir.join("acts.yaml"),
+            "- Label: A\n  Cmds: [PROJECT film.mpg]\n",
+        )
+        .expect("acts");
+        crate::content::load_bundle(dir).bundle.expect("loads")
+    }
+
+    /// Converters that are there (never run here: this converter has no worker).
+    fn present() -> Tools {
+        let tool = Some(PathBuf::from("/usr/bin/true"));
+        Tools {
+            ffmpeg: tool.clone(),
+            ffprobe: tool.clone(),
+            heif_convert: tool,
+        }
+    }
+
+    #[test]
+    fn a_planned_file_waits_says_so_and_is_forgotten_when_the_bundle_drops_it() {
+        let dir = tempfile::tempdir().expect("temp dir");
+        let bundle = bundle_with_film(dir.path(), b"\0\0\x01\xba first");
+        let media = Media::new(dir.path().join("cache"), present(), None);
+        media.plan(&bundle);
+        let path = &bundle.conversions[0].path.clone();
+        let Served::NotYet(reason) = media.lookup(path) else {
+            panic!("waiting: {:?}", media.lookup(path));
+        };
+        assert_eq!(
+            reason,
+            "media/film.mpg is waiting to be converted for Chromium (MPEG-1/2); try again in a \
+             moment"
+        );
+        assert_eq!(media.views()[0].state, MediaState::Waiting);
+        assert_eq!(lock(&media.queue).len(), 1);
+
+        // Planned again unchanged: nothing queued twice.
+        media.plan(&bundle);
+        assert_eq!(lock(&media.queue).len(), 1);
+        let cancel = lock(&media.entries)[path].cancel.clone();
+        media.set(path, &cancel, Status::Converting { percent: Some(45) });
+        let Served::NotYet(reason) = media.lookup(path) else {
+            panic!("converting");
+        };
+        assert!(
+            reason.ends_with("(45 % done); try again when it is done"),
+            "{reason}"
+        );
+
+        // The film changed on disk: the running conversion is stopped, the file queued again.
+        std::fs::write(path, b"\0\0\x01\xba second, longer").expect("save");
+        media.plan(&bundle);
+        assert!(cancel.is_cancelled());
+        assert_eq!(media.views()[0].state, MediaState::Waiting);
+
+        // A bundle without it: forgotten, served as it is (nothing to convert).
+        let mut bundle = bundle;
+        bundle.conversions.clear();
+        media.plan(&bundle);
+        assert_eq!(media.lookup(path), Served::Original);
+        assert!(media.views().is_empty());
+    }
+
+    #[test]
+    fn without_ffmpeg_a_planned_file_fails_at_once_with_what_to_install() {
+        let dir = tempfile::tempdir().expect("temp dir");
+        let bundle = bundle_with_film(dir.path(), b"\0\0\x01\xba film");
+        let media = Media::new(dir.path().join("cache"), Tools::default(), None);
+        media.plan(&bundle);
+        let Served::Failed(reason) = media.lookup(&bundle.conversions[0].path) else {
+            panic!("failed");
+        };
+        assert!(reason.contains("sudo apt install ffmpeg"), "{reason}");
+        assert_eq!(
+            media.startup_warnings(),
+            [format!("media/film.mpg will not be shown: {}", {
+                reason.trim_start_matches("media/film.mpg cannot be shown: ")
+            })]
+        );
+        assert!(lock(&media.queue).is_empty(), "nothing to queue");
+    }
 }
