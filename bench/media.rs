@@ -9,7 +9,7 @@
 //! MPEG-4 part 2 + PCM sound in QuickTime, as older cameras film (converted to VP9 + Opus).
 //! The two `.mov` are made here with ffmpeg (testsrc2, 1920x1080, 30 fps).
 
-use std::path::{Path, PathBuf};
+use std::path::Path;
 use std::process::Command;
 use std::sync::Arc;
 use std::time::{Duration, Instant};
@@ -17,7 +17,7 @@ use std::time::{Duration, Instant};
 use docent::content::load_bundle;
 use docent::events::Hub;
 use docent::lifecycle::Lifecycle;
-use docent::media::{Media, Tools};
+use docent::media::{Media, Recipe, Tools};
 
 fn main() -> std::io::Result<()> {
     let args: Vec<String> = std::env::args().collect();
@@ -124,61 +124,24 @@ fn convert(bundle: &Path, cache: &Path) -> Duration {
     })
 }
 
-/// ffmpeg alone, with the settings Docent uses for this film (see `server/media/recipe.rs`).
+/// ffmpeg alone, with the command Docent runs for this film ([`Recipe::ffmpeg_args`]).
 fn floor(film: &Path, out: &Path) -> Duration {
-    let started = Instant::now();
     let name = film
         .file_name()
         .and_then(|n| n.to_str())
         .unwrap_or_default();
-    let settings: &[&str] = if name == "phone.mov" {
-        &[
-            "-map",
-            "0:v:0",
-            "-map",
-            "0:a:0?",
-            "-c",
-            "copy",
-            "-movflags",
-            "+faststart",
-            "-f",
-            "mp4",
-        ]
+    let recipe = if name == "phone.mov" {
+        Recipe::RepackMp4
     } else {
-        &[
-            "-map",
-            "0:v:0",
-            "-map",
-            "0:a:0?",
-            "-c:v",
-            "libvpx-vp9",
-            "-deadline",
-            "realtime",
-            "-cpu-used",
-            "8",
-            "-row-mt",
-            "1",
-            "-b:v",
-            "0",
-            "-crf",
-            "32",
-            "-pix_fmt",
-            "yuv420p",
-            "-c:a",
-            "libopus",
-            "-b:a",
-            "128k",
-            "-ac",
-            "2",
-            "-f",
-            "webm",
-        ]
+        Recipe::Vp9
     };
-    ffmpeg(
-        &["-i", &film.display().to_string()],
-        settings,
-        &PathBuf::from(out),
-    );
+    let started = Instant::now();
+    let status = Command::new("ffmpeg")
+        .args(recipe.ffmpeg_args(film, out))
+        .stdout(std::process::Stdio::null())
+        .status()
+        .expect("ffmpeg runs");
+    assert!(status.success(), "ffmpeg failed on {}", film.display());
     started.elapsed()
 }
 

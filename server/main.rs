@@ -1,7 +1,7 @@
-//! The `docent` command: parses the command line, sets up logging and calls into the library.
-//! `docent corpus` (`cli/corpus.rs`) leaves room for `export` beside `list`, `show` and `purge`.
+//! The `docent` command: parses the command line, sets up logging and calls into the library
+//! (`docent check` is `cli/check.rs`, `docent corpus` `cli/corpus.rs`, and so on).
 
-use std::io::{IsTerminal, Write};
+use std::io::Write;
 use std::net::SocketAddr;
 use std::path::{Path, PathBuf};
 use std::process::ExitCode;
@@ -9,16 +9,13 @@ use std::process::ExitCode;
 use anyhow::Context;
 use clap::{Parser, Subcommand, ValueEnum};
 use docent::access::{AccessMode, AccessSetup, Origin, decide_access};
-use docent::adapters::{espeak_available, espeak_voices};
+use docent::cli::check::{self as check_cli, CheckFormat, counts, explain_hint, render};
 use docent::cli::corpus as corpus_cli;
 use docent::cli::explain as explain_cli;
 use docent::cli::fleet as fleet_cli;
 use docent::cli::translations as translations_cli;
 use docent::content::config::AdapterKind;
-use docent::content::{
-    Colour, Diagnostic, Severity, espeak_speaks, load_bundle, no_voice_diagnostics,
-    render_diagnostics, schema,
-};
+use docent::content::{load_bundle, schema};
 use docent::http::ConnectionLimits;
 use docent::reload::ReloadOptions;
 use docent::serve::{ServeOptions, Server, run};
@@ -41,8 +38,8 @@ enum Cmd {
         /// The bundle folder.
         bundle: PathBuf,
         /// Output format.
-        #[arg(long, value_enum, default_value_t = Format::Text)]
-        format: Format,
+        #[arg(long, value_enum, default_value_t = CheckFormat::Text)]
+        format: CheckFormat,
         /// Fail (exit 1) on warnings too, not only on errors.
         #[arg(long)]
         deny_warnings: bool,
@@ -160,14 +157,6 @@ enum Mode {
     Preview,
 }
 
-#[derive(Clone, Copy, ValueEnum)]
-enum Format {
-    /// One line per problem, for people.
-    Text,
-    /// A JSON array of {severity, code, message, file, line, column}, for tools.
-    Json,
-}
-
 fn main() -> ExitCode {
     let cli = Cli::parse();
     let result = match cli.command {
@@ -175,7 +164,7 @@ fn main() -> ExitCode {
             bundle,
             format,
             deny_warnings,
-        } => check(&bundle, format, deny_warnings),
+        } => check_cli::run(&bundle, format, deny_warnings),
         Cmd::Serve(args) => serve(&args),
         Cmd::Schema { which, out } => write_schema(which, out.as_deref()),
         Cmd::Corpus(args) => return corpus_cli::run(&args),
@@ -190,74 +179,6 @@ fn main() -> ExitCode {
             ExitCode::FAILURE
         }
     }
-}
-
-fn check(bundle: &Path, format: Format, deny_warnings: bool) -> anyhow::Result<ExitCode> {
-    let mut report = load_bundle(bundle);
-    // A bundle that speaks through espeak-ng: each language needs an installed voice. Asked of
-    // espeak-ng here, not while loading (loading runs nothing); serving warns the same way.
-    // That is with `speech: {adapter: espeak}`, and without any adapter written where espeak-ng
-    // is installed (serve's default).
-    if let Some(config) = report.bundle.as_ref().map(|b| &b.config)
-        && let Some(choice) = espeak_speaks(&config.speech, espeak_available())
-    {
-        let missing = no_voice_diagnostics(config, &espeak_voices(), choice);
-        report.diagnostics.extend(missing);
-    }
-    // The converters are asked about media to convert here too, not while loading.
-    let tools = docent::media::Tools::find();
-    docent::media::check_decodable(&report.conversions, &tools, &mut report.diagnostics);
-    let Counts {
-        errors,
-        warnings,
-        notes,
-    } = counts(&report.diagnostics);
-    match format {
-        Format::Json => println!("{}", serde_json::to_string_pretty(&report.diagnostics)?),
-        Format::Text => {
-            print!("{}", render(bundle, &report.diagnostics));
-            // Notes are counted only when there are some: most bundles have none.
-            let notes = match notes {
-                0 => String::new(),
-                n => format!(", {n} note(s)"),
-            };
-            println!(
-                "{}: {errors} error(s), {warnings} warning(s){notes}",
-                bundle.display()
-            );
-            if let Some(hint) = explain_hint(&report.diagnostics) {
-                println!("{hint}");
-            }
-        }
-    }
-    // Notes are no mistake: a bundle copied from a Mac passes `--deny-warnings`.
-    let failed = errors > 0 || (deny_warnings && warnings > 0);
-    Ok(if failed {
-        ExitCode::FAILURE
-    } else {
-        ExitCode::SUCCESS
-    })
-}
-
-/// The diagnostics drawn with their source lines, coloured on a terminal (unless `NO_COLOR`).
-fn render(bundle: &Path, diagnostics: &[Diagnostic]) -> String {
-    let colour = if std::io::stdout().is_terminal() && std::env::var_os("NO_COLOR").is_none() {
-        Colour::Styled
-    } else {
-        Colour::Plain
-    };
-    render_diagnostics(bundle, diagnostics, colour)
-}
-
-/// The line after the problems pointing to `docent explain`, with the code of the first error
-/// (else warning, else note) as the example: an author copies it as it is, and wants the worst
-/// explained first.
-fn explain_hint(diagnostics: &[Diagnostic]) -> Option<String> {
-    let worst = diagnostics.iter().min_by_key(|d| d.severity)?;
-    Some(format!(
-        "For more about a problem, type: docent explain {}",
-        worst.code
-    ))
 }
 
 fn write_schema(which: Option<SchemaKind>, out: Option<&Path>) -> anyhow::Result<ExitCode> {
@@ -277,27 +198,6 @@ fn write_schema(which: Option<SchemaKind>, out: Option<&Path>) -> anyhow::Result
         println!("wrote {}", path.display());
     }
     Ok(ExitCode::SUCCESS)
-}
-
-/// How many problems of each severity a check found.
-struct Counts {
-    errors: usize,
-    warnings: usize,
-    notes: usize,
-}
-
-fn counts(diagnostics: &[Diagnostic]) -> Counts {
-    let of = |severity| {
-        diagnostics
-            .iter()
-            .filter(|d| d.severity == severity)
-            .count()
-    };
-    Counts {
-        errors: of(Severity::Error),
-        warnings: of(Severity::Warning),
-        notes: of(Severity::Note),
-    }
 }
 
 fn serve(args: &ServeArgs) -> anyhow::Result<ExitCode> {

@@ -14,6 +14,7 @@ mod browser_shells;
 mod bundle_files;
 mod channel_policies;
 mod cli;
+mod cli_explain;
 mod consent_under_load;
 mod corpus_annotations;
 mod corpus_cli;

@@ -60,6 +60,25 @@ fn mpeg1(path: &Path, seconds: u32, hz: u32) {
     );
 }
 
+/// One picture from ffmpeg's test sources (`testsrc2=size=640x480`, `color=c=red:...`) at
+/// `path`, in the format its ending names.
+fn picture(source: &str, path: &Path) {
+    let path = path.to_str().expect("a UTF-8 path");
+    let args = [
+        "-v",
+        "error",
+        "-y",
+        "-f",
+        "lavfi",
+        "-i",
+        source,
+        "-frames:v",
+        "1",
+        path,
+    ];
+    make("ffmpeg", &args);
+}
+
 /// What ffprobe says of `bytes`: the format name and each stream's codec and size.
 fn probe(bytes: &[u8]) -> Value {
     let dir = tempfile::tempdir().expect("temp dir");
@@ -155,53 +174,11 @@ async fn heic_and_tiff_photos_and_an_oversized_scan_become_webp_that_fits_the_sc
     let media = bundle.path().join("media");
     let at = |name: &str| media.join(name).to_str().expect("UTF-8").to_owned();
     let png = at("source.png");
-    make(
-        "ffmpeg",
-        &[
-            "-v",
-            "error",
-            "-y",
-            "-f",
-            "lavfi",
-            "-i",
-            "testsrc2=size=640x480",
-            "-frames:v",
-            "1",
-            &png,
-        ],
-    );
+    picture("testsrc2=size=640x480", Path::new(&png));
     make("heif-enc", &["-q", "80", &png, "-o", &at("photo.heic")]);
     std::fs::remove_file(&png).expect("remove");
-    make(
-        "ffmpeg",
-        &[
-            "-v",
-            "error",
-            "-y",
-            "-f",
-            "lavfi",
-            "-i",
-            "testsrc2=size=400x300",
-            "-frames:v",
-            "1",
-            &at("scan.tif"),
-        ],
-    );
-    make(
-        "ffmpeg",
-        &[
-            "-v",
-            "error",
-            "-y",
-            "-f",
-            "lavfi",
-            "-i",
-            "color=c=red:size=5000x300",
-            "-frames:v",
-            "1",
-            &at("wide.png"),
-        ],
-    );
+    picture("testsrc2=size=400x300", Path::new(&at("scan.tif")));
+    picture("color=c=red:size=5000x300", Path::new(&at("wide.png")));
 
     let app = TestApp::start(bundle.path()).await;
     assert!(settled(&app).await.is_empty(), "nothing failed");
@@ -393,24 +370,7 @@ async fn a_kiosk_reloads_the_pages_that_show_a_picture_once_it_is_converted() {
         .with_file("pages/room.html", &scan_page("room"))
         .with_file("pages/other.html", "<!doctype html><title>other</title>");
     let tif = |name: &str, size: &str| {
-        let at = bundle.path().join(name);
-        let at = at.to_str().expect("UTF-8").to_owned();
-        let source = format!("testsrc2=size={size}");
-        make(
-            "ffmpeg",
-            &[
-                "-v",
-                "error",
-                "-y",
-                "-f",
-                "lavfi",
-                "-i",
-                &source,
-                "-frames:v",
-                "1",
-                &at,
-            ],
-        );
+        picture(&format!("testsrc2=size={size}"), &bundle.path().join(name));
     };
     std::fs::create_dir_all(bundle.path().join("pages/images")).expect("mkdir");
     tif("pages/images/scan.tif", "200x100");

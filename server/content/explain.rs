@@ -5,17 +5,8 @@
 //! ([`explain_text`]); `docs/DIAGNOSTICS.md` is [`reference_markdown`], checked against the
 //! file by a test (`DOCENT_BLESS=1` rewrites it).
 //!
-//! A page opens with a few lines of front matter, then the Markdown of the entry:
-//!
-//! ```text
-//! ---
-//! group: acts
-//! severity: error
-//! fix: Add `Label: SOME_NAME`.
-//! ---
-//!
-//! *Error.* An act has no `Label`. ...
-//! ```
+//! A page opens with front matter between two `---` lines (`group: acts`, `severity: error`,
+//! `fix: Add ...`: see `diagnostics/missing-label.md`), then the Markdown of the entry.
 
 use std::fmt::Write as _;
 

@@ -29,6 +29,7 @@ use crate::sync::lock;
 pub use cache::default_folder;
 pub use docent_protocol::state::{MediaState, MediaView};
 pub use probe::check_decodable;
+pub use recipe::Recipe;
 pub use run::Tools;
 
 /// How a file of the bundle is served.

@@ -14,7 +14,7 @@ use crate::content::{ConvertInto, SCALED_SIDE};
 
 /// How a file is converted; its name is part of the cached file's name.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub(super) enum Recipe {
+pub enum Recipe {
     /// H.264 (with AAC or MP3 sound) re-packed into MP4.
     RepackMp4,
     /// VP8, VP9 or AV1 (with Opus or Vorbis sound) re-packed into WebM.
@@ -49,7 +49,7 @@ impl Recipe {
     }
 
     /// ffmpeg's arguments from `input` to `output`, with progress on standard output.
-    pub(super) fn ffmpeg_args(self, input: &Path, output: &Path) -> Vec<String> {
+    pub fn ffmpeg_args(self, input: &Path, output: &Path) -> Vec<String> {
         let mut args: Vec<String> = ["-nostdin", "-hide_banner", "-loglevel", "error", "-y"]
             .map(String::from)
             .to_vec();
