@@ -213,3 +213,25 @@ async fn timer_delays_are_served_in_milliseconds_read_by_the_checkers_rule() {
     );
     server.stop().await;
 }
+
+#[tokio::test]
+async fn what_a_mac_or_an_editor_leaves_is_not_served_but_the_pages_are() {
+    let bundle = TempBundle::new("- Label: A\n  Text: Hi\n")
+        .with_file("pages/index.html", "<!doctype html><title>home</title>")
+        .with_file("media/poster.png", "not really a picture");
+    let copied = common::mac_copy::as_copied_from_a_mac(bundle.path());
+    assert!(copied >= 4, "{copied} `._` files");
+    std::fs::write(bundle.path().join("pages/index.html.bak"), "<p>old</p>").expect("write");
+    let app = TestApp::start(bundle.path()).await;
+    for litter in [
+        "/pages/._index.html",
+        "/pages/.DS_Store",
+        "/media/._poster.png",
+        "/pages/index.html.bak",
+    ] {
+        let answer = app.get_with(litter, &[]).await;
+        assert_eq!(answer.status, 404, "{litter} is not content");
+    }
+    assert_eq!(app.get_with("/pages/index.html", &[]).await.status, 200);
+    app.stop().await;
+}

@@ -97,8 +97,12 @@ fn every_shipped_yaml_file_names_its_schema_first_and_still_loads() {
             seen += 1;
         }
         let report = docent::content::load_bundle(&dir);
+        // Notes are no problem (the paper's MPEG-1 film, converted when served).
+        let problems: Vec<_> = (report.diagnostics.iter())
+            .filter(|d| d.severity != docent::content::Severity::Note)
+            .collect();
         assert!(
-            report.diagnostics.is_empty(),
+            problems.is_empty(),
             "{}: {:?}",
             dir.display(),
             report.diagnostics

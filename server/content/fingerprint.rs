@@ -3,6 +3,9 @@
 //! `pages/` and `media/`), so a researcher can tell from a session's manifest exactly which
 //! content it was recorded with, and whether two sessions had the same.
 //!
+//! Files computers and editors leave in copied folders (`.DS_Store`, `._name`, `Thumbs.db`,
+//! backups) do not count: opening a folder on a Mac does not change the content.
+//!
 //! Computed when `docent serve` starts and each time a saved bundle goes live, never by
 //! `docent check`. Links are not followed: a link's target path is hashed in its place, since
 //! Docent itself never serves what a link leads out of the bundle to.
@@ -14,6 +17,7 @@ use std::path::{Path, PathBuf};
 use sha2::{Digest, Sha256};
 
 use crate::BundleArea;
+use crate::litter::is_litter;
 
 /// `sha256:` and 64 hex digits over the bundle folder `root` (see the module's notes); the
 /// error names the file that could not be read.
@@ -22,7 +26,7 @@ pub fn bundle_fingerprint(root: &Path) -> io::Result<String> {
     for entry in fs::read_dir(root)? {
         let entry = entry?;
         let kind = entry.file_type()?;
-        if !kind.is_dir() {
+        if !kind.is_dir() && !is_litter(&entry.file_name().to_string_lossy()) {
             files.push(PathBuf::from(entry.file_name()));
         }
     }
@@ -82,7 +86,7 @@ fn collect(root: &Path, folder: &Path, files: &mut Vec<PathBuf>) -> io::Result<(
         let relative = folder.join(entry.file_name());
         if entry.file_type()?.is_dir() {
             collect(root, &relative, files)?;
-        } else {
+        } else if !is_litter(&entry.file_name().to_string_lossy()) {
             files.push(relative);
         }
     }
@@ -134,6 +138,27 @@ mod tests {
             ("media/a.txt", ""),
         ]);
         assert_ne!(print(&a), print(&moved));
+    }
+
+    #[test]
+    fn files_a_mac_or_an_editor_leaves_do_not_count() {
+        let dir = bundle(&[
+            ("acts.yaml", "- Label: A\n"),
+            ("pages/index.html", "<p>hi</p>"),
+        ]);
+        let before = bundle_fingerprint(dir.path()).expect("fingerprint");
+        for litter in [
+            ".DS_Store",
+            "._acts.yaml",
+            "pages/._index.html",
+            "pages/Thumbs.db",
+            "acts.yaml~",
+        ] {
+            std::fs::write(dir.path().join(litter), "left behind").expect("write");
+        }
+        assert_eq!(bundle_fingerprint(dir.path()).expect("fingerprint"), before);
+        std::fs::write(dir.path().join("pages/new.html"), "<p>new</p>").expect("write");
+        assert_ne!(bundle_fingerprint(dir.path()).expect("fingerprint"), before);
     }
 
     #[test]

@@ -109,6 +109,7 @@ pub use duration::parse_duration;
 pub use fingerprint::{bundle_fingerprint, corpus_fingerprint};
 pub use highlight::{Area, Shape};
 pub use language::{Language, Languages};
+pub use litter::is_litter;
 pub use load::{ActsReplacements, LoadReport, load_bundle, load_bundle_replacing};
 pub use media::convert::{Conversion, ConvertInto, ConvertWhy, OVERSIZED_SIDE, SCALED_SIDE};
 pub use model::{

@@ -53,6 +53,13 @@ impl Litter {
     }
 }
 
+/// Whether a file called `name` is something computers and editors leave in copied folders
+/// (`._name`, `.DS_Store`, `Thumbs.db`, `desktop.ini`, `name~`, `.bak`, `.swp`, `.#name`): not
+/// content, so never checked, served, counted in the fingerprint or taken for a change.
+pub fn is_litter(name: &str) -> bool {
+    litter_kind(name).is_some()
+}
+
 /// The kind of leftover a file called `name` is, or `None` for a file that may be content.
 pub(crate) fn litter_kind(name: &str) -> Option<Litter> {
     let lower = name.to_ascii_lowercase();

@@ -17,7 +17,7 @@ use axum::response::{IntoResponse, Response};
 use tower::ServiceExt;
 use tower_http::services::ServeFile;
 
-use crate::content::{BundleArea, PathError, resolve_in_bundle};
+use crate::content::{BundleArea, PathError, is_litter, resolve_in_bundle};
 use crate::http::act_timers::with_act_timers;
 use crate::http::{AppError, missing_page};
 use crate::media::Served;
@@ -56,6 +56,11 @@ async fn serve(
             return not_found(&state, area, &rel, req.headers(), error).await;
         }
     };
+    // What computers and editors leave in copied folders is not content: never served.
+    if rel.split('/').any(is_litter) {
+        let error = AppError::not_found(format!("no such file: {rel}"));
+        return not_found(&state, area, &rel, req.headers(), error).await;
+    }
     let bundle = state.dispatcher.bundle();
     let root = bundle.root.clone();
     // `pages/de/tour.html` missing: the default language's `pages/tour.html` (a page or an

@@ -51,11 +51,13 @@ impl Media {
         if cancel.is_cancelled() {
             return;
         }
+        // The status first, then the event: whoever acts on the event finds the file ready.
         let shown = &conversion.shown;
-        let status = match outcome {
+        match outcome {
             Ok((file, made)) => {
                 let elapsed_ms = u64::try_from(started.elapsed().as_millis()).unwrap_or(u64::MAX);
                 let bytes = std::fs::metadata(&file).map_or(0, |m| m.len());
+                self.set(&conversion.path, cancel, Status::Ready(file));
                 if made {
                     tracing::info!(file = %shown, elapsed_ms, bytes, "media converted");
                     self.publish(EventKind::MediaConverted {
@@ -67,18 +69,16 @@ impl Media {
                 } else {
                     tracing::debug!(file = %shown, "media converted before, taken from the cache");
                 }
-                Status::Ready(file)
             }
             Err(reason) => {
                 tracing::warn!("{shown} cannot be shown: {reason}");
+                self.set(&conversion.path, cancel, Status::Failed(reason.clone()));
                 self.publish(EventKind::MediaFailed {
                     file: shown.clone(),
-                    reason: reason.clone(),
+                    reason,
                 });
-                Status::Failed(reason)
             }
-        };
-        self.set(&conversion.path, cancel, status);
+        }
     }
 
     /// The converted file and whether it was made now (else found in the cache).

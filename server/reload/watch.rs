@@ -11,6 +11,8 @@ use notify_debouncer_full::notify::{EventKind, RecommendedWatcher, RecursiveMode
 use notify_debouncer_full::{DebounceEventResult, Debouncer, RecommendedCache, new_debouncer};
 use tokio::sync::mpsc;
 
+use crate::content::is_litter;
+
 /// What the watcher saw.
 #[derive(Debug)]
 pub enum Seen {
@@ -64,13 +66,14 @@ impl BundleWatcher {
     }
 }
 
-/// `path` relative to `root`, `/`-separated; `None` outside it or for hidden and back-up files.
+/// `path` relative to `root`, `/`-separated; `None` outside it, for hidden files and for what
+/// computers and editors leave (`Thumbs.db`, `desktop.ini`, `.bak`: [`is_litter`]).
 fn relative(root: &Path, path: &Path) -> Option<String> {
     let rel = path.strip_prefix(root).ok()?;
     let mut parts = Vec::new();
     for part in rel.components() {
         let part = part.as_os_str().to_string_lossy();
-        if part.starts_with('.') || part.ends_with('~') {
+        if part.starts_with('.') || is_litter(&part) {
             return None;
         }
         parts.push(part.into_owned());
@@ -95,6 +98,9 @@ mod tests {
         assert_eq!(rel("/b/.acts.yaml.swp"), None);
         assert_eq!(rel("/b/pages/.git/x"), None);
         assert_eq!(rel("/b/acts.yaml~"), None);
+        assert_eq!(rel("/b/pages/Thumbs.db"), None);
+        assert_eq!(rel("/b/media/desktop.ini"), None);
+        assert_eq!(rel("/b/acts.yaml.bak"), None);
         assert_eq!(rel("/elsewhere/acts.yaml"), None);
     }
 }
