@@ -209,7 +209,7 @@ test('kill -9 mid-session leaves a playable recording and a readable log; the ne
     assert.ok(corpusEvents(server.corpus).some((e) => e.type === 'recording.started'), 'the log reads');
     const again = await startDocent(files, { corpus });
     try {
-      assert.match(again.output(), /unacknowledged; cut back to its last acknowledged chunk/);
+      await again.waitForOutput(/unacknowledged; cut back to its last acknowledged chunk/);
       assert.equal(fs.statSync(file).size, acked, 'cut back to the acknowledged length');
       const { seconds, errors } = decode(file);
       // A recording cut short ends inside a WebM cluster of unknown size, as a live stream

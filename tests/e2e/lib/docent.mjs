@@ -110,9 +110,11 @@ export async function startDocent(bundle, { port = 0, corpus, args = [], env = {
     },
   );
   let output = '';
+  const outputWaiters = new Set();
   const keep = (chunk) => {
     output += chunk;
     if (output.length > 64_000) output = output.slice(-32_000);
+    for (const waiter of outputWaiters) waiter();
   };
   child.stdout.setEncoding('utf8');
   child.stderr.setEncoding('utf8');
@@ -154,6 +156,24 @@ export async function startDocent(bundle, { port = 0, corpus, args = [], env = {
     port: Number(new URL(base).port),
     process: child,
     output: () => output,
+    /**
+     * Resolves with the output once it matches `pattern` (stdout and stderr are separate pipes:
+     * a line logged before the addresses may arrive after them).
+     */
+    waitForOutput: (pattern) =>
+      withDeadline(
+        new Promise((resolve) => {
+          const check = () => {
+            if (!pattern.test(output)) return;
+            outputWaiters.delete(check);
+            resolve(output);
+          };
+          outputWaiters.add(check);
+          check();
+        }),
+        DEADLINE_MS,
+        () => `docent's output never matched ${pattern}:\n${output}`,
+      ),
     /**
      * GET or POST a JSON route with the operator credential, e.g. `api('/api/state')`,
      * `api('/api/acts/X/trigger', {})`.
