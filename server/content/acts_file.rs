@@ -353,7 +353,7 @@ fn labels_in_lines(source: &str, ranges: &[(u32, u32)]) -> Vec<String> {
         .filter_map(|(_, line)| {
             let rest = line
                 .trim_start()
-                .trim_start_matches("- ")
+                .trim_start_matches('-')
                 .trim_start()
                 .strip_prefix("Label:")?;
             let label = rest

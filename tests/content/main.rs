@@ -26,6 +26,7 @@ mod bundle;
 mod commands;
 mod copied_folders;
 mod diagnostics_reference;
+mod getting_started;
 mod language_mistakes;
 mod language_settings;
 mod load;

@@ -23,9 +23,9 @@ pub(super) fn top_level_items(source: &str) -> Option<Vec<Item>> {
     let mut offset = 0;
     for (index, line) in source.split_inclusive('\n').enumerate() {
         let number = to_u32(index + 1);
-        let starts_item = line.starts_with('-')
-            && !line.starts_with("--")
-            && line[1..].chars().next().is_none_or(char::is_whitespace);
+        // `-Label: X` (the dash glued to the key) is a broken act start: still its own item,
+        // so only that act is lost.
+        let starts_item = is_act_start(line) || glued_dash_key(line).is_some();
         if starts_item {
             if let Some(last) = items.last_mut() {
                 last.lines.1 = number;
@@ -51,6 +51,70 @@ pub(super) fn top_level_items(source: &str) -> Option<Vec<Item>> {
         offset += line.len();
     }
     (!items.is_empty()).then_some(items)
+}
+
+/// Whether `line` starts a top-level list item: `-` in column 1, then a space or nothing.
+fn is_act_start(line: &str) -> bool {
+    line.starts_with('-')
+        && !line.starts_with("--")
+        && line[1..].chars().next().is_none_or(char::is_whitespace)
+}
+
+/// `Label` for `-Label: X` or `-Label:`: a key with the list item's dash glued to it.
+fn glued_dash_key(content: &str) -> Option<&str> {
+    let rest = content.strip_prefix('-')?;
+    if !rest.starts_with(char::is_alphabetic) {
+        return None;
+    }
+    let end = rest.find(|c: char| !(c.is_alphanumeric() || c == '_'))?;
+    let after = &rest[end..];
+    let is_key =
+        after.starts_with(':') && after[1..].chars().next().is_none_or(char::is_whitespace);
+    is_key.then(|| &rest[..end])
+}
+
+/// A slip at the start of an act that YAML notices only lines later.
+#[derive(Debug, PartialEq, Eq)]
+pub(super) enum ActStart {
+    /// `-Label: X`: the dash glued to the key (1-based line and column of the dash).
+    GluedDash {
+        line: u32,
+        column: u32,
+        key: String,
+        fixed: String,
+    },
+    /// `Label: X` in column 1 with no dash in front.
+    NoDash { line: u32, fixed: String },
+}
+
+/// The slip that starts the act holding `line`: looking up from `line` to the last proper
+/// act start (`- ` in column 1), a key with the dash glued to it, or `Label:` in column 1
+/// without its dash. The parser's own place (the line after, or a vague "indentation")
+/// points away from it.
+pub(super) fn act_start_slip(source: &str, line: u32) -> Option<ActStart> {
+    let lines: Vec<&str> = source.lines().take(line as usize).collect();
+    for (index, text) in lines.iter().enumerate().rev() {
+        if is_act_start(text) {
+            return None;
+        }
+        let number = to_u32(index + 1);
+        let content = text.trim_start_matches(' ');
+        if let Some(key) = glued_dash_key(content) {
+            return Some(ActStart::GluedDash {
+                line: number,
+                column: to_u32(text.len() - content.len() + 1),
+                key: key.to_owned(),
+                fixed: format!("- {}", content[1..].trim_end()),
+            });
+        }
+        if text.starts_with("Label:") {
+            return Some(ActStart::NoDash {
+                line: number,
+                fixed: format!("- {}", text.trim_end()),
+            });
+        }
+    }
+    None
 }
 
 /// The position of byte `offset` (1-based line, column in characters).
@@ -217,6 +281,35 @@ mod tests {
         assert_eq!(ranges, [((3, 6), 11..20), ((6, 7), 20..24)]);
         assert!(top_level_items("key: v\n- a\n").is_none());
         assert!(top_level_items("# only a comment\n").is_none());
+    }
+
+    #[test]
+    fn a_dash_glued_to_a_key_starts_an_item_of_its_own_and_is_the_slip() {
+        let source = "-Label: A\n  Text:\n    - hi\n\n- Label: B\n  Text: b\n";
+        let items = top_level_items(source).expect("items");
+        let lines: Vec<(u32, u32)> = items.iter().map(|i| i.lines).collect();
+        assert_eq!(lines, [(1, 5), (5, 7)]);
+        assert_eq!(
+            act_start_slip(source, 2),
+            Some(ActStart::GluedDash {
+                line: 1,
+                column: 1,
+                key: "Label".to_owned(),
+                fixed: "- Label: A".to_owned(),
+            })
+        );
+        assert_eq!(act_start_slip(source, 6), None);
+        assert_eq!(
+            act_start_slip("- Label: A\n  Text: a\nLabel: B\n  Text: b\n", 4),
+            Some(ActStart::NoDash {
+                line: 3,
+                fixed: "- Label: B".to_owned(),
+            })
+        );
+        // A text starting with a dash is not a key: `-20 degrees`, `-Hello`.
+        assert_eq!(glued_dash_key("-20: x"), None);
+        assert_eq!(glued_dash_key("-Hello there"), None);
+        assert_eq!(glued_dash_key("-Text:"), Some("Text"));
     }
 
     #[test]

@@ -6,7 +6,7 @@ use std::sync::Arc;
 
 use serde_saphyr::Spanned;
 
-use super::layout::{Item, unclosed_bracket_before};
+use super::layout::{Item, act_start_slip, unclosed_bracket_before};
 use super::{Kind, Node, YamlFile, options, raw, wording};
 use crate::diagnostic::{Diagnostic, DiagnosticCode};
 use crate::model::Pos;
@@ -82,6 +82,12 @@ pub(super) fn report_error(
         .iter()
         .any(|&(line, _)| line.abs_diff(pos.line) <= 1);
     if !explained_by_tab {
+        // `-Label: X` or `Label: X` without its dash: the parser notices it a line later.
+        if let Some(slip) = act_start_slip(source, pos.line) {
+            let (at, message) = wording::act_start(file, &slip);
+            out.push(Diagnostic::error(syntax_code, &at, message));
+            return;
+        }
         // A bracket left open is noticed only lines later: report it where it was opened.
         if wording::about_brackets(err)
             && let Some((line, column)) = unclosed_bracket_before(source, pos.line, pos.column)

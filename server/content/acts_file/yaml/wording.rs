@@ -1,7 +1,12 @@
 //! YAML parser errors re-worded for museum staff: what happened at this place and how to fix
 //! it, without parser jargon. The parser's own words are kept only as a last resort.
 
+use std::sync::Arc;
+
 use serde_saphyr::Error;
+
+use super::layout::ActStart;
+use crate::model::Pos;
 
 /// A plain-language message for a parse error found on `line` (the text of the line the
 /// parser stopped at).
@@ -104,6 +109,32 @@ fn describe_at_line(msg: &str, line: &str) -> Option<String> {
         );
     }
     None
+}
+
+/// Where and how to tell a slip at the start of an act (see [`ActStart`]).
+pub(super) fn act_start(file: &Arc<str>, slip: &ActStart) -> (Pos, String) {
+    match slip {
+        ActStart::GluedDash {
+            line,
+            column,
+            key,
+            fixed,
+        } => (
+            Pos::new(file.clone(), *line, *column),
+            format!(
+                "This line starts with a dash glued to `{key}:`, so YAML does not see a new \
+                 item here and cannot read the lines below it. Put a space after the `-`: \
+                 `{fixed}`."
+            ),
+        ),
+        ActStart::NoDash { line, fixed } => (
+            Pos::new(file.clone(), *line, 1),
+            format!(
+                "This act has no `- ` in front of `Label:`, so YAML cannot tell where it \
+                 begins. Every act starts with a dash and a space: `{fixed}`."
+            ),
+        ),
+    }
 }
 
 /// The message for a `[` or `{` that is never closed, reported at the bracket.

@@ -1,0 +1,124 @@
+//! The mistakes a new author makes following docs/GETTING-STARTED.md to the letter: its
+//! `hello-museum` bundle, broken one slip at a time, and each slip told at the line (and
+//! column) that causes it, with a hint a museum author can act on. Not where YAML or the
+//! page finally stumbles over it.
+
+use std::fs;
+use std::path::Path;
+
+use crate::common;
+
+use common::check::{assert_plain, check_all, places};
+use docent_content::{Diagnostic, LoadReport};
+
+/// `acts.yaml` of the tutorial's step 2, as typed.
+const ACTS: &str = "\
+- Label: WELCOME
+  Text:
+    - Welcome to the museum!
+    - Hello, and welcome!
+
+- Label: OPENING_HOURS
+  Text:
+    - We are open every day from ten to six.
+";
+
+/// `pages/index.html` of step 3, as typed.
+const HOME: &str = r#"<!DOCTYPE html>
+<html lang="en">
+<head>
+  <meta charset="utf-8">
+  <title>Welcome</title>
+</head>
+<body>
+  <h1>Welcome!</h1>
+  <button type="button" data-act="WELCOME">Say hello</button>
+  <button type="button" data-act="OPENING_HOURS">When are you open?</button>
+</body>
+</html>
+"#;
+
+/// The tutorial's bundle with `files` written over it (path, contents) and `gone` removed.
+fn hello_museum(files: &[(&str, &str)], gone: &[&str]) -> tempfile::TempDir {
+    let dir = tempfile::tempdir().expect("temp dir");
+    let root = dir.path();
+    fs::create_dir_all(root.join("pages")).expect("pages");
+    fs::create_dir_all(root.join("media")).expect("media");
+    fs::write(root.join("acts.yaml"), ACTS).expect("acts");
+    fs::write(root.join("pages/index.html"), HOME).expect("home");
+    for (rel, contents) in files {
+        let path = root.join(rel);
+        fs::create_dir_all(path.parent().expect("parent")).expect("folders");
+        fs::write(path, contents).expect("write");
+    }
+    for rel in gone {
+        fs::remove_file(root.join(rel)).expect("remove");
+    }
+    dir
+}
+
+/// `ACTS` with line `number` (1-based) replaced by `with`.
+fn acts_with_line(number: usize, with: &str) -> String {
+    ACTS.lines()
+        .enumerate()
+        .map(|(i, line)| {
+            if i + 1 == number {
+                format!("{with}\n")
+            } else {
+                format!("{line}\n")
+            }
+        })
+        .collect()
+}
+
+fn report_of(dir: &Path) -> LoadReport {
+    let report = check_all(dir);
+    assert_plain(&report);
+    report
+}
+
+/// The one diagnostic of `report`, which must be `code` at `at`.
+fn the_one<'r>(report: &'r LoadReport, code: &'static str, at: &str) -> &'r Diagnostic {
+    assert_eq!(places(report), [(code, at.to_owned())]);
+    &report.diagnostics[0]
+}
+
+fn says(diagnostic: &Diagnostic, words: &str) {
+    assert!(diagnostic.message.contains(words), "{}", diagnostic.message);
+}
+
+#[test]
+fn the_tutorial_bundle_as_typed_passes_without_a_word() {
+    let dir = hello_museum(&[], &[]);
+    assert!(report_of(dir.path()).diagnostics.is_empty());
+}
+
+#[test]
+fn a_dash_glued_to_the_first_label_is_told_at_that_line_not_the_next() {
+    let acts = acts_with_line(1, "-Label: WELCOME");
+    let dir = hello_museum(&[("acts.yaml", &acts)], &[]);
+    let report = report_of(dir.path());
+    let told = the_one(&report, "yaml-syntax", "acts.yaml:1:1");
+    says(told, "dash glued to `Label:`");
+    says(told, "Put a space after the `-`: `- Label: WELCOME`.");
+}
+
+#[test]
+fn a_dash_glued_to_a_later_label_is_told_at_that_label() {
+    let acts = acts_with_line(6, "-Label: OPENING_HOURS");
+    let dir = hello_museum(&[("acts.yaml", &acts)], &[]);
+    let report = report_of(dir.path());
+    // The page's `OPENING_HOURS` is not blamed on the page: the act is only unread.
+    let told = the_one(&report, "yaml-syntax", "acts.yaml:6:1");
+    says(told, "`- Label: OPENING_HOURS`");
+}
+
+#[test]
+fn an_act_without_its_dash_is_told_at_its_label() {
+    let acts = acts_with_line(6, "Label: OPENING_HOURS");
+    let dir = hello_museum(&[("acts.yaml", &acts)], &[]);
+    let report = report_of(dir.path());
+    let told = the_one(&report, "yaml-syntax", "acts.yaml:6:1");
+    says(told, "no `- ` in front of `Label:`");
+    says(told, "`- Label: OPENING_HOURS`");
+}
