@@ -192,9 +192,9 @@ diagnostic_codes! {
     /// looks like a note after a finished sentence.
     TextCutByComment = "text-cut-by-comment",
     /// A text without quotes goes on over several lines, and YAML joins them into one. An error
-    /// when a following line starts with `- ` (a list item indented one space too far, which
-    /// swallowed the next alternative); a warning otherwise (a missing `- `, or a long text
-    /// wrapped by hand).
+    /// when a following line starts with `- ` (a list item indented one space too far, or a
+    /// first alternative without its own `- `, which swallowed the next ones); a warning
+    /// otherwise (a missing `- `, or a long text wrapped by hand).
     JoinedLines = "joined-lines",
     /// A text starts with `–`, `—`, `−` or `•`: a word processor's dash or bullet, not YAML's
     /// `-`, so a whole list became one text.

@@ -122,3 +122,75 @@ fn an_act_without_its_dash_is_told_at_its_label() {
     says(told, "no `- ` in front of `Label:`");
     says(told, "`- Label: OPENING_HOURS`");
 }
+
+/// `ACTS` with a third alternative under `WELCOME`, so a text can lack its `- ` first, between
+/// or last; its lines 3 to 5 are the alternatives.
+fn three_alternatives(line: usize, with: &str) -> String {
+    let acts = ACTS.replace(
+        "    - Hello, and welcome!\n",
+        "    - Hello, and welcome!\n    - Good day!\n",
+    );
+    acts.lines()
+        .enumerate()
+        .map(|(i, l)| {
+            if i + 1 == line {
+                format!("{with}\n")
+            } else {
+                format!("{l}\n")
+            }
+        })
+        .collect()
+}
+
+#[test]
+fn a_first_alternative_without_its_dash_is_told_at_its_own_line() {
+    let acts = three_alternatives(3, "    Welcome to the museum!");
+    let dir = hello_museum(&[("acts.yaml", &acts)], &[]);
+    let report = report_of(dir.path());
+    let told = the_one(&report, "joined-lines", "acts.yaml:3:5");
+    assert!(told.is_error());
+    says(
+        told,
+        "This line has no `- ` in front, but the lines below it start with `- `",
+    );
+    says(
+        told,
+        "\"Welcome to the museum! - Hello, and welcome! - Good day!\"",
+    );
+    says(told, "`- Welcome to the museum!`");
+    assert!(!told.message.contains("lines above"), "{}", told.message);
+}
+
+#[test]
+fn an_alternative_between_others_without_its_dash_is_told_at_its_own_line() {
+    for (line, text) in [(4, "Hello, and welcome!"), (5, "Good day!")] {
+        let acts = three_alternatives(line, &format!("    {text}"));
+        let dir = hello_museum(&[("acts.yaml", &acts)], &[]);
+        let report = report_of(dir.path());
+        let told = the_one(&report, "yaml-syntax", &format!("acts.yaml:{line}:5"));
+        says(told, "no `- ` in front, unlike the `- ` line above it");
+        says(told, &format!("`- {text}`"));
+    }
+}
+
+#[test]
+fn a_first_text_written_after_text_colon_is_told_there() {
+    let acts = three_alternatives(3, "").replacen("  Text:\n\n", "  Text: Welcome!\n", 1);
+    let dir = hello_museum(&[("acts.yaml", &acts)], &[]);
+    let report = report_of(dir.path());
+    let told = the_one(&report, "joined-lines", "acts.yaml:2:9");
+    says(told, "on the same line as `Text:`");
+    says(told, "`- Welcome!`");
+}
+
+#[test]
+fn a_first_alternative_with_a_glued_dash_is_one_slip_with_a_one_line_fix() {
+    let acts = three_alternatives(3, "    -Welcome to the museum!");
+    let dir = hello_museum(&[("acts.yaml", &acts)], &[]);
+    let report = report_of(dir.path());
+    let told = the_one(&report, "dash-without-space", "acts.yaml:3:5");
+    says(
+        told,
+        "Put a space after the dash: `- Welcome to the museum!`.",
+    );
+}

@@ -100,8 +100,10 @@ pub(super) fn report_error(
             ));
             return;
         }
-        let line = source.lines().nth(pos.line.saturating_sub(1) as usize);
-        let message = wording::describe(err, line.unwrap_or_default());
+        let lines: Vec<&str> = source.lines().take(pos.line as usize).collect();
+        let (line, before) = lines.split_last().unwrap_or((&"", &[]));
+        let above = before.iter().rev().find(|l| !l.trim().is_empty());
+        let message = wording::describe(err, line, above.copied().unwrap_or_default());
         out.push(Diagnostic::error(syntax_code, &pos, message));
     }
 }

@@ -9,10 +9,10 @@ use super::layout::ActStart;
 use crate::model::Pos;
 
 /// A plain-language message for a parse error found on `line` (the text of the line the
-/// parser stopped at).
-pub(super) fn describe(err: &Error, line: &str) -> String {
+/// parser stopped at; `above`, the last line with text before it).
+pub(super) fn describe(err: &Error, line: &str, above: &str) -> String {
     match err.without_snippet() {
-        Error::AliasError { error, .. } => describe(error, line),
+        Error::AliasError { error, .. } => describe(error, line, above),
         Error::Budget { .. }
         | Error::AliasReplayLimitExceeded { .. }
         | Error::AliasExpansionLimitExceeded { .. }
@@ -36,7 +36,8 @@ pub(super) fn describe(err: &Error, line: &str) -> String {
             .to_owned(),
         other => {
             let message = message_of(other);
-            describe_at_line(&message, line).unwrap_or_else(|| describe_parser_message(&message))
+            describe_at_line(&message, line, above)
+                .unwrap_or_else(|| describe_parser_message(&message))
         }
     }
 }
@@ -44,7 +45,7 @@ pub(super) fn describe(err: &Error, line: &str) -> String {
 /// Advice from the line itself, for the mistakes the parser's message alone does not tell
 /// apart: a dash without its space, a missing `- ` or colon, a key indented too far, quotes
 /// closed too early.
-fn describe_at_line(msg: &str, line: &str) -> Option<String> {
+fn describe_at_line(msg: &str, line: &str, above: &str) -> Option<String> {
     let lower = msg.to_lowercase();
     let content = line.trim_start();
     // `    Text: hi`: one key and its value (a text with its own `: ` is the other mistake).
@@ -100,6 +101,9 @@ fn describe_at_line(msg: &str, line: &str) -> Option<String> {
                 content[1..].trim_start()
             ));
         }
+        if let Some(message) = missing_dash_below_item(line, above) {
+            return Some(message);
+        }
         return Some(
             "YAML expected a key with a colon here (such as `Text:`) or a list item starting \
              with `- `. If this line is another alternative, start it with `- ` in the same \
@@ -109,6 +113,22 @@ fn describe_at_line(msg: &str, line: &str) -> Option<String> {
         );
     }
     None
+}
+
+/// `    Welcome!` under `    - Hello!`: an alternative after the first without its `- `.
+fn missing_dash_below_item(line: &str, above: &str) -> Option<String> {
+    let content = line.trim_start_matches(' ');
+    let above_content = above.trim_start_matches(' ');
+    let same_column = line.len() - content.len() == above.len() - above_content.len();
+    if !same_column || !above_content.starts_with("- ") || content.starts_with('-') {
+        return None;
+    }
+    Some(format!(
+        "This line has no `- ` in front, unlike the `- ` line above it, so YAML cannot read it \
+         as another text of the list. Put a dash and a space in front of it, in the same column \
+         as the `- ` above: `- {}`.",
+        content.trim_end()
+    ))
 }
 
 /// Where and how to tell a slip at the start of an act (see [`ActStart`]).
@@ -287,7 +307,9 @@ mod tests {
     fn message(yaml: &str) -> String {
         let err =
             serde_saphyr::from_str::<serde::de::IgnoredAny>(yaml).expect_err("should not parse");
-        describe(&err, yaml.lines().last().unwrap_or_default())
+        let mut lines = yaml.lines().rev();
+        let line = lines.next().unwrap_or_default();
+        describe(&err, line, lines.next().unwrap_or_default())
     }
 
     #[test]
@@ -305,5 +327,7 @@ mod tests {
         assert!(message("a: \"say \"hi\" now\"\n").contains("single quotes"));
         assert!(message("a:\n  - b\n  -c\n").contains("`- c`"));
         assert!(message("a: - b\n").contains("same line as its key"));
+        assert!(message("a:\n  - b\n  c\n").contains("unlike the `- ` line above it"));
+        assert!(message("a:\n  - b\n  c\n").contains("`- c`"));
     }
 }
