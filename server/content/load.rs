@@ -407,18 +407,27 @@ fn check_home(
     let Some((err, problem)) = checker.path_problem(BundleArea::Pages, &config.home) else {
         return;
     };
-    let pos = match explicit {
-        Some(home) => home.pos.clone(),
-        None => Pos::start_of(format!("pages/{}", config.home)),
+    let misplaced = match err {
+        PathError::NotFound => checker.misplaced(BundleArea::Pages, &config.home),
+        _ => None,
+    };
+    // The default home page saved elsewhere is told at the file the author made.
+    let pos = match (explicit, &misplaced) {
+        (Some(home), _) => home.pos.clone(),
+        (None, Some(found)) => Pos::start_of(found.as_str()),
+        (None, None) => Pos::start_of(format!("pages/{}", config.home)),
     };
     let code = match err {
         PathError::NotFound | PathError::NotAFile => DiagnosticCode::NoHomePage,
         other => path_error_code(&other),
     };
-    let message = format!(
-        "{problem} The kiosk starts on this page: add it, or choose another page with `home:` \
-         in docent.yaml."
-    );
+    let message = match misplaced {
+        Some(_) => format!("{problem} Until then the touchscreen has no page to start on."),
+        None => format!(
+            "{problem} The kiosk starts on this page: add it, or choose another page with \
+             `home:` in docent.yaml."
+        ),
+    };
     out.push(match explicit {
         Some(_) => Diagnostic::error(code, &pos, message),
         None => Diagnostic::warning(code, &pos, message),

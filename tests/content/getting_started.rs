@@ -194,3 +194,94 @@ fn a_first_alternative_with_a_glued_dash_is_one_slip_with_a_one_line_fix() {
         "Put a space after the dash: `- Welcome to the museum!`.",
     );
 }
+
+#[test]
+fn a_home_page_saved_beside_acts_yaml_is_told_there_with_where_to_move_it() {
+    let dir = hello_museum(&[("index.html", HOME)], &["pages/index.html"]);
+    let report = report_of(dir.path());
+    let told = the_one(&report, "no-home-page", "index.html:1:1");
+    says(told, "There is no file `pages/index.html`.");
+    says(
+        told,
+        "There is a file `index.html` at the top of the bundle, beside the acts files: move it \
+         into the `pages` folder.",
+    );
+}
+
+#[test]
+fn a_home_page_saved_in_media_or_one_folder_too_deep_is_told_where_it_is() {
+    for (saved, move_to) in [
+        ("media/index.html", "move it into the `pages` folder"),
+        ("page/index.html", "move it into the `pages` folder"),
+        ("pages/pages/index.html", "move it to `pages/index.html`"),
+    ] {
+        let dir = hello_museum(&[(saved, HOME)], &["pages/index.html"]);
+        let report = report_of(dir.path());
+        let told = the_one(&report, "no-home-page", &format!("{saved}:1:1"));
+        says(told, &format!("There is a file `{saved}`: {move_to}."));
+    }
+}
+
+#[test]
+fn a_page_or_film_an_act_shows_saved_in_the_wrong_folder_is_told_at_the_command() {
+    let acts = format!(
+        "{ACTS}\n- Label: MAP\n  Cmds:\n    - DISPLAY_PAGE map.html\n\n- Label: FILM\n  Cmds:\n    \
+         - PROJECT film.webm\n"
+    );
+    let dir = hello_museum(
+        &[
+            ("acts.yaml", &acts),
+            ("map.html", "<!doctype html><title>Map</title>"),
+            (
+                "pages/film.webm",
+                "not looked at: the film is in the wrong folder",
+            ),
+        ],
+        &[],
+    );
+    let report = report_of(dir.path());
+    let missing: Vec<(&'static str, String)> = places(&report)
+        .into_iter()
+        .filter(|(code, _)| *code == "missing-file")
+        .collect();
+    assert_eq!(
+        missing,
+        [
+            ("missing-file", "acts.yaml:12:20".to_owned()),
+            ("missing-file", "acts.yaml:16:15".to_owned()),
+        ]
+    );
+    says(
+        &report.diagnostics[0],
+        "There is a file `map.html` at the top of the bundle, beside the acts files: move it \
+         into the `pages` folder.",
+    );
+    let film = report
+        .diagnostics
+        .iter()
+        .find(|d| d.line == 16)
+        .expect("the film");
+    says(
+        film,
+        "There is a file `pages/film.webm`: move it into the `media` folder.",
+    );
+}
+
+#[test]
+fn a_label_written_in_the_wrong_case_on_the_page_gets_the_right_one_suggested() {
+    for written in ["welcome", "Welcome"] {
+        let home = HOME.replace("data-act=\"WELCOME\"", &format!("data-act=\"{written}\""));
+        let dir = hello_museum(&[("pages/index.html", &home)], &[]);
+        let report = report_of(dir.path());
+        let told = the_one(&report, "unknown-act", "pages/index.html:9:35");
+        says(told, "Did you mean `WELCOME`?");
+    }
+    let home = HOME.replace(
+        "</body>",
+        "<script>docent.trigger('opening_hours');</script>\n</body>",
+    );
+    let dir = hello_museum(&[("pages/index.html", &home)], &[]);
+    let report = report_of(dir.path());
+    let told = the_one(&report, "unknown-act", "pages/index.html:11:25");
+    says(told, "Did you mean `OPENING_HOURS`?");
+}

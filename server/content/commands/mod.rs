@@ -11,6 +11,7 @@ use std::sync::Arc;
 
 mod arguments;
 mod files;
+mod misplaced;
 
 pub(crate) use files::path_error_code;
 

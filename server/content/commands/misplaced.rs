@@ -1,0 +1,74 @@
+//! A file a page or act names, missing from its folder but saved elsewhere in the bundle: the
+//! home page beside `acts.yaml` instead of in `pages/`, a film in `pages/` instead of `media/`,
+//! a page one folder too deep. New authors do this often; "there is no file" alone sends them
+//! looking for a typo in a name that is right.
+
+use std::path::Path;
+
+use crate::paths::BundleArea;
+
+use super::CommandChecker;
+
+impl CommandChecker<'_> {
+    /// Where a file `rel`, missing under `area`, lies instead (a path from the bundle root),
+    /// looking only near: the top of the bundle, the other area folder, and one folder down
+    /// from the top or from `area`. `None` when it is not near.
+    pub(crate) fn misplaced(&self, area: BundleArea, rel: &str) -> Option<String> {
+        let folder = area.dir_name();
+        let other = match area {
+            BundleArea::Pages => BundleArea::Media,
+            BundleArea::Media => BundleArea::Pages,
+        };
+        let name = rel.rsplit('/').next().unwrap_or(rel);
+        let mut places = vec![rel.to_owned(), format!("{}/{rel}", other.dir_name())];
+        if name != rel {
+            places.push(name.to_owned());
+            places.push(format!("{folder}/{name}"));
+        }
+        for dir in subfolders(self.root(), "") {
+            if dir != folder {
+                places.push(format!("{dir}/{rel}"));
+            }
+        }
+        for dir in subfolders(self.root(), folder) {
+            places.push(format!("{folder}/{dir}/{rel}"));
+        }
+        places.into_iter().find(|place| is_file(self.root(), place))
+    }
+}
+
+/// The names of the visible folders in `root/under` (not `.git` or a Mac's `.Trashes`).
+fn subfolders(root: &Path, under: &str) -> Vec<String> {
+    let Ok(entries) = std::fs::read_dir(root.join(under)) else {
+        return Vec::new();
+    };
+    let mut names: Vec<String> = entries
+        .flatten()
+        .filter(|entry| entry.file_type().is_ok_and(|t| t.is_dir()))
+        .filter_map(|entry| entry.file_name().into_string().ok())
+        .filter(|name| !name.starts_with('.'))
+        .collect();
+    names.sort();
+    names
+}
+
+/// Whether `rel` is a plain file in the bundle (a link is not followed: it may lead out).
+fn is_file(root: &Path, rel: &str) -> bool {
+    std::fs::symlink_metadata(root.join(rel)).is_ok_and(|m| m.is_file())
+}
+
+/// What to tell about `rel` (missing under `area`) found at `found` instead.
+pub(crate) fn move_hint(area: BundleArea, rel: &str, found: &str) -> String {
+    let folder = area.dir_name();
+    let place = if found.contains('/') {
+        format!("There is a file `{found}`")
+    } else {
+        format!("There is a file `{found}` at the top of the bundle, beside the acts files")
+    };
+    let to = if rel.contains('/') || found.starts_with(&format!("{folder}/")) {
+        format!("move it to `{folder}/{rel}`")
+    } else {
+        format!("move it into the `{folder}` folder")
+    };
+    format!(" {place}: {to}.")
+}
