@@ -232,7 +232,14 @@ fn read_act(node: &Node, reading: &Reading<'_>, out: &mut Vec<Diagnostic>) -> Op
             continue;
         }
         match name {
-            "Label" => act.label = read_label(value, out),
+            "Label" => {
+                let before = out.len();
+                act.label = read_label(value, &reading.source, out);
+                // Texts swallowed by the label were written: the act is not empty, only broken.
+                wrote_content |= out[before..]
+                    .iter()
+                    .any(|d| d.code == DiagnosticCode::JoinedLines);
+            }
             "Group" => act.group = read_group(value, out),
             "Key" => act.key = read_key(value, out),
             "Cmds" => {

@@ -285,3 +285,18 @@ fn a_label_written_in_the_wrong_case_on_the_page_gets_the_right_one_suggested() 
     let told = the_one(&report, "unknown-act", "pages/index.html:11:25");
     says(told, "Did you mean `OPENING_HOURS`?");
 }
+
+#[test]
+fn texts_under_a_label_without_their_text_line_are_told_where_text_belongs() {
+    let acts = ACTS.replacen("  Text:\n", "", 1);
+    let dir = hello_museum(&[("acts.yaml", &acts)], &[]);
+    let report = report_of(dir.path());
+    // The act is not also called empty, nor the page's `WELCOME` unknown.
+    let told = the_one(&report, "joined-lines", "acts.yaml:2:5");
+    assert!(told.is_error());
+    says(
+        told,
+        "right under `Label: WELCOME`, with no `Text:` line between",
+    );
+    says(told, "Add a line `Text:` above it");
+}

@@ -235,6 +235,36 @@ fn missing_dash(
     true
 }
 
+/// `Label: WELCOME` with `- ` lines right under it (the `Text:` line forgotten): YAML makes
+/// them part of the label. Told at the first `- ` line, where `Text:` belongs; the label
+/// meant (its first line) is returned, so the pages naming it are not blamed too.
+pub(crate) fn label_swallowed_texts(
+    source: &Source<'_>,
+    node: &Node,
+    out: &mut Vec<Diagnostic>,
+) -> Option<String> {
+    let written = source.text.get(node.span.clone()?)?;
+    let (first, rest) = written.split_once('\n')?;
+    let mut offset = first.len() + 1;
+    for line in rest.split('\n') {
+        let content = line.trim_start_matches(' ');
+        if content.starts_with("- ") {
+            let start = node.span.as_ref().map_or(0, |s| s.start);
+            let at = pos_at(source, node, start + offset + line.len() - content.len());
+            let label = first.trim();
+            let message = format!(
+                "This line starts with `- ` right under `Label: {label}`, with no `Text:` line \
+                 between, so YAML makes it part of the label. Add a line `Text:` above it, in \
+                 the same column as `Label`."
+            );
+            out.push(Diagnostic::error(DiagnosticCode::JoinedLines, &at, message));
+            return Some(label.to_owned());
+        }
+        offset += line.len() + 1;
+    }
+    None
+}
+
 /// `– Hello`: Word's en dash bullet is text to YAML.
 fn fake_bullet(node: &Node, value: &str, out: &mut Vec<Diagnostic>) {
     let Some(bullet) = value.chars().next().filter(|c| FAKE_BULLETS.contains(c)) else {

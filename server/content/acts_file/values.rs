@@ -10,13 +10,19 @@ use crate::DiagnosticCode;
 use crate::speech::{SpokenText, check_spoken};
 
 use super::Reading;
-use super::texts::check_written;
+use super::texts::{Source, check_written, label_swallowed_texts};
 use super::yaml::{Kind, Node};
 
 /// The label, or `None` after reporting why it is unusable.
-pub(super) fn read_label(value: &Node, out: &mut Vec<Diagnostic>) -> Option<Located<String>> {
+pub(super) fn read_label(
+    value: &Node,
+    source: &Source<'_>,
+    out: &mut Vec<Diagnostic>,
+) -> Option<Located<String>> {
     let label = match &value.kind {
-        Kind::Str { value: text, .. } if !text.trim().is_empty() => text.clone(),
+        Kind::Str { value: text, .. } if !text.trim().is_empty() => {
+            label_swallowed_texts(source, value, out).unwrap_or_else(|| text.clone())
+        }
         Kind::Guessed(text) => {
             out.push(unquoted_warning(value, text));
             text.clone()
