@@ -300,3 +300,34 @@ fn texts_under_a_label_without_their_text_line_are_told_where_text_belongs() {
     );
     says(told, "Add a line `Text:` above it");
 }
+
+#[test]
+fn a_list_that_lost_its_start_is_told_there_even_when_yaml_stumbles_lines_later() {
+    // Step 7's quoted text with `: ` after a first alternative without its dash, or after a
+    // forgotten `Text:` line: YAML stops at the quoted line, the slip is above it.
+    let quoted = "    - \"Opening hours: ten to six, every day.\"";
+    let no_dash = ACTS.replace(
+        "    - We are open every day from ten to six.\n",
+        &format!("    We are open every day.\n{quoted}\n"),
+    );
+    let dir = hello_museum(&[("acts.yaml", &no_dash)], &[]);
+    let report = report_of(dir.path());
+    let told = the_one(&report, "yaml-syntax", "acts.yaml:8:5");
+    says(
+        told,
+        "This line has no `- ` in front, but the lines below it start with `- `",
+    );
+    says(told, "`- We are open every day.`");
+
+    let no_text = ACTS.replace(
+        "  Text:\n    - We are open every day from ten to six.\n",
+        &format!("    - We are open every day.\n{quoted}\n"),
+    );
+    let dir = hello_museum(&[("acts.yaml", &no_text)], &[]);
+    let report = report_of(dir.path());
+    let told = the_one(&report, "yaml-syntax", "acts.yaml:7:5");
+    says(
+        told,
+        "right under `Label: OPENING_HOURS`, with no `Text:` line between",
+    );
+}

@@ -287,4 +287,24 @@ pub const MEDIA_AND_BUNDLE: &[Mistake] = &[
         edits: &[replace("docent.yaml", "  idle: 2m", "  idle: 2")],
         expect: &[("config-bad-value", "docent.yaml:16:9")],
     },
+    Mistake {
+        name: "saved the start page beside the acts files instead of in pages",
+        edits: &[Rename {
+            from: "pages/index.html",
+            to: "index.html",
+        }],
+        expect: &[
+            ("no-home-page", "docent.yaml:4:7"),
+            ("missing-file", "greetings.yaml:16:20"),
+            ("missing-file", "info.yaml:8:20"),
+        ],
+    },
+    Mistake {
+        name: "saved the tour film in pages instead of media",
+        edits: &[Rename {
+            from: "media/library-tour.webm",
+            to: "pages/library-tour.webm",
+        }],
+        expect: &[("missing-file", "info.yaml:77:15")],
+    },
 ];

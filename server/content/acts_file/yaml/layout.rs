@@ -117,6 +117,86 @@ pub(super) fn act_start_slip(source: &str, line: u32) -> Option<ActStart> {
     None
 }
 
+/// What is missing above a list of `- ` texts that YAML stumbled over.
+#[derive(Debug, PartialEq, Eq)]
+pub(super) enum ListStart {
+    /// The first text has no `- ` (1-based line and column of the text).
+    NoDash {
+        line: u32,
+        column: u32,
+        text: String,
+    },
+    /// The `- ` lines sit right under `Label: X`, the `Text:` line forgotten (line and
+    /// column of the first `- `).
+    NoTextKey {
+        line: u32,
+        column: u32,
+        label: String,
+    },
+}
+
+/// For a parse error on `line`, a `- ` text: whether the list it belongs to lost its start.
+/// A first text without its `- ` (or texts under `Label:` without `Text:`) makes YAML read the
+/// following `- ` lines as part of one text, until one of them (a quoted one, one with `: `)
+/// cannot be; the parser then blames that line.
+pub(super) fn list_start_slip(source: &str, line: u32) -> Option<ListStart> {
+    let lines: Vec<&str> = source.lines().take(line as usize).collect();
+    let indent = |text: &str| text.len() - text.trim_start_matches(' ').len();
+    let (last, above) = lines.split_last()?;
+    let column = indent(last);
+    if !last[column..].starts_with("- ") {
+        return None;
+    }
+    let mut first_item = lines.len();
+    let mut previous = None;
+    for (index, text) in above.iter().enumerate().rev() {
+        if text.trim().is_empty() {
+            continue;
+        }
+        if indent(text) == column && text[column..].starts_with("- ") {
+            first_item = index + 1;
+            continue;
+        }
+        previous = Some((index, *text));
+        break;
+    }
+    let (index, text) = previous?;
+    let content = text.trim_start_matches(' ').trim_end();
+    if indent(text) == column && !is_key_line(content) && !content.starts_with('#') {
+        // A text without its dash, opening the list right under a key.
+        let key_above = above[..index]
+            .iter()
+            .rev()
+            .find(|l| !l.trim().is_empty())
+            .is_some_and(|l| indent(l) < column && l.trim_end().ends_with(':'));
+        return key_above.then(|| ListStart::NoDash {
+            line: to_u32(index + 1),
+            column: to_u32(column + 1),
+            text: content.to_owned(),
+        });
+    }
+    let label = content
+        .trim_start_matches("- ")
+        .strip_prefix("Label:")?
+        .trim();
+    (indent(text) < column && !label.is_empty()).then(|| ListStart::NoTextKey {
+        line: to_u32(first_item),
+        column: to_u32(column + 1),
+        label: label.to_owned(),
+    })
+}
+
+/// `Text:` or `Label: X`: a word and a colon starting the line.
+fn is_key_line(content: &str) -> bool {
+    content.split_once(':').is_some_and(|(key, rest)| {
+        !key.is_empty()
+            && key
+                .chars()
+                .all(|c| c.is_alphanumeric() || c == '_' || c == '@')
+            && (rest.is_empty() || rest.starts_with(' '))
+    })
+}
+
 /// The position of byte `offset` (1-based line, column in characters).
 pub(super) fn position_of_byte(file: &Arc<str>, bytes: &[u8], offset: usize) -> Pos {
     let before = &bytes[..offset.min(bytes.len())];
@@ -310,6 +390,30 @@ mod tests {
         assert_eq!(glued_dash_key("-20: x"), None);
         assert_eq!(glued_dash_key("-Hello there"), None);
         assert_eq!(glued_dash_key("-Text:"), Some("Text"));
+    }
+
+    #[test]
+    fn a_list_of_texts_that_lost_its_start_is_found_from_the_line_yaml_blames() {
+        let no_dash = "- Label: A\n  Text:\n    Hi there\n    - Hello\n    - \"Yes: no\"\n";
+        assert_eq!(
+            list_start_slip(no_dash, 5),
+            Some(ListStart::NoDash {
+                line: 3,
+                column: 5,
+                text: "Hi there".to_owned(),
+            })
+        );
+        let no_text = "- Label: A\n    - Hello\n    - \"Yes: no\"\n";
+        assert_eq!(
+            list_start_slip(no_text, 3),
+            Some(ListStart::NoTextKey {
+                line: 2,
+                column: 5,
+                label: "A".to_owned(),
+            })
+        );
+        let fine_start = "- Label: A\n  Text:\n    - Hi\n    - Hello: there\n";
+        assert_eq!(list_start_slip(fine_start, 4), None);
     }
 
     #[test]

@@ -6,7 +6,7 @@ use std::sync::Arc;
 
 use serde_saphyr::Spanned;
 
-use super::layout::{Item, act_start_slip, unclosed_bracket_before};
+use super::layout::{Item, act_start_slip, list_start_slip, unclosed_bracket_before};
 use super::{Kind, Node, YamlFile, options, raw, wording};
 use crate::diagnostic::{Diagnostic, DiagnosticCode};
 use crate::model::Pos;
@@ -85,6 +85,12 @@ pub(super) fn report_error(
         // `-Label: X` or `Label: X` without its dash: the parser notices it a line later.
         if let Some(slip) = act_start_slip(source, pos.line) {
             let (at, message) = wording::act_start(file, &slip);
+            out.push(Diagnostic::error(syntax_code, &at, message));
+            return;
+        }
+        // A list of texts that lost its first `- ` or its `Text:` line.
+        if let Some(slip) = list_start_slip(source, pos.line) {
+            let (at, message) = wording::list_start(file, &slip);
             out.push(Diagnostic::error(syntax_code, &at, message));
             return;
         }

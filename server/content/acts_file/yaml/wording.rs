@@ -5,7 +5,7 @@ use std::sync::Arc;
 
 use serde_saphyr::Error;
 
-use super::layout::ActStart;
+use super::layout::{ActStart, ListStart};
 use crate::model::Pos;
 
 /// A plain-language message for a parse error found on `line` (the text of the line the
@@ -152,6 +152,34 @@ pub(super) fn act_start(file: &Arc<str>, slip: &ActStart) -> (Pos, String) {
             format!(
                 "This act has no `- ` in front of `Label:`, so YAML cannot tell where it \
                  begins. Every act starts with a dash and a space: `{fixed}`."
+            ),
+        ),
+    }
+}
+
+/// Where and how to tell a list of texts that lost its start (see [`ListStart`]), in the
+/// words of the same slips found when YAML could read the file (`texts.rs`).
+pub(super) fn list_start(file: &Arc<str>, slip: &ListStart) -> (Pos, String) {
+    match slip {
+        ListStart::NoDash { line, column, text } => (
+            Pos::new(file.clone(), *line, *column),
+            format!(
+                "This line has no `- ` in front, but the lines below it start with `- `, so \
+                 YAML reads them as part of this text and cannot read the act. Put a \
+                 dash and a space in front of it, in the same column as the `- ` below: \
+                 `- {text}`."
+            ),
+        ),
+        ListStart::NoTextKey {
+            line,
+            column,
+            label,
+        } => (
+            Pos::new(file.clone(), *line, *column),
+            format!(
+                "This line starts with `- ` right under `Label: {label}`, with no `Text:` line \
+                 between, so YAML reads it as part of the label and cannot read the act. \
+                 Add a line `Text:` above it, in the same column as `Label`."
             ),
         ),
     }
