@@ -331,3 +331,21 @@ fn a_list_that_lost_its_start_is_told_there_even_when_yaml_stumbles_lines_later(
         "right under `Label: OPENING_HOURS`, with no `Text:` line between",
     );
 }
+
+#[test]
+fn step_six_settings_not_indented_under_their_section_are_told_so() {
+    let dir = hello_museum(&[("docent.yaml", "corpus:\nrecord: none\n")], &[]);
+    let report = report_of(dir.path());
+    let told = the_one(&report, "config-unknown-key", "docent.yaml:2:1");
+    says(told, "`record` is a setting of `corpus:` above");
+    says(told, "Indent it by two spaces, under `corpus:`.");
+
+    let dir = hello_museum(&[("docent.yaml", "corpus: record: none\n")], &[]);
+    let report = report_of(dir.path());
+    let told = the_one(&report, "config-syntax", "docent.yaml:1:15");
+    says(
+        told,
+        "Two settings are written on one line: `corpus:` and `record: none`.",
+    );
+    says(told, "put `record: none` on the next line");
+}

@@ -288,6 +288,15 @@ pub const MEDIA_AND_BUNDLE: &[Mistake] = &[
         expect: &[("config-bad-value", "docent.yaml:16:9")],
     },
     Mistake {
+        name: "wrote `idle_act:` in the same column as `kiosk:`",
+        edits: &[replace(
+            "docent.yaml",
+            "  idle_act: INVITE",
+            "idle_act: INVITE",
+        )],
+        expect: &[("config-unknown-key", "docent.yaml:17:1")],
+    },
+    Mistake {
         name: "saved the start page beside the acts files instead of in pages",
         edits: &[Rename {
             from: "pages/index.html",

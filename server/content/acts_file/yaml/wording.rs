@@ -85,6 +85,15 @@ fn describe_at_line(msg: &str, line: &str, above: &str) -> Option<String> {
                 .to_owned(),
         );
     }
+    if lower.contains("mapping values are not allowed")
+        && let Some((parent, setting)) = settings_on_one_line(content)
+    {
+        return Some(format!(
+            "Two settings are written on one line: `{parent}:` and `{setting}`. Each setting goes \
+             on its own line: put `{setting}` on the next line, two spaces further in than \
+             `{parent}:`."
+        ));
+    }
     if lower.contains("mapping values are not allowed") && indented_key && !content.starts_with('-')
     {
         return Some(
@@ -113,6 +122,22 @@ fn describe_at_line(msg: &str, line: &str, above: &str) -> Option<String> {
         );
     }
     None
+}
+
+/// `corpus: record: none`: a section and its setting on one line, as (`corpus`,
+/// `record: none`). Settings of `docent.yaml` are lower-case words; an act's keys are
+/// capitalised (`Text: Note: this` is a text needing quotes, not this).
+fn settings_on_one_line(content: &str) -> Option<(&str, &str)> {
+    let is_setting = |key: &str| {
+        !key.is_empty()
+            && key
+                .chars()
+                .all(|c| c.is_ascii_lowercase() || c.is_ascii_digit() || c == '_')
+    };
+    let (parent, rest) = content.split_once(": ")?;
+    let rest = rest.trim();
+    let (setting, _) = rest.split_once(':')?;
+    (is_setting(parent) && is_setting(setting)).then_some((parent, rest))
 }
 
 /// `    Welcome!` under `    - Hello!`: an alternative after the first without its `- `.
@@ -351,6 +376,8 @@ mod tests {
         assert!(message("Text: @home\n").contains("put it in quotes"));
         assert!(message("a:\n  - b\n c: d\n").contains("indented"));
         assert!(message("a: b\n    c: d\n").contains("indented differently"));
+        assert!(message("corpus: record: none\n").contains("put `record: none` on the next line"));
+        assert!(message("Text: Note: this\n").contains("put the whole text in quotes"));
         assert!(message("a: 'it's'\n").contains("apostrophe twice"));
         assert!(message("a: \"say \"hi\" now\"\n").contains("single quotes"));
         assert!(message("a:\n  - b\n  -c\n").contains("`- c`"));
