@@ -346,6 +346,10 @@ diagnostic_codes! {
     BadActDelay = "bad-act-delay",
     /// `data-act-after` on an element without `data-act`: there is no act to trigger.
     ActAfterWithoutAct = "act-after-without-act",
+    /// An attribute that looks like a slip for `data-act` (`data-action`, `data_act`, `act`)
+    /// on an element without `data-act`: the page script does not read it, so a touch does
+    /// nothing.
+    ActAttributeTypo = "act-attribute-typo",
     /// A page script calls `docent.trigger("LABEL")` for an act that no page offers with
     /// `data-act` (nor is the `idle_act`), so the touchscreen is refused it. A label matching
     /// no act is `unknown-act`.

@@ -349,3 +349,26 @@ fn step_six_settings_not_indented_under_their_section_are_told_so() {
     );
     says(told, "put `record: none` on the next line");
 }
+
+#[test]
+fn a_button_with_an_attribute_like_data_act_is_told_at_that_attribute() {
+    for written in ["data-action", "data_act", "act", "data-acts"] {
+        let home = HOME.replace("data-act=\"WELCOME\"", &format!("{written}=\"WELCOME\""));
+        let dir = hello_museum(&[("pages/index.html", &home)], &[]);
+        let report = report_of(dir.path());
+        let told = the_one(&report, "act-attribute-typo", "pages/index.html:9:25");
+        assert!(!told.is_error());
+        says(
+            told,
+            &format!("`{written}` is not an attribute Docent reads"),
+        );
+        says(told, "Write `data-act=\"WELCOME\"` instead");
+    }
+    // Beside a real `data-act`, another attribute is the page's own business.
+    let home = HOME.replace(
+        "data-act=\"WELCOME\"",
+        "data-act=\"WELCOME\" data-action=\"greet\"",
+    );
+    let dir = hello_museum(&[("pages/index.html", &home)], &[]);
+    assert!(report_of(dir.path()).diagnostics.is_empty());
+}

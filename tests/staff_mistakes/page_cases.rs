@@ -16,6 +16,15 @@ const PLAN: &str = "pages/floor-plan.html";
 /// Hand-written or hand-edited pages.
 pub const PAGES: &[Mistake] = &[
     Mistake {
+        name: "wrote `data-action` for `data-act` on a button",
+        edits: &[replace(
+            HOME,
+            "data-act=\"SHOW_PLAN\"",
+            "data-action=\"SHOW_PLAN\"",
+        )],
+        expect: &[("act-attribute-typo", "pages/index.html:19:42")],
+    },
+    Mistake {
         name: "commented out a heading with `<!--` and never closed it, before the buttons",
         edits: &[replace(
             HOME,

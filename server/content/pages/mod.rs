@@ -162,6 +162,9 @@ impl PageFile<'_, '_> {
         for (after, has_act) in &found.act_afters {
             check_act_after(source, after, *has_act, out);
         }
+        for (name, value) in &found.act_typos {
+            behaviour::check_act_typo(source, name, value, out);
+        }
         check_charset(source, &found.charsets, out);
         behaviour::check_lang(
             source,

@@ -73,6 +73,9 @@ pub(crate) struct PageScan {
     pub languages: Vec<Value>,
     /// `data-act-after` values, with whether the same element has `data-act`.
     pub act_afters: Vec<(Value, bool)>,
+    /// Attributes that look like a slip for `data-act` (`data-action`, `data_act`, `act`) on
+    /// an element without `data-act`: the name at its place, and the value.
+    pub act_typos: Vec<(Value, String)>,
     /// Links to other files.
     pub links: Vec<Link>,
     /// CSS text (`<style>` blocks and `style` attributes) and its offset.
@@ -184,6 +187,7 @@ fn read_element(el: &Element<'_, '_>, found: &mut PageScan) {
     let name = el.tag_name();
     read_behaviour(el, &name, found);
     let mut has_act = false;
+    let mut typos = Vec::new();
     let mut after = None;
     let mut http_equiv = false;
     let mut content = None;
@@ -216,6 +220,14 @@ fn read_element(el: &Element<'_, '_>, found: &mut PageScan) {
                 used: LinkUse::Image,
                 srcset: true,
             }),
+            n if act_attribute_typo(n) => {
+                let at = (attr.name_source_location()).map_or(0, |l| l.bytes().start);
+                let name = Value {
+                    text: attr_name.clone(),
+                    at,
+                };
+                typos.push((name, value.text));
+            }
             _ => {
                 if let Some(used) = used {
                     found.links.push(Link {
@@ -230,9 +242,23 @@ fn read_element(el: &Element<'_, '_>, found: &mut PageScan) {
     if let Some(after) = after {
         found.act_afters.push((after, has_act));
     }
+    if !has_act {
+        found.act_typos.extend(typos);
+    }
     if let (true, Some(content)) = (http_equiv, content) {
         found.charsets.push(charset_in_content(content));
     }
+}
+
+/// Whether an attribute named `name` is likely a slip for `data-act`: one letter off
+/// (`data_act`, `data-acts`, `date-act`, `dataact`), or a name a new author guesses
+/// (`act`, `data-action`, `data-label`).
+fn act_attribute_typo(name: &str) -> bool {
+    const GUESSES: [&str; 4] = ["act", "data-action", "data-label", "data-act-label"];
+    name != "data-act"
+        && name != ACT_AFTER
+        && name != LANGUAGE
+        && (GUESSES.contains(&name) || crate::suggest::closest(name, ["data-act"]).is_some())
 }
 
 /// What the page does on its own: its declared language, sound that starts by itself, and
