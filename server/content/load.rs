@@ -8,7 +8,7 @@ use std::sync::Arc;
 
 use crate::DiagnosticCode;
 use crate::DiagnosticCode::{ConfigSyntax, FileEncoding, NotPlainText};
-use crate::commands::{CommandChecker, path_error_code};
+use crate::commands::{CommandChecker, acts_files_elsewhere, path_error_code};
 use crate::config::{Language, SiteConfig};
 use crate::config_file::attract::check_screen_refs;
 use crate::config_file::schedule::check_past_special_days;
@@ -93,6 +93,8 @@ fn load(root: &Path, replaced: &ActsReplacements) -> LoadReport {
     let checker = CommandChecker::new(&root, &config);
     let copies = find_translated_copies(&root, &gathered.files, &config, &mut diagnostics);
     let mut merged = merge_acts(gathered.files, &copies, &mut diagnostics);
+    // Acts saved in a folder are unread, not absent: no page is blamed for naming them.
+    merged.incomplete |= names.is_empty() && !acts_files_elsewhere(&root).is_empty();
     check_page_labels(gathered.pages, &config, &mut merged, &mut diagnostics);
     check_home(&checker, &config, settings.home.as_ref(), &mut diagnostics);
     check_idle_act(&merged, settings.idle_act.as_ref(), &mut diagnostics);
@@ -204,15 +206,32 @@ fn acts_file_names(root: &Path, out: &mut Vec<Diagnostic>) -> Vec<String> {
         .collect();
     names.sort();
     if names.is_empty() {
-        let message = "No acts files found. Acts are written in .yaml files at the top of the \
-                       bundle folder, next to pages/ and media/ (for example acts.yaml).";
-        out.push(Diagnostic::error(
-            DiagnosticCode::NoActs,
-            &Pos::start_of("acts.yaml"),
-            message,
-        ));
+        out.push(no_acts(root));
     }
     names
+}
+
+/// `no-acts`: at the acts file saved in a folder, if there is one (told to move it up).
+fn no_acts(root: &Path) -> Diagnostic {
+    let elsewhere = acts_files_elsewhere(root);
+    let Some(first) = elsewhere.first() else {
+        let message = "No acts files found. Acts are written in .yaml files at the top of the \
+                       bundle folder, next to pages/ and media/ (for example acts.yaml).";
+        return Diagnostic::error(DiagnosticCode::NoActs, &Pos::start_of("acts.yaml"), message);
+    };
+    let (folder, name) = first.split_once('/').unwrap_or(("", first));
+    let message = format!(
+        "No acts files found at the top of the bundle: `{name}` is in the `{folder}` folder, \
+         where Docent does not look for acts. Move it up into the bundle folder `{}`, next to \
+         the `{folder}` folder.",
+        root.file_name()
+            .map_or_else(|| "".into(), |n| n.to_string_lossy())
+    );
+    Diagnostic::error(
+        DiagnosticCode::NoActs,
+        &Pos::start_of(first.as_str()),
+        message,
+    )
 }
 
 /// The acts of all files merged, with everything that needs them all.

@@ -372,3 +372,16 @@ fn a_button_with_an_attribute_like_data_act_is_told_at_that_attribute() {
     let dir = hello_museum(&[("pages/index.html", &home)], &[]);
     assert!(report_of(dir.path()).diagnostics.is_empty());
 }
+
+#[test]
+fn acts_yaml_saved_in_pages_is_told_there_and_the_page_is_not_blamed() {
+    let dir = hello_museum(&[("pages/acts.yaml", ACTS)], &["acts.yaml"]);
+    let report = report_of(dir.path());
+    let told = the_one(&report, "no-acts", "pages/acts.yaml:1:1");
+    says(
+        told,
+        "`acts.yaml` is in the `pages` folder, where Docent does not look for acts.",
+    );
+    says(told, "Move it up into the bundle folder");
+    says(told, "next to the `pages` folder.");
+}

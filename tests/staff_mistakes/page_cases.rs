@@ -318,6 +318,24 @@ pub const MEDIA_AND_BUNDLE: &[Mistake] = &[
         ],
     },
     Mistake {
+        name: "saved the acts files in pages instead of at the top",
+        edits: &[
+            Rename {
+                from: "greetings.yaml",
+                to: "pages/greetings.yaml",
+            },
+            Rename {
+                from: "info.yaml",
+                to: "pages/info.yaml",
+            },
+            Rename {
+                from: "slideshow.yaml",
+                to: "pages/slideshow.yaml",
+            },
+        ],
+        expect: &[("no-acts", "pages/greetings.yaml:1:1")],
+    },
+    Mistake {
         name: "saved the tour film in pages instead of media",
         edits: &[Rename {
             from: "media/library-tour.webm",

@@ -1,7 +1,8 @@
 //! A file a page or act names, missing from its folder but saved elsewhere in the bundle: the
 //! home page beside `acts.yaml` instead of in `pages/`, a film in `pages/` instead of `media/`,
-//! a page one folder too deep. New authors do this often; "there is no file" alone sends them
-//! looking for a typo in a name that is right.
+//! a page one folder too deep; and acts files saved in a folder instead of at the top. New
+//! authors do this often; "there is no file" alone sends them looking for a typo in a name
+//! that is right.
 
 use std::path::Path;
 
@@ -35,6 +36,31 @@ impl CommandChecker<'_> {
         }
         places.into_iter().find(|place| is_file(self.root(), place))
     }
+}
+
+/// Acts files (`.yaml`, `.yml`) saved one folder down from the top of the bundle (in
+/// `pages/`, `media/`, or a folder of their own), as paths from the root, sorted: where the
+/// acts went when none are at the top.
+pub(crate) fn acts_files_elsewhere(root: &Path) -> Vec<String> {
+    let mut found = Vec::new();
+    for dir in subfolders(root, "") {
+        let Ok(entries) = std::fs::read_dir(root.join(&dir)) else {
+            continue;
+        };
+        for name in entries
+            .flatten()
+            .filter_map(|e| e.file_name().into_string().ok())
+        {
+            let lower = name.to_ascii_lowercase();
+            let yaml = lower.ends_with(".yaml") || lower.ends_with(".yml");
+            let rel = format!("{dir}/{name}");
+            if yaml && !name.starts_with('.') && is_file(root, &rel) {
+                found.push(rel);
+            }
+        }
+    }
+    found.sort();
+    found
 }
 
 /// The names of the visible folders in `root/under` (not `.git` or a Mac's `.Trashes`).
