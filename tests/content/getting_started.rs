@@ -385,3 +385,13 @@ fn acts_yaml_saved_in_pages_is_told_there_and_the_page_is_not_blamed() {
     says(told, "Move it up into the bundle folder");
     says(told, "next to the `pages` folder.");
 }
+
+#[test]
+fn text_without_its_colon_is_told_to_get_one() {
+    let acts = acts_with_line(2, "  Text");
+    let dir = hello_museum(&[("acts.yaml", &acts)], &[]);
+    let report = report_of(dir.path());
+    let told = the_one(&report, "yaml-syntax", "acts.yaml:2:3");
+    says(told, "`Text` has no colon after it");
+    says(told, "Write `Text:`.");
+}

@@ -359,6 +359,15 @@ pub const YAML_TRAPS: &[Mistake] = &[
         expect: &[("yaml-syntax", "greetings.yaml:9:5")],
     },
     Mistake {
+        name: "typed `Text` without its colon",
+        edits: &[replace(
+            G,
+            "- Label: INVITE\n  Text:\n",
+            "- Label: INVITE\n  Text\n",
+        )],
+        expect: &[("yaml-syntax", "greetings.yaml:19:3")],
+    },
+    Mistake {
         name: "forgot the `Text:` line under a label",
         edits: &[replace(
             G,

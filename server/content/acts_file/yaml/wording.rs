@@ -113,6 +113,19 @@ fn describe_at_line(msg: &str, line: &str, above: &str) -> Option<String> {
         if let Some(message) = missing_dash_below_item(line, above) {
             return Some(message);
         }
+        let word = content.trim_end();
+        let act_key = ["Label", "Text", "Cmds", "Group", "Key"]
+            .iter()
+            .any(|key| word.starts_with(key))
+            && word
+                .chars()
+                .all(|c| c.is_alphanumeric() || c == '_' || c == '@');
+        if act_key {
+            return Some(format!(
+                "`{word}` has no colon after it, so YAML cannot read it as a key with the \
+                 lines under it as its value. Write `{word}:`."
+            ));
+        }
         return Some(
             "YAML expected a key with a colon here (such as `Text:`) or a list item starting \
              with `- `. If this line is another alternative, start it with `- ` in the same \
