@@ -430,10 +430,17 @@ fn check_home(
         PathError::NotFound => checker.misplaced(BundleArea::Pages, &config.home),
         _ => None,
     };
-    // The default home page saved elsewhere is told at the file the author made.
-    let pos = match (explicit, &misplaced) {
+    // The default home page saved elsewhere, or under another name, is told at the file the
+    // author made.
+    let made = match err {
+        PathError::NotFound => {
+            (misplaced.clone()).or_else(|| checker.similar_file(BundleArea::Pages, &config.home))
+        }
+        _ => None,
+    };
+    let pos = match (explicit, made) {
         (Some(home), _) => home.pos.clone(),
-        (None, Some(found)) => Pos::start_of(found.as_str()),
+        (None, Some(found)) => Pos::start_of(found),
         (None, None) => Pos::start_of(format!("pages/{}", config.home)),
     };
     let code = match err {

@@ -395,3 +395,11 @@ fn text_without_its_colon_is_told_to_get_one() {
     says(told, "`Text` has no colon after it");
     says(told, "Write `Text:`.");
 }
+
+#[test]
+fn a_home_page_saved_as_index_htm_is_told_at_that_file() {
+    let dir = hello_museum(&[("pages/index.htm", HOME)], &["pages/index.html"]);
+    let report = report_of(dir.path());
+    let told = the_one(&report, "no-home-page", "pages/index.htm:1:1");
+    says(told, "Did you mean `index.htm`?");
+}

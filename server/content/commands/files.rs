@@ -100,6 +100,14 @@ impl CommandChecker<'_> {
         Some((err, message))
     }
 
+    /// The file under `area` whose name is close to the missing `rel` (`index.htm` for
+    /// `index.html`), as a path from the bundle root.
+    pub(crate) fn similar_file(&self, area: BundleArea, rel: &str) -> Option<String> {
+        let files = self.listing(area);
+        let near = crate::suggest::closest(rel, files.iter().map(String::as_str))?;
+        Some(format!("{}/{near}", area.dir_name()))
+    }
+
     fn listing(&self, area: BundleArea) -> &[String] {
         let cell = match area {
             BundleArea::Pages => &self.pages,
