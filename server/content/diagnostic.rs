@@ -336,7 +336,8 @@ diagnostic_codes! {
     /// A comment `<!--` without `-->`, or a `<script>`, `<style>`, `<textarea>`, `<title>`,
     /// `<template>` (and similar) without its end tag, swallows the rest of the page: buttons
     /// after it never show. Reported at the opening tag; the message says which lines and how
-    /// many `data-act` buttons are hidden.
+    /// many `data-act` buttons are hidden. Also a start tag without its `>`, which swallows
+    /// the text after it up to the next tag: reported where the `>` belongs.
     PageHiddenContent = "page-hidden-content",
     /// The quotes around a `data-act` value do not match (`data-act="WELCOME>`,
     /// `data-act=WELCOME"`) or are curly quotes from a word processor (`data-act=“WELCOME”`).

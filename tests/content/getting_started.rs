@@ -403,3 +403,14 @@ fn a_home_page_saved_as_index_htm_is_told_at_that_file() {
     let told = the_one(&report, "no-home-page", "pages/index.htm:1:1");
     says(told, "Did you mean `index.htm`?");
 }
+
+#[test]
+fn a_button_tag_without_its_closing_angle_is_told_where_the_angle_belongs() {
+    let home = HOME.replace("data-act=\"WELCOME\">Say", "data-act=\"WELCOME\"Say");
+    let dir = hello_museum(&[("pages/index.html", &home)], &[]);
+    let report = report_of(dir.path());
+    let told = the_one(&report, "page-hidden-content", "pages/index.html:9:43");
+    says(told, "This `<button>` tag has no `>` here");
+    says(told, "(`Say hello</button`)");
+    says(told, "Type `>` right here.");
+}

@@ -16,6 +16,15 @@ const PLAN: &str = "pages/floor-plan.html";
 /// Hand-written or hand-edited pages.
 pub const PAGES: &[Mistake] = &[
     Mistake {
+        name: "forgot the `>` of a button's start tag",
+        edits: &[replace(
+            HOME,
+            "data-act=\"SHOW_PLAN\">Floor plan",
+            "data-act=\"SHOW_PLAN\"Floor plan",
+        )],
+        expect: &[("page-hidden-content", "pages/index.html:19:62")],
+    },
+    Mistake {
         name: "wrote `data-action` for `data-act` on a button",
         edits: &[replace(
             HOME,

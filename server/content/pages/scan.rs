@@ -73,6 +73,9 @@ pub(crate) struct PageScan {
     pub languages: Vec<Value>,
     /// `data-act-after` values, with whether the same element has `data-act`.
     pub act_afters: Vec<(Value, bool)>,
+    /// Start tags that run into the next tag because their `>` is missing: where the `>`
+    /// belongs (`text`: the element's name), and what the tag swallowed.
+    pub tags_without_end: Vec<(Value, String)>,
     /// Attributes that look like a slip for `data-act` (`data-action`, `data_act`, `act`) on
     /// an element without `data-act`: the name at its place, and the value.
     pub act_typos: Vec<(Value, String)>,
@@ -123,6 +126,7 @@ pub(crate) fn scan(html: &str) -> PageScan {
     let settings = Settings::new()
         .append_element_content_handler(element!("*", |el| {
             read_element(el, &mut found.borrow_mut());
+            missing_tag_end(el, source, &mut found.borrow_mut());
             watch_closing(el, &open);
             Ok(())
         }))
@@ -248,6 +252,39 @@ fn read_element(el: &Element<'_, '_>, found: &mut PageScan) {
     if let (true, Some(content)) = (http_equiv, content) {
         found.charsets.push(charset_in_content(content));
     }
+}
+
+/// `<button data-act="WELCOME"Say hello</button>`: a start tag whose `>` is missing runs into
+/// the next tag, and its text becomes attributes (one named `hello<`). The `>` belongs after
+/// the last value written before that, or after the element's name.
+fn missing_tag_end(el: &Element<'_, '_>, source: &[u8], found: &mut PageScan) {
+    let attributes = el.attributes();
+    let Some(slip) = attributes.iter().position(|a| a.name().contains('<')) else {
+        return;
+    };
+    let tag = el.source_location().bytes();
+    let name = el.tag_name();
+    let after_value = attributes[..slip]
+        .iter()
+        .rev()
+        .find_map(|a| a.value_source_location())
+        .map(|l| l.bytes().end);
+    let at = match after_value {
+        Some(end) if matches!(source.get(end), Some(b'"' | b'\'')) => end + 1,
+        Some(end) => end,
+        None => tag.start + 1 + name.len(),
+    };
+    let swallowed = source
+        .get(at..tag.end.saturating_sub(1))
+        .unwrap_or_default();
+    let swallowed: String = String::from_utf8_lossy(swallowed)
+        .trim()
+        .chars()
+        .take(60)
+        .collect();
+    found
+        .tags_without_end
+        .push((Value { text: name, at }, swallowed));
 }
 
 /// Whether an attribute named `name` is likely a slip for `data-act`: one letter off
