@@ -292,10 +292,13 @@ fn missing_tag_end(el: &Element<'_, '_>, source: &[u8], found: &mut PageScan) {
 /// (`act`, `data-action`, `data-label`).
 fn act_attribute_typo(name: &str) -> bool {
     const GUESSES: [&str; 4] = ["act", "data-action", "data-label", "data-act-label"];
+    // Within two edits of `data-act`: only names of 6 to 10 letters need comparing.
+    let near_length = (6..=10).contains(&name.len());
     name != "data-act"
         && name != ACT_AFTER
         && name != LANGUAGE
-        && (GUESSES.contains(&name) || crate::suggest::closest(name, ["data-act"]).is_some())
+        && (GUESSES.contains(&name)
+            || near_length && crate::suggest::closest(name, ["data-act"]).is_some())
 }
 
 /// What the page does on its own: its declared language, sound that starts by itself, and
