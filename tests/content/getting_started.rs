@@ -414,3 +414,13 @@ fn a_button_tag_without_its_closing_angle_is_told_where_the_angle_belongs() {
     says(told, "(`Say hello</button`)");
     says(told, "Type `>` right here.");
 }
+
+#[test]
+fn step_seven_fixed_with_an_editors_curly_quotes_is_told_to_straighten_them() {
+    let acts = acts_with_line(8, "    - “Opening hours: ten to six, every day.”");
+    let dir = hello_museum(&[("acts.yaml", &acts)], &[]);
+    let report = report_of(dir.path());
+    let told = the_one(&report, "bad-value", "acts.yaml:8:7");
+    says(told, "its quotes are curly quotes");
+    says(told, "`- \"Opening hours: ten to six, every day.\"`");
+}

@@ -330,6 +330,15 @@ pub const YAML_TRAPS: &[Mistake] = &[
         expect: &[("unknown-key", "greetings.yaml:15:3")],
     },
     Mistake {
+        name: "quoted a text with a colon in the editor's curly quotes",
+        edits: &[replace(
+            G,
+            "    - \"Need help? I know where every book is: just touch my screen.\"",
+            "    - “Need help? I know where every book is: just touch my screen.”",
+        )],
+        expect: &[("bad-value", "greetings.yaml:21:7")],
+    },
+    Mistake {
         name: "typed `-Label:` without the space after the dash",
         edits: &[replace(G, "- Label: INVITE", "-Label: INVITE")],
         expect: &[("yaml-syntax", "greetings.yaml:18:1")],

@@ -309,6 +309,17 @@ fn colon_message(what: &str, entries: &[(Node, Node)]) -> String {
         _ => None,
     };
     let example = written.unwrap_or_else(|| "Note: this is splendid".to_owned());
+    // `- “Opening hours: ten to six.”`: quoted, but by an editor's curly quotes.
+    let curly = ['“', '”', '„', '‘', '’', '«', '»'];
+    let inner = example.trim_matches(|c: char| curly.contains(&c));
+    if inner.len() < example.len() {
+        return format!(
+            "This {what} was read as a key and a value, because it contains a colon followed \
+             by a space (`: `) and its quotes are curly quotes (“ ”), typed by the editor, \
+             which YAML does not take as quotes. Replace them with straight quotes: \
+             `- \"{inner}\"`."
+        );
+    }
     format!(
         "This {what} was read as a key and a value, because it contains a colon followed by a \
          space (`: `). Put the whole {what} in quotes: `- \"{example}\"`."
