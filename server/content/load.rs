@@ -432,10 +432,11 @@ fn check_home(
     };
     // The default home page saved elsewhere, or under another name, is told at the file the
     // author made.
-    let made = match err {
+    let made = match &err {
         PathError::NotFound => {
             (misplaced.clone()).or_else(|| checker.similar_file(BundleArea::Pages, &config.home))
         }
+        PathError::Miscased { actual } => Some(format!("pages/{actual}")),
         _ => None,
     };
     let pos = match (explicit, made) {

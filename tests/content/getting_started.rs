@@ -397,11 +397,16 @@ fn text_without_its_colon_is_told_to_get_one() {
 }
 
 #[test]
-fn a_home_page_saved_as_index_htm_is_told_at_that_file() {
+fn a_home_page_saved_as_index_htm_or_index_html_capitalised_is_told_at_that_file() {
     let dir = hello_museum(&[("pages/index.htm", HOME)], &["pages/index.html"]);
     let report = report_of(dir.path());
     let told = the_one(&report, "no-home-page", "pages/index.htm:1:1");
     says(told, "Did you mean `index.htm`?");
+
+    let dir = hello_museum(&[("pages/Index.html", HOME)], &["pages/index.html"]);
+    let report = report_of(dir.path());
+    let told = the_one(&report, "miscased-file", "pages/Index.html:1:1");
+    says(told, "The file is called `Index.html`");
 }
 
 #[test]
