@@ -8,7 +8,7 @@ use std::sync::Arc;
 
 use crate::DiagnosticCode;
 use crate::DiagnosticCode::{ConfigSyntax, FileEncoding, NotPlainText};
-use crate::commands::{CommandChecker, acts_files_elsewhere, path_error_code};
+use crate::commands::{CommandChecker, acts_files_elsewhere, no_acts, path_error_code};
 use crate::config::{Language, SiteConfig};
 use crate::config_file::attract::check_screen_refs;
 use crate::config_file::schedule::check_past_special_days;
@@ -209,29 +209,6 @@ fn acts_file_names(root: &Path, out: &mut Vec<Diagnostic>) -> Vec<String> {
         out.push(no_acts(root));
     }
     names
-}
-
-/// `no-acts`: at the acts file saved in a folder, if there is one (told to move it up).
-fn no_acts(root: &Path) -> Diagnostic {
-    let elsewhere = acts_files_elsewhere(root);
-    let Some(first) = elsewhere.first() else {
-        let message = "No acts files found. Acts are written in .yaml files at the top of the \
-                       bundle folder, next to pages/ and media/ (for example acts.yaml).";
-        return Diagnostic::error(DiagnosticCode::NoActs, &Pos::start_of("acts.yaml"), message);
-    };
-    let (folder, name) = first.split_once('/').unwrap_or(("", first));
-    let message = format!(
-        "No acts files found at the top of the bundle: `{name}` is in the `{folder}` folder, \
-         where Docent does not look for acts. Move it up into the bundle folder `{}`, next to \
-         the `{folder}` folder.",
-        root.file_name()
-            .map_or_else(|| "".into(), |n| n.to_string_lossy())
-    );
-    Diagnostic::error(
-        DiagnosticCode::NoActs,
-        &Pos::start_of(first.as_str()),
-        message,
-    )
 }
 
 /// The acts of all files merged, with everything that needs them all.

@@ -24,6 +24,7 @@ mod fast;
 mod layout;
 mod raw;
 mod recovery;
+mod slips;
 mod wording;
 
 use layout::{

@@ -6,6 +6,9 @@
 
 use std::path::Path;
 
+use crate::DiagnosticCode;
+use crate::diagnostic::Diagnostic;
+use crate::model::Pos;
 use crate::paths::BundleArea;
 
 use super::CommandChecker;
@@ -61,6 +64,29 @@ pub(crate) fn acts_files_elsewhere(root: &Path) -> Vec<String> {
     }
     found.sort();
     found
+}
+
+/// `no-acts`: at the acts file saved in a folder, if there is one (told to move it up).
+pub(crate) fn no_acts(root: &Path) -> Diagnostic {
+    let elsewhere = acts_files_elsewhere(root);
+    let Some(first) = elsewhere.first() else {
+        let message = "No acts files found. Acts are written in .yaml files at the top of the \
+                       bundle folder, next to pages/ and media/ (for example acts.yaml).";
+        return Diagnostic::error(DiagnosticCode::NoActs, &Pos::start_of("acts.yaml"), message);
+    };
+    let (folder, name) = first.split_once('/').unwrap_or(("", first));
+    let message = format!(
+        "No acts files found at the top of the bundle: `{name}` is in the `{folder}` folder, \
+         where Docent does not look for acts. Move it up into the bundle folder `{}`, next to \
+         the `{folder}` folder.",
+        root.file_name()
+            .map_or_else(|| "".into(), |n| n.to_string_lossy())
+    );
+    Diagnostic::error(
+        DiagnosticCode::NoActs,
+        &Pos::start_of(first.as_str()),
+        message,
+    )
 }
 
 /// The names of the visible folders in `root/under` (not `.git` or a Mac's `.Trashes`).

@@ -6,7 +6,8 @@ use std::sync::Arc;
 
 use serde_saphyr::Spanned;
 
-use super::layout::{Item, act_start_slip, list_start_slip, unclosed_bracket_before};
+use super::layout::{Item, unclosed_bracket_before};
+use super::slips::{act_start_slip, list_start_slip};
 use super::{Kind, Node, YamlFile, options, raw, wording};
 use crate::diagnostic::{Diagnostic, DiagnosticCode};
 use crate::model::Pos;

@@ -5,7 +5,7 @@ use std::sync::Arc;
 
 use serde_saphyr::Error;
 
-use super::layout::{ActStart, ListStart};
+use super::slips::{ActStart, ListStart};
 use crate::model::Pos;
 
 /// A plain-language message for a parse error found on `line` (the text of the line the
