@@ -36,13 +36,13 @@ pub(super) enum ActStart {
 /// act start (`- ` in column 1), a key with the dash glued to it, or `Label:` in column 1
 /// without its dash. The parser's own place (the line after, or a vague "indentation")
 /// points away from it.
-pub(super) fn act_start_slip(source: &str, line: u32) -> Option<ActStart> {
+pub(super) fn act_start_slip(source: &str, line: u32, first_line: u32) -> Option<ActStart> {
     let lines: Vec<&str> = source.lines().take(line as usize).collect();
     for (index, text) in lines.iter().enumerate().rev() {
         if is_act_start(text) {
             return None;
         }
-        let number = to_u32(index + 1);
+        let number = to_u32(index + 1) + first_line;
         let content = text.trim_start_matches(' ');
         if let Some(key) = glued_dash_key(content) {
             return Some(ActStart::GluedDash {
@@ -84,7 +84,7 @@ pub(super) enum ListStart {
 /// A first text without its `- ` (or texts under `Label:` without `Text:`) makes YAML read the
 /// following `- ` lines as part of one text, until one of them (a quoted one, one with `: `)
 /// cannot be; the parser then blames that line.
-pub(super) fn list_start_slip(source: &str, line: u32) -> Option<ListStart> {
+pub(super) fn list_start_slip(source: &str, line: u32, first_line: u32) -> Option<ListStart> {
     let lines: Vec<&str> = source.lines().take(line as usize).collect();
     let indent = |text: &str| text.len() - text.trim_start_matches(' ').len();
     let (last, above) = lines.split_last()?;
@@ -115,7 +115,7 @@ pub(super) fn list_start_slip(source: &str, line: u32) -> Option<ListStart> {
             .find(|l| !l.trim().is_empty())
             .is_some_and(|l| indent(l) < column && l.trim_end().ends_with(':'));
         return key_above.then(|| ListStart::NoDash {
-            line: to_u32(index + 1),
+            line: to_u32(index + 1) + first_line,
             column: to_u32(column + 1),
             text: content.to_owned(),
         });
@@ -125,7 +125,7 @@ pub(super) fn list_start_slip(source: &str, line: u32) -> Option<ListStart> {
         .strip_prefix("Label:")?
         .trim();
     (indent(text) < column && !label.is_empty()).then(|| ListStart::NoTextKey {
-        line: to_u32(first_item),
+        line: to_u32(first_item) + first_line,
         column: to_u32(column + 1),
         label: label.to_owned(),
     })
@@ -154,7 +154,7 @@ mod tests {
         let lines: Vec<(u32, u32)> = items.iter().map(|i| i.lines).collect();
         assert_eq!(lines, [(1, 5), (5, 7)]);
         assert_eq!(
-            act_start_slip(source, 2),
+            act_start_slip(source, 2, 0),
             Some(ActStart::GluedDash {
                 line: 1,
                 column: 1,
@@ -162,9 +162,9 @@ mod tests {
                 fixed: "- Label: A".to_owned(),
             })
         );
-        assert_eq!(act_start_slip(source, 6), None);
+        assert_eq!(act_start_slip(source, 6, 0), None);
         assert_eq!(
-            act_start_slip("- Label: A\n  Text: a\nLabel: B\n  Text: b\n", 4),
+            act_start_slip("- Label: A\n  Text: a\nLabel: B\n  Text: b\n", 4, 0),
             Some(ActStart::NoDash {
                 line: 3,
                 fixed: "- Label: B".to_owned(),
@@ -180,7 +180,7 @@ mod tests {
     fn a_list_of_texts_that_lost_its_start_is_found_from_the_line_yaml_blames() {
         let no_dash = "- Label: A\n  Text:\n    Hi there\n    - Hello\n    - \"Yes: no\"\n";
         assert_eq!(
-            list_start_slip(no_dash, 5),
+            list_start_slip(no_dash, 5, 0),
             Some(ListStart::NoDash {
                 line: 3,
                 column: 5,
@@ -189,7 +189,7 @@ mod tests {
         );
         let no_text = "- Label: A\n    - Hello\n    - \"Yes: no\"\n";
         assert_eq!(
-            list_start_slip(no_text, 3),
+            list_start_slip(no_text, 3, 0),
             Some(ListStart::NoTextKey {
                 line: 2,
                 column: 5,
@@ -197,6 +197,6 @@ mod tests {
             })
         );
         let fine_start = "- Label: A\n  Text:\n    - Hi\n    - Hello: there\n";
-        assert_eq!(list_start_slip(fine_start, 4), None);
+        assert_eq!(list_start_slip(fine_start, 4, 0), None);
     }
 }
