@@ -232,7 +232,14 @@ fn read_act(node: &Node, reading: &Reading<'_>, out: &mut Vec<Diagnostic>) -> Op
             continue;
         }
         match name {
-            "Label" => act.label = read_label(value, out),
+            "Label" => {
+                let before = out.len();
+                act.label = read_label(value, &reading.source, out);
+                // Texts swallowed by the label were written: the act is not empty, only broken.
+                wrote_content |= out[before..]
+                    .iter()
+                    .any(|d| d.code == DiagnosticCode::JoinedLines);
+            }
             "Group" => act.group = read_group(value, out),
             "Key" => act.key = read_key(value, out),
             "Cmds" => {
@@ -353,7 +360,7 @@ fn labels_in_lines(source: &str, ranges: &[(u32, u32)]) -> Vec<String> {
         .filter_map(|(_, line)| {
             let rest = line
                 .trim_start()
-                .trim_start_matches("- ")
+                .trim_start_matches('-')
                 .trim_start()
                 .strip_prefix("Label:")?;
             let label = rest

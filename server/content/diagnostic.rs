@@ -192,9 +192,9 @@ diagnostic_codes! {
     /// looks like a note after a finished sentence.
     TextCutByComment = "text-cut-by-comment",
     /// A text without quotes goes on over several lines, and YAML joins them into one. An error
-    /// when a following line starts with `- ` (a list item indented one space too far, which
-    /// swallowed the next alternative); a warning otherwise (a missing `- `, or a long text
-    /// wrapped by hand).
+    /// when a following line starts with `- ` (a list item indented one space too far, or a
+    /// first alternative without its own `- `, which swallowed the next ones); a warning
+    /// otherwise (a missing `- `, or a long text wrapped by hand).
     JoinedLines = "joined-lines",
     /// A text starts with `–`, `—`, `−` or `•`: a word processor's dash or bullet, not YAML's
     /// `-`, so a whole list became one text.
@@ -336,7 +336,8 @@ diagnostic_codes! {
     /// A comment `<!--` without `-->`, or a `<script>`, `<style>`, `<textarea>`, `<title>`,
     /// `<template>` (and similar) without its end tag, swallows the rest of the page: buttons
     /// after it never show. Reported at the opening tag; the message says which lines and how
-    /// many `data-act` buttons are hidden.
+    /// many `data-act` buttons are hidden. Also a start tag without its `>`, which swallows
+    /// the text after it up to the next tag: reported where the `>` belongs.
     PageHiddenContent = "page-hidden-content",
     /// The quotes around a `data-act` value do not match (`data-act="WELCOME>`,
     /// `data-act=WELCOME"`) or are curly quotes from a word processor (`data-act=“WELCOME”`).
@@ -346,6 +347,10 @@ diagnostic_codes! {
     BadActDelay = "bad-act-delay",
     /// `data-act-after` on an element without `data-act`: there is no act to trigger.
     ActAfterWithoutAct = "act-after-without-act",
+    /// An attribute that looks like a slip for `data-act` (`data-action`, `data_act`, `act`)
+    /// on an element without `data-act`: the page script does not read it, so a touch does
+    /// nothing.
+    ActAttributeTypo = "act-attribute-typo",
     /// A page script calls `docent.trigger("LABEL")` for an act that no page offers with
     /// `data-act` (nor is the `idle_act`), so the touchscreen is refused it. A label matching
     /// no act is `unknown-act`.

@@ -8,7 +8,7 @@ use std::sync::Arc;
 
 use crate::DiagnosticCode;
 use crate::DiagnosticCode::{ConfigSyntax, FileEncoding, NotPlainText};
-use crate::commands::{CommandChecker, path_error_code};
+use crate::commands::{CommandChecker, acts_files_elsewhere, no_acts, path_error_code};
 use crate::config::SiteConfig;
 use crate::config_file::attract::check_screen_refs;
 use crate::config_file::schedule::check_past_special_days;
@@ -96,6 +96,8 @@ fn load(root: &Path, replaced: &ActsReplacements) -> LoadReport {
     let checker = CommandChecker::new(&root, &config);
     let copies = find_translated_copies(&root, &gathered.files, &config, &mut diagnostics);
     let mut merged = merge_acts(gathered.files, &copies, &mut diagnostics);
+    // Acts saved in a folder are unread, not absent: no page is blamed for naming them.
+    merged.incomplete |= names.is_empty() && !acts_files_elsewhere(&root).is_empty();
     check_page_labels(gathered.pages, &config, &mut merged, &mut diagnostics);
     check_home(&checker, &config, settings.home.as_ref(), &mut diagnostics);
     check_idle_act(&merged, settings.idle_act.as_ref(), &mut diagnostics);
@@ -207,13 +209,7 @@ fn acts_file_names(root: &Path, out: &mut Vec<Diagnostic>) -> Vec<String> {
         .collect();
     names.sort();
     if names.is_empty() {
-        let message = "No acts files found. Acts are written in .yaml files at the top of the \
-                       bundle folder, next to pages/ and media/ (for example acts.yaml).";
-        out.push(Diagnostic::error(
-            DiagnosticCode::NoActs,
-            &Pos::start_of("acts.yaml"),
-            message,
-        ));
+        out.push(no_acts(root));
     }
     names
 }
@@ -256,18 +252,35 @@ fn check_home(
     let Some((err, problem)) = checker.path_problem(BundleArea::Pages, &config.home) else {
         return;
     };
-    let pos = match explicit {
-        Some(home) => home.pos.clone(),
-        None => Pos::start_of(format!("pages/{}", config.home)),
+    let misplaced = match err {
+        PathError::NotFound => checker.misplaced(BundleArea::Pages, &config.home),
+        _ => None,
+    };
+    // The default home page saved elsewhere, or under another name, is told at the file the
+    // author made.
+    let made = match &err {
+        PathError::NotFound => {
+            (misplaced.clone()).or_else(|| checker.similar_file(BundleArea::Pages, &config.home))
+        }
+        PathError::Miscased { actual } => Some(format!("pages/{actual}")),
+        _ => None,
+    };
+    let pos = match (explicit, made) {
+        (Some(home), _) => home.pos.clone(),
+        (None, Some(found)) => Pos::start_of(found),
+        (None, None) => Pos::start_of(format!("pages/{}", config.home)),
     };
     let code = match err {
         PathError::NotFound | PathError::NotAFile => DiagnosticCode::NoHomePage,
         other => path_error_code(&other),
     };
-    let message = format!(
-        "{problem} The kiosk starts on this page: add it, or choose another page with `home:` \
-         in docent.yaml."
-    );
+    let message = match misplaced {
+        Some(_) => format!("{problem} Until then the touchscreen has no page to start on."),
+        None => format!(
+            "{problem} The kiosk starts on this page: add it, or choose another page with \
+             `home:` in docent.yaml."
+        ),
+    };
     out.push(match explicit {
         Some(_) => Diagnostic::error(code, &pos, message),
         None => Diagnostic::warning(code, &pos, message),

@@ -26,6 +26,8 @@ mod bundle;
 mod commands;
 mod copied_folders;
 mod diagnostics_reference;
+mod getting_started;
+mod getting_started_files;
 mod language_mistakes;
 mod language_settings;
 mod load;

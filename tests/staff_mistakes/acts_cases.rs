@@ -329,4 +329,60 @@ pub const YAML_TRAPS: &[Mistake] = &[
         )],
         expect: &[("unknown-key", "greetings.yaml:15:3")],
     },
+    Mistake {
+        name: "quoted a text with a colon in the editor's curly quotes",
+        edits: &[replace(
+            G,
+            "    - \"Need help? I know where every book is: just touch my screen.\"",
+            "    - “Need help? I know where every book is: just touch my screen.”",
+        )],
+        expect: &[("bad-value", "greetings.yaml:21:7")],
+    },
+    Mistake {
+        name: "typed `-Label:` without the space after the dash",
+        edits: &[replace(G, "- Label: INVITE", "-Label: INVITE")],
+        expect: &[("yaml-syntax", "greetings.yaml:18:1")],
+    },
+    Mistake {
+        name: "started an act with `Label:` and no dash",
+        edits: &[replace(G, "- Label: INVITE", "Label: INVITE")],
+        expect: &[("yaml-syntax", "greetings.yaml:18:1")],
+    },
+    Mistake {
+        name: "wrote the first alternative without its dash",
+        edits: &[replace(
+            G,
+            "    - Looking for something?",
+            "    Looking for something?",
+        )],
+        // The quoted text below stops YAML, which first took the `- ` lines as one text.
+        expect: &[("yaml-syntax", "greetings.yaml:20:5")],
+    },
+    Mistake {
+        name: "left the dash off an alternative between two others",
+        edits: &[replace(
+            G,
+            "    - Good day, and welcome",
+            "    Good day, and welcome",
+        )],
+        expect: &[("yaml-syntax", "greetings.yaml:9:5")],
+    },
+    Mistake {
+        name: "typed `Text` without its colon",
+        edits: &[replace(
+            G,
+            "- Label: INVITE\n  Text:\n",
+            "- Label: INVITE\n  Text\n",
+        )],
+        expect: &[("yaml-syntax", "greetings.yaml:19:3")],
+    },
+    Mistake {
+        name: "forgot the `Text:` line under a label",
+        edits: &[replace(
+            G,
+            "- Label: INVITE\n  Text:\n",
+            "- Label: INVITE\n",
+        )],
+        expect: &[("yaml-syntax", "greetings.yaml:19:5")],
+    },
 ];

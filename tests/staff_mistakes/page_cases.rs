@@ -16,6 +16,24 @@ const PLAN: &str = "pages/floor-plan.html";
 /// Hand-written or hand-edited pages.
 pub const PAGES: &[Mistake] = &[
     Mistake {
+        name: "forgot the `>` of a button's start tag",
+        edits: &[replace(
+            HOME,
+            "data-act=\"SHOW_PLAN\">Floor plan",
+            "data-act=\"SHOW_PLAN\"Floor plan",
+        )],
+        expect: &[("page-hidden-content", "pages/index.html:19:62")],
+    },
+    Mistake {
+        name: "wrote `data-action` for `data-act` on a button",
+        edits: &[replace(
+            HOME,
+            "data-act=\"SHOW_PLAN\"",
+            "data-action=\"SHOW_PLAN\"",
+        )],
+        expect: &[("act-attribute-typo", "pages/index.html:19:42")],
+    },
+    Mistake {
         name: "commented out a heading with `<!--` and never closed it, before the buttons",
         edits: &[replace(
             HOME,
@@ -286,5 +304,52 @@ pub const MEDIA_AND_BUNDLE: &[Mistake] = &[
         name: "wrote the idle time as a bare `2`",
         edits: &[replace("docent.yaml", "  idle: 2m", "  idle: 2")],
         expect: &[("config-bad-value", "docent.yaml:16:9")],
+    },
+    Mistake {
+        name: "wrote `idle_act:` in the same column as `kiosk:`",
+        edits: &[replace(
+            "docent.yaml",
+            "  idle_act: INVITE",
+            "idle_act: INVITE",
+        )],
+        expect: &[("config-unknown-key", "docent.yaml:17:1")],
+    },
+    Mistake {
+        name: "saved the start page beside the acts files instead of in pages",
+        edits: &[Rename {
+            from: "pages/index.html",
+            to: "index.html",
+        }],
+        expect: &[
+            ("no-home-page", "docent.yaml:4:7"),
+            ("missing-file", "greetings.yaml:16:20"),
+            ("missing-file", "info.yaml:8:20"),
+        ],
+    },
+    Mistake {
+        name: "saved the acts files in pages instead of at the top",
+        edits: &[
+            Rename {
+                from: "greetings.yaml",
+                to: "pages/greetings.yaml",
+            },
+            Rename {
+                from: "info.yaml",
+                to: "pages/info.yaml",
+            },
+            Rename {
+                from: "slideshow.yaml",
+                to: "pages/slideshow.yaml",
+            },
+        ],
+        expect: &[("no-acts", "pages/greetings.yaml:1:1")],
+    },
+    Mistake {
+        name: "saved the tour film in pages instead of media",
+        edits: &[Rename {
+            from: "media/library-tour.webm",
+            to: "pages/library-tour.webm",
+        }],
+        expect: &[("missing-file", "info.yaml:77:15")],
     },
 ];

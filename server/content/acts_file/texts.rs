@@ -53,25 +53,30 @@ pub(crate) fn check_written(
         };
         if style == Style::Plain {
             cut_by_comment(source, node, span.end, value, out);
-            joined_lines(source, node, written, value, out);
-            dash_without_space(node, value, out);
+            // `-Hello` over a following `- ` line: the glued dash is the one slip to fix.
+            if !dash_without_space(node, written, value, out) {
+                joined_lines(source, node, written, value, out);
+            }
         }
     }
     fake_bullet(node, value, out);
     curly_quotes(node, value, out);
 }
 
-/// `-Hello`: a dash glued to the text is text to YAML, not a list item.
-fn dash_without_space(node: &Node, value: &str, out: &mut Vec<Diagnostic>) {
+/// `-Hello`: a dash glued to the text is text to YAML, not a list item. Whether it was told.
+fn dash_without_space(node: &Node, written: &str, value: &str, out: &mut Vec<Diagnostic>) -> bool {
     let Some(rest) = value.strip_prefix('-') else {
-        return;
+        return false;
     };
     if !rest.starts_with(char::is_alphabetic) {
-        return; // `-20 degrees`, `--`: not a slip
+        return false; // `-20 degrees`, `--`: not a slip
     }
+    // The fix is for this line only: lines below joined to it are texts of their own.
+    let first_line = written.lines().next().unwrap_or(written).trim_end();
+    let fixed = first_line.strip_prefix('-').unwrap_or(first_line);
     let message = format!(
         "This text starts with a dash right before a word, so YAML reads it as text, not as a \
-         list item, and the robot says: {}. Put a space after the dash: `- {rest}`.",
+         list item, and the robot says: {}. Put a space after the dash: `- {fixed}`.",
         quote(value)
     );
     out.push(Diagnostic::error(
@@ -79,6 +84,7 @@ fn dash_without_space(node: &Node, value: &str, out: &mut Vec<Diagnostic>) {
         &node.pos,
         message,
     ));
+    true
 }
 
 /// Whether text starting right after `before` is the body of a `|` or `>` block (the parser
@@ -148,8 +154,11 @@ fn joined_lines(
         if let Some(bullet) = bullet
             && content[bullet.len_utf8()..].starts_with([' ', '\u{a0}'])
         {
+            if bullet == '-' && missing_dash(source, node, written, value, out) {
+                return;
+            }
             let why = if bullet == '-' {
-                "is indented differently from the `- ` lines above".to_owned()
+                "is indented differently from the `- ` line above it".to_owned()
             } else {
                 format!("`{bullet}` is a word processor's dash, which YAML takes as text")
             };
@@ -183,6 +192,77 @@ fn joined_lines(
         &at,
         message,
     ));
+}
+
+/// A text joined to the `- ` lines below it because it has no `- ` itself: the first
+/// alternative written without its dash (`Text:`, then `Welcome!`, then `- Hello!`), or
+/// written after `Text:` on the key's own line. Told at the text, where the dash is missing.
+/// Whether it was told.
+fn missing_dash(
+    source: &Source<'_>,
+    node: &Node,
+    written: &str,
+    value: &str,
+    out: &mut Vec<Diagnostic>,
+) -> bool {
+    let start = node.span.as_ref().map_or(0, |s| s.start);
+    let line_start = source.text[..start].rfind('\n').map_or(0, |i| i + 1);
+    let before = source.text[line_start..start].trim();
+    let first_line = written.lines().next().unwrap_or(written).trim_end();
+    let message = if before.is_empty() {
+        format!(
+            "This line has no `- ` in front, but the lines below it start with `- `, so YAML \
+             joins them all into one text and the robot says: {}. Put a dash and a space in \
+             front of it, in the same column as the `- ` below: `- {first_line}`.",
+            quote(value)
+        )
+    } else if before.ends_with(':') {
+        format!(
+            "This text is written on the same line as `{before}`, but the lines below it start \
+             with `- `, so YAML joins them all into one text and the robot says: {}. Move it \
+             to a line of its own under `{before}`, as `- {first_line}` in the same column as \
+             the `- ` lines.",
+            quote(value)
+        )
+    } else {
+        return false; // A list item itself: the line below is what moved.
+    };
+    out.push(Diagnostic::error(
+        DiagnosticCode::JoinedLines,
+        &node.pos,
+        message,
+    ));
+    true
+}
+
+/// `Label: WELCOME` with `- ` lines right under it (the `Text:` line forgotten): YAML makes
+/// them part of the label. Told at the first `- ` line, where `Text:` belongs; the label
+/// meant (its first line) is returned, so the pages naming it are not blamed too.
+pub(crate) fn label_swallowed_texts(
+    source: &Source<'_>,
+    node: &Node,
+    out: &mut Vec<Diagnostic>,
+) -> Option<String> {
+    let written = source.text.get(node.span.clone()?)?;
+    let (first, rest) = written.split_once('\n')?;
+    let mut offset = first.len() + 1;
+    for line in rest.split('\n') {
+        let content = line.trim_start_matches(' ');
+        if content.starts_with("- ") {
+            let start = node.span.as_ref().map_or(0, |s| s.start);
+            let at = pos_at(source, node, start + offset + line.len() - content.len());
+            let label = first.trim();
+            let message = format!(
+                "This line starts with `- ` right under `Label: {label}`, with no `Text:` line \
+                 between, so YAML makes it part of the label. Add a line `Text:` above it, in \
+                 the same column as `Label`."
+            );
+            out.push(Diagnostic::error(DiagnosticCode::JoinedLines, &at, message));
+            return Some(label.to_owned());
+        }
+        offset += line.len() + 1;
+    }
+    None
 }
 
 /// `– Hello`: Word's en dash bullet is text to YAML.

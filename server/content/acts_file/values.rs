@@ -10,13 +10,19 @@ use crate::DiagnosticCode;
 use crate::speech::{SpokenText, check_spoken};
 
 use super::Reading;
-use super::texts::check_written;
+use super::texts::{Source, check_written, label_swallowed_texts};
 use super::yaml::{Kind, Node};
 
 /// The label, or `None` after reporting why it is unusable.
-pub(super) fn read_label(value: &Node, out: &mut Vec<Diagnostic>) -> Option<Located<String>> {
+pub(super) fn read_label(
+    value: &Node,
+    source: &Source<'_>,
+    out: &mut Vec<Diagnostic>,
+) -> Option<Located<String>> {
     let label = match &value.kind {
-        Kind::Str { value: text, .. } if !text.trim().is_empty() => text.clone(),
+        Kind::Str { value: text, .. } if !text.trim().is_empty() => {
+            label_swallowed_texts(source, value, out).unwrap_or_else(|| text.clone())
+        }
         Kind::Guessed(text) => {
             out.push(unquoted_warning(value, text));
             text.clone()
@@ -303,6 +309,17 @@ fn colon_message(what: &str, entries: &[(Node, Node)]) -> String {
         _ => None,
     };
     let example = written.unwrap_or_else(|| "Note: this is splendid".to_owned());
+    // `- “Opening hours: ten to six.”`: quoted, but by an editor's curly quotes.
+    let curly = ['“', '”', '„', '‘', '’', '«', '»'];
+    let inner = example.trim_matches(|c: char| curly.contains(&c));
+    if inner.len() < example.len() {
+        return format!(
+            "This {what} was read as a key and a value, because it contains a colon followed \
+             by a space (`: `) and its quotes are curly quotes (“ ”), typed by the editor, \
+             which YAML does not take as quotes. Replace them with straight quotes: \
+             `- \"{inner}\"`."
+        );
+    }
     format!(
         "This {what} was read as a key and a value, because it contains a colon followed by a \
          space (`: `). Put the whole {what} in quotes: `- \"{example}\"`."

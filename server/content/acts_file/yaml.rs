@@ -24,13 +24,14 @@ mod fast;
 mod layout;
 mod raw;
 mod recovery;
+mod slips;
 mod wording;
 
 use layout::{
     odd_space_diagnostics, odd_space_positions, position_of_byte, tab_diagnostics, tab_positions,
     top_level_items,
 };
-use recovery::{parse_items, report_error};
+use recovery::{Scope, parse_items, report_error};
 
 /// The largest YAML file read, in bytes. A real acts file of 100,000 acts is about 25 MB.
 pub(crate) const MAX_FILE_BYTES: usize = 32 * 1024 * 1024;
@@ -174,11 +175,15 @@ pub(crate) fn parse(
             }
             // Not split into items, or the problem lies between them: report it as found.
             if out.skipped_lines.is_empty() {
+                let scope = Scope {
+                    source,
+                    text: source,
+                    first_line: 0,
+                };
                 report_error(
                     file,
-                    source,
+                    &scope,
                     &err,
-                    0,
                     syntax_code,
                     &explained,
                     &mut out.diagnostics,

@@ -10,6 +10,7 @@ use crate::model::Pos;
 use crate::paths::{BundleArea, Listing, PathError, list_files, read_listing, resolve_listed};
 use crate::suggest::did_you_mean;
 
+use super::misplaced::move_hint;
 use super::{CommandChecker, PathProblem};
 
 impl CommandChecker<'_> {
@@ -89,12 +90,22 @@ impl CommandChecker<'_> {
                 format!("`{folder}/{rel}` is a folder, not a file. Name a file inside it.")
             }
             PathError::NotFound => {
-                let files = self.listing(area);
-                let hint = did_you_mean(rel, files.iter().map(String::as_str));
+                let hint = match self.misplaced(area, rel) {
+                    Some(found) => move_hint(area, rel, &found),
+                    None => did_you_mean(rel, self.listing(area).iter().map(String::as_str)),
+                };
                 format!("There is no file `{folder}/{rel}`.{hint}")
             }
         };
         Some((err, message))
+    }
+
+    /// The file under `area` whose name is close to the missing `rel` (`index.htm` for
+    /// `index.html`), as a path from the bundle root.
+    pub(crate) fn similar_file(&self, area: BundleArea, rel: &str) -> Option<String> {
+        let files = self.listing(area);
+        let near = crate::suggest::closest(rel, files.iter().map(String::as_str))?;
+        Some(format!("{}/{near}", area.dir_name()))
     }
 
     fn listing(&self, area: BundleArea) -> &[String] {

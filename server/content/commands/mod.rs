@@ -11,8 +11,10 @@ use std::sync::Arc;
 
 mod arguments;
 mod files;
+mod misplaced;
 
 pub(crate) use files::path_error_code;
+pub(crate) use misplaced::{acts_files_elsewhere, no_acts};
 
 use crate::DiagnosticCode;
 use crate::args::Args;

@@ -112,7 +112,7 @@ impl Reader {
             }
         };
         let mut seen: Vec<(&str, &Pos)> = Vec::new();
-        let mut out = Vec::new();
+        let mut out: Vec<(&'static Field, &'n Node)> = Vec::new();
         for (key, value) in entries {
             let name = key.as_text().unwrap_or_default();
             if let Some((_, first)) = seen.iter().find(|(k, _)| *k == name) {
@@ -132,6 +132,17 @@ impl Reader {
                 out.push((field, value));
                 continue;
             }
+            if let Some(message) = out
+                .last()
+                .and_then(|&(above, v)| not_indented(name, above, v))
+            {
+                self.diagnostics.push(Diagnostic::error(
+                    DiagnosticCode::ConfigUnknownKey,
+                    &key.pos,
+                    message,
+                ));
+                continue;
+            }
             let hint = did_you_mean(name, known.iter().copied());
             let message = format!(
                 "`{name}` is not a setting Docent knows in {section}.{hint} Known settings \
@@ -146,4 +157,23 @@ impl Reader {
         }
         out
     }
+}
+
+/// `corpus:`, then `record: none` in the same column: a setting of the section above, not
+/// indented under it (after the section's other settings, or right under its key). The
+/// message for `name`, if that is what happened.
+fn not_indented(name: &str, above: &Field, value: &Node) -> Option<String> {
+    let Shape::Nested(section) = above.shape else {
+        return None;
+    };
+    let a_section = matches!(value.kind, Kind::Null | Kind::Map(_));
+    if !a_section || section.field(name).is_none() {
+        return None;
+    }
+    let parent = above.key;
+    Some(format!(
+        "`{name}` is a setting of `{parent}:` above, but it starts in the same column as \
+         `{parent}:`, so Docent reads it as a setting of its own. Indent it by two spaces, \
+         under `{parent}:`."
+    ))
 }

@@ -128,3 +128,31 @@ pub(super) fn check_attract_form(source: &SourceText, found: &PageScan, out: &mu
         message,
     ));
 }
+
+/// `data-action="WELCOME"`: an attribute like `data-act` that the page script does not read,
+/// so touching the element does nothing. A warning: a page's own script may use the name.
+pub(super) fn check_act_typo(
+    source: &SourceText,
+    name: &Value,
+    value: &str,
+    out: &mut Vec<Diagnostic>,
+) {
+    let label = value.trim();
+    let looks_like_label = !label.is_empty()
+        && label
+            .chars()
+            .all(|c| c.is_alphanumeric() || matches!(c, '_' | '-' | ' '));
+    if !looks_like_label {
+        return;
+    }
+    let message = format!(
+        "`{}` is not an attribute Docent reads, so touching this does nothing. Write \
+         `data-act=\"{label}\"` instead to trigger the act.",
+        name.text
+    );
+    out.push(Diagnostic::warning(
+        DiagnosticCode::ActAttributeTypo,
+        &source.pos(name.at),
+        message,
+    ));
+}

@@ -6,7 +6,7 @@
 //! `data-act` quoting, links to missing files, pictures and videos Chromium cannot show,
 //! pages not in UTF-8, unreadable `data-act-after` delays; and what fights the robot or the
 //! kiosk (`behaviour`): a `lang` other than the page's folder's, sound that starts by itself,
-//! a form on an attract page. Labels (`data-act` values and
+//! a form on an attract page; and a start tag without its `>` (`tag_end`). Labels (`data-act` values and
 //! `docent.trigger` literals) are returned for `load` to check against the acts.
 
 mod behaviour;
@@ -14,6 +14,7 @@ mod languages;
 mod links;
 mod scan;
 mod script;
+mod tag_end;
 mod text;
 
 use std::collections::BTreeSet;
@@ -161,6 +162,12 @@ impl PageFile<'_, '_> {
         }
         for (after, has_act) in &found.act_afters {
             check_act_after(source, after, *has_act, out);
+        }
+        for (name, value) in &found.act_typos {
+            behaviour::check_act_typo(source, name, value, out);
+        }
+        for (tag, swallowed) in &found.tags_without_end {
+            tag_end::report(source, tag, swallowed, out);
         }
         check_charset(source, &found.charsets, out);
         behaviour::check_lang(

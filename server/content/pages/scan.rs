@@ -73,6 +73,12 @@ pub(crate) struct PageScan {
     pub languages: Vec<Value>,
     /// `data-act-after` values, with whether the same element has `data-act`.
     pub act_afters: Vec<(Value, bool)>,
+    /// Start tags that run into the next tag because their `>` is missing: where the `>`
+    /// belongs (`text`: the element's name), and what the tag swallowed.
+    pub tags_without_end: Vec<(Value, String)>,
+    /// Attributes that look like a slip for `data-act` (`data-action`, `data_act`, `act`) on
+    /// an element without `data-act`: the name at its place, and the value.
+    pub act_typos: Vec<(Value, String)>,
     /// Links to other files.
     pub links: Vec<Link>,
     /// CSS text (`<style>` blocks and `style` attributes) and its offset.
@@ -120,6 +126,7 @@ pub(crate) fn scan(html: &str) -> PageScan {
     let settings = Settings::new()
         .append_element_content_handler(element!("*", |el| {
             read_element(el, &mut found.borrow_mut());
+            missing_tag_end(el, source, &mut found.borrow_mut());
             watch_closing(el, &open);
             Ok(())
         }))
@@ -184,6 +191,7 @@ fn read_element(el: &Element<'_, '_>, found: &mut PageScan) {
     let name = el.tag_name();
     read_behaviour(el, &name, found);
     let mut has_act = false;
+    let mut typos = Vec::new();
     let mut after = None;
     let mut http_equiv = false;
     let mut content = None;
@@ -216,6 +224,14 @@ fn read_element(el: &Element<'_, '_>, found: &mut PageScan) {
                 used: LinkUse::Image,
                 srcset: true,
             }),
+            n if act_attribute_typo(n) => {
+                let at = (attr.name_source_location()).map_or(0, |l| l.bytes().start);
+                let name = Value {
+                    text: attr_name.clone(),
+                    at,
+                };
+                typos.push((name, value.text));
+            }
             _ => {
                 if let Some(used) = used {
                     found.links.push(Link {
@@ -230,9 +246,59 @@ fn read_element(el: &Element<'_, '_>, found: &mut PageScan) {
     if let Some(after) = after {
         found.act_afters.push((after, has_act));
     }
+    if !has_act {
+        found.act_typos.extend(typos);
+    }
     if let (true, Some(content)) = (http_equiv, content) {
         found.charsets.push(charset_in_content(content));
     }
+}
+
+/// `<button data-act="WELCOME"Say hello</button>`: a start tag whose `>` is missing runs into
+/// the next tag, and its text becomes attributes (one named `hello<`). The `>` belongs after
+/// the last value written before that, or after the element's name.
+fn missing_tag_end(el: &Element<'_, '_>, source: &[u8], found: &mut PageScan) {
+    let attributes = el.attributes();
+    let Some(slip) = attributes.iter().position(|a| a.name().contains('<')) else {
+        return;
+    };
+    let tag = el.source_location().bytes();
+    let name = el.tag_name();
+    let after_value = attributes[..slip]
+        .iter()
+        .rev()
+        .find_map(|a| a.value_source_location())
+        .map(|l| l.bytes().end);
+    let at = match after_value {
+        Some(end) if matches!(source.get(end), Some(b'"' | b'\'')) => end + 1,
+        Some(end) => end,
+        None => tag.start + 1 + name.len(),
+    };
+    let swallowed = source
+        .get(at..tag.end.saturating_sub(1))
+        .unwrap_or_default();
+    let swallowed: String = String::from_utf8_lossy(swallowed)
+        .trim()
+        .chars()
+        .take(60)
+        .collect();
+    found
+        .tags_without_end
+        .push((Value { text: name, at }, swallowed));
+}
+
+/// Whether an attribute named `name` is likely a slip for `data-act`: one letter off
+/// (`data_act`, `data-acts`, `date-act`, `dataact`), or a name a new author guesses
+/// (`act`, `data-action`, `data-label`).
+fn act_attribute_typo(name: &str) -> bool {
+    const GUESSES: [&str; 4] = ["act", "data-action", "data-label", "data-act-label"];
+    // Within two edits of `data-act`: only names of 6 to 10 letters need comparing.
+    let near_length = (6..=10).contains(&name.len());
+    name != "data-act"
+        && name != ACT_AFTER
+        && name != LANGUAGE
+        && (GUESSES.contains(&name)
+            || near_length && crate::suggest::closest(name, ["data-act"]).is_some())
 }
 
 /// What the page does on its own: its declared language, sound that starts by itself, and

@@ -1,5 +1,6 @@
 //! The layout of a YAML file as text, before and beside the parser: where the top-level list
-//! items are, where tabs indent lines, and the line and column of a byte.
+//! items are, where tabs indent lines, and the line and column of a byte. (Slips the parser
+//! notices lines later are found in `slips`.)
 
 use std::sync::Arc;
 
@@ -23,9 +24,9 @@ pub(super) fn top_level_items(source: &str) -> Option<Vec<Item>> {
     let mut offset = 0;
     for (index, line) in source.split_inclusive('\n').enumerate() {
         let number = to_u32(index + 1);
-        let starts_item = line.starts_with('-')
-            && !line.starts_with("--")
-            && line[1..].chars().next().is_none_or(char::is_whitespace);
+        // `-Label: X` (the dash glued to the key) is a broken act start: still its own item,
+        // so only that act is lost.
+        let starts_item = is_act_start(line) || super::slips::glued_dash_key(line).is_some();
         if starts_item {
             if let Some(last) = items.last_mut() {
                 last.lines.1 = number;
@@ -53,6 +54,13 @@ pub(super) fn top_level_items(source: &str) -> Option<Vec<Item>> {
     (!items.is_empty()).then_some(items)
 }
 
+/// Whether `line` starts a top-level list item: `-` in column 1, then a space or nothing.
+pub(super) fn is_act_start(line: &str) -> bool {
+    line.starts_with('-')
+        && !line.starts_with("--")
+        && line[1..].chars().next().is_none_or(char::is_whitespace)
+}
+
 /// The position of byte `offset` (1-based line, column in characters).
 pub(super) fn position_of_byte(file: &Arc<str>, bytes: &[u8], offset: usize) -> Pos {
     let before = &bytes[..offset.min(bytes.len())];
@@ -68,7 +76,7 @@ pub(super) fn position_of_byte(file: &Arc<str>, bytes: &[u8], offset: usize) -> 
     Pos::new(file.clone(), to_u32(line), to_u32(column))
 }
 
-fn to_u32(n: usize) -> u32 {
+pub(super) fn to_u32(n: usize) -> u32 {
     u32::try_from(n).unwrap_or(u32::MAX)
 }
 

@@ -7,6 +7,7 @@ use std::sync::Arc;
 use serde_saphyr::Spanned;
 
 use super::layout::{Item, unclosed_bracket_before};
+use super::slips::{act_start_slip, list_start_slip};
 use super::{Kind, Node, YamlFile, options, raw, wording};
 use crate::diagnostic::{Diagnostic, DiagnosticCode};
 use crate::model::Pos;
@@ -38,11 +39,15 @@ pub(super) fn parse_items(
                 other => nodes.push(other),
             },
             Err(err) => {
+                let scope = Scope {
+                    source,
+                    text,
+                    first_line: line_offset,
+                };
                 report_error(
                     file,
-                    source,
+                    &scope,
                     &err,
-                    line_offset,
                     syntax_code,
                     explained,
                     &mut out.diagnostics,
@@ -59,29 +64,53 @@ pub(super) fn parse_items(
     });
 }
 
+/// The text a parse error was found in: the whole file, or one top-level item of it.
+pub(super) struct Scope<'a> {
+    /// The whole file.
+    pub source: &'a str,
+    /// The text parsed: the whole file, or the item.
+    pub text: &'a str,
+    /// The lines of the file before `text`.
+    pub first_line: u32,
+}
+
 /// Adds the diagnostic for a parse error, unless a layout problem (a tab, a no-break space) on
 /// that line (or the next, where the parser tends to notice it) already explains it.
 pub(super) fn report_error(
     file: &Arc<str>,
-    source: &str,
+    scope: &Scope<'_>,
     err: &serde_saphyr::Error,
-    line_offset: u32,
     syntax_code: DiagnosticCode,
     explained: &[(u32, u32)],
     out: &mut Vec<Diagnostic>,
 ) {
+    let source = scope.source;
     let pos = match err.location() {
         Some(location) => {
             let mut pos = raw::pos(file, &location);
-            pos.line = pos.line.saturating_add(line_offset);
+            pos.line = pos.line.saturating_add(scope.first_line);
             pos
         }
         None => Pos::start_of(file.clone()),
     };
+    // Looking back from the error stays inside the text parsed (one act, when items are).
+    let local_line = pos.line.saturating_sub(scope.first_line);
     let explained_by_tab = explained
         .iter()
         .any(|&(line, _)| line.abs_diff(pos.line) <= 1);
     if !explained_by_tab {
+        // `-Label: X` or `Label: X` without its dash: the parser notices it a line later.
+        if let Some(slip) = act_start_slip(scope.text, local_line, scope.first_line) {
+            let (at, message) = wording::act_start(file, &slip);
+            out.push(Diagnostic::error(syntax_code, &at, message));
+            return;
+        }
+        // A list of texts that lost its first `- ` or its `Text:` line.
+        if let Some(slip) = list_start_slip(scope.text, local_line, scope.first_line) {
+            let (at, message) = wording::list_start(file, &slip);
+            out.push(Diagnostic::error(syntax_code, &at, message));
+            return;
+        }
         // A bracket left open is noticed only lines later: report it where it was opened.
         if wording::about_brackets(err)
             && let Some((line, column)) = unclosed_bracket_before(source, pos.line, pos.column)
@@ -94,8 +123,10 @@ pub(super) fn report_error(
             ));
             return;
         }
-        let line = source.lines().nth(pos.line.saturating_sub(1) as usize);
-        let message = wording::describe(err, line.unwrap_or_default());
+        let lines: Vec<&str> = scope.text.lines().take(local_line as usize).collect();
+        let (line, before) = lines.split_last().unwrap_or((&"", &[]));
+        let above = before.iter().rev().find(|l| !l.trim().is_empty());
+        let message = wording::describe(err, line, above.copied().unwrap_or_default());
         out.push(Diagnostic::error(syntax_code, &pos, message));
     }
 }

@@ -1,13 +1,18 @@
 //! YAML parser errors re-worded for museum staff: what happened at this place and how to fix
 //! it, without parser jargon. The parser's own words are kept only as a last resort.
 
+use std::sync::Arc;
+
 use serde_saphyr::Error;
 
+use super::slips::{ActStart, ListStart};
+use crate::model::Pos;
+
 /// A plain-language message for a parse error found on `line` (the text of the line the
-/// parser stopped at).
-pub(super) fn describe(err: &Error, line: &str) -> String {
+/// parser stopped at; `above`, the last line with text before it).
+pub(super) fn describe(err: &Error, line: &str, above: &str) -> String {
     match err.without_snippet() {
-        Error::AliasError { error, .. } => describe(error, line),
+        Error::AliasError { error, .. } => describe(error, line, above),
         Error::Budget { .. }
         | Error::AliasReplayLimitExceeded { .. }
         | Error::AliasExpansionLimitExceeded { .. }
@@ -31,7 +36,8 @@ pub(super) fn describe(err: &Error, line: &str) -> String {
             .to_owned(),
         other => {
             let message = message_of(other);
-            describe_at_line(&message, line).unwrap_or_else(|| describe_parser_message(&message))
+            describe_at_line(&message, line, above)
+                .unwrap_or_else(|| describe_parser_message(&message))
         }
     }
 }
@@ -39,7 +45,7 @@ pub(super) fn describe(err: &Error, line: &str) -> String {
 /// Advice from the line itself, for the mistakes the parser's message alone does not tell
 /// apart: a dash without its space, a missing `- ` or colon, a key indented too far, quotes
 /// closed too early.
-fn describe_at_line(msg: &str, line: &str) -> Option<String> {
+fn describe_at_line(msg: &str, line: &str, above: &str) -> Option<String> {
     let lower = msg.to_lowercase();
     let content = line.trim_start();
     // `    Text: hi`: one key and its value (a text with its own `: ` is the other mistake).
@@ -79,6 +85,15 @@ fn describe_at_line(msg: &str, line: &str) -> Option<String> {
                 .to_owned(),
         );
     }
+    if lower.contains("mapping values are not allowed")
+        && let Some((parent, setting)) = settings_on_one_line(content)
+    {
+        return Some(format!(
+            "Two settings are written on one line: `{parent}:` and `{setting}`. Each setting goes \
+             on its own line: put `{setting}` on the next line, two spaces further in than \
+             `{parent}:`."
+        ));
+    }
     if lower.contains("mapping values are not allowed") && indented_key && !content.starts_with('-')
     {
         return Some(
@@ -95,6 +110,22 @@ fn describe_at_line(msg: &str, line: &str) -> Option<String> {
                 content[1..].trim_start()
             ));
         }
+        if let Some(message) = missing_dash_below_item(line, above) {
+            return Some(message);
+        }
+        let word = content.trim_end();
+        let act_key = ["Label", "Text", "Cmds", "Group", "Key"]
+            .iter()
+            .any(|key| word.starts_with(key))
+            && word
+                .chars()
+                .all(|c| c.is_alphanumeric() || c == '_' || c == '@');
+        if act_key {
+            return Some(format!(
+                "`{word}` has no colon after it, so YAML cannot read it as a key with the \
+                 lines under it as its value. Write `{word}:`."
+            ));
+        }
         return Some(
             "YAML expected a key with a colon here (such as `Text:`) or a list item starting \
              with `- `. If this line is another alternative, start it with `- ` in the same \
@@ -104,6 +135,92 @@ fn describe_at_line(msg: &str, line: &str) -> Option<String> {
         );
     }
     None
+}
+
+/// `corpus: record: none`: a section and its setting on one line, as (`corpus`,
+/// `record: none`). Settings of `docent.yaml` are lower-case words; an act's keys are
+/// capitalised (`Text: Note: this` is a text needing quotes, not this).
+fn settings_on_one_line(content: &str) -> Option<(&str, &str)> {
+    let is_setting = |key: &str| {
+        !key.is_empty()
+            && key
+                .chars()
+                .all(|c| c.is_ascii_lowercase() || c.is_ascii_digit() || c == '_')
+    };
+    let (parent, rest) = content.split_once(": ")?;
+    let rest = rest.trim();
+    let (setting, _) = rest.split_once(':')?;
+    (is_setting(parent) && is_setting(setting)).then_some((parent, rest))
+}
+
+/// `    Welcome!` under `    - Hello!`: an alternative after the first without its `- `.
+fn missing_dash_below_item(line: &str, above: &str) -> Option<String> {
+    let content = line.trim_start_matches(' ');
+    let above_content = above.trim_start_matches(' ');
+    let same_column = line.len() - content.len() == above.len() - above_content.len();
+    if !same_column || !above_content.starts_with("- ") || content.starts_with('-') {
+        return None;
+    }
+    Some(format!(
+        "This line has no `- ` in front, unlike the `- ` line above it, so YAML cannot read it \
+         as another text of the list. Put a dash and a space in front of it, in the same column \
+         as the `- ` above: `- {}`.",
+        content.trim_end()
+    ))
+}
+
+/// Where and how to tell a slip at the start of an act (see [`ActStart`]).
+pub(super) fn act_start(file: &Arc<str>, slip: &ActStart) -> (Pos, String) {
+    match slip {
+        ActStart::GluedDash {
+            line,
+            column,
+            key,
+            fixed,
+        } => (
+            Pos::new(file.clone(), *line, *column),
+            format!(
+                "This line starts with a dash glued to `{key}:`, so YAML does not see a new \
+                 item here and cannot read the lines below it. Put a space after the `-`: \
+                 `{fixed}`."
+            ),
+        ),
+        ActStart::NoDash { line, fixed } => (
+            Pos::new(file.clone(), *line, 1),
+            format!(
+                "This act has no `- ` in front of `Label:`, so YAML cannot tell where it \
+                 begins. Every act starts with a dash and a space: `{fixed}`."
+            ),
+        ),
+    }
+}
+
+/// Where and how to tell a list of texts that lost its start (see [`ListStart`]), in the
+/// words of the same slips found when YAML could read the file (`texts.rs`).
+pub(super) fn list_start(file: &Arc<str>, slip: &ListStart) -> (Pos, String) {
+    match slip {
+        ListStart::NoDash { line, column, text } => (
+            Pos::new(file.clone(), *line, *column),
+            format!(
+                "This line has no `- ` in front, but the lines below it start with `- `, so \
+                 YAML reads them as part of this text and cannot read the act. Put a \
+                 dash and a space in front of it, in the same column as the `- ` below: \
+                 `- {text}`."
+            ),
+        ),
+        ListStart::NoTextKey {
+            line,
+            column,
+            label,
+        } => (
+            Pos::new(file.clone(), *line, *column),
+            format!(
+                "This line starts with `- ` right under `Label: {label}`, with no `Text:` line \
+                 between, so YAML reads it as part of the label and cannot read the act. \
+                 Add a line `Text:` above it, in the same column as `Label`."
+            ),
+        ),
+    }
 }
 
 /// The message for a `[` or `{` that is never closed, reported at the bracket.
@@ -256,7 +373,9 @@ mod tests {
     fn message(yaml: &str) -> String {
         let err =
             serde_saphyr::from_str::<serde::de::IgnoredAny>(yaml).expect_err("should not parse");
-        describe(&err, yaml.lines().last().unwrap_or_default())
+        let mut lines = yaml.lines().rev();
+        let line = lines.next().unwrap_or_default();
+        describe(&err, line, lines.next().unwrap_or_default())
     }
 
     #[test]
@@ -270,9 +389,13 @@ mod tests {
         assert!(message("Text: @home\n").contains("put it in quotes"));
         assert!(message("a:\n  - b\n c: d\n").contains("indented"));
         assert!(message("a: b\n    c: d\n").contains("indented differently"));
+        assert!(message("corpus: record: none\n").contains("put `record: none` on the next line"));
+        assert!(message("Text: Note: this\n").contains("put the whole text in quotes"));
         assert!(message("a: 'it's'\n").contains("apostrophe twice"));
         assert!(message("a: \"say \"hi\" now\"\n").contains("single quotes"));
         assert!(message("a:\n  - b\n  -c\n").contains("`- c`"));
         assert!(message("a: - b\n").contains("same line as its key"));
+        assert!(message("a:\n  - b\n  c\n").contains("unlike the `- ` line above it"));
+        assert!(message("a:\n  - b\n  c\n").contains("`- c`"));
     }
 }
