@@ -359,3 +359,29 @@ fn a_generated_credential_is_printed_once_and_works_but_is_never_logged() {
         assert!(!text.contains(&token), "the corpus holds the credential");
     }
 }
+
+#[test]
+fn check_read_only_in_part_ends_quietly_with_its_status() {
+    // `docent check BUNDLE | head -3`: the reader stops early; the check must not panic.
+    use std::io::{BufRead, BufReader};
+    // More problems than a pipe holds (64 KiB), so the writes after the reader left fail.
+    let acts: String = (0..2000)
+        .map(|n| format!("- Label: A{n}\n  Cmds:\n    - SAYY Hi\n"))
+        .collect();
+    let b = TempBundle::new(&acts);
+    let mut child = Command::new(env!("CARGO_BIN_EXE_docent"))
+        .args(["check", b.path().to_str().unwrap()])
+        .stdout(std::process::Stdio::piped())
+        .stderr(std::process::Stdio::piped())
+        .spawn()
+        .unwrap();
+    let mut first = String::new();
+    let mut reader = BufReader::new(child.stdout.take().unwrap());
+    reader.read_line(&mut first).unwrap();
+    assert!(first.starts_with("error["), "{first}");
+    drop(reader);
+    let output = child.wait_with_output().unwrap();
+    let stderr = String::from_utf8_lossy(&output.stderr);
+    assert!(!stderr.contains("panicked"), "{stderr}");
+    assert_eq!(output.status.code(), Some(1), "{stderr}");
+}

@@ -2,7 +2,7 @@
 //! only this computer can tell (the espeak-ng voices, whether ffmpeg reads the media to
 //! convert), and the exit status `--deny-warnings` asks for.
 
-use std::io::IsTerminal;
+use std::io::{IsTerminal, Write};
 use std::path::Path;
 use std::process::ExitCode;
 
@@ -44,23 +44,11 @@ pub fn run(bundle: &Path, format: CheckFormat, deny_warnings: bool) -> anyhow::R
         warnings,
         notes,
     } = counts(&report.diagnostics);
-    match format {
-        CheckFormat::Json => println!("{}", serde_json::to_string_pretty(&report.diagnostics)?),
-        CheckFormat::Text => {
-            print!("{}", render(bundle, &report.diagnostics));
-            // Notes are counted only when there are some: most bundles have none.
-            let notes = match notes {
-                0 => String::new(),
-                n => format!(", {n} note(s)"),
-            };
-            println!(
-                "{}: {errors} error(s), {warnings} warning(s){notes}",
-                bundle.display()
-            );
-            if let Some(hint) = explain_hint(&report.diagnostics) {
-                println!("{hint}");
-            }
-        }
+    let printed = print_report(bundle, format, &report.diagnostics, errors, warnings, notes);
+    // A reader that stopped early (`docent check | head`) is no failure of the check.
+    match printed {
+        Err(e) if e.kind() == std::io::ErrorKind::BrokenPipe => {}
+        other => other?,
     }
     // Notes are no mistake: a bundle copied from a Mac passes `--deny-warnings`.
     let failed = errors > 0 || (deny_warnings && warnings > 0);
@@ -69,6 +57,35 @@ pub fn run(bundle: &Path, format: CheckFormat, deny_warnings: bool) -> anyhow::R
     } else {
         ExitCode::SUCCESS
     })
+}
+
+/// Writes the problems and the summary line to standard output.
+fn print_report(
+    bundle: &Path,
+    format: CheckFormat,
+    diagnostics: &[Diagnostic],
+    errors: usize,
+    warnings: usize,
+    notes: usize,
+) -> std::io::Result<()> {
+    let mut out = std::io::stdout().lock();
+    match format {
+        CheckFormat::Json => writeln!(out, "{}", serde_json::to_string_pretty(diagnostics)?),
+        CheckFormat::Text => {
+            write!(out, "{}", render(bundle, diagnostics))?;
+            // Notes are counted only when there are some: most bundles have none.
+            let notes = match notes {
+                0 => String::new(),
+                n => format!(", {n} note(s)"),
+            };
+            let (name, hint) = (bundle.display(), explain_hint(diagnostics));
+            writeln!(
+                out,
+                "{name}: {errors} error(s), {warnings} warning(s){notes}"
+            )?;
+            hint.map_or(Ok(()), |hint| writeln!(out, "{hint}"))
+        }
+    }
 }
 
 /// The diagnostics drawn with their source lines, coloured on a terminal (unless `NO_COLOR`).
