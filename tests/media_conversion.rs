@@ -401,3 +401,40 @@ async fn a_kiosk_reloads_the_pages_that_show_a_picture_once_it_is_converted() {
     assert_eq!(status, 200, "served converted");
     server.stop().await;
 }
+
+#[tokio::test(flavor = "multi_thread", worker_threads = 2)]
+async fn a_film_still_converting_is_answered_503_with_how_far_it_is() {
+    // An ffmpeg that takes its time (the real ffprobe says what the film holds): the film
+    // stays converting while it is asked for, and the answer says so.
+    let bundle = TempBundle::new(PROJECTS_THE_FILM);
+    let film = bundle.path().join("media/Exhibit/video.mpg");
+    std::fs::create_dir_all(film.parent().expect("folder")).expect("mkdir");
+    mpeg1(&film, 1, 440);
+    let slow = tempfile::tempdir().expect("a folder for the slow ffmpeg");
+    let ffmpeg = slow.path().join("ffmpeg");
+    std::fs::write(&ffmpeg, "#!/bin/sh\nexec sleep 60\n").expect("write");
+    let mut mode = std::fs::metadata(&ffmpeg).expect("meta").permissions();
+    std::os::unix::fs::PermissionsExt::set_mode(&mut mode, 0o755);
+    std::fs::set_permissions(&ffmpeg, mode).expect("chmod");
+    let tools = Tools {
+        ffmpeg: Some(ffmpeg),
+        ..Tools::find()
+    };
+    let app = TestApp::start_with(bundle.path(), |o| o.media_tools = tools).await;
+    let mut views = app.server().state().media.subscribe();
+    let converting = views.wait_for(|v| v.iter().any(|m| m.state == MediaState::Converting));
+    within(DEADLINE, converting)
+        .await
+        .expect("it starts converting")
+        .expect("the converter runs");
+    let answer = app.get_with("/media/Exhibit/video.mpg", &[]).await;
+    assert_eq!(answer.status, 503);
+    assert_eq!(answer.header("retry-after"), "5");
+    assert_eq!(answer.json()["code"], "media-converting");
+    assert_eq!(
+        answer.json()["error"],
+        "media/Exhibit/video.mpg is still being converted for Chromium; try again when it is done"
+    );
+    // Shutdown does not wait for the conversion: the slow ffmpeg is stopped with it.
+    app.stop().await;
+}
