@@ -115,16 +115,22 @@ async fn settled(app: &TestApp) -> Vec<docent::media::MediaView> {
 
 const PROJECTS_THE_FILM: &str = "- Label: RUN_VIDEO_EXHIBIT\n  Text: Let me show you a video.\n  Cmds:\n    - PROJECT Exhibit/video.mpg\n";
 
+/// A bundle projecting `Exhibit/video.mpg`, a real MPEG-1 film of `seconds`; and its path.
+fn film_bundle(seconds: u32) -> (TempBundle, std::path::PathBuf) {
+    let bundle = TempBundle::new(PROJECTS_THE_FILM);
+    let film = bundle.path().join("media/Exhibit/video.mpg");
+    std::fs::create_dir_all(film.parent().expect("folder")).expect("mkdir");
+    mpeg1(&film, seconds, 440);
+    (bundle, film)
+}
+
 fn events<'a>(lines: &'a [Value], kind: &str) -> Vec<&'a Value> {
     lines.iter().filter(|l| l["type"] == kind).collect()
 }
 
 #[tokio::test(flavor = "multi_thread", worker_threads = 2)]
 async fn the_papers_mpeg1_film_is_served_as_webm_under_its_name_and_kept_across_restarts() {
-    let bundle = TempBundle::new(PROJECTS_THE_FILM);
-    let film = bundle.path().join("media/Exhibit/video.mpg");
-    std::fs::create_dir_all(film.parent().expect("folder")).expect("mkdir");
-    mpeg1(&film, 2, 440);
+    let (bundle, film) = film_bundle(2);
     let original = std::fs::read(&film).expect("read");
     let cache = tempfile::tempdir().expect("cache");
     let with_cache = |o: &mut docent::serve::ServeOptions| o.media_cache = cache.path().to_owned();
@@ -235,10 +241,7 @@ async fn a_film_ffmpeg_cannot_read_fails_at_its_address_with_the_reason_and_is_l
 
 #[tokio::test(flavor = "multi_thread", worker_threads = 2)]
 async fn without_ffmpeg_the_start_says_so_and_the_film_fails_with_what_to_do() {
-    let bundle = TempBundle::new(PROJECTS_THE_FILM);
-    let film = bundle.path().join("media/Exhibit/video.mpg");
-    std::fs::create_dir_all(film.parent().expect("folder")).expect("mkdir");
-    mpeg1(&film, 1, 440);
+    let (bundle, _) = film_bundle(1);
     let app = TestApp::start_with(bundle.path(), |o| o.media_tools = Tools::default()).await;
     let warned: Vec<&String> = (app.server().warnings.iter())
         .filter(|w| w.contains("media/Exhibit/video.mpg will not be shown"))
@@ -263,10 +266,7 @@ async fn without_ffmpeg_the_start_says_so_and_the_film_fails_with_what_to_do() {
 
 #[tokio::test(flavor = "multi_thread", worker_threads = 2)]
 async fn a_film_replaced_while_serving_is_converted_again_and_its_new_content_served() {
-    let bundle = TempBundle::new(PROJECTS_THE_FILM);
-    let film = bundle.path().join("media/Exhibit/video.mpg");
-    std::fs::create_dir_all(film.parent().expect("folder")).expect("mkdir");
-    mpeg1(&film, 1, 440);
+    let (bundle, film) = film_bundle(1);
     let app = TestApp::start(bundle.path()).await;
     assert!(settled(&app).await.is_empty());
     let before = app.get_with("/media/Exhibit/video.mpg", &[]).await.body;
@@ -406,10 +406,7 @@ async fn a_kiosk_reloads_the_pages_that_show_a_picture_once_it_is_converted() {
 async fn a_film_still_converting_is_answered_503_with_how_far_it_is() {
     // An ffmpeg that takes its time (the real ffprobe says what the film holds): the film
     // stays converting while it is asked for, and the answer says so.
-    let bundle = TempBundle::new(PROJECTS_THE_FILM);
-    let film = bundle.path().join("media/Exhibit/video.mpg");
-    std::fs::create_dir_all(film.parent().expect("folder")).expect("mkdir");
-    mpeg1(&film, 1, 440);
+    let (bundle, _) = film_bundle(1);
     let slow = tempfile::tempdir().expect("a folder for the slow ffmpeg");
     let ffmpeg = slow.path().join("ffmpeg");
     std::fs::write(&ffmpeg, "#!/bin/sh\nexec sleep 60\n").expect("write");
