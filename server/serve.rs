@@ -125,8 +125,8 @@ impl Server {
             hub.clone(),
             &life,
         );
+        // A file that cannot be converted here is told in the log at start-up.
         media.plan(&bundle);
-        warnings.extend(media.startup_warnings());
         let proxies = TrustedProxies::new(bundle.config.server.trusted_proxies.clone());
         let dispatcher = Dispatcher::new(Arc::new(bundle), router, hub, options.seed, life.clone());
         let access = Access::new(options.access.clone(), proxies);

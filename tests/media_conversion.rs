@@ -60,6 +60,26 @@ fn mpeg1(path: &Path, seconds: u32, hz: u32) {
     );
 }
 
+/// A QuickTime film cut short, as a copy or a download that stopped half way leaves it: a real
+/// film's first 4 KiB (its `ftyp` and the start of its data, none of its index).
+fn cut_mov(path: &Path) {
+    let whole = path.with_extension("whole.mov");
+    let at = whole.to_str().expect("a UTF-8 path");
+    let source = [
+        "-f",
+        "lavfi",
+        "-i",
+        "testsrc2=size=320x240:rate=25",
+        "-t",
+        "1",
+    ];
+    let settings = ["-v", "error", "-y", "-c:v", "mpeg4", at];
+    make("ffmpeg", &[&source[..], &settings[..]].concat());
+    let bytes = std::fs::read(&whole).expect("read");
+    std::fs::write(path, &bytes[..4096]).expect("write");
+    std::fs::remove_file(&whole).expect("remove");
+}
+
 /// One picture from ffmpeg's test sources (`testsrc2=size=640x480`, `color=c=red:...`) at
 /// `path`, in the format its ending names.
 fn picture(source: &str, path: &Path) {
@@ -213,8 +233,9 @@ async fn heic_and_tiff_photos_and_an_oversized_scan_become_webp_that_fits_the_sc
 
 #[tokio::test(flavor = "multi_thread", worker_threads = 2)]
 async fn a_film_ffmpeg_cannot_read_fails_at_its_address_with_the_reason_and_is_logged() {
-    let bundle = TempBundle::new(PROJECTS_THE_FILM.replace("video.mpg", "cut.mov").as_str())
-        .with_file("media/Exhibit/cut.mov", "a download that stopped half way");
+    let bundle = TempBundle::new(PROJECTS_THE_FILM.replace("video.mpg", "cut.mov").as_str());
+    std::fs::create_dir_all(bundle.path().join("media/Exhibit")).expect("mkdir");
+    cut_mov(&bundle.path().join("media/Exhibit/cut.mov"));
     let app = TestApp::start(bundle.path()).await;
     let failed = settled(&app).await;
     assert_eq!(failed.len(), 1, "{failed:?}");
@@ -240,18 +261,9 @@ async fn a_film_ffmpeg_cannot_read_fails_at_its_address_with_the_reason_and_is_l
 }
 
 #[tokio::test(flavor = "multi_thread", worker_threads = 2)]
-async fn without_ffmpeg_the_start_says_so_and_the_film_fails_with_what_to_do() {
+async fn without_ffmpeg_the_film_fails_with_what_to_do_in_the_corpus_and_at_its_address() {
     let (bundle, _) = film_bundle(1);
     let app = TestApp::start_with(bundle.path(), |o| o.media_tools = Tools::default()).await;
-    let warned: Vec<&String> = (app.server().warnings.iter())
-        .filter(|w| w.contains("media/Exhibit/video.mpg will not be shown"))
-        .collect();
-    assert_eq!(warned.len(), 1, "{:?}", app.server().warnings);
-    assert!(
-        warned[0].contains("sudo apt install ffmpeg"),
-        "{}",
-        warned[0]
-    );
     let answer = app.get_with("/media/Exhibit/video.mpg", &[]).await;
     assert_eq!(answer.status, 422);
     assert!(
@@ -261,7 +273,41 @@ async fn without_ffmpeg_the_start_says_so_and_the_film_fails_with_what_to_do() {
         "{}",
         answer.json()
     );
-    app.stop().await;
+    let lines = app.stop().await;
+    let failed = events(&lines, "media.failed");
+    assert_eq!(failed.len(), 1, "{failed:?}");
+    assert_eq!(failed[0]["file"], "media/Exhibit/video.mpg");
+    let reason = failed[0]["reason"].as_str().expect("a reason");
+    assert!(reason.contains("sudo apt install ffmpeg"), "{reason}");
+}
+
+#[test]
+fn docent_serve_without_ffmpeg_says_at_start_up_which_files_will_not_be_shown() {
+    use std::io::{BufRead, BufReader, Read};
+    let (bundle, _) = film_bundle(1);
+    let corpus = tempfile::tempdir().expect("corpus");
+    let bare = tempfile::tempdir().expect("an empty PATH folder");
+    let mut child = Command::new(env!("CARGO_BIN_EXE_docent"))
+        .args(common::process::serve_args(bundle.path(), corpus.path()))
+        .env("PATH", bare.path())
+        .stdout(std::process::Stdio::piped())
+        .stderr(std::process::Stdio::piped())
+        .spawn()
+        .expect("docent starts");
+    let lines = BufReader::new(child.stdout.take().expect("stdout")).lines();
+    let serving = (lines.map_while(Result::ok)).any(|l| l.trim().starts_with("websocket:"));
+    assert!(serving, "docent serves");
+    child.kill().expect("stop docent");
+    let mut said = String::new();
+    (child.stderr.take().expect("stderr"))
+        .read_to_string(&mut said)
+        .expect("read");
+    child.wait().expect("reaped");
+    let told: Vec<&str> = (said.lines())
+        .filter(|l| l.contains("media/Exhibit/video.mpg will not be shown"))
+        .collect();
+    assert_eq!(told.len(), 1, "{said}");
+    assert!(told[0].contains("sudo apt install ffmpeg"), "{said}");
 }
 
 #[tokio::test(flavor = "multi_thread", worker_threads = 2)]
@@ -310,8 +356,8 @@ fn check_with_path(bundle: &Path, path: &std::ffi::OsStr) -> (i32, Vec<Value>) {
 #[test]
 fn docent_check_asks_ffmpeg_and_says_when_it_is_missing() {
     let bundle =
-        TempBundle::new("- Label: FILMS\n  Cmds:\n    - PROJECT good.mpg\n    - PROJECT cut.mov\n")
-            .with_file("media/cut.mov", "a download that stopped half way");
+        TempBundle::new("- Label: FILMS\n  Cmds:\n    - PROJECT good.mpg\n    - PROJECT cut.mov\n");
+    cut_mov(&bundle.path().join("media/cut.mov"));
     mpeg1(&bundle.path().join("media/good.mpg"), 1, 440);
     let path = std::env::var_os("PATH").expect("PATH");
 
@@ -377,7 +423,24 @@ async fn a_kiosk_reloads_the_pages_that_show_a_picture_once_it_is_converted() {
     let watch = |server: &docent::serve::Server| {
         server.watch(docent::reload::ReloadOptions::default());
     };
-    let server = common::TestServer::start_prepared(bundle.path(), |_| {}, watch).await;
+    let converter = std::sync::Arc::new(std::sync::Mutex::new(None));
+    let keep = std::sync::Arc::clone(&converter);
+    let prepare = |server: &docent::serve::Server| {
+        *keep.lock().expect("lock") = Some(std::sync::Arc::clone(&server.state().media));
+        watch(server);
+    };
+    let server = common::TestServer::start_prepared(bundle.path(), |_| {}, prepare).await;
+    // The first scan is converted before the kiosk comes: its `changed` is not the one awaited.
+    let media = converter
+        .lock()
+        .expect("lock")
+        .take()
+        .expect("the converter");
+    let mut views = media.subscribe();
+    within(DEADLINE, views.wait_for(Vec::is_empty))
+        .await
+        .expect("the first scan is converted")
+        .expect("the converter runs");
     let mut kiosk = server
         .client(serde_json::json!({"type": "hello", "role": "kiosk"}))
         .await;
@@ -397,8 +460,22 @@ async fn a_kiosk_reloads_the_pages_that_show_a_picture_once_it_is_converted() {
         serde_json::json!(["index.html", "room.html"])
     );
     assert_eq!(ready["shell"], false);
-    let (status, _) = server.get("/pages/images/scan.tif").await;
-    assert_eq!(status, 200, "served converted");
+    let served = reqwest::get(server.url("/pages/images/scan.tif"))
+        .await
+        .expect("an answer")
+        .bytes()
+        .await
+        .expect("a body");
+    let stream = &probe(&served)["streams"][0];
+    assert_eq!(
+        (
+            stream["codec_name"].as_str(),
+            stream["width"].as_u64(),
+            stream["height"].as_u64()
+        ),
+        (Some("webp"), Some(300), Some(150)),
+        "the new scan, converted"
+    );
     server.stop().await;
 }
 
@@ -432,6 +509,6 @@ async fn a_film_still_converting_is_answered_503_with_how_far_it_is() {
         answer.json()["error"],
         "media/Exhibit/video.mpg is still being converted for Chromium; try again when it is done"
     );
-    // Shutdown does not wait for the conversion: the slow ffmpeg is stopped with it.
+    // Shutdown does not wait for the conversion (ffmpeg is started with `kill_on_drop`).
     app.stop().await;
 }

@@ -21,6 +21,7 @@ use crate::contexts::check_declared;
 use crate::diagnostic::Diagnostic;
 use crate::language::Language;
 use crate::load::ActsReplacements;
+use crate::media::MediaFindings;
 use crate::media::convert::Conversion;
 use crate::model::{CommandSpec, Located, Pos, Variant};
 use crate::pages::{PageLabels, check_pages};
@@ -120,14 +121,14 @@ pub(super) fn gather(
         loop {
             let i = next.fetch_add(1, Ordering::Relaxed);
             let Some(&job) = jobs.get(i) else {
-                return (done, checker.media().take_planned());
+                return (done, checker.media().take_findings());
             };
             let mut problems = Vec::new();
             let result = run(job, &checker, config, replaced, &mut problems);
             done.push((i, result, problems));
         }
     };
-    let mut results = std::thread::scope(|scope| {
+    let results = std::thread::scope(|scope| {
         let handles: Vec<_> = (0..workers)
             .filter_map(|_| reading_thread().spawn_scoped(scope, work).ok())
             .collect();
@@ -146,28 +147,10 @@ pub(super) fn gather(
         }
         results
     });
-    let mut conversions: Vec<Conversion> = Vec::new();
-    for (_, planned) in &mut results {
-        conversions.append(planned);
-    }
-    // Two workers may plan the same file: the first use in the bundle's order is kept, with
-    // the pages of both.
-    conversions.sort_by(|a, b| (&a.pos, &a.path).cmp(&(&b.pos, &b.path)));
-    let mut merged: Vec<Conversion> = Vec::with_capacity(conversions.len());
-    for conversion in conversions {
-        match merged.iter_mut().find(|c| c.path == conversion.path) {
-            Some(first) => {
-                for page in conversion.pages {
-                    if !first.pages.contains(&page) {
-                        first.pages.push(page);
-                    }
-                }
-            }
-            None => merged.push(conversion),
-        }
-    }
-    let conversions = merged;
-    let mut results: Vec<_> = results.into_iter().flat_map(|(done, _)| done).collect();
+    let (done, findings): (Vec<_>, Vec<_>) = results.into_iter().unzip();
+    let (conversions, mut told) = MediaFindings::merge(findings);
+    out.append(&mut told);
+    let mut results: Vec<_> = done.into_iter().flatten().collect();
     results.sort_by_key(|(i, ..)| *i);
     let mut gathered = Gathered {
         files: Vec::with_capacity(names.len()),

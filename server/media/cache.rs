@@ -34,11 +34,45 @@ pub(super) fn content_key(path: &Path) -> io::Result<String> {
     Ok(digest[..16].iter().map(|b| format!("{b:02x}")).collect())
 }
 
-/// Where a conversion writes before the result is complete.
+/// Where a conversion writes before the result is complete: named for this process, so two
+/// Docents sharing a cache never finish each other's half-written file.
 pub(super) fn partial(result: &Path) -> PathBuf {
     let mut name = result.file_name().unwrap_or_default().to_os_string();
-    name.push(".partial");
+    name.push(format!(".{}{PARTIAL}", std::process::id()));
     result.with_file_name(name)
+}
+
+/// A scratch file of the conversion of content `key` (a decoded HEIC photo), for this process.
+pub(super) fn scratch(cache: &Path, key: &str, ext: &str) -> PathBuf {
+    cache.join(format!("{key}.{}{PARTIAL}.{ext}", std::process::id()))
+}
+
+/// What marks a file the cache holds only while a conversion runs.
+const PARTIAL: &str = ".partial";
+
+/// Removes what conversions stopped by a crash or `kill -9` left in `cache` (their partial and
+/// scratch files); called when Docent starts, before any conversion of its own.
+pub(super) fn sweep(cache: &Path) {
+    let Ok(entries) = std::fs::read_dir(cache) else {
+        return;
+    };
+    for entry in entries.flatten() {
+        if entry.file_name().to_string_lossy().contains(PARTIAL) {
+            let _ = std::fs::remove_file(entry.path());
+        }
+    }
+}
+
+/// Sets a cached result's modification time to now (it was taken again).
+pub(super) fn touch(result: &Path) {
+    let now = std::time::SystemTime::now();
+    let touched = std::fs::File::options()
+        .write(true)
+        .open(result)
+        .and_then(|f| f.set_modified(now));
+    if let Err(e) = touched {
+        tracing::debug!(file = %result.display(), "the cached file's time is not changed: {e}");
+    }
 }
 
 /// The default cache folder: systemd's `CACHE_DIRECTORY` for a service, else
@@ -81,9 +115,18 @@ mod tests {
         assert_eq!(key.len(), 32);
         assert_eq!(key, content_key(&b).expect("key"));
         assert_ne!(key, content_key(&c).expect("key"));
+        let id = std::process::id();
         assert_eq!(
             partial(Path::new("/c/k-r1.webm")),
-            Path::new("/c/k-r1.webm.partial")
+            Path::new(&format!("/c/k-r1.webm.{id}.partial"))
         );
+        std::fs::write(dir.path().join("k-r1.webm.77.partial"), b"half").expect("write");
+        std::fs::write(dir.path().join("k.77.partial.heic.png"), b"half").expect("write");
+        sweep(dir.path());
+        let mut left: Vec<_> = (std::fs::read_dir(dir.path()).expect("read").flatten())
+            .map(|e| e.file_name().to_string_lossy().into_owned())
+            .collect();
+        left.sort();
+        assert_eq!(left, ["a.mpg", "b.mov", "c"], "only what is complete stays");
     }
 }

@@ -79,6 +79,7 @@ impl Media {
     /// A converter writing to `cache`, using `tools`, its worker run by `life`; events go to
     /// `hub`.
     pub fn start(cache: PathBuf, tools: Tools, hub: Hub, life: &Lifecycle) -> Arc<Media> {
+        cache::sweep(&cache);
         let media = Arc::new(Media::new(cache, tools, Some(hub)));
         let worker = Arc::clone(&media).work(life.shutdown.clone());
         life.spawn(worker);
@@ -108,11 +109,17 @@ impl Media {
         &self.cache
     }
 
-    /// Takes the conversions of `bundle` (the live one): new or changed files are queued,
-    /// files no longer planned are forgotten (their running conversion stopped).
+    /// Takes the conversions of `bundle` (the live one, before it goes live): new or changed
+    /// files are queued, files no longer planned are forgotten (their running conversion
+    /// stopped). A file the converters missing here cannot convert fails at once, told in the
+    /// log and the corpus.
     pub fn plan(&self, bundle: &Bundle) {
+        // The files' times are read before the lock: lookups from requests never wait on disk.
+        let stamps: Vec<_> = (bundle.conversions.iter())
+            .map(|c| stamp_of(&c.path))
+            .collect();
         let mut entries = lock(&self.entries);
-        let mut queued = Vec::new();
+        let (mut queued, mut failed) = (Vec::new(), Vec::new());
         entries.retain(|path, entry| {
             let kept = bundle.conversions.iter().any(|c| &c.path == path);
             if !kept {
@@ -120,8 +127,7 @@ impl Media {
             }
             kept
         });
-        for conversion in &bundle.conversions {
-            let stamp = stamp_of(&conversion.path);
+        for (conversion, stamp) in bundle.conversions.iter().zip(stamps) {
             if let Some(entry) = entries.get_mut(&conversion.path) {
                 // The same file as before: converted, converting, or failed (a failure is not
                 // retried until the file changes).
@@ -133,7 +139,10 @@ impl Media {
                 entry.cancel.cancel();
             }
             let status = match self.tools.missing_for(conversion.format) {
-                Some(reason) => Status::Failed(reason),
+                Some(reason) => {
+                    failed.push((conversion.shown.clone(), reason.clone()));
+                    Status::Failed(reason)
+                }
                 None => {
                     queued.push(conversion.path.clone());
                     Status::Waiting
@@ -156,6 +165,9 @@ impl Media {
             self.wake.notify_one();
         }
         self.views.send_replace(views);
+        for (shown, reason) in failed {
+            self.failed(&shown, reason);
+        }
     }
 
     /// How the file at `path` (as resolved in the bundle) is served.
@@ -189,35 +201,33 @@ impl Media {
         self.views.subscribe()
     }
 
-    /// What to tell the person starting Docent: files that will not show, and why.
-    pub fn startup_warnings(&self) -> Vec<String> {
-        let entries = lock(&self.entries);
-        let mut failed: Vec<(&str, &str)> = (entries.values())
-            .filter_map(|e| match &e.status {
-                Status::Failed(reason) => Some((e.conversion.shown.as_str(), reason.as_str())),
-                _ => None,
-            })
-            .collect();
-        failed.sort_unstable();
-        failed
-            .into_iter()
-            .map(|(shown, reason)| format!("{shown} will not be shown: {reason}"))
-            .collect()
-    }
-
-    /// Sets the status of the entry at `path`, if it is still the one `cancel` belongs to.
-    fn set(&self, path: &Path, cancel: &CancellationToken, status: Status) {
+    /// Sets the status of the entry at `path`, if it is still the one `cancel` belongs to;
+    /// false when a newer plan replaced or dropped it (then nothing is to be told of it).
+    fn set(&self, path: &Path, cancel: &CancellationToken, status: Status) -> bool {
         let mut entries = lock(&self.entries);
         let Some(entry) = entries.get_mut(path) else {
-            return;
+            return false;
         };
-        if cancel.is_cancelled() || entry.status == status {
-            return;
+        // `plan` cancels under this same lock: a status set here is never a stale one.
+        if cancel.is_cancelled() {
+            return false;
         }
-        entry.status = status;
-        let views = views_of(&entries);
-        drop(entries);
-        self.views.send_replace(views);
+        if entry.status != status {
+            entry.status = status;
+            let views = views_of(&entries);
+            drop(entries);
+            self.views.send_replace(views);
+        }
+        true
+    }
+
+    /// Tells the log and the corpus that `shown` cannot be shown, and why.
+    fn failed(&self, shown: &str, reason: String) {
+        tracing::warn!("{shown} will not be shown: {reason}");
+        self.publish(EventKind::MediaFailed {
+            file: shown.to_owned(),
+            reason,
+        });
     }
 
     fn publish(&self, kind: EventKind) {
@@ -338,12 +348,6 @@ mod tests {
             panic!("failed");
         };
         assert!(reason.contains("sudo apt install ffmpeg"), "{reason}");
-        assert_eq!(
-            media.startup_warnings(),
-            [format!("media/film.mpg will not be shown: {}", {
-                reason.trim_start_matches("media/film.mpg cannot be shown: ")
-            })]
-        );
         assert!(lock(&media.queue).is_empty(), "nothing to queue");
     }
 }

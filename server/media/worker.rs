@@ -52,12 +52,16 @@ impl Media {
             return;
         }
         // The status first, then the event: whoever acts on the event finds the file ready.
+        // A newer save of the file may have replaced this conversion meanwhile: then nothing
+        // is told of it.
         let shown = &conversion.shown;
         match outcome {
             Ok((file, made)) => {
                 let elapsed_ms = u64::try_from(started.elapsed().as_millis()).unwrap_or(u64::MAX);
                 let bytes = std::fs::metadata(&file).map_or(0, |m| m.len());
-                self.set(&conversion.path, cancel, Status::Ready(file));
+                if !self.set(&conversion.path, cancel, Status::Ready(file)) {
+                    return;
+                }
                 if made {
                     tracing::info!(file = %shown, elapsed_ms, bytes, "media converted");
                     self.publish(EventKind::MediaConverted {
@@ -71,12 +75,9 @@ impl Media {
                 }
             }
             Err(reason) => {
-                tracing::warn!("{shown} cannot be shown: {reason}");
-                self.set(&conversion.path, cancel, Status::Failed(reason.clone()));
-                self.publish(EventKind::MediaFailed {
-                    file: shown.clone(),
-                    reason,
-                });
+                if self.set(&conversion.path, cancel, Status::Failed(reason.clone())) {
+                    self.failed(shown, reason);
+                }
             }
         }
     }
@@ -112,6 +113,9 @@ impl Media {
             .cache
             .join(cache::cached_name(&key, recipe.name(), recipe.ext()));
         if result.is_file() {
+            // Taken again: its time is now, so a browser's copy of another version of the
+            // file (`If-Modified-Since`) is never taken for this one.
+            cache::touch(&result);
             return Ok((result, false));
         }
         std::fs::create_dir_all(&self.cache).map_err(|e| {
@@ -125,20 +129,22 @@ impl Media {
             cancel,
             Status::Converting { percent: None },
         );
-        let decoded = self.cache.join(format!("{key}.heic.png"));
+        // Scratch files go when this ends, however it ends (a failure, a newer save, shutdown).
+        let decoded = Scratch(cache::scratch(&self.cache, &key, "heic.png"));
+        let partial = Scratch(cache::partial(&result));
+        let (decoded, partial) = (&decoded.0, &partial.0);
         let input = if heic {
             let tool = self
                 .tools
                 .heif_convert
                 .as_deref()
                 .unwrap_or(Path::new("heif-convert"));
-            run::heif_to_png(tool, &conversion.path, &decoded).await?;
+            run::heif_to_png(tool, &conversion.path, decoded).await?;
             decoded.clone()
         } else {
             conversion.path.clone()
         };
-        let partial = cache::partial(&result);
-        let args = recipe.ffmpeg_args(&input, &partial);
+        let args = recipe.ffmpeg_args(&input, partial);
         let mut shown_percent = None;
         let converted = run::ffmpeg(ffmpeg, &args, probe.duration, |fraction| {
             bar.set_position((fraction * 1000.0) as u64);
@@ -149,14 +155,10 @@ impl Media {
             }
         })
         .await;
-        if heic {
-            let _ = std::fs::remove_file(&decoded);
-        }
         if let Err(said) = converted {
-            let _ = std::fs::remove_file(&partial);
             return Err(format!("ffmpeg cannot convert it ({said})"));
         }
-        std::fs::rename(&partial, &result)
+        std::fs::rename(partial, &result)
             .map_err(|e| format!("the converted file cannot be kept in the cache: {e}"))?;
         Ok((result, true))
     }
@@ -173,6 +175,16 @@ impl Media {
         }
         bar.set_message(conversion.shown.clone());
         bar
+    }
+}
+
+/// A file of a conversion in progress, removed when it is dropped (after the rename, there is
+/// nothing left to remove).
+struct Scratch(PathBuf);
+
+impl Drop for Scratch {
+    fn drop(&mut self) {
+        let _ = std::fs::remove_file(&self.0);
     }
 }
 

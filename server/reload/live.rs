@@ -174,9 +174,10 @@ impl Reloader {
             bundle.contexts.len(),
             bundle.page_acts.len(),
         );
+        // The media first: the new bundle never serves a file it converts as it is.
+        self.state.media.plan(&bundle);
         let old = self.state.dispatcher.replace_bundle(Arc::new(bundle));
         let new = self.state.dispatcher.bundle();
-        self.state.media.plan(&new);
         let elapsed_ms = self.since.take().map_or(0, millis);
         self.pending.clear();
         tracing::info!(acts, elapsed_ms, files = ?changed, "the saved bundle is live");

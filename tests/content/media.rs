@@ -318,9 +318,9 @@ fn pictures_and_videos_of_pages_are_judged_by_content_at_the_attribute() {
 }
 
 #[test]
-fn the_papers_original_mpeg_video_is_converted_by_its_name_when_its_content_is_unknown() {
-    // Fig. 4 of the paper projects `Exhibit/video.mpg`. A file the sniff does not recognise
-    // but named as a format Docent converts is planned: ffmpeg says whether it can read it.
+fn a_file_named_as_a_film_whose_content_is_unknown_is_never_handed_to_ffmpeg() {
+    // An `.mpg` that holds text (a playlist, a failed download): ffmpeg would follow a
+    // playlist to files outside the bundle, so only content the sniff knows is converted.
     let acts = yaml(&[
         "- Label: RUN_VIDEO_EXHIBIT",
         "  Cmds:",
@@ -328,11 +328,22 @@ fn the_papers_original_mpeg_video_is_converted_by_its_name_when_its_content_is_u
     ]);
     let dir = bundle(&[
         ("acts.yaml", &acts),
-        ("media/Exhibit/video.mpg", "placeholder"),
+        (
+            "media/Exhibit/video.mpg",
+            "#EXTM3U\n#EXTINF:10,\nfile:/etc/passwd\n",
+        ),
     ]);
     let report = check(dir.path());
-    assert_eq!(notes(&report), [("MPEG-1/2", "acts.yaml:3:15".to_owned())]);
-    loaded(report);
+    assert_eq!(
+        places(&report),
+        [("media-unrecognised", "acts.yaml:3:15".to_owned())]
+    );
+    assert!(report.conversions.is_empty());
+    assert!(
+        report.diagnostics[0]
+            .message
+            .contains("is named as an MPEG-1/2 video")
+    );
 }
 
 #[test]
@@ -358,4 +369,31 @@ fn a_scripted_svg_shown_as_a_picture_is_told_once_and_a_plain_one_passes() {
     assert!(report.diagnostics[0].message.contains("`<script>`"));
     assert!(report.diagnostics[1].message.contains("`onload=`"));
     assert_eq!(report.diagnostics[0].severity, Severity::Warning);
+}
+
+#[test]
+fn a_scripted_svg_shown_by_a_page_and_an_act_is_told_once_at_its_first_place() {
+    // The pages and each acts file are read on different threads: the warning must not
+    // depend on which came first.
+    let svg = "<svg xmlns=\"http://www.w3.org/2000/svg\"><script>draw()</script></svg>";
+    let page = "<!doctype html><title>t</title><img src=\"/media/timeline.svg\" alt=\"\">";
+    for _ in 0..5 {
+        let dir = bundle(&[
+            (
+                "acts.yaml",
+                "- Label: A\n  Cmds:\n    - PROJECT timeline.svg\n",
+            ),
+            (
+                "more.yaml",
+                "- Label: B\n  Cmds:\n    - PROJECT timeline.svg\n",
+            ),
+            ("pages/start.html", page),
+            ("media/timeline.svg", svg),
+        ]);
+        let report = check(dir.path());
+        assert_eq!(
+            places(&report),
+            [("svg-script", "acts.yaml:3:15".to_owned())]
+        );
+    }
 }

@@ -108,7 +108,9 @@ test('the paper\'s MPEG-1 film is converted when served, plays on the projector,
       // Converted in the background: the operator sees it pending, then a `media` frame
       // without files once it is ready (or nothing pending at all when it was that quick).
       const pending = operator.welcome.state.reload.media ?? [];
-      if (pending.length > 0) await operator.waitFor((f) => f.type === 'media' && f.files.length === 0);
+      const busy = (files) => files.some((m) => m.state === 'waiting' || m.state === 'converting');
+      const settled = busy(pending) ? (await operator.waitFor((f) => f.type === 'media' && !busy(f.files))).files : pending;
+      assert.deepEqual(settled, [], 'the film is converted');
       await openProjector(page, server, operator);
       const [project] = commandIds(await server.trigger('RUN_VIDEO_EXHIBIT'));
       const started = await operator.waitForEvent((e) => e.type === 'command.started' && e.command === project);
@@ -134,8 +136,14 @@ test('a PROJECT of a film that cannot be converted fails with the server\'s reas
     'docent.yaml': 'speech: {adapter: log}\n',
     'acts.yaml': '- Label: FILM\n  Cmds: [PROJECT cut.mov]\n',
     'pages/index.html': '<!DOCTYPE html><title>home</title>',
-    'media/cut.mov': 'a download that stopped half way',
   });
+  // A film cut short, as a copy or a download that stopped half way leaves it: a real
+  // QuickTime film's first 4 KiB (its `ftyp` and the start of its data, none of its index).
+  const whole = path.join(bundle, 'whole.mov');
+  const made = spawnSync('ffmpeg', ['-v', 'error', '-y', '-f', 'lavfi', '-i', 'testsrc2=size=320x240:rate=25', '-t', '1', '-c:v', 'mpeg4', whole]);
+  assert.equal(made.status, 0, `ffmpeg made the film: ${made.stderr}`);
+  fs.writeFileSync(path.join(bundle, 'media/cut.mov'), fs.readFileSync(whole).subarray(0, 4096));
+  fs.rmSync(whole);
   try {
     await withServer(bundle, async ({ server, page, operator }) => {
       const pending = operator.welcome.state.reload.media ?? [];

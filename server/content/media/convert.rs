@@ -63,6 +63,14 @@ pub struct Conversion {
 }
 
 impl Conversion {
+    /// Adds another use: its page, and its place if it comes first in the bundle's order.
+    pub(crate) fn used_again_at(&mut self, pos: &Pos) {
+        if *pos < self.pos {
+            self.pos = pos.clone();
+        }
+        self.shown_at(pos);
+    }
+
     /// Adds the page of `pos`, if `pos` is in a page, to [`pages`](Self::pages).
     pub(crate) fn shown_at(&mut self, pos: &Pos) {
         if let Some(page) = pos.file.strip_prefix("pages/")
@@ -141,7 +149,7 @@ fn decoded_megabytes(width: u32, height: u32) -> u64 {
 }
 
 /// "an" before a vowel sound, for format names (`an MPEG-1/2 video`, `a HEIC picture`).
-fn article(name: &str) -> &'static str {
+pub(super) fn article(name: &str) -> &'static str {
     let first = name.chars().next().unwrap_or('x').to_ascii_uppercase();
     // Letters read as a letter name starting with a vowel sound: A, E, F, H, I, L, M, N,
     // O, R, S, X (`an MPEG`, `an AVI`), except names read as a word.

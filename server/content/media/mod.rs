@@ -6,6 +6,7 @@
 
 mod advice;
 pub mod convert;
+mod exif;
 pub(crate) mod sniff;
 
 use std::cell::RefCell;
@@ -37,10 +38,16 @@ pub(crate) enum ShownBy {
 pub(crate) struct MediaSniffs {
     formats: RefCell<HashMap<PathBuf, Option<&'static Format>>>,
     planned: RefCell<Vec<Conversion>>,
-    /// Pictures already looked into (an SVG for scripts, a photo for its size): once each,
-    /// however many pages show them.
+    /// Problems told once per file (a scripted SVG), with their file: merged across workers.
+    once: RefCell<Vec<(PathBuf, Diagnostic)>>,
+    /// Photos already sized: once each, however many pages show them.
     looked_into: RefCell<std::collections::HashSet<PathBuf>>,
+    /// The script each SVG looked into has, if any.
+    scripts: RefCell<HashMap<PathBuf, Option<String>>>,
 }
+
+/// How much of a JPEG is read for its EXIF block (it comes first, within 64 KiB).
+const EXIF_BYTES: u64 = 128 << 10;
 
 /// How much of an SVG is read to look for a script (drawings are rarely larger).
 const SVG_READ_BYTES: u64 = 4 << 20;
@@ -148,17 +155,14 @@ impl MediaSniffs {
                 ));
             }
             (Some(real), _) if real.name == sniff::SVG.name => {
-                self.scripted_svg(path, shown, pos, out);
+                self.scripted_svg(path, shown, pos);
             }
             (Some(real), _) => self.plan_if_oversized(path, shown, real, pos),
             (None, Some(name)) if name.support == Support::No => {
                 unplayable(shown, name, by, pos, out);
             }
-            // Not recognised by its first bytes, but named as a format Docent converts: ffmpeg
-            // reads more variants than the sniff knows, and says so if it cannot.
-            (None, Some(name)) if name.support == Support::Converted => {
-                self.plan(Conversion::of_format(path.to_owned(), shown, name, pos));
-            }
+            // Not recognised by its first bytes, whatever its name says: never handed to ffmpeg,
+            // which would follow a playlist or a list of files to places outside the bundle.
             (None, Some(name)) => {
                 let message = format!(
                     "`{shown}` is named as {}, but its content is not one: the file may be \
@@ -182,7 +186,7 @@ impl MediaSniffs {
     fn plan(&self, conversion: Conversion) {
         let mut planned = self.planned.borrow_mut();
         match planned.iter_mut().find(|c| c.path == conversion.path) {
-            Some(known) => known.shown_at(&conversion.pos),
+            Some(known) => known.used_again_at(&conversion.pos),
             None => planned.push(conversion),
         }
     }
@@ -197,8 +201,12 @@ impl MediaSniffs {
             // Sized already: if it is to be scaled, this page shows it too.
             let mut planned = self.planned.borrow_mut();
             if let Some(known) = planned.iter_mut().find(|c| c.path == path) {
-                known.shown_at(pos);
+                known.used_again_at(pos);
             }
+            return;
+        }
+        // A photo to be turned (EXIF) stays as it is: the scaled copy would lose the tag.
+        if format.name == sniff::JPEG.name && self.turned(path) {
             return;
         }
         let Ok(size) = imagesize::size(path) else {
@@ -217,18 +225,25 @@ impl MediaSniffs {
     }
 
     /// Warns, once per file, when an SVG shown as a picture has a script: it never runs there.
-    fn scripted_svg(&self, path: &Path, shown: &str, pos: &Pos, out: &mut Vec<Diagnostic>) {
-        if !self.looked_into.borrow_mut().insert(path.to_owned()) {
-            return;
-        }
-        let Ok(file) = std::fs::File::open(path) else {
-            return;
-        };
-        let mut text = Vec::new();
-        if file.take(SVG_READ_BYTES).read_to_end(&mut text).is_err() {
-            return;
-        }
-        let Some(script) = svg_script(&String::from_utf8_lossy(&text)) else {
+    /// Whether the JPEG at `path` says to turn it (an EXIF orientation other than upright).
+    fn turned(&self, path: &Path) -> bool {
+        let mut head = Vec::new();
+        let read =
+            std::fs::File::open(path).and_then(|f| f.take(EXIF_BYTES).read_to_end(&mut head));
+        read.is_ok() && exif::jpeg_orientation(&head).is_some_and(|o| o != 1)
+    }
+
+    /// The file is read once; each use is noted, and the first in the bundle's order told.
+    fn scripted_svg(&self, path: &Path, shown: &str, pos: &Pos) {
+        let script = (self.scripts.borrow_mut().entry(path.to_owned()))
+            .or_insert_with(|| {
+                let mut text = Vec::new();
+                let file = std::fs::File::open(path).ok()?;
+                file.take(SVG_READ_BYTES).read_to_end(&mut text).ok()?;
+                svg_script(&String::from_utf8_lossy(&text))
+            })
+            .clone();
+        let Some(script) = script else {
             return;
         };
         let message = format!(
@@ -237,12 +252,59 @@ impl MediaSniffs {
              draw or animate stays blank. Open the drawing in its program and export it as a \
              plain SVG or PNG, or put the animation into the page itself."
         );
-        out.push(Diagnostic::warning(DiagnosticCode::SvgScript, pos, message));
+        let told = Diagnostic::warning(DiagnosticCode::SvgScript, pos, message);
+        self.once.borrow_mut().push((path.to_owned(), told));
     }
 
-    /// The conversions planned while checking, each file once, in the order first seen.
-    pub fn take_planned(&self) -> Vec<Conversion> {
-        std::mem::take(&mut self.planned.borrow_mut())
+    /// What the checks found: the conversions planned, each file once, in the order first
+    /// seen, and the problems told once per file.
+    pub fn take_findings(&self) -> MediaFindings {
+        MediaFindings {
+            conversions: std::mem::take(&mut self.planned.borrow_mut()),
+            once: std::mem::take(&mut self.once.borrow_mut()),
+        }
+    }
+}
+
+/// What the media checks of one reading thread found.
+#[derive(Default)]
+pub(crate) struct MediaFindings {
+    conversions: Vec<Conversion>,
+    once: Vec<(PathBuf, Diagnostic)>,
+}
+
+impl MediaFindings {
+    /// The findings of every thread as one: a file planned or told by two threads once, at
+    /// its first use in the bundle's order (never by which thread came first), with the pages
+    /// of both. Returns the conversions and the problems to report.
+    pub(crate) fn merge(all: Vec<MediaFindings>) -> (Vec<Conversion>, Vec<Diagnostic>) {
+        let (mut conversions, mut once): (Vec<_>, Vec<_>) = (Vec::new(), Vec::new());
+        for mut found in all {
+            conversions.append(&mut found.conversions);
+            once.append(&mut found.once);
+        }
+        conversions.sort_by(|a, b| (&a.pos, &a.path).cmp(&(&b.pos, &b.path)));
+        let mut merged: Vec<Conversion> = Vec::with_capacity(conversions.len());
+        for conversion in conversions {
+            match merged.iter_mut().find(|c| c.path == conversion.path) {
+                Some(first) => {
+                    for page in conversion.pages {
+                        if !first.pages.contains(&page) {
+                            first.pages.push(page);
+                        }
+                    }
+                }
+                None => merged.push(conversion),
+            }
+        }
+        let place = |d: &Diagnostic| (d.file.clone(), d.line, d.column);
+        once.sort_by_key(|(path, d)| (place(d), path.clone()));
+        let mut seen = std::collections::HashSet::new();
+        let told = (once.into_iter())
+            .filter(|(path, _)| seen.insert(path.clone()))
+            .map(|(_, d)| d)
+            .collect();
+        (merged, told)
     }
 }
 
@@ -352,7 +414,7 @@ fn described(format: &Format) -> String {
         Kind::Video => "video",
         Kind::Audio => "sound file",
     };
-    format!("a {} {what}", format.name)
+    format!("{} {} {what}", convert::article(format.name), format.name)
 }
 
 #[cfg(test)]

@@ -476,7 +476,7 @@ pub enum EventKind {
         bytes: u64,
     },
     /// A media file could not be converted: showing it fails with this reason until the file
-    /// is replaced (or the missing converter installed).
+    /// is replaced (or the missing converter installed and Docent restarted).
     #[serde(rename = "media.failed")]
     MediaFailed {
         /// The file from the bundle folder.
