@@ -33,31 +33,29 @@ fn make(program: &str, args: &[&str]) {
 fn mpeg1(path: &Path, seconds: u32, hz: u32) {
     let (seconds, tone) = (seconds.to_string(), format!("sine=frequency={hz}"));
     let path = path.to_str().expect("a UTF-8 path");
-    make(
-        "ffmpeg",
-        &[
-            "-v",
-            "error",
-            "-y",
-            "-f",
-            "lavfi",
-            "-i",
-            "testsrc2=size=176x144:rate=25",
-            "-f",
-            "lavfi",
-            "-i",
-            &tone,
-            "-t",
-            &seconds,
-            "-c:v",
-            "mpeg1video",
-            "-c:a",
-            "mp2",
-            "-f",
-            "mpeg",
-            path,
-        ],
-    );
+    let sources = ["testsrc2=size=176x144:rate=25", &tone];
+    let settings = [
+        "-t",
+        &seconds,
+        "-c:v",
+        "mpeg1video",
+        "-c:a",
+        "mp2",
+        "-f",
+        "mpeg",
+        path,
+    ];
+    ffmpeg_from(&sources, &settings);
+}
+
+/// Runs ffmpeg on its own test `sources` (lavfi), with `settings` ending in the output file.
+fn ffmpeg_from(sources: &[&str], settings: &[&str]) {
+    let mut args = vec!["-v", "error", "-y"];
+    for source in sources {
+        args.extend(["-f", "lavfi", "-i", source]);
+    }
+    args.extend(settings);
+    make("ffmpeg", &args);
 }
 
 /// A QuickTime film cut short, as a copy or a download that stopped half way leaves it: a real
@@ -65,16 +63,8 @@ fn mpeg1(path: &Path, seconds: u32, hz: u32) {
 fn cut_mov(path: &Path) {
     let whole = path.with_extension("whole.mov");
     let at = whole.to_str().expect("a UTF-8 path");
-    let source = [
-        "-f",
-        "lavfi",
-        "-i",
-        "testsrc2=size=320x240:rate=25",
-        "-t",
-        "1",
-    ];
-    let settings = ["-v", "error", "-y", "-c:v", "mpeg4", at];
-    make("ffmpeg", &[&source[..], &settings[..]].concat());
+    let sources = ["testsrc2=size=320x240:rate=25"];
+    ffmpeg_from(&sources, &["-t", "1", "-c:v", "mpeg4", at]);
     let bytes = std::fs::read(&whole).expect("read");
     std::fs::write(path, &bytes[..4096]).expect("write");
     std::fs::remove_file(&whole).expect("remove");
@@ -84,19 +74,7 @@ fn cut_mov(path: &Path) {
 /// `path`, in the format its ending names.
 fn picture(source: &str, path: &Path) {
     let path = path.to_str().expect("a UTF-8 path");
-    let args = [
-        "-v",
-        "error",
-        "-y",
-        "-f",
-        "lavfi",
-        "-i",
-        source,
-        "-frames:v",
-        "1",
-        path,
-    ];
-    make("ffmpeg", &args);
+    ffmpeg_from(&[source], &["-frames:v", "1", path]);
 }
 
 /// What ffprobe says of `bytes`: the format name and each stream's codec and size.
