@@ -195,6 +195,8 @@ async fn a_visitors_tap_starts_a_session_that_ends_after_the_idle_time_without_a
     let mut kiosk = server
         .client(json!({"type": "hello", "role": "kiosk"}))
         .await;
+    // Measured from before the tap: the server's idle clock starts when it takes the tap.
+    let tapped = tokio::time::Instant::now();
     kiosk
         .send(json!({"type": "trigger", "label": "WELCOME", "ref": "tap"}))
         .await;
@@ -211,11 +213,10 @@ async fn a_visitors_tap_starts_a_session_that_ends_after_the_idle_time_without_a
         started["seq"].as_u64() < act["seq"].as_u64(),
         "the tap's act is in the session it started"
     );
-    let tapped = tokio::time::Instant::now();
     let ended = op.event_where(is("session.ended")).await;
     let waited = tapped.elapsed();
     assert!(
-        waited >= std::time::Duration::from_millis(900),
+        waited >= std::time::Duration::from_secs(1),
         "ended {waited:?} after the tap"
     );
     assert_eq!(

@@ -233,11 +233,13 @@ async fn a_projector_that_never_reports_fails_the_command_after_the_timeout() {
     let mut op = server.operator().await;
     let mut proj = projector(&server).await;
     for label in ["PICTURE", "FILM"] {
+        // Measured from before the trigger: the server's clock starts when it sends, and with
+        // the clock paused, time may move on while the command is on its way.
+        let asked = tokio::time::Instant::now();
         let (project, wait, _) = act(&mut op, label).await;
         proj.recv_type("command").await;
-        let sent = tokio::time::Instant::now();
         let failed = op.event_where(is("command.failed", project)).await;
-        let waited = sent.elapsed();
+        let waited = asked.elapsed();
         assert!(
             waited >= std::time::Duration::from_secs(5),
             "failed after {waited:?}"
