@@ -58,6 +58,7 @@ mod translations_refusals;
 mod translations_rows;
 mod translations_sheets;
 mod ws_adapter;
+mod ws_backpressure;
 mod ws_close_codes;
 mod ws_limits;
 mod ws_protocol;

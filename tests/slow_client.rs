@@ -52,9 +52,11 @@ async fn a_client_that_stops_reading_is_dropped_without_slowing_the_others() {
         .iter()
         .find(|e| e["type"] == "client.left" && e["client"] == joined["client"])
         .unwrap();
+    // Closed with a code, whichever limit it met first: its queue, its reading, or the events.
     let reason = left["reason"].as_str().unwrap();
+    assert!(reason.starts_with("too slow"), "{left}");
     assert!(
-        reason.contains("too slow") || reason.contains("timed out"),
+        [1008, 1013].contains(&left["code"].as_u64().unwrap_or_default()),
         "{left}"
     );
 }

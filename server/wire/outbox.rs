@@ -1,5 +1,8 @@
-//! A connection's outgoing queue. Bounded: a client that stops reading is dropped (its
-//! connection is "kicked") instead of slowing down everyone who sends to it. An
+//! A connection's outgoing queue. Bounded: the connection's reader takes the client's next
+//! frame only while the queue is at most half full ([`Outbox::half_free`]), so a client that sends
+//! faster than it reads is slowed down at its socket, never cut off for its own answers. What
+//! others queue for it (notices, relayed frames) does not wait: a client that stops reading is
+//! dropped (its connection is "kicked") instead of slowing down everyone who sends to it. An
 //! acknowledgement waits in the queue until the corpus log holds what it acknowledges
 //! ([`Outbox::send_logged`]), and the frames queued after it wait behind it, so a client sees
 //! its answers in order. Notices that may wait a moment linger beside the queue (`linger.rs`).
@@ -82,6 +85,13 @@ impl Outbox {
             }
             Err(mpsc::error::TrySendError::Closed(_)) => false,
         }
+    }
+
+    /// Whether at most half the queue is taken: the reader takes the client's next frame only
+    /// then (`ws::backlog`), so the other half is room for what its requests owe it later (a
+    /// command's failure) and for notices.
+    pub fn half_free(&self) -> bool {
+        self.tx.capacity() >= self.tx.max_capacity() / 2
     }
 
     /// Queues a frame that may be lost (relayed from another client): dropped when the queue

@@ -2,7 +2,10 @@
 //! frame read goes to the connection's [`Session`] (`session`), which routes it to its
 //! handler. Every bad frame gets an `error` frame and the connection stays usable; only a
 //! refused credential ends it, or a websocket protocol violation (closed with its RFC 6455
-//! code, see `violation`), silence, a full outbox or shutdown.
+//! code, see `violation`), silence, a client too slow for what others send it (closed with
+//! `1008` or `1013` and a reason, see `writer::WriterEnd`) or shutdown. A client that sends
+//! faster than it reads its answers is not ended: the reader takes its next frame only once
+//! its answers and its events have room (`backlog`).
 
 use std::net::IpAddr;
 use std::pin::pin;
@@ -25,10 +28,11 @@ use crate::sync::lock;
 use crate::wire::ErrorCode;
 use crate::wire::outbox::{OUTBOX_CAPACITY, Outbox};
 use crate::ws::allowance::{self, Allowance, Verdict};
+use crate::ws::backlog::Backlog;
 use crate::ws::client::Client;
 use crate::ws::session::Session;
 use crate::ws::violation::{Violation, closed, violation};
-use crate::ws::writer::{CloseWith, PING_INTERVAL, run_writer};
+use crate::ws::writer::{CloseWith, PING_INTERVAL, WriterEnd, run_writer};
 
 /// Frames beyond this size end the connection at the websocket layer; frames between
 /// [`MAX_FRAME_BYTES`](crate::ws::protocol::MAX_FRAME_BYTES) and this get an `error` frame and the connection stays.
@@ -46,9 +50,6 @@ const WRITE_BUFFER_BYTES: usize = 16 * 1024;
 
 /// The `client.left` reason of a client whose outgoing queue overflowed.
 const TOO_SLOW: &str = "too slow: its outgoing queue was full";
-
-/// The reader's reason when the writer ended first (the writer then has the real reason).
-const WRITER_ENDED: &str = "writer ended";
 
 /// `GET /ws`: upgrades to a websocket connection.
 pub async fn ws_upgrade(
@@ -89,6 +90,7 @@ async fn serve(socket: WebSocket, state: AppState, address: ClientAddress) {
     let (feed_tx, feed_rx) = oneshot::channel();
     let stop = CancellationToken::new();
     let close_with = CloseWith::default();
+    let backlog = std::sync::Arc::new(Backlog::default());
     let writer = state.life.tracker.spawn(run_writer(
         sink,
         queue,
@@ -97,6 +99,7 @@ async fn serve(socket: WebSocket, state: AppState, address: ClientAddress) {
         state.clone(),
         stop.clone(),
         close_with.clone(),
+        std::sync::Arc::clone(&backlog),
     ));
     let peer = address.ip;
     let client = Client {
@@ -115,44 +118,51 @@ async fn serve(socket: WebSocket, state: AppState, address: ClientAddress) {
     let mut stopped = pin!(stop.cancelled());
     let mut idle = pin!(tokio::time::sleep(IDLE_TIMEOUT));
     let mut allowance = Allowance::new(Instant::now());
-    let reason = loop {
+    let outbox = session.client().outbox.clone();
+    let ended = loop {
         let next = tokio::select! {
             // The client's frames first; the budget of tokio's cooperative scheduling still
             // lets the others be seen during a flood.
             biased;
             next = async {
-                // A log falling behind slows every client down, at the socket.
+                // A log falling behind slows every client down, at the socket; answers and
+                // events a client has not read yet slow it down.
                 state.hub.room_to_log().await;
+                backlog.room(&outbox).await;
                 stream.next().await
             } => next,
-            () = &mut idle => break "idle timeout",
+            () = &mut idle => break Ended::Reader("idle timeout"),
             () = &mut kicked => {
                 let words = "too slow: the outgoing queue was full";
                 let Violation { reason, close } = closed(TOO_SLOW, close_code::POLICY, words);
                 *lock(&close_with) = close;
                 logged(&state, id, peer, reason);
-                break reason;
+                break Ended::Reader(reason);
             }
-            () = &mut shutdown => break "server shutting down",
-            () = &mut stopped => break WRITER_ENDED,
+            () = &mut shutdown => {
+                let words = "server shutting down";
+                *lock(&close_with) = closed(words, close_code::AWAY, words).close;
+                break Ended::Reader(words);
+            }
+            () = &mut stopped => break Ended::Writer,
         };
         // Extending a deadline does not touch the timer wheel until the old one passes.
         idle.as_mut()
             .reset(tokio::time::Instant::now() + IDLE_TIMEOUT);
         match next {
-            None | Some(Ok(Message::Close(_))) => break "closed by client",
+            None | Some(Ok(Message::Close(_))) => break Ended::Reader("closed by client"),
             Some(Err(error)) => {
                 // The writer answers with the violation's close code as it closes.
                 let Violation { reason, close } = violation(error);
                 *lock(&close_with) = close;
-                break reason;
+                break Ended::Reader(reason);
             }
             Some(Ok(Message::Ping(_) | Message::Pong(_))) => {
                 if allowance.ping(session.role(), Instant::now()) == Verdict::Close {
                     let Violation { reason, close } = allowance::too_many_pings();
                     *lock(&close_with) = close;
                     logged(&state, id, peer, reason);
-                    break reason;
+                    break Ended::Reader(reason);
                 }
             }
             Some(Ok(message)) => match allowance.frame(session.role(), Instant::now()) {
@@ -160,7 +170,7 @@ async fn serve(socket: WebSocket, state: AppState, address: ClientAddress) {
                     Message::Text(text) => {
                         session.on_text(text.as_str());
                         if let Some(reason) = session.closing() {
-                            break reason;
+                            break Ended::Reader(reason);
                         }
                     }
                     _ => session.on_binary(),
@@ -173,21 +183,38 @@ async fn serve(socket: WebSocket, state: AppState, address: ClientAddress) {
             },
         }
     };
+    // The reader's copy of the sender: the writer sees the queue closed once the session's goes.
+    drop(outbox);
     if session.closing().is_some() {
         // Dropping the only sender lets the writer send the queued error, then close.
         drop(session);
         let _ = writer.await;
         return;
     }
-    if reason == WRITER_ENDED {
-        let writer_end = writer.await.unwrap_or("writer failed");
-        return session.leave(writer_end);
-    }
+    let reason = match ended {
+        Ended::Writer => {
+            let end = writer.await.unwrap_or(WriterEnd::WriteFailed);
+            if let Some(close) = end.close() {
+                logged(&state, id, peer, &close.reason);
+            }
+            return session.leave(end.reason(), end.close().map(|c| c.code));
+        }
+        Ended::Reader(reason) => reason,
+    };
     // Leave first: a writer stuck on a client that stopped reading must not delay failing the
     // commands an adapter owes, or the client.left event, past shutdown.
-    session.leave(reason);
+    let code = lock(&close_with).as_ref().map(|c| c.code);
+    session.leave(reason, code);
     stop.cancel();
     let _ = writer.await;
+}
+
+/// Which side ended the connection.
+enum Ended {
+    /// The reader, for this `client.left` reason (and the close frame in `CloseWith`, if any).
+    Reader(&'static str),
+    /// The writer, which has the reason.
+    Writer,
 }
 
 /// Logs a connection closed for a limit, within the shared allowance of logged refusals (so

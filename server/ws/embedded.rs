@@ -104,7 +104,7 @@ impl EmbeddedSession {
 
     /// Ends the session for `reason` (`client.left`, as a websocket client's).
     pub fn leave(self, reason: &str) {
-        self.session.leave(reason);
+        self.session.leave(reason, None);
     }
 }
 

@@ -19,6 +19,7 @@
 
 mod allowance;
 mod attract;
+mod backlog;
 mod captions;
 mod client;
 mod connection;

@@ -231,7 +231,7 @@ impl Session {
     /// The connection ended for `reason`: whatever the client held is released (an adapter's
     /// commands fail, an operator's calls end, a dialog manager's proposals are withdrawn)
     /// and `client.left` is published. A client that never said `hello` left no trace.
-    pub(super) fn leave(self, reason: &str) {
+    pub(super) fn leave(self, reason: &str, code: Option<u16>) {
         let Some(role) = self.role else { return };
         let client = &self.client;
         let state = &client.state;
@@ -251,6 +251,7 @@ impl Session {
             client: client.id,
             role,
             reason,
+            code,
         });
     }
 }

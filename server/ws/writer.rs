@@ -1,10 +1,13 @@
 //! A connection's writer task: sends queued frames and, once the client has said hello, the
-//! frames of its subscription (display commands or events), pinging an idle client.
+//! frames of its subscription (display commands or events), pinging an idle client. How far it
+//! is behind the events it relays goes to the reader ([`Backlog`]), which slows the client
+//! down; a client that falls behind all the same, or does not read for [`WRITE_TIMEOUT`], is
+//! closed with a code and a reason ([`WriterEnd`]).
 
 use std::sync::Arc;
 use std::time::Duration;
 
-use axum::extract::ws::{CloseFrame, Message, WebSocket};
+use axum::extract::ws::{CloseFrame, Message, WebSocket, close_code};
 use futures_util::SinkExt;
 use futures_util::stream::SplitSink;
 use tokio::sync::broadcast::error::{RecvError, TryRecvError};
@@ -15,10 +18,13 @@ use crate::events::{ClientRole, Event, Hub, LogUnwritable};
 use crate::state::AppState;
 use crate::wire::linger::Lingering;
 use crate::wire::outbox::{Frame, Queued};
+use crate::ws::backlog::Backlog;
 use crate::ws::protocol::{error_frame, event_frame, state_frame};
 
 /// A client that cannot take a frame within this time is dropped.
-const WRITE_TIMEOUT: Duration = Duration::from_secs(10);
+pub const WRITE_TIMEOUT: Duration = Duration::from_secs(10);
+// The close frame of `WriterEnd::NotReading` says it.
+const _: () = assert!(WRITE_TIMEOUT.as_secs() == 10);
 /// Most frames written before one flush.
 const MAX_BATCH: usize = 64;
 /// How long a closing handshake may take.
@@ -35,7 +41,60 @@ pub enum Feed {
 }
 
 /// Why the writer ended.
-pub type WriterEnd = &'static str;
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum WriterEnd {
+    /// The connection is ending for a reason the reader knows (the client left, the server
+    /// stops, a limit), or the queue closed.
+    Closed,
+    /// A write failed: the connection is lost.
+    WriteFailed,
+    /// The client took nothing for [`WRITE_TIMEOUT`] while frames waited for it, or so little
+    /// that the websocket layer holds no more for it.
+    NotReading,
+    /// The client read the event stream slower than events came, and fell this many behind
+    /// beyond what the channel holds.
+    FellBehind(u64),
+    /// The event stream closed: the server is shutting down.
+    ServerClosing,
+}
+
+impl WriterEnd {
+    /// The `client.left` reason.
+    pub fn reason(self) -> &'static str {
+        match self {
+            WriterEnd::Closed => "closed",
+            WriterEnd::WriteFailed => "connection lost",
+            WriterEnd::NotReading => "too slow: did not read its frames",
+            WriterEnd::FellBehind(_) => "too slow: fell behind the event stream",
+            WriterEnd::ServerClosing => "server closing",
+        }
+    }
+
+    /// The close frame the client gets, when the server decided the end: `1008` for a client
+    /// that stopped reading, `1013` (try again later) for one that fell behind, since a new
+    /// connection starts from a fresh state.
+    pub fn close(self) -> Option<CloseFrame> {
+        let (code, words) = match self {
+            WriterEnd::NotReading => (
+                close_code::POLICY,
+                "too slow: read nothing for 10 s while frames waited for it".to_owned(),
+            ),
+            WriterEnd::FellBehind(missed) => (
+                close_code::AGAIN,
+                format!(
+                    "too slow: fell {missed} events behind the event stream; reconnect for a \
+                     fresh state"
+                ),
+            ),
+            WriterEnd::ServerClosing => (close_code::AWAY, "server shutting down".to_owned()),
+            WriterEnd::Closed | WriterEnd::WriteFailed => return None,
+        };
+        Some(CloseFrame {
+            code,
+            reason: words.into(),
+        })
+    }
+}
 
 /// The close frame the writer ends with, when the reader found a protocol violation; a plain
 /// close otherwise.
@@ -51,6 +110,7 @@ pub async fn run_writer(
     state: AppState,
     stop: CancellationToken,
     close_with: CloseWith,
+    backlog: Arc<Backlog>,
 ) -> WriterEnd {
     let mut feed = Some(feed);
     let mut subscription: Option<Feed> = None;
@@ -63,9 +123,9 @@ pub async fn run_writer(
             queued = queue.recv() => match queued {
                 Some(queued) => match release(queued, &state.hub, &stop).await {
                     Some(frame) => frame,
-                    None => break "closed",
+                    None => break WriterEnd::Closed,
                 },
-                None => break "closed",
+                None => break WriterEnd::Closed,
             },
             f = async {
                 match feed.as_mut() {
@@ -82,13 +142,13 @@ pub async fn run_writer(
                 Err(end) => break end,
             },
             _ = ping.tick() => {
-                if write(&stop, sink.send(Message::Ping(Default::default()))).await.is_err() { break "write failed" }
+                if let Err(end) = write(&stop, sink.send(Message::Ping(Default::default()))).await { break end }
                 continue;
             }
-            () = stop.cancelled() => break "closed",
+            () = stop.cancelled() => break WriterEnd::Closed,
         };
-        if write(&stop, sink.feed(Message::Text(frame))).await.is_err() {
-            break "write failed or timed out";
+        if let Err(end) = write(&stop, sink.feed(Message::Text(frame))).await {
+            break end;
         }
         // Send whatever else is ready, answers and fed frames alike, in one flush: one
         // system call per batch instead of one per frame.
@@ -97,7 +157,7 @@ pub async fn run_writer(
             let frame = match queue.try_recv() {
                 Ok(queued) => match release(queued, &state.hub, &stop).await {
                     Some(frame) => frame,
-                    None => break 'writing "closed",
+                    None => break 'writing WriterEnd::Closed,
                 },
                 Err(_) => match try_next_fed(&mut subscription, &state) {
                     Some(Ok(frame)) => frame,
@@ -105,24 +165,30 @@ pub async fn run_writer(
                     None => break,
                 },
             };
-            if write(&stop, sink.feed(Message::Text(frame))).await.is_err() {
-                break 'writing "write failed or timed out";
+            if let Err(end) = write(&stop, sink.feed(Message::Text(frame))).await {
+                break 'writing end;
             }
             batch += 1;
         }
         // Notices waiting for company ride along.
         for frame in lingering.take() {
-            if write(&stop, sink.feed(Message::Text(frame))).await.is_err() {
-                break 'writing "write failed or timed out";
+            if let Err(end) = write(&stop, sink.feed(Message::Text(frame))).await {
+                break 'writing end;
             }
         }
-        if write(&stop, sink.flush()).await.is_err() {
-            break "write failed or timed out";
+        if let Err(end) = write(&stop, sink.flush()).await {
+            break end;
         }
+        backlog.sent(match &subscription {
+            Some(Feed::Events(rx)) => rx.len(),
+            _ => 0,
+        });
     };
     // Tell the reader loop, which may be waiting on a silent client.
     stop.cancel();
-    let close = crate::sync::lock(&close_with).take();
+    let close = crate::sync::lock(&close_with)
+        .take()
+        .or_else(|| end.close());
     let closing = async {
         if let Some(frame) = close {
             sink.send(Message::Close(Some(frame))).await?;
@@ -163,7 +229,8 @@ pub(super) async fn release(queued: Queued, hub: &Hub, stop: &CancellationToken)
 /// What a subscription's receiver gave.
 enum Got<T> {
     Item(T),
-    Lagged,
+    /// This many were skipped.
+    Lagged(u64),
     Closed,
 }
 
@@ -171,7 +238,7 @@ impl<T> From<Result<T, RecvError>> for Got<T> {
     fn from(r: Result<T, RecvError>) -> Self {
         match r {
             Ok(item) => Got::Item(item),
-            Err(RecvError::Lagged(_)) => Got::Lagged,
+            Err(RecvError::Lagged(missed)) => Got::Lagged(missed),
             Err(RecvError::Closed) => Got::Closed,
         }
     }
@@ -198,7 +265,7 @@ fn try_next_fed(
         match r {
             Ok(item) => Some(Got::Item(item)),
             Err(TryRecvError::Empty) => None,
-            Err(TryRecvError::Lagged(_)) => Some(Got::Lagged),
+            Err(TryRecvError::Lagged(missed)) => Some(Got::Lagged(missed)),
             Err(TryRecvError::Closed) => Some(Got::Closed),
         }
     }
@@ -222,7 +289,7 @@ fn display_frame(
         Got::Item(frame) => Ok(frame),
         // Fell behind: start over from a fresh snapshot and subscription (taken together, so
         // nothing is missed or replayed), instead of replaying stale pages.
-        Got::Lagged => {
+        Got::Lagged(_) => {
             let (display, fresh) = state.devices.display.subscribe(role);
             if let Some(fresh) = fresh {
                 *rx = fresh;
@@ -231,21 +298,22 @@ fn display_frame(
             view.display = display;
             Ok(Frame::from(state_frame(&view)))
         }
-        Got::Closed => Err("server closing"),
+        Got::Closed => Err(WriterEnd::ServerClosing),
     }
 }
 
 fn event_frame_of(got: Got<Arc<Event>>) -> Result<Frame, WriterEnd> {
     match got {
         Got::Item(event) => Ok(Frame::from(event_frame(&event))),
-        // An event stream with holes would mislead an operator: drop them; they reconnect.
-        Got::Lagged => Err("too slow: fell behind the event stream"),
-        Got::Closed => Err("server closing"),
+        // An event stream with holes would mislead an operator: close, and they reconnect to
+        // a fresh state and history.
+        Got::Lagged(missed) => Err(WriterEnd::FellBehind(missed)),
+        Got::Closed => Err(WriterEnd::ServerClosing),
     }
 }
 
 /// Runs one write with the write timeout, giving up at once when the connection is stopping.
-async fn write<F>(stop: &CancellationToken, write: F) -> Result<(), ()>
+async fn write<F>(stop: &CancellationToken, write: F) -> Result<(), WriterEnd>
 where
     F: std::future::Future<Output = Result<(), axum::Error>>,
 {
@@ -255,8 +323,16 @@ where
         biased;
         result = tokio::time::timeout(WRITE_TIMEOUT, write) => match result {
             Ok(Ok(())) => Ok(()),
-            _ => Err(()),
+            Ok(Err(e)) if write_buffer_full(&e) => Err(WriterEnd::NotReading),
+            Ok(Err(_)) => Err(WriterEnd::WriteFailed),
+            Err(_) => Err(WriterEnd::NotReading),
         },
-        () = stop.cancelled() => Err(()),
+        () = stop.cancelled() => Err(WriterEnd::Closed),
     }
+}
+
+/// Whether the websocket layer refused a frame because it holds no more for this client.
+fn write_buffer_full(e: &axum::Error) -> bool {
+    let inner = std::error::Error::source(e).and_then(|e| e.downcast_ref());
+    matches!(inner, Some(tungstenite::Error::WriteBufferFull(_)))
 }

@@ -34,17 +34,18 @@ export function accessElements(byId) {
  * @param {{path: string, open: boolean, link: HTMLElement, banner: HTMLElement,
  *          signout: HTMLElement, form: {dialog: HTMLDialogElement, form: HTMLFormElement,
  *          token: HTMLInputElement, name: HTMLInputElement, error: HTMLElement},
- *          onFrame: (frame: object) => void, onOnline: () => void,
+ *          onFrame: (frame: object) => void, onOnline: () => void, onClosed: (reason: string) => void,
  *          onSignedOut: () => void}} options `path`: the websocket's; `open`: an `--open`
  *          server, which needs no credential; `banner`: the lockout banner; `form`: the
- *          sign-in dialog's elements; `onOnline`: welcomed; `onSignedOut`: the credential is
- *          given up (signed out or refused).
+ *          sign-in dialog's elements; `onOnline`: welcomed; `onClosed(reason)`: Docent closed
+ *          the connection and said why; `onSignedOut`: the credential is given up (signed out or
+ *          refused).
  * @returns {{begin: () => void, connection: () => object|null, token: () => string|null,
  *          name: () => string|null, signedIn: () => boolean,
  *          showLockout: (retryAt: number|null) => void}} `begin`: signs in as the page
  *          starts; `connection`: the websocket's (connection.js), null when signed out.
  */
-export function createAccess({ path, open, link, banner, signout, form, onFrame, onOnline, onSignedOut }) {
+export function createAccess({ path, open, link, banner, signout, form, onFrame, onOnline, onClosed, onSignedOut }) {
   let connection = null;
   let signedIn = false;
   let token = null;
@@ -69,6 +70,7 @@ export function createAccess({ path, open, link, banner, signout, form, onFrame,
       link.textContent = "connecting…";
     } else if (status.state === "offline") {
       link.textContent = "offline: reconnecting…";
+      if (status.message) onClosed(status.message);
     } else if (status.state === "locked") {
       // Too many wrong or missing credentials from this computer: the server refuses wrong ones
       // for a while (never the right one). The credential is kept and tried again after the

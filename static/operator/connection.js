@@ -26,7 +26,9 @@ export function lockoutSeconds(message) {
  *          onStatus: (status: {state: "connecting"|"online"|"offline"|"locked"|"refused",
  *                              code?: string, message?: string, retryAt?: number}) => void}}
  *          options `locked`: refused for a while, tried again at `retryAt` (ms, Date.now());
- *          `refused`: the credential is wrong, given up.
+ *          `refused`: the credential is wrong, given up; `offline` carries, in `message`, the
+ *          reason Docent gave when it closed the connection itself (a console too slow for
+ *          the events, the server shutting down), with its close `code`.
  * @returns {{send: (frame: object) => boolean, close: () => void}} `send` is false when the
  *          console is not connected and welcomed.
  */
@@ -70,7 +72,7 @@ export function connect({ path, token, name, onFrame, onStatus }) {
       }
       onFrame(frame);
     };
-    ws.onclose = () => {
+    ws.onclose = (event) => {
       if (socket !== ws) return;
       socket = null;
       welcomed = false;
@@ -88,7 +90,9 @@ export function connect({ path, token, name, onFrame, onStatus }) {
         onStatus({ state: "locked", code: refusal.code, message: refusal.message, retryAt: Date.now() + wait });
         return;
       }
-      onStatus({ state: "offline" });
+      // A close frame Docent sent with a reason says why it ended the connection.
+      const closedBy = event.reason ? { code: String(event.code), message: event.reason } : {};
+      onStatus({ state: "offline", ...closedBy });
       const wait = delay * (1 + JITTER * (2 * Math.random() - 1));
       delay = Math.min(delay * 2, MAX_DELAY_MS);
       retryTimer = setTimeout(open, wait);

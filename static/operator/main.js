@@ -133,6 +133,8 @@ const access = createAccess({
     events.onFrame(frame);
   },
   onOnline: () => loadSettings(),
+  onClosed: (reason) =>
+    notice(`Docent closed this console's connection (${reason}); reconnecting. Events in between are in the corpus, not in this list.`),
   onSignedOut: () => camera.stop(),
 });
 const stopper = createStop({

@@ -174,6 +174,11 @@ test('an --open development server needs no credential; a restarted server is re
     await signIn(page, server);
     await server.stop();
     await page.locator('#link[data-state="offline"]').waitFor();
+    // Docent said why it closed the connection, and the console says it.
+    assert.match(
+      await page.locator('#notice').textContent(),
+      /^Docent closed this console's connection \(server shutting down\); reconnecting\./,
+    );
     server = await startDocent(bundle, { port });
     await page.locator('#link[data-state="online"]').waitFor({ timeout: 30_000 });
     assert.equal(await page.locator('#signin').evaluate((d) => d.open), false, 'the console asked again after a restart');

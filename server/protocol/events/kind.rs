@@ -537,6 +537,11 @@ pub enum EventKind {
         role: ClientRole,
         /// Why it ended.
         reason: String,
+        /// The close code the server ended the connection with, when the server decided the
+        /// end (`1008` a client that stopped reading, `1013` one that fell behind the event
+        /// stream, `1001` shutdown, the RFC 6455 code of a protocol violation).
+        #[serde(default, skip_serializing_if = "Option::is_none")]
+        code: Option<u16>,
     },
     /// The robot's link to the fleet's MQTT broker came up or went down (`docs/FLEET.md`).
     #[serde(rename = "fleet.link")]

@@ -246,7 +246,8 @@ fn every_kind() -> Vec<EventKind> {
         ClientLeft {
             client: 4,
             role: ClientRole::Adapter,
-            reason: "closed".into(),
+            reason: "too slow: fell behind the event stream".into(),
+            code: Some(1013),
         },
         FleetLink(LinkView {
             broker: "mqtt://fleet.local".into(),
