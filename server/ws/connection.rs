@@ -18,7 +18,6 @@ use axum::http::HeaderMap;
 use axum::response::{IntoResponse, Response};
 use futures_util::StreamExt;
 use tokio::sync::oneshot;
-use tokio_util::sync::CancellationToken;
 
 use crate::access::ClientAddress;
 use crate::http::ConnectionSlot;
@@ -28,11 +27,10 @@ use crate::sync::lock;
 use crate::wire::ErrorCode;
 use crate::wire::outbox::{OUTBOX_CAPACITY, Outbox};
 use crate::ws::allowance::{self, Allowance, Verdict};
-use crate::ws::backlog::Backlog;
 use crate::ws::client::Client;
 use crate::ws::session::Session;
 use crate::ws::violation::{Violation, closed, violation};
-use crate::ws::writer::{CloseWith, PING_INTERVAL, WriterEnd, run_writer};
+use crate::ws::writer::{Link, PING_INTERVAL, WriterEnd, run_writer};
 
 /// Frames beyond this size end the connection at the websocket layer; frames between
 /// [`MAX_FRAME_BYTES`](crate::ws::protocol::MAX_FRAME_BYTES) and this get an `error` frame and the connection stays.
@@ -88,19 +86,20 @@ async fn serve(socket: WebSocket, state: AppState, address: ClientAddress) {
     let (sink, mut stream) = socket.split();
     let (outbox, queue) = Outbox::new(OUTBOX_CAPACITY);
     let (feed_tx, feed_rx) = oneshot::channel();
-    let stop = CancellationToken::new();
-    let close_with = CloseWith::default();
-    let backlog = std::sync::Arc::new(Backlog::default());
+    let link = Link::default();
     let writer = state.life.tracker.spawn(run_writer(
         sink,
         queue,
         std::sync::Arc::clone(outbox.lingering()),
         feed_rx,
         state.clone(),
-        stop.clone(),
-        close_with.clone(),
-        std::sync::Arc::clone(&backlog),
+        link.clone(),
     ));
+    let Link {
+        stop,
+        close_with,
+        backlog,
+    } = link;
     let peer = address.ip;
     let client = Client {
         id,

@@ -100,18 +100,32 @@ impl WriterEnd {
 /// close otherwise.
 pub type CloseWith = Arc<std::sync::Mutex<Option<CloseFrame>>>;
 
-/// Writes until the queue closes, the client fails or falls behind, or `stop` is cancelled;
-/// cancels `stop` itself when it ends first.
+/// What a connection's reader and writer share.
+#[derive(Clone, Debug, Default)]
+pub struct Link {
+    /// Cancelled when either ends.
+    pub stop: CancellationToken,
+    /// The close frame the reader decided, if any.
+    pub close_with: CloseWith,
+    /// How far the writer is behind, which the reader waits on.
+    pub backlog: Arc<Backlog>,
+}
+
+/// Writes until the queue closes, the client fails or falls behind, or `link.stop` is
+/// cancelled; cancels it itself when it ends first.
 pub async fn run_writer(
     mut sink: SplitSink<WebSocket, Message>,
     mut queue: mpsc::Receiver<Queued>,
     lingering: Arc<Lingering>,
     feed: oneshot::Receiver<Feed>,
     state: AppState,
-    stop: CancellationToken,
-    close_with: CloseWith,
-    backlog: Arc<Backlog>,
+    link: Link,
 ) -> WriterEnd {
+    let Link {
+        stop,
+        close_with,
+        backlog,
+    } = link;
     let mut feed = Some(feed);
     let mut subscription: Option<Feed> = None;
     let mut ping = tokio::time::interval(PING_INTERVAL);
