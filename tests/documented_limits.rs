@@ -228,3 +228,19 @@ async fn each_route_needs_the_credential_the_endpoints_table_gives_and_bodies_th
     }
     server.stop().await;
 }
+
+/// The shipped systemd unit gives the process the files the default connection total and
+/// Docent's own files need, and docs/DEVICE.md says the figure the unit sets.
+#[test]
+fn the_systemd_units_open_files_fit_the_default_connection_total() {
+    let unit = fs::read_to_string(repo().join("kiosk/systemd/docent.service")).expect("the unit");
+    let set = (unit.lines().find_map(|l| l.strip_prefix("LimitNOFILE=")))
+        .expect("the unit sets LimitNOFILE=");
+    let files: u64 = set.trim().parse().expect("a number");
+    let total = docent::content::config::ServerLimits::default().total as u64;
+    assert!(
+        files >= total + docent::http::OWN_FILES,
+        "LimitNOFILE={files}"
+    );
+    assert!(doc("DEVICE.md").contains(&format!("`LimitNOFILE={files}`")));
+}
