@@ -36,7 +36,9 @@ pub fn make_room(total: usize) -> OpenFiles {
     };
     match setrlimit(Resource::Nofile, new) {
         Ok(()) => {
-            tracing::info!(from = ?before.current, to = raised, "raised the open-files limit");
+            // `raise_to` raises only a finite soft limit.
+            let from = before.current.unwrap_or(raised);
+            tracing::info!(from, to = raised, "raised the open-files limit");
             checked(Some(raised), needed, total)
         }
         Err(e) => {
