@@ -16,7 +16,6 @@ use docent::cli::fleet as fleet_cli;
 use docent::cli::translations as translations_cli;
 use docent::content::config::AdapterKind;
 use docent::content::{load_bundle, schema};
-use docent::http::ConnectionLimits;
 use docent::reload::ReloadOptions;
 use docent::serve::{ServeOptions, Server, run};
 use tokio::net::TcpListener;
@@ -238,7 +237,7 @@ fn serve(args: &ServeArgs) -> anyhow::Result<ExitCode> {
         corpus_sync: args.corpus_sync,
         speech_wav: args.speech_wav.clone(),
         access: setup.mode.clone(),
-        limits: ConnectionLimits::default(),
+        limits: None,
         media_cache: (args.media_cache.clone()).unwrap_or_else(docent::media::default_folder),
         media_tools: docent::media::Tools::find(),
     };

@@ -14,17 +14,17 @@ use tokio::net::TcpListener;
 
 use crate::access::{Access, AccessMode, TrustedProxies};
 use crate::adapters::{Devices, SpeechOutput, espeak_available, espeak_can_play, espeak_voices};
-use crate::content::config::{AdapterKind, SpeechConfig};
+use crate::content::config::{AdapterKind, ServerLimits, SpeechConfig};
 use crate::content::{Bundle, BundleArea, resolve_in_bundle};
 use crate::corpus::CorpusWriter;
 use crate::dispatch::Dispatcher;
 use crate::events::{EventKind, Hub, SessionEnd, Source, StopReason};
-use crate::http::{ConnectionLimits, app, serve_connections};
+use crate::http::{ConnectionLimits, app, make_room, serve_connections};
 use crate::lifecycle::Lifecycle;
 use crate::media::Media;
 use crate::reload::ReloadOptions;
 use crate::robot::RobotInbox;
-use crate::state::AppState;
+use crate::state::{AppState, Limits};
 
 /// How long shutdown waits for connections and adapters to finish.
 const SHUTDOWN_GRACE: Duration = Duration::from_secs(5);
@@ -42,8 +42,10 @@ pub struct ServeOptions {
     pub speech_wav: Option<PathBuf>,
     /// Credentials for operators and dialog managers, or an open development server.
     pub access: AccessMode,
-    /// Time limits for slow clients and caps on connections.
-    pub limits: ConnectionLimits,
+    /// Time limits for slow clients and caps on connections instead of the bundle's
+    /// (`server:` in `docent.yaml`); `None`: the bundle's. Tests use it for limits no file
+    /// may write (a header time limit of 300 ms).
+    pub limits: Option<ConnectionLimits>,
     /// The media cache: converted media files ([`crate::media`]).
     pub media_cache: PathBuf,
     /// The converters media files are converted with ([`crate::media::Tools::find`] on `PATH`).
@@ -66,6 +68,7 @@ impl Server {
         let (hub, feed) = Hub::new();
         let corpus = CorpusWriter::start(&options.corpus_dir, feed, options.corpus_sync)?;
         let mut warnings = Vec::new();
+        let limits = limits_in_force(&bundle.config.server.limits, options.limits, &mut warnings);
         // Before this run records anything: a crash may have left bytes no kiosk was told are
         // stored.
         let (cuts, problems) = crate::recording::cut_unacknowledged(corpus.dir());
@@ -141,6 +144,7 @@ impl Server {
             folders,
         );
         state.media = media;
+        state.limits = limits;
         state.life.spawn(crate::ws::tell_media(state.clone()));
         let intake = crate::robot::run_intake(state.clone(), robot_intake);
         state.life.spawn(intake);
@@ -156,7 +160,7 @@ impl Server {
         Ok(Server {
             state,
             corpus,
-            limits: options.limits,
+            limits: ConnectionLimits::from(&limits.server),
             warnings,
         })
     }
@@ -253,6 +257,29 @@ async fn wind_down(closing: Closing, corpus: CorpusWriter) -> io::Result<()> {
         .map_err(|e| io::Error::other(format!("corpus writer: {e}")))??;
     tracing::info!(events = logged, "corpus log flushed");
     Ok(())
+}
+
+/// The limits this run keeps: the bundle's, with `chosen` connection limits instead when
+/// given; the open-files limit raised for the connections, with a warning when it stays too
+/// low.
+fn limits_in_force(
+    bundle: &ServerLimits,
+    chosen: Option<ConnectionLimits>,
+    warnings: &mut Vec<String>,
+) -> Limits {
+    let mut server = *bundle;
+    if let Some(chosen) = chosen {
+        server.per_address = chosen.per_address;
+        server.total = chosen.total;
+        server.header_timeout = chosen.header_timeout;
+        server.body_timeout = chosen.body_timeout;
+    }
+    let room = make_room(server.total);
+    warnings.extend(room.warning);
+    Limits {
+        server,
+        open_files: room.limit,
+    }
 }
 
 /// Decides the speech adapter and says why when it is not what the bundle asked for.

@@ -9,6 +9,7 @@ use serde::Serialize;
 
 use crate::access::Access;
 use crate::adapters::Devices;
+use crate::content::config::ServerLimits;
 use crate::corpus::SessionFolders;
 use crate::dispatch::Dispatcher;
 use crate::events::{ClientRole, Hub};
@@ -32,6 +33,16 @@ pub struct ClientInfo {
     pub name: Option<String>,
     /// Verbs it serves (adapters).
     pub verbs: Vec<String>,
+}
+
+/// The server's limits in force: read once at start-up (`Server::start`), never reloaded.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub struct Limits {
+    /// Connections, time limits, message size and outgoing queue length.
+    pub server: ServerLimits,
+    /// The open-files limit after start-up raised it (`http::make_room`); `None`: unlimited
+    /// or not looked at (a server not started by `Server::start`).
+    pub open_files: Option<u64>,
 }
 
 /// Everything handlers need. Cheap to clone.
@@ -67,6 +78,9 @@ pub struct AppState {
     pub captions: Arc<crate::ws::Captions>,
     /// Media files converted for Chromium, served under their own names.
     pub media: Arc<crate::media::Media>,
+    /// The server's limits in force since start-up (`server:` in `docent.yaml`): what each
+    /// connection is held to and `GET /api/state` reports.
+    pub limits: Limits,
     clients: Arc<Clients>,
 }
 
@@ -194,6 +208,7 @@ impl AppState {
             fleet: Arc::default(),
             captions,
             media: crate::media::Media::idle(),
+            limits: Limits::default(),
             clients,
             life,
         }

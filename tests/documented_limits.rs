@@ -1,5 +1,6 @@
 //! The limits docs/PROTOCOL.md (and docs/FLEET.md) give are the real ones: each is read from
-//! its table row or sentence and checked against the constant the code keeps and, where a
+//! its table row or sentence and checked against the constant the code keeps (or the default
+//! of its `server:` setting, which names it) and, where a
 //! client can see it, against a running server (the HTTP body limit, which routes need a
 //! credential and which roles it opens them to, `/report` and `/api/report` among them).
 
@@ -63,10 +64,6 @@ fn the_http_body_and_recording_chunk_limits_are_the_constants() {
         ],
         "{body:?}"
     );
-    let seconds = docent::http::ConnectionLimits::default()
-        .body_timeout
-        .as_secs();
-    assert!(body[1].contains(&format!("within {seconds} s")), "{body:?}");
     let upload = row(&protocol, "`PUT /api/recordings/{recording}/chunks/{seq}`");
     assert_eq!(sizes(&upload[1]), [docent::recording::MAX_CHUNK_BYTES]);
     let example = format!(
@@ -77,6 +74,45 @@ fn the_http_body_and_recording_chunk_limits_are_the_constants() {
         protocol.contains(&example),
         "the record frame's example says {example}"
     );
+}
+
+/// The first number of `text` (`"1,024 frames"` → 1024).
+fn first_number(text: &str) -> usize {
+    let first = text.split_whitespace().next().and_then(number);
+    first.unwrap_or_else(|| panic!("{text:?} starts with no number")) as usize
+}
+
+#[test]
+fn the_server_limits_are_the_defaults_and_name_their_settings() {
+    let protocol = doc("PROTOCOL.md");
+    let limits = docent::content::config::ServerLimits::default();
+    let cell = |first: &str, setting: &str| {
+        let value = row(&protocol, first).swap_remove(1);
+        let named = format!("`server: {setting}`");
+        assert!(value.contains(&named), "{first}: {value:?} names {named}");
+        value
+    };
+    let per_address = cell("Connections per address", "connections: per_address");
+    assert_eq!(first_number(&per_address), limits.per_address);
+    assert_eq!(
+        first_number(&cell("Connections in all", "connections: total")),
+        limits.total
+    );
+    let queue = cell("Outgoing queue per client", "queues: per_client");
+    assert_eq!(first_number(&queue), limits.queue_per_client);
+    let message = cell("Message size", "messages: max_size");
+    assert_eq!(sizes(&message), [limits.max_message_bytes]);
+    let headers = cell("HTTP headers", "timeouts: headers");
+    let seconds = limits.header_timeout.as_secs();
+    assert!(
+        headers.contains(&format!("within {seconds} s")),
+        "{headers:?}"
+    );
+    let body = cell("HTTP body", "timeouts: body");
+    let seconds = limits.body_timeout.as_secs();
+    assert!(body.contains(&format!("within {seconds} s")), "{body:?}");
+    let frame = row(&protocol, "Frame size");
+    assert_eq!(sizes(&frame[1]), [docent::ws::protocol::MAX_FRAME_BYTES]);
 }
 
 #[test]
@@ -191,4 +227,20 @@ async fn each_route_needs_the_credential_the_endpoints_table_gives_and_bodies_th
         );
     }
     server.stop().await;
+}
+
+/// The shipped systemd unit gives the process the files the default connection total and
+/// Docent's own files need, and docs/DEVICE.md says the figure the unit sets.
+#[test]
+fn the_systemd_units_open_files_fit_the_default_connection_total() {
+    let unit = fs::read_to_string(repo().join("kiosk/systemd/docent.service")).expect("the unit");
+    let set = (unit.lines().find_map(|l| l.strip_prefix("LimitNOFILE=")))
+        .expect("the unit sets LimitNOFILE=");
+    let files: u64 = set.trim().parse().expect("a number");
+    let total = docent::content::config::ServerLimits::default().total as u64;
+    assert!(
+        files >= total + docent::http::OWN_FILES,
+        "LimitNOFILE={files}"
+    );
+    assert!(doc("DEVICE.md").contains(&format!("`LimitNOFILE={files}`")));
 }

@@ -18,7 +18,7 @@ const TRIGGER: &str = "/api/acts/WELCOME/trigger";
 
 async fn server_with(limits: ConnectionLimits) -> TestServer {
     TestServer::start_with(&bundle("tests/fixtures/fig4-verbatim"), |o| {
-        o.limits = limits;
+        o.limits = Some(limits);
     })
     .await
 }

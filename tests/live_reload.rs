@@ -262,6 +262,30 @@ async fn a_setting_fixed_at_start_up_is_reported_as_needing_a_restart() {
 }
 
 #[tokio::test]
+async fn changed_server_limits_stay_as_started_and_the_operator_is_told_to_restart() {
+    let bundle = TempBundle::new(&acts("Hello")).with_file("pages/index.html", HOME);
+    let server = Watched::start(bundle.path()).await;
+    let mut watcher = server.operator().await;
+    let settings = "server:\n  connections: { per_address: 2 }\n";
+    std::fs::write(bundle.path().join("docent.yaml"), settings).expect("save");
+    let live = watcher.event("bundle.reloaded").await;
+    assert_eq!(
+        live["not_applied"],
+        json!([
+            "restart Docent for the server limits (server: connections, timeouts, messages, \
+             queues) to take effect"
+        ])
+    );
+    let (status, state) = server.get("/api/state").await;
+    assert_eq!(status, 200);
+    assert_eq!(
+        state["limits"]["connections"]["per_address"], 128,
+        "as started"
+    );
+    server.stop().await;
+}
+
+#[tokio::test]
 async fn a_deleted_bundle_folder_is_reported_and_the_last_good_bundle_keeps_serving() {
     let bundle = TempBundle::new(&acts("Hello")).with_file("pages/index.html", HOME);
     let server = Watched::start(bundle.path()).await;

@@ -49,6 +49,7 @@ mod robot_reactions;
 mod rosbridge_drive;
 mod rosbridge_events;
 mod schema;
+mod server_limits;
 mod slow_client;
 mod speech_espeak;
 mod staff_mistakes;

@@ -33,7 +33,7 @@ fn site() -> TempBundle {
 /// A server with `limits` recording a session: the kiosk has its `record` frame.
 async fn recording(limits: ConnectionLimits) -> (TestServer, WsClient, Value, TempBundle) {
     let bundle = site();
-    let server = TestServer::start_with(bundle.path(), |o| o.limits = limits).await;
+    let server = TestServer::start_with(bundle.path(), |o| o.limits = Some(limits)).await;
     let mut kiosk = server
         .client(json!({"type": "hello", "role": "kiosk", "name": "kiosk"}))
         .await;

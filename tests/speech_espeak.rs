@@ -136,7 +136,7 @@ fn an_unknown_voice_is_reported_at_start_up() {
         corpus_sync: docent::corpus::DEFAULT_SYNC_INTERVAL,
         speech_wav: None,
         access: common::test_access(),
-        limits: docent::http::ConnectionLimits::default(),
+        limits: None,
         media_cache: corpus.path().join("media-cache"),
         media_tools: docent::media::Tools::find(),
     };

@@ -6,7 +6,7 @@
 
 use crate::common;
 
-use common::{DEADLINE, TestServer, bundle};
+use common::{DEADLINE, TempBundle, TestServer, bundle};
 use serde_json::Value;
 use tokio::io::{AsyncReadExt, AsyncWriteExt};
 use tokio::net::TcpStream;
@@ -127,6 +127,33 @@ async fn a_message_over_one_mebibyte_is_closed_with_1009_and_logged() {
         .collect();
     assert_eq!(left.len(), 1);
     assert_eq!(left[0]["reason"], "message too big");
+}
+
+#[tokio::test]
+async fn a_message_over_the_bundles_max_size_is_closed_with_1009() {
+    let bundle = TempBundle::new("- Label: A\n  Text: [a]\n")
+        .with_file("docent.yaml", "server:\n  messages: {max_size: 64 KiB}\n");
+    let server = TestServer::start(bundle.path()).await;
+    let mut tcp = handshake(&server).await;
+    // Within the bundle's limit: answered `frame-too-large`, the connection stays.
+    let within = [b' '; 64 * 1024];
+    tcp.write_all(&frame(0x81, within.len() as u64, &within))
+        .await
+        .unwrap();
+    let mut answered = Vec::new();
+    while !String::from_utf8_lossy(&answered).contains("frame-too-large") {
+        let mut chunk = [0u8; 512];
+        let read = tokio::time::timeout(DEADLINE, tcp.read(&mut chunk)).await;
+        let n = read.expect("answered within the deadline").expect("read");
+        assert!(n > 0, "closed instead: {answered:?}");
+        answered.extend_from_slice(&chunk[..n]);
+    }
+    // One byte over it: closed, where the default limit (1 MiB) would have taken it.
+    tcp.write_all(&frame(0x81, 64 * 1024 + 1, b"{"))
+        .await
+        .unwrap();
+    assert_eq!(close_code(&mut tcp).await, 1009);
+    server.stop().await;
 }
 
 /// Writes `count` pings of 100 bytes each, never reading the pongs they ask for. (Just one

@@ -16,6 +16,7 @@ pub use crate::config_file::rosbridge::{PoseMessage, RosbridgeConfig, TopicEvent
 pub use crate::config_policy::{
     Channel, ChannelPolicies, ChannelPolicy, MAX_PRIORITY, MAX_QUEUE_LIMIT, Priorities, WhenBusy,
 };
+pub use crate::config_server::ServerLimits;
 pub use crate::language::{Language, Languages};
 pub use crate::reaction::Reaction;
 pub use crate::schedule::Schedule;
@@ -261,6 +262,9 @@ pub struct ServerSettings {
     /// From any other peer the header is ignored, so a client cannot pick the address its
     /// failed credentials are counted under. Empty by default: no proxy is believed.
     pub trusted_proxies: Vec<std::net::IpAddr>,
+    /// Connections, time limits, message size and outgoing queues (`server: connections`,
+    /// `timeouts`, `messages`, `queues`), in force from start-up.
+    pub limits: ServerLimits,
 }
 
 /// Where the operator console gets its camera picture (`operator: camera:`).

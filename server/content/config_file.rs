@@ -29,6 +29,7 @@ pub(crate) mod schedule;
 pub(crate) mod screens;
 pub(crate) mod section;
 pub(crate) mod server;
+mod server_limits;
 mod verbs;
 
 use codebook::Codebook;

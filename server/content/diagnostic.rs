@@ -333,6 +333,10 @@ diagnostic_codes! {
     /// `rosbridge:` has no `url`, so Docent would never reach the robot. Reported at the
     /// drive's `adapter` or at the `rosbridge:` section.
     RosbridgeUrlMissing = "rosbridge-url-missing",
+    /// `server: connections: per_address` in `docent.yaml` is more than `total` (written, or
+    /// the default 1024): one address can never hold more connections than the whole server,
+    /// so the file promises a site more than it gets. Reported at `per_address`.
+    PerAddressOverTotal = "per-address-over-total",
     /// A comment `<!--` without `-->`, or a `<script>`, `<style>`, `<textarea>`, `<title>`,
     /// `<template>` (and similar) without its end tag, swallows the rest of the page: buttons
     /// after it never show. Reported at the opening tag; the message says which lines and how

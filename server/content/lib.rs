@@ -13,7 +13,8 @@
 //!   declarative definition per section (`config_file/section.rs`) that the schema is
 //!   generated from; `config_policy`: channel policies and source priorities;
 //!   `config_corpus`: the `corpus:` settings (what starts a visitor session, its consent,
-//!   what the kiosk records).
+//!   what the kiosk records); `config_server`: the server's own limits (`server:`
+//!   connections, timeouts, message size, outgoing queues).
 //! - `language`: a language tag (`en`, `de`, `pt-br`) and a bundle's languages.
 //! - `contexts`: the context names a bundle uses, and misspelt variant keys.
 //! - `acts_file`: parsing one acts file, keeping every position.
@@ -77,6 +78,7 @@ mod commands;
 mod config_corpus;
 mod config_file;
 mod config_policy;
+mod config_server;
 mod consent;
 mod contexts;
 mod duration;

@@ -20,7 +20,7 @@ use crate::http::auth::Authorized;
 use crate::http::body::RequestBody;
 use crate::state::AppState;
 use crate::wire::ErrorCode;
-use crate::ws::protocol::{PROTOCOL_VERSION, TriggerOptions};
+use crate::ws::protocol::{LimitsView, PROTOCOL_VERSION, TriggerOptions};
 
 /// `GET /healthz`
 pub async fn health(State(state): State<AppState>) -> Json<Value> {
@@ -187,7 +187,7 @@ pub async fn put_context(
 
 /// `GET /api/state` (credential needed: it names clients and holds the dialog manager's
 /// reasons): display, pose, speech, adapter queues, channels, context, connected clients,
-/// pending proposals and the visitor session.
+/// pending proposals, the visitor session and the server's limits in force.
 pub async fn get_state(State(state): State<AppState>, _: Authorized) -> Json<Value> {
     let adapters = state.dispatcher.adapter_status();
     let speaking = (adapters.get(state.devices.speech_adapter))
@@ -215,6 +215,7 @@ pub async fn get_state(State(state): State<AppState>, _: Authorized) -> Json<Val
         "consent": state.visits.consent(),
         "recording": state.recordings.view(),
         "fleet": state.fleet.state_json(),
+        "limits": LimitsView::new(&state.limits.server, state.limits.open_files),
     }))
 }
 

@@ -34,6 +34,7 @@ use tokio_util::task::TaskTracker;
 use tower::ServiceExt;
 
 use crate::access::{RefusalLog, TrustedProxies, counted_as};
+use crate::content::config::ServerLimits;
 use crate::http::AppError;
 use crate::http::framing::{Ambiguous, Sniffed};
 use crate::sync::lock;
@@ -42,7 +43,8 @@ use crate::wire::ErrorCode;
 /// How long a connection may still take to finish its request once the server shuts down.
 const SHUTDOWN_GRACE: Duration = Duration::from_secs(3);
 
-/// How long slow clients may take, and how many connections there may be.
+/// How long slow clients may take, and how many connections there may be: `docent.yaml`'s
+/// `server:` limits ([`ServerLimits`]), whose defaults are these.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub struct ConnectionLimits {
     /// A request's headers must have arrived within this long of its first byte being
@@ -56,13 +58,47 @@ pub struct ConnectionLimits {
     pub total: usize,
 }
 
-impl Default for ConnectionLimits {
-    fn default() -> Self {
+impl From<&ServerLimits> for ConnectionLimits {
+    fn from(limits: &ServerLimits) -> Self {
         ConnectionLimits {
-            header_timeout: Duration::from_secs(30),
-            body_timeout: Duration::from_secs(30),
-            per_address: 128,
-            total: 1024,
+            header_timeout: limits.header_timeout,
+            body_timeout: limits.body_timeout,
+            per_address: limits.per_address,
+            total: limits.total,
+        }
+    }
+}
+
+impl Default for ConnectionLimits {
+    /// What a `docent.yaml` that says nothing about them gets.
+    fn default() -> Self {
+        ConnectionLimits::from(&ServerLimits::default())
+    }
+}
+
+/// Why a connection found no place.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+enum Refusal {
+    /// The server holds `total` connections.
+    Total,
+    /// The client's address holds `per_address` connections.
+    PerAddress,
+}
+
+impl Refusal {
+    /// What the client is told.
+    fn why(self) -> &'static str {
+        match self {
+            Refusal::Total => "the server has as many connections open as it takes",
+            Refusal::PerAddress => "this address has as many connections open as one address may",
+        }
+    }
+
+    /// The setting that raises the limit, as the log names it for the technician.
+    fn setting(self) -> &'static str {
+        match self {
+            Refusal::Total => "server: connections: total",
+            Refusal::PerAddress => "server: connections: per_address",
         }
     }
 }
@@ -105,15 +141,14 @@ struct Slots {
 
 impl Slots {
     /// A place for a connection from `peer`, or why there is none.
-    fn take(&self, peer: IpAddr) -> Result<ConnectionSlot, &'static str> {
-        let total = (Arc::clone(&self.total).try_acquire_owned())
-            .map_err(|_| "the server has as many connections open as it takes")?;
+    fn take(&self, peer: IpAddr) -> Result<ConnectionSlot, Refusal> {
+        let total = (Arc::clone(&self.total).try_acquire_owned()).map_err(|_| Refusal::Total)?;
         let address = (!self.proxies.contains(peer)).then(|| counted_as(peer));
         if let Some(address) = address {
             let mut counts = lock(&self.counts);
             let count = counts.entry(address).or_default();
             if *count >= self.limits.per_address {
-                return Err("this address has as many connections open as one address may");
+                return Err(Refusal::PerAddress);
             }
             *count += 1;
         }
@@ -172,11 +207,16 @@ pub async fn serve_connections(
                     closing,
                 ));
             }
-            Err(why) => {
+            Err(refusal) => {
                 if let Some(unlogged) = refusals.admit() {
-                    tracing::warn!(address = %remote.ip(), unlogged, "connection refused: {why}");
+                    let (why, setting) = (refusal.why(), refusal.setting());
+                    tracing::warn!(
+                        address = %remote.ip(),
+                        unlogged,
+                        "connection refused: {why} ({setting} in docent.yaml raises it)"
+                    );
                 }
-                connections.spawn(refuse(tcp, why));
+                connections.spawn(refuse(tcp, refusal.why()));
             }
         }
     }
@@ -304,13 +344,13 @@ mod tests {
         let a: IpAddr = "192.0.2.1".parse().unwrap();
         let first = slots.take(a).unwrap();
         let _second = slots.take(a).unwrap();
-        assert!(slots.take(a).unwrap_err().contains("one address"));
+        assert_eq!(slots.take(a).unwrap_err(), Refusal::PerAddress);
         drop(first);
         let third = slots.take(a).unwrap();
         let b: IpAddr = "192.0.2.2".parse().unwrap();
         let _fourth = slots.take(b).unwrap();
         // The total is full now; a trusted proxy is held to it too.
-        assert!(slots.take(proxy).unwrap_err().contains("as it takes"));
+        assert_eq!(slots.take(proxy).unwrap_err(), Refusal::Total);
         drop(third);
         let _proxied = [slots.take(proxy).unwrap()];
         assert_eq!(lock(&slots.counts).get(&proxy), None);
@@ -342,5 +382,6 @@ mod tests {
         let limits = ConnectionLimits::default();
         assert_eq!(limits.header_timeout, Duration::from_secs(30));
         assert_eq!(limits.body_timeout, Duration::from_secs(30));
+        assert_eq!((limits.per_address, limits.total), (128, 1024));
     }
 }

@@ -14,6 +14,7 @@
 //! - `auth`: who is asking ([`auth::Peer`]) and whether they may ([`auth::Authorized`]).
 //! - `body`: request bodies, JSON objects only, read within a time limit.
 //! - `connections`: the accept loop: header and body time limits, connection caps.
+//! - `open_files`: the open-files limit raised at start-up for the connection cap.
 //! - `framing`: requests with both `Content-Length` and `Transfer-Encoding` found and refused.
 //! - `error`: [`AppError`], the one error type at the HTTP edge.
 
@@ -27,6 +28,7 @@ mod error;
 mod files;
 mod framing;
 mod missing_page;
+mod open_files;
 mod operator;
 mod report;
 mod session_name;
@@ -44,6 +46,7 @@ use tower_http::trace::TraceLayer;
 pub use connections::{ConnectionLimits, ConnectionSlot, serve_connections};
 pub use error::AppError;
 pub use missing_page::MissingPageReports;
+pub use open_files::{OWN_FILES, OpenFiles, make_room};
 pub use sessions_media::Replay;
 
 use crate::state::AppState;

@@ -6,6 +6,7 @@
 use std::time::{Duration, UNIX_EPOCH};
 
 use docent_content::Language;
+use docent_content::config::ServerLimits;
 
 use crate::client_frames::{ClientFrame, HelloFrame, MarkKind, TriggerFrame, TriggerOptions};
 use crate::events::{ClientRole, Event, EventKind, KioskCause, Source};
@@ -14,7 +15,7 @@ use crate::server_frames::{
     event_frame, marked_frame, outcome_frame, speaking_frame, state_frame, triggered_frame,
     welcome_frame,
 };
-use crate::state::{Display, Pose, ReloadView, StateView};
+use crate::state::{Display, LimitsView, Pose, ReloadView, StateView};
 use crate::{ErrorCode, ProjectorState};
 
 const PROTOCOL_MD: &str = include_str!("../../docs/PROTOCOL.md");
@@ -316,4 +317,17 @@ fn trigger_frame_and_http_body_read_options_alike() {
         };
         assert_eq!(read, body, "{options}");
     }
+}
+
+/// `GET /api/state`'s `limits`, as the document's snapshot shows it: the defaults, under an
+/// open-files limit of 4096 (the systemd unit's `LimitNOFILE=`).
+#[test]
+fn the_state_limits_are_written_as_documented() {
+    let prefix = "  \"limits\": ";
+    let line = (PROTOCOL_MD.lines().find(|l| l.starts_with(prefix)))
+        .expect("docs/PROTOCOL.md shows `limits` in GET /api/state");
+    let shown: serde_json::Value =
+        serde_json::from_str(line.trim_start_matches(prefix)).expect("the example is JSON");
+    let limits = LimitsView::new(&ServerLimits::default(), Some(4096));
+    assert_eq!(serde_json::to_value(limits).expect("serialises"), shown);
 }

@@ -1,12 +1,15 @@
 //! The state a websocket client is sent on `welcome` and after falling behind (`state`
 //! frames), and the plain data it is made of. The runtime keeps these values current
 //! (`adapters::display`, the drives, `reload::status`); here is only their serialized shape.
+//! Also the server's limits as `GET /api/state` reports them ([`LimitsView`]).
 
 use serde::Serialize;
 
+use docent_content::config::ServerLimits;
 use docent_content::{Area, Diagnostic, Language, MediaKind};
 
 use crate::ProjectorState;
+use crate::client_frames::MAX_FRAME_BYTES;
 
 /// The state a client gets on `welcome` and after falling behind.
 #[derive(Debug, Serialize)]
@@ -97,4 +100,85 @@ pub enum MediaState {
     Converting,
     /// It cannot be converted: showing it fails with the reason.
     Failed,
+}
+
+/// The server's limits in force (`GET /api/state`'s `limits`): `docent.yaml`'s `server:`
+/// settings as Docent started with them, in the same sections, and the open-files limit they
+/// need. A reload does not change them.
+#[derive(Clone, Debug, PartialEq, Serialize)]
+pub struct LimitsView {
+    /// Connections one address and all clients may hold.
+    pub connections: ConnectionsView,
+    /// How long a request may take to arrive.
+    pub timeouts: TimeoutsView,
+    /// The largest websocket message and text frame.
+    pub messages: MessagesView,
+    /// Frames that may wait for one websocket client.
+    pub queues: QueuesView,
+    /// Files the process may open (its soft `RLIMIT_NOFILE`, raised at start-up); `null` when
+    /// unlimited.
+    pub open_files: Option<u64>,
+}
+
+/// `limits.connections`.
+#[derive(Clone, Debug, PartialEq, Serialize)]
+pub struct ConnectionsView {
+    /// Per client address (an IPv6 /64 counts as one).
+    pub per_address: usize,
+    /// In all.
+    pub total: usize,
+}
+
+/// `limits.timeouts`, in milliseconds.
+#[derive(Clone, Debug, PartialEq, Serialize)]
+pub struct TimeoutsView {
+    /// A request's headers.
+    pub headers_ms: u64,
+    /// A request's body, after its headers.
+    pub body_ms: u64,
+}
+
+/// `limits.messages`, in bytes.
+#[derive(Clone, Debug, PartialEq, Serialize)]
+pub struct MessagesView {
+    /// A larger message closes the connection with 1009.
+    pub max_bytes: usize,
+    /// A larger text frame is answered `frame-too-large` ([`MAX_FRAME_BYTES`]).
+    pub max_frame_bytes: usize,
+}
+
+/// `limits.queues`, in frames.
+#[derive(Clone, Debug, PartialEq, Serialize)]
+pub struct QueuesView {
+    /// Frames waiting for one client.
+    pub per_client: usize,
+}
+
+impl LimitsView {
+    /// The view of `limits`, with the process's open-files limit.
+    pub fn new(limits: &ServerLimits, open_files: Option<u64>) -> Self {
+        LimitsView {
+            connections: ConnectionsView {
+                per_address: limits.per_address,
+                total: limits.total,
+            },
+            timeouts: TimeoutsView {
+                headers_ms: millis(limits.header_timeout),
+                body_ms: millis(limits.body_timeout),
+            },
+            messages: MessagesView {
+                max_bytes: limits.max_message_bytes,
+                max_frame_bytes: MAX_FRAME_BYTES,
+            },
+            queues: QueuesView {
+                per_client: limits.queue_per_client,
+            },
+            open_files,
+        }
+    }
+}
+
+/// Whole milliseconds of `duration` (at most `u64::MAX`).
+fn millis(duration: std::time::Duration) -> u64 {
+    u64::try_from(duration.as_millis()).unwrap_or(u64::MAX)
 }

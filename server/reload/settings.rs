@@ -39,8 +39,13 @@ pub fn not_applied(started: &SiteConfig, new: &SiteConfig) -> Vec<String> {
     if started.access != new.access {
         out.push(restart("credentials (access:)"));
     }
-    if started.server != new.server {
+    if started.server.trusted_proxies != new.server.trusted_proxies {
         out.push(restart("trusted proxies (server: trusted_proxies)"));
+    }
+    if started.server.limits != new.server.limits {
+        out.push(restart(
+            "server limits (server: connections, timeouts, messages, queues)",
+        ));
     }
     if started.projector != new.projector {
         out.push(
@@ -84,6 +89,23 @@ mod tests {
         idle.kiosk.idle = std::time::Duration::from_secs(5);
         assert!(not_applied(&started, &idle).is_empty());
         assert!(kiosk_shell_changed(&started, &idle));
+    }
+
+    #[test]
+    fn changed_server_limits_need_a_restart_apart_from_the_proxies() {
+        let started = SiteConfig::default();
+        let mut new = started.clone();
+        new.server.limits.per_address = 512;
+        let said = not_applied(&started, &new);
+        assert_eq!(
+            said,
+            [
+                "restart Docent for the server limits (server: connections, timeouts, messages, \
+              queues) to take effect"
+            ]
+        );
+        new.server.trusted_proxies = vec![std::net::Ipv4Addr::LOCALHOST.into()];
+        assert_eq!(not_applied(&started, &new).len(), 2);
     }
 
     #[test]

@@ -18,9 +18,6 @@ use crate::wire::linger::Lingering;
 /// A text frame, cheap to clone for many recipients.
 pub type Frame = Utf8Bytes;
 
-/// How many frames may wait for one client before it counts as too slow.
-pub const OUTBOX_CAPACITY: usize = 1024;
-
 /// A frame in the queue.
 #[derive(Debug)]
 pub struct Queued {
@@ -91,7 +88,9 @@ impl Outbox {
     /// then (`ws::backlog`), so the other half is room for what its requests owe it later (a
     /// command's failure) and for notices.
     pub fn half_free(&self) -> bool {
-        self.tx.capacity() >= self.tx.max_capacity() / 2
+        let max = self.tx.max_capacity();
+        let waiting = max - self.tx.capacity() + self.lingering.len();
+        waiting <= max / 2
     }
 
     /// Queues a frame that may be lost (relayed from another client): dropped when the queue
@@ -110,12 +109,24 @@ impl Outbox {
     }
 
     /// Queues the frames that lingered long enough.
+    /// Queues the frames that lingered long enough, as many as there is room for: the rest
+    /// go with the writer's next batch (a full queue keeps it busy). They are the outcomes of
+    /// commands, the client's own among them, so they never get it kicked while the writer can
+    /// take them; only more than [`Lingering::MOST`] times the queue does.
     pub(crate) fn flush_lingering(&self) {
-        for frame in self.lingering.take() {
-            if !self.send(frame) {
-                return;
-            }
+        if self.lingering.flush_into(&self.tx) {
+            self.kick();
         }
+    }
+
+    /// Counts the client as too slow: its connection is closed.
+    pub(crate) fn kick(&self) {
+        self.kick.cancel();
+    }
+
+    /// How many frames the queue holds at most.
+    pub(crate) fn max_capacity(&self) -> usize {
+        self.tx.max_capacity()
     }
 
     /// Whether the client is gone (its writer ended).

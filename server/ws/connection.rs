@@ -25,16 +25,13 @@ use crate::http::auth::{Peer, same_origin};
 use crate::state::AppState;
 use crate::sync::lock;
 use crate::wire::ErrorCode;
-use crate::wire::outbox::{OUTBOX_CAPACITY, Outbox};
+use crate::wire::outbox::Outbox;
 use crate::ws::allowance::{self, Allowance, Verdict};
 use crate::ws::client::Client;
 use crate::ws::session::Session;
 use crate::ws::violation::{Violation, closed, violation};
 use crate::ws::writer::{Link, PING_INTERVAL, WriterEnd, run_writer};
 
-/// Frames beyond this size end the connection at the websocket layer; frames between
-/// [`MAX_FRAME_BYTES`](crate::ws::protocol::MAX_FRAME_BYTES) and this get an `error` frame and the connection stays.
-const MAX_MESSAGE_BYTES: usize = 1024 * 1024;
 /// The per-connection read buffer (it grows for a larger frame).
 const READ_BUFFER_BYTES: usize = 4 * 1024;
 /// A client silent for this long (not even answering pings) is dropped.
@@ -61,8 +58,11 @@ pub async fn ws_upgrade(
     if let Err(refused) = same_origin(&headers) {
         return refused.into_response();
     }
-    ws.max_message_size(MAX_MESSAGE_BYTES)
-        .max_frame_size(MAX_MESSAGE_BYTES)
+    // Frames beyond `server: messages: max_size` end the connection at the websocket layer;
+    // frames between `MAX_FRAME_BYTES` and it get an `error` frame and the connection stays.
+    let max_message = state.limits.server.max_message_bytes;
+    ws.max_message_size(max_message)
+        .max_frame_size(max_message)
         // tungstenite reads into a 128 KiB buffer per connection by default; protocol frames
         // are small and a kiosk fleet is many idle connections.
         .read_buffer_size(READ_BUFFER_BYTES)
@@ -84,7 +84,7 @@ pub async fn ws_upgrade(
 async fn serve(socket: WebSocket, state: AppState, address: ClientAddress) {
     let id = state.next_client_id();
     let (sink, mut stream) = socket.split();
-    let (outbox, queue) = Outbox::new(OUTBOX_CAPACITY);
+    let (outbox, queue) = Outbox::new(state.limits.server.queue_per_client);
     let (feed_tx, feed_rx) = oneshot::channel();
     let link = Link::default();
     let writer = state.life.tracker.spawn(run_writer(

@@ -21,7 +21,7 @@ use crate::access::ClientAddress;
 use crate::events::ClientRole;
 use crate::state::AppState;
 use crate::wire::ErrorCode;
-use crate::wire::outbox::{OUTBOX_CAPACITY, Outbox, Queued};
+use crate::wire::outbox::{Outbox, Queued};
 use crate::ws::client::Client;
 use crate::ws::hello::{Credential, Hello};
 use crate::ws::protocol::ClientFrame;
@@ -39,7 +39,7 @@ pub struct EmbeddedSession {
 impl EmbeddedSession {
     /// A session for a client at `address` that has not said `hello` yet.
     pub fn open(state: &AppState, address: ClientAddress) -> Self {
-        let (outbox, queue) = Outbox::new(OUTBOX_CAPACITY);
+        let (outbox, queue) = Outbox::new(state.limits.server.queue_per_client);
         let client = Client {
             id: state.next_client_id(),
             address,

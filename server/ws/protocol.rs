@@ -7,4 +7,4 @@
 pub use docent_protocol::PROTOCOL_VERSION;
 pub use docent_protocol::client_frames::*;
 pub use docent_protocol::server_frames::*;
-pub use docent_protocol::state::StateView;
+pub use docent_protocol::state::{LimitsView, StateView};

@@ -28,7 +28,7 @@ pub(super) fn violation(error: axum::Error) -> Violation {
         Some(WsError::Capacity(_)) => closed(
             "message too big",
             close_code::SIZE,
-            "messages are limited to 1 MiB",
+            "message over the server's size limit (`limits` in GET /api/state)",
         ),
         Some(WsError::Protocol(ProtocolError::ResetWithoutClosingHandshake))
         | Some(WsError::Io(_) | WsError::ConnectionClosed | WsError::AlreadyClosed) => Violation {

@@ -109,7 +109,7 @@ pub fn start_server(
         corpus_sync: docent::corpus::DEFAULT_SYNC_INTERVAL,
         speech_wav: None,
         access: test_access(),
-        limits: docent::http::ConnectionLimits::default(),
+        limits: None,
         media_cache: corpus_dir.path().join("media-cache"),
         media_tools: docent::media::Tools::find(),
     };

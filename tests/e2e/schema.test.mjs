@@ -120,6 +120,14 @@ test('docent.yaml: an unknown setting and a bad value are flagged at their place
   assert.ok(problems(validateConfig, 'hoem: index.html\n').some((e) => e.params.additionalProperty === 'hoem'));
   assert.ok(problems(validateConfig, 'kiosk:\n  idle: 120\n').some((e) => e.instancePath === '/kiosk/idle'));
   assert.ok(problems(validateConfig, 'verbs:\n  SAY: {}\n').length > 0, 'a built-in verb redeclared');
+  assert.ok(
+    problems(validateConfig, 'server:\n  messages: { max_size: 1048576 }\n').some((e) => e.instancePath === '/server/messages/max_size'),
+    'a message size without its unit',
+  );
+  assert.ok(
+    problems(validateConfig, 'server:\n  connections: { per_address: 0 }\n').some((e) => e.instancePath === '/server/connections/per_address'),
+    'no connection at all',
+  );
   const everything = [
     'home: index.html',
     'contexts: [TextChild]',
@@ -132,6 +140,7 @@ test('docent.yaml: an unknown setting and a bad value are flagged at their place
     'verbs: { LIGHTS: { adapter: log, argument: required, description: Showcase lights } }',
     'access: { operator_token: op-0123456789abcdef, dm_token: dm-0123456789abcdef }',
     'operator: { camera: "http://cam.local/stream.mjpg", situations: [question, laughter], visitor_groups: { children: TextChild } }',
+    'server: { trusted_proxies: [127.0.0.1], connections: { per_address: 256, total: 2048 }, timeouts: { headers: 10s, body: 1m }, messages: { max_size: 4 MiB }, queues: { per_client: 2048 } }',
     '',
   ].join('\n');
   assert.deepEqual(problems(validateConfig, everything), []);

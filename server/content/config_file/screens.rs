@@ -359,11 +359,14 @@ fn record_schema(description: &'static str) -> Value {
     })
 }
 
+/// An amount of storage with its unit, as `size.rs` parses it: the schema's pattern.
+pub(super) const AMOUNT_PATTERN: &str = r"^\s*(\d+(\.\d*)?|\.\d+)\s*([bB]|[kKmMgGtT][iI]?[bB])\s*$";
+
 /// An amount of storage with its unit, as `size.rs` parses it.
 fn amount_schema(description: &'static str) -> Value {
     json!({
         "type": "string",
-        "pattern": r"^\s*(\d+(\.\d*)?|\.\d+)\s*([bB]|[kKmMgGtT][iI]?[bB])\s*$",
+        "pattern": AMOUNT_PATTERN,
         "description": format!(
             "{description} An amount with its unit: `4 GB`, `500 MB`, `1.5 GiB`."
         ),

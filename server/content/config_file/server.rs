@@ -1,6 +1,8 @@
-//! The `server:` section of `docent.yaml`: how Docent itself is reached. For now the reverse
-//! proxies whose `X-Forwarded-For` is believed (`trusted_proxies`); every other peer's header
-//! is ignored, so that a client cannot choose the address its wrong credentials count against.
+//! The `server:` section of `docent.yaml`: how Docent itself is reached. The reverse proxies
+//! whose `X-Forwarded-For` is believed (`trusted_proxies`); every other peer's header is
+//! ignored, so that a client cannot choose the address its wrong credentials count against.
+//! And the server's limits (`connections`, `timeouts`, `messages`, `queues`), read by
+//! `server_limits.rs`.
 
 use std::net::IpAddr;
 
@@ -11,17 +13,43 @@ use serde_json::{Value, json};
 
 use super::Reader;
 use super::section::{Field, Section, Shape};
+use super::server_limits;
 
 /// The settings of `server:`.
 pub(crate) const SECTION: Section = Section {
     name: "server",
     required: &[],
-    fields: &[Field {
-        key: "trusted_proxies",
-        description: "The reverse proxies in front of Docent whose X-Forwarded-For header is \
-                      believed, e.g. `[127.0.0.1]`; every other client's header is ignored.",
-        shape: Shape::Custom(proxies_schema),
-    }],
+    fields: &[
+        Field {
+            key: "trusted_proxies",
+            description: "The reverse proxies in front of Docent whose X-Forwarded-For header \
+                          is believed, e.g. `[127.0.0.1]`; every other client's header is \
+                          ignored.",
+            shape: Shape::Custom(proxies_schema),
+        },
+        Field {
+            key: "connections",
+            description: "How many connections one client address and all clients together \
+                          may hold (in force from start-up).",
+            shape: Shape::Nested(&server_limits::CONNECTIONS),
+        },
+        Field {
+            key: "timeouts",
+            description: "How long a request may take to arrive (in force from start-up).",
+            shape: Shape::Nested(&server_limits::TIMEOUTS),
+        },
+        Field {
+            key: "messages",
+            description: "The largest websocket message (in force from start-up).",
+            shape: Shape::Nested(&server_limits::MESSAGES),
+        },
+        Field {
+            key: "queues",
+            description: "How many frames may wait for one slow websocket client (in force \
+                          from start-up).",
+            shape: Shape::Nested(&server_limits::QUEUES),
+        },
+    ],
 };
 const PROXIES_USAGE: &str = "`trusted_proxies` lists the IP addresses of the reverse proxies \
                              in front of Docent, e.g. `trusted_proxies: [127.0.0.1]` for a \
@@ -31,8 +59,15 @@ const PROXIES_USAGE: &str = "`trusted_proxies` lists the IP addresses of the rev
 impl Reader {
     /// Reads `server:` into `server`.
     pub(super) fn server(&mut self, node: &Node, server: &mut ServerSettings) {
-        for (_, value) in self.entries(node, &SECTION) {
-            server.trusted_proxies = self.proxies(value);
+        for (field, value) in self.entries(node, &SECTION) {
+            let limits = &mut server.limits;
+            match field.key {
+                "connections" => self.connections(value, limits),
+                "timeouts" => self.timeouts(value, limits),
+                "messages" => self.messages(value, limits),
+                "queues" => self.queues(value, limits),
+                _ => server.trusted_proxies = self.proxies(value),
+            }
         }
     }
 
