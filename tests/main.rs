@@ -40,6 +40,7 @@ mod http_api;
 mod http_limits;
 mod languages;
 mod live_reload;
+mod live_reload_flood;
 mod media_conversion;
 mod operator_protocol;
 mod projector_video;
