@@ -15,6 +15,7 @@ mod bundle_files;
 mod channel_policies;
 mod cli;
 mod cli_explain;
+mod clock_jumps;
 mod consent_under_load;
 mod corpus_annotations;
 mod corpus_cli;
