@@ -312,3 +312,43 @@ async fn a_hung_espeak_is_stopped_after_its_hang_limit_and_the_next_say_speaks()
     assert_eq!(done["type"], "command.done", "{done}");
     server.stop().await;
 }
+
+/// Texts espeak-ng takes far longer to say than their words suggest: numbers read out,
+/// acronyms spelled, pauses at punctuation, an address and a telephone number.
+const SLOW_TEXTS: [&str; 5] = [
+    "In 1975 the Altair 8800 cost 439 dollars, or 621 dollars assembled.",
+    "1234567 7654321 9876543 1777777",
+    "IBM, DEC, HP, NASA, MIT, USB, CPU, RAM, ROM, LED, PDP, VAX, www, etc.",
+    "Yes. No. Maybe. Well, perhaps; who knows? Oh! Ah! Hm, right, okay, fine.",
+    "See www.example.com/computers/1975 or call +49 30 1234 5678.",
+];
+
+#[test]
+fn the_hang_limit_never_cuts_real_speech_short() {
+    assert!(
+        docent::adapters::espeak_available(),
+        "espeak-ng is not installed: run scripts/test.sh, which installs it"
+    );
+    let wavs = tempfile::tempdir().unwrap();
+    let wav = wavs.path().join("said.wav");
+    for rate in [80, 160, 450] {
+        for text in SLOW_TEXTS {
+            let mut espeak = std::process::Command::new("espeak-ng")
+                .args(["--stdin", "-v", "en", "-s", &rate.to_string(), "-w"])
+                .arg(&wav)
+                .stdin(std::process::Stdio::piped())
+                .spawn()
+                .expect("espeak-ng starts");
+            let mut stdin = espeak.stdin.take().unwrap();
+            std::io::Write::write_all(&mut stdin, text.as_bytes()).unwrap();
+            drop(stdin);
+            assert!(espeak.wait().unwrap().success());
+            let said = std::time::Duration::from_secs_f64(wav_seconds(&wav));
+            let limit = docent::adapters::hang_limit(text, rate);
+            assert!(
+                said < limit - docent::adapters::HANG_GRACE,
+                "{text:?} at {rate} wpm took {said:?}, near its hang limit {limit:?}"
+            );
+        }
+    }
+}
