@@ -7,9 +7,9 @@
 //! file holds audio. Text goes in on stdin so it is never mistaken for an option.
 //!
 //! A process that dies (killed, crashed) fails the `SAY` with the signal named; one that
-//! hangs is stopped after [`hang_limit`]: a generous bound on how long the text can take to
-//! say, so that no real utterance is ever cut as hung. Either way the
-//! process is reaped before the failure is told, and the next `SAY` starts a fresh one.
+//! hangs is stopped after [`hang_limit`], a generous bound on how long the text can take to
+//! say, so that no real utterance is ever cut as hung. Either way the process is reaped
+//! before the failure is told, and the next `SAY` starts a fresh one.
 
 use std::collections::BTreeMap;
 use std::os::unix::process::ExitStatusExt;
