@@ -8,6 +8,8 @@
 #                      and convert media Chromium cannot show (the media tests make real files);
 #   libheif-examples   heif-enc, which makes the HEIC photos of the media tests, and
 #                      heif-convert, which Docent decodes HEIC photos with;
+#   libfaketime        LD_PRELOADed into the real server by tests/clock_jumps.rs to move its
+#                      wall clock an hour while it runs (the monotonic clock left alone);
 #   mosquitto          the MQTT broker the fleet tests start on a loopback port (and
 #                      mosquitto-clients, mosquitto_sub/pub, for trying the topics by hand);
 #   tests/e2e npm packages (playwright-core, ws, axe-core), with `npm ci` from package-lock.json when
@@ -31,6 +33,7 @@ dpkg-query -W -f='${Status}' fonts-dejavu-core 2>/dev/null | grep -q 'ok install
   packages+=(fonts-dejavu-core)
 command -v ffprobe >/dev/null 2>&1 || packages+=(ffmpeg)
 command -v heif-enc >/dev/null 2>&1 || packages+=(libheif-examples)
+compgen -G '/usr/lib/*/faketime/libfaketimeMT.so.1' >/dev/null || packages+=(libfaketime)
 command -v mosquitto >/dev/null 2>&1 || [ -x /usr/sbin/mosquitto ] || packages+=(mosquitto)
 command -v mosquitto_sub >/dev/null 2>&1 || packages+=(mosquitto-clients)
 if ! command -v python3 >/dev/null 2>&1; then

@@ -63,7 +63,7 @@ pub struct Server {
 
 impl Server {
     /// Starts the corpus writer, adapters and dispatcher for `bundle`.
-    pub fn start(bundle: Bundle, options: &ServeOptions) -> io::Result<Server> {
+    pub fn start(mut bundle: Bundle, options: &ServeOptions) -> io::Result<Server> {
         let life = Lifecycle::new();
         let (hub, feed) = Hub::new();
         let corpus = CorpusWriter::start(&options.corpus_dir, feed, options.corpus_sync)?;
@@ -116,9 +116,11 @@ impl Server {
             (&hub, &robot_inbox),
             &life,
         );
+        let bundle_hash = crate::content::corpus_fingerprint(&bundle.root);
+        bundle.fingerprint = bundle_hash.as_deref().map(Arc::from);
         hub.publish(EventKind::ServerStarted {
             bundle: bundle.root.display().to_string(),
-            bundle_hash: crate::content::corpus_fingerprint(&bundle.root),
+            bundle_hash,
             version: env!("CARGO_PKG_VERSION").into(),
             seed: options.seed,
         });

@@ -149,3 +149,206 @@ fn an_unknown_voice_is_reported_at_start_up() {
         server.warnings
     );
 }
+
+/// A server speaking into `wavs`, where the first commands' WAV paths are named pipes nobody
+/// reads: the real espeak-ng blocks opening them, mid-utterance, until the test acts on it.
+async fn server_with_blocked_espeak(b: &TempBundle, wavs: &std::path::Path) -> TestServer {
+    for id in 1..=BLOCKED {
+        let fifo = wavs.join(format!("{id}.wav"));
+        let made = std::process::Command::new("mkfifo").arg(&fifo).status();
+        assert!(made.is_ok_and(|s| s.success()), "mkfifo {}", fifo.display());
+    }
+    TestServer::start_with(b.path(), |o| o.speech_wav = Some(wavs.to_owned())).await
+}
+
+/// How many command ids get a blocking pipe (a fresh server numbers its commands from 1).
+const BLOCKED: u64 = 4;
+
+/// Lets the commands after the blocked one write real files.
+fn unblock(wavs: &std::path::Path) {
+    for id in 1..=BLOCKED {
+        let _ = std::fs::remove_file(wavs.join(format!("{id}.wav")));
+    }
+}
+
+/// The pid of the espeak-ng this process (the server's) started to write into `wavs`, once it
+/// is running: looked up as the server's child in /proc.
+async fn espeak_child(wavs: &std::path::Path) -> u32 {
+    let parent = std::process::id().to_string();
+    let wavs = wavs.to_string_lossy().into_owned();
+    let found = common::within(common::DEADLINE, async {
+        loop {
+            for entry in std::fs::read_dir("/proc").unwrap().flatten() {
+                let Ok(pid) = entry.file_name().to_string_lossy().parse::<u32>() else {
+                    continue;
+                };
+                let stat = std::fs::read_to_string(entry.path().join("stat")).unwrap_or_default();
+                // `pid (comm) state ppid ...`
+                let Some((comm, rest)) = stat.split_once(") ") else {
+                    continue;
+                };
+                let ppid = rest.split(' ').nth(1).unwrap_or_default();
+                let cmdline = std::fs::read(entry.path().join("cmdline")).unwrap_or_default();
+                if comm.ends_with("(espeak-ng")
+                    && ppid == parent
+                    && String::from_utf8_lossy(&cmdline).contains(&wavs)
+                {
+                    return pid;
+                }
+            }
+            // A real process appearing is not an event the test can await: look again soon.
+            tokio::time::sleep(std::time::Duration::from_millis(10)).await;
+        }
+    });
+    found.await.expect("espeak-ng started within the deadline")
+}
+
+fn signal(pid: u32, signal: &str) {
+    let sent = std::process::Command::new("kill")
+        .args([signal, &pid.to_string()])
+        .status();
+    assert!(sent.is_ok_and(|s| s.success()), "kill {signal} {pid}");
+}
+
+/// True while `pid` exists, even as a zombie nobody reaped.
+fn exists(pid: u32) -> bool {
+    std::path::Path::new(&format!("/proc/{pid}")).exists()
+}
+
+async fn next_outcome(op: &mut common::WsClient, command: u64) -> Value {
+    op.event_where(|e| {
+        e["command"] == command
+            && matches!(
+                e["type"].as_str(),
+                Some("command.done" | "command.failed" | "command.cancelled")
+            )
+    })
+    .await
+}
+
+#[tokio::test(flavor = "multi_thread", worker_threads = 2)]
+async fn an_espeak_killed_mid_utterance_fails_the_say_at_once_and_the_next_one_speaks() {
+    assert!(
+        docent::adapters::espeak_available(),
+        "espeak-ng is not installed: run scripts/test.sh, which installs it"
+    );
+    let b = TempBundle::new(ACTS).with_file("docent.yaml", "speech: {adapter: espeak}\n");
+    let wavs = tempfile::tempdir().unwrap();
+    let server = server_with_blocked_espeak(&b, wavs.path()).await;
+    let mut op = server.operator().await;
+    let first = id(&server.trigger("LONG", json!({})).await);
+    assert!(first <= BLOCKED, "command {first} has no blocking pipe");
+    let pid = espeak_child(wavs.path()).await;
+    let killed_at = std::time::Instant::now();
+    signal(pid, "-KILL");
+    let failed = next_outcome(&mut op, first).await;
+    let told_after = killed_at.elapsed();
+    assert_eq!(failed["type"], "command.failed", "{failed}");
+    assert_eq!(
+        failed["reason"],
+        "espeak-ng was killed by signal 9 (SIGKILL) before it finished speaking"
+    );
+    // Told at once, not when the text would have been said (its hang limit is over 5 s).
+    assert!(told_after < docent::adapters::HANG_GRACE, "{told_after:?}");
+    assert!(!exists(pid), "espeak-ng {pid} was not reaped");
+
+    unblock(wavs.path());
+    let second = id(&server.trigger("SHORT", json!({})).await);
+    let done = next_outcome(&mut op, second).await;
+    assert_eq!(done["type"], "command.done", "{done}");
+    assert!(wav_seconds(&wavs.path().join(format!("{second}.wav"))) > 0.2);
+    server.stop().await;
+}
+
+#[tokio::test(flavor = "multi_thread", worker_threads = 2)]
+async fn a_hung_espeak_is_stopped_after_its_hang_limit_and_the_next_say_speaks() {
+    assert!(
+        docent::adapters::espeak_available(),
+        "espeak-ng is not installed: run scripts/test.sh, which installs it"
+    );
+    let b = TempBundle::new(ACTS).with_file(
+        "docent.yaml",
+        "speech: {adapter: espeak, voice: en, rate: 220}\n",
+    );
+    let wavs = tempfile::tempdir().unwrap();
+    let server = server_with_blocked_espeak(&b, wavs.path()).await;
+    let mut op = server.operator().await;
+    let first = id(&server.trigger("SHORT", json!({})).await);
+    assert!(first <= BLOCKED, "command {first} has no blocking pipe");
+    let pid = espeak_child(wavs.path()).await;
+    // Stopped, it neither finishes nor exits: a hang, whatever it was blocked on before.
+    signal(pid, "-STOP");
+    let events = op
+        .events_until(|e| e["command"] == first && e["type"] == "command.failed")
+        .await;
+    let failed = events.last().unwrap();
+    let reason = failed["reason"].as_str().unwrap();
+    assert!(
+        reason.starts_with("espeak-ng hung: it did not finish within"),
+        "{reason}"
+    );
+    let limit = docent::adapters::hang_limit("Hello.", 220);
+    let started = (events.iter())
+        .find(|e| e["command"] == first && e["type"] == "command.started")
+        .expect("command.started");
+    let waited_us = failed["mono_us"].as_u64().unwrap() - started["mono_us"].as_u64().unwrap();
+    let waited = std::time::Duration::from_micros(waited_us);
+    assert!(
+        waited >= limit,
+        "failed after {waited:?}, before the limit {limit:?}"
+    );
+    assert!(
+        waited < limit + std::time::Duration::from_secs(2),
+        "failed after {waited:?}, long after the limit {limit:?}"
+    );
+    assert!(
+        !exists(pid),
+        "the hung espeak-ng {pid} was not killed and reaped"
+    );
+
+    unblock(wavs.path());
+    let second = id(&server.trigger("SHORT", json!({})).await);
+    let done = next_outcome(&mut op, second).await;
+    assert_eq!(done["type"], "command.done", "{done}");
+    server.stop().await;
+}
+
+/// Texts espeak-ng takes far longer to say than their words suggest: numbers read out,
+/// acronyms spelled, pauses at punctuation, an address and a telephone number.
+const SLOW_TEXTS: [&str; 5] = [
+    "In 1975 the Altair 8800 cost 439 dollars, or 621 dollars assembled.",
+    "1234567 7654321 9876543 1777777",
+    "IBM, DEC, HP, NASA, MIT, USB, CPU, RAM, ROM, LED, PDP, VAX, www, etc.",
+    "Yes. No. Maybe. Well, perhaps; who knows? Oh! Ah! Hm, right, okay, fine.",
+    "See www.example.com/computers/1975 or call +49 30 1234 5678.",
+];
+
+#[test]
+fn the_hang_limit_never_cuts_real_speech_short() {
+    assert!(
+        docent::adapters::espeak_available(),
+        "espeak-ng is not installed: run scripts/test.sh, which installs it"
+    );
+    let wavs = tempfile::tempdir().unwrap();
+    let wav = wavs.path().join("said.wav");
+    for rate in [80, 160, 450] {
+        for text in SLOW_TEXTS {
+            let mut espeak = std::process::Command::new("espeak-ng")
+                .args(["--stdin", "-v", "en", "-s", &rate.to_string(), "-w"])
+                .arg(&wav)
+                .stdin(std::process::Stdio::piped())
+                .spawn()
+                .expect("espeak-ng starts");
+            let mut stdin = espeak.stdin.take().unwrap();
+            std::io::Write::write_all(&mut stdin, text.as_bytes()).unwrap();
+            drop(stdin);
+            assert!(espeak.wait().unwrap().success());
+            let said = std::time::Duration::from_secs_f64(wav_seconds(&wav));
+            let limit = docent::adapters::hang_limit(text, rate);
+            assert!(
+                said < limit - docent::adapters::HANG_GRACE,
+                "{text:?} at {rate} wpm took {said:?}, near its hang limit {limit:?}"
+            );
+        }
+    }
+}

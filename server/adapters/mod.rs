@@ -28,7 +28,8 @@ pub use external::ExternalAdapters;
 pub use rosbridge::RosbridgeDrive;
 pub use router::{Devices, Router};
 pub use speech_espeak::{
-    SpeechOutput, espeak_adapter, espeak_available, espeak_can_play, espeak_voices,
+    HANG_GRACE, SpeechOutput, espeak_adapter, espeak_available, espeak_can_play, espeak_voices,
+    hang_limit,
 };
 pub use speech_log::log_adapter;
 pub use worker::Worker;

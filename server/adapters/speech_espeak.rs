@@ -5,23 +5,50 @@
 //! only sign is its stderr (`../shared/notes/devices.md`). So a `SAY` is done only when the
 //! process exited 0 *and* said nothing alarming on stderr; with WAV output, also only when the
 //! file holds audio. Text goes in on stdin so it is never mistaken for an option.
+//!
+//! A process that dies (killed, crashed) fails the `SAY` with the signal named; one that
+//! hangs is stopped after [`hang_limit`], a generous bound on how long the text can take to
+//! say, so that no real utterance is ever cut as hung. Either way the process is reaped
+//! before the failure is told, and the next `SAY` starts a fresh one.
 
 use std::collections::BTreeMap;
+use std::os::unix::process::ExitStatusExt;
 use std::path::PathBuf;
-use std::process::Stdio;
+use std::process::{ExitStatus, Stdio};
 use std::time::Duration;
 
-use tokio::io::AsyncWriteExt;
-use tokio::process::Command as Process;
+use tokio::io::{AsyncReadExt, AsyncWriteExt};
+use tokio::process::{Child, Command as Process};
 
 use crate::adapters::worker::{Task, Worker};
 use crate::adapters::{Command, Outcome};
-use crate::content::Language;
+use crate::content::{Language, speaking_time};
 use crate::lifecycle::Lifecycle;
 
 /// espeak-ng's WAV format: 16-bit mono at 22,050 Hz after a 44-byte header.
 const WAV_HEADER: u64 = 44;
 const WAV_BYTES_PER_SECOND: f64 = 22_050.0 * 2.0;
+
+/// What a hung espeak-ng is allowed on top of its text's stretched speaking time: starting
+/// the process and opening the sound device take time that does not grow with the text.
+pub const HANG_GRACE: Duration = Duration::from_secs(5);
+
+/// How much longer than estimated espeak-ng may take. Measured with espeak-ng 1.51 at 80 to
+/// 450 words a minute, real speech took up to 2.06 times `speaking_time` for acronyms and
+/// pauses (`IBM, DEC, NASA, ...`; `Yes. No. Maybe.`), once digits are counted as below.
+const HANG_FACTOR: u32 = 3;
+
+/// How long one espeak-ng process may run before it counts as hung and is killed: three
+/// times the text's speaking time at `rate_wpm` (`speaking_time`, the rule of `speaking_ms`,
+/// with each digit counted as two more words, as espeak-ng reads numbers out: `8800` is
+/// "eight thousand eight hundred", which `speaking_time` counts as one word), and
+/// [`HANG_GRACE`].
+pub fn hang_limit(text: &str, rate_wpm: u32) -> Duration {
+    let digits = text.chars().filter(char::is_ascii_digit).count();
+    let read_out = 2.0 * digits as f64 * 60.0 / f64::from(rate_wpm.max(1));
+    let spoken = speaking_time(text, rate_wpm) + Duration::from_secs_f64(read_out);
+    spoken * HANG_FACTOR + HANG_GRACE
+}
 
 /// Where speech goes.
 #[derive(Clone, Debug, PartialEq, Eq)]
@@ -150,23 +177,22 @@ impl Espeak {
         let mut child = process
             .spawn()
             .map_err(|e| format!("could not start espeak-ng: {e}"))?;
-        if let Some(mut stdin) = child.stdin.take() {
-            stdin
-                .write_all(text.as_bytes())
-                .await
-                .map_err(|e| format!("espeak-ng: {e}"))?;
-        }
-        let out = child
-            .wait_with_output()
-            .await
-            .map_err(|e| format!("espeak-ng: {e}"))?;
-        let stderr = String::from_utf8_lossy(&out.stderr);
-        if !out.status.success() {
+        let limit = hang_limit(text, self.rate_wpm);
+        let Ok(finished) = tokio::time::timeout(limit, finish(&mut child, text)).await else {
+            // Killed and reaped here, not left to `kill_on_drop`: no zombie, and the next
+            // `SAY` never finds this one still holding the sound device.
+            let killed = child.kill().await;
+            let note = killed.err().map_or(String::new(), |e| format!(" ({e})"));
             return Err(format!(
-                "espeak-ng failed ({}): {}",
-                out.status,
-                first_line(&stderr)
+                "espeak-ng hung: it did not finish within {:.1} s (three times the text's \
+                 speaking time and {} s) and was stopped{note}",
+                limit.as_secs_f64(),
+                HANG_GRACE.as_secs()
             ));
+        };
+        let (status, stderr) = finished?;
+        if !status.success() {
+            return Err(failure(status, &stderr));
         }
         if let Some(problem) = alarming(&stderr) {
             return Err(format!("espeak-ng could not speak: {problem}"));
@@ -186,6 +212,62 @@ impl Task for Espeak {
             Err(reason) => Outcome::Failed(reason),
         }
     }
+}
+
+/// Hands `text` to the running espeak-ng and waits for it to exit: its status and stderr.
+async fn finish(child: &mut Child, text: &str) -> Result<(ExitStatus, String), String> {
+    // Dropped after writing: the end of input tells espeak-ng the text is complete. A write
+    // that fails (the process died first) is told after its exit status, which says more.
+    let written = match child.stdin.take() {
+        Some(mut stdin) => stdin.write_all(text.as_bytes()).await,
+        None => Ok(()),
+    };
+    let mut stderr = child.stderr.take();
+    let mut said = Vec::new();
+    let read = async {
+        match stderr.as_mut() {
+            Some(pipe) => pipe.read_to_end(&mut said).await.map(drop),
+            None => Ok(()),
+        }
+    };
+    let (status, read) = tokio::join!(child.wait(), read);
+    let status = status.map_err(|e| format!("espeak-ng: {e}"))?;
+    // A pipe that cannot be read loses the message, not the outcome.
+    if let Err(e) = read {
+        tracing::debug!("espeak-ng's stderr could not be read: {e}");
+    }
+    let said = String::from_utf8_lossy(&said).into_owned();
+    match written {
+        Err(e) if status.success() => Err(format!("espeak-ng did not take the text: {e}")),
+        _ => Ok((status, said)),
+    }
+}
+
+/// Why espeak-ng ended badly, in words: the signal that ended it, or its exit code and first
+/// line of complaint.
+fn failure(status: ExitStatus, stderr: &str) -> String {
+    match status.signal() {
+        Some(signal) => format!(
+            "espeak-ng was killed by signal {signal}{} before it finished speaking",
+            signal_name(signal).map_or(String::new(), |n| format!(" ({n})"))
+        ),
+        None => format!("espeak-ng failed ({status}): {}", first_line(stderr)),
+    }
+}
+
+/// The usual name of the signals that end a process from outside or by a crash.
+fn signal_name(signal: i32) -> Option<&'static str> {
+    Some(match signal {
+        1 => "SIGHUP",
+        2 => "SIGINT",
+        6 => "SIGABRT",
+        7 => "SIGBUS",
+        9 => "SIGKILL",
+        11 => "SIGSEGV",
+        13 => "SIGPIPE",
+        15 => "SIGTERM",
+        _ => return None,
+    })
 }
 
 fn first_line(text: &str) -> &str {
@@ -228,5 +310,27 @@ mod tests {
         assert!(alarming(stderr).unwrap().contains("cannot find card"));
         assert_eq!(alarming(""), None);
         assert!(alarming("Can't write to: /nope/x.wav").is_some());
+    }
+
+    #[test]
+    fn a_process_ended_by_a_signal_is_told_by_the_signal_s_name() {
+        let killed = failure(ExitStatus::from_raw(9), "");
+        assert_eq!(
+            killed,
+            "espeak-ng was killed by signal 9 (SIGKILL) before it finished speaking"
+        );
+        let exited = failure(ExitStatus::from_raw(1 << 8), "bad voice\n");
+        assert_eq!(exited, "espeak-ng failed (exit status: 1): bad voice");
+    }
+
+    #[test]
+    fn the_hang_limit_grows_with_the_text() {
+        let short = hang_limit("Hello.", 160);
+        let long = hang_limit(&"word ".repeat(160), 160);
+        assert!(short > HANG_GRACE && short < HANG_GRACE + Duration::from_secs(2));
+        // 160 words at 160 a minute: a minute to say, three allowed.
+        assert!(long > Duration::from_secs(180) + HANG_GRACE);
+        // One word, read out as six: "eight thousand eight hundred".
+        assert!(hang_limit("8800", 160) > hang_limit("eight", 160) + Duration::from_secs(5));
     }
 }

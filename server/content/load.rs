@@ -166,6 +166,7 @@ fn load(root: &Path, replaced: &ActsReplacements) -> LoadReport {
         contexts,
         diagnostics: diagnostics.clone(),
         conversions: conversions.clone(),
+        fingerprint: None,
     });
     LoadReport {
         bundle,

@@ -239,6 +239,10 @@ pub struct Bundle {
     /// Media files Docent converts before showing them (formats Chromium cannot show, and
     /// pictures far larger than any screen), each once, where first used.
     pub conversions: Vec<crate::media::convert::Conversion>,
+    /// The `corpus_fingerprint` of the files it was loaded from, set by whoever puts it live
+    /// (start-up, live reload) so that each trigger can name the bundle it was resolved in;
+    /// `None` before that, or when a file could not be read.
+    pub fingerprint: Option<std::sync::Arc<str>>,
 }
 
 impl Bundle {

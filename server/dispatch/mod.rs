@@ -249,6 +249,7 @@ impl Dispatcher {
             text: triggered.text.clone(),
             language: triggered.language.clone(),
             interrupt: req.interrupt,
+            bundle_hash: bundle.fingerprint.clone(),
         });
         self.start(&mut turn, commands, &act_ref, req.interrupt);
         Ok(triggered)

@@ -165,6 +165,7 @@ impl Reloader {
         diagnostics: &[Diagnostic],
         changed: Vec<String>,
     ) {
+        bundle.fingerprint = bundle_hash.as_deref().map(Arc::from);
         if let Some(speech) = self.options.speech_override {
             bundle.config.speech.adapter = Some(speech);
         }

@@ -69,6 +69,13 @@ pub enum EventKind {
         language: Option<Language>,
         /// Whether the trigger interrupted current speech.
         interrupt: bool,
+        /// The fingerprint of the bundle the act was resolved in (the `bundle_hash` of
+        /// `server.started` or of the `bundle.reloaded` that put it live): a trigger racing a
+        /// live reload names its bundle itself, which the order of the lines cannot (a
+        /// kiosk's tap checked against the old bundle is resolved in it after the reload).
+        /// Absent when the fingerprint could not be made, and in older logs.
+        #[serde(default, skip_serializing_if = "Option::is_none")]
+        bundle_hash: Option<Arc<str>>,
     },
     /// A trigger was refused (unknown act or context, not allowed).
     #[serde(rename = "trigger.refused")]

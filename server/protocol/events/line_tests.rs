@@ -45,6 +45,7 @@ fn every_kind() -> Vec<EventKind> {
             text: text("Hello"),
             language: Language::parse("de"),
             interrupt: true,
+            bundle_hash: Some("sha256:00".into()),
         },
         TriggerRefused {
             source: Source::Kiosk,
