@@ -33,6 +33,9 @@ pub struct Plan {
     pub subscriber: Role,
     pub subscribers: usize,
     pub senders: usize,
+    /// Time each sender's own `triggered` answers instead of the subscribers' commands (the
+    /// subscribers are then load only).
+    pub answers: bool,
     /// Triggers/s per sender; `None` runs closed loop.
     pub rate: Option<f64>,
     pub warmup: Duration,
@@ -65,6 +68,7 @@ struct Job {
     rate: Option<f64>,
     senders: usize,
     drain: Duration,
+    answers: bool,
     tally: Tally,
 }
 
@@ -85,13 +89,18 @@ pub async fn run(plan: &Plan) -> Result<Measured, Error> {
         rate: plan.rate,
         senders: plan.senders,
         drain: plan.drain,
-        tally: Tally::new(plan.subscribers as u64),
+        answers: plan.answers,
+        tally: Tally::new(if plan.answers {
+            1
+        } else {
+            plan.subscribers as u64
+        }),
     });
     let mut subscribers = Vec::with_capacity(plan.subscribers);
     for _ in 0..plan.subscribers {
         let ws = client::connect(&plan.url, plan.subscriber).await?;
         let answer = plan.subscriber == Role::SayAdapter;
-        subscribers.push(tokio::spawn(subscribe(ws, job.clone(), answer)));
+        subscribers.push(tokio::spawn(subscribe(ws, job.clone(), answer, !plan.answers)));
     }
 
     // Each sender reports once connected and once finished; all start on one clock.
@@ -148,8 +157,9 @@ pub async fn run(plan: &Plan) -> Result<Measured, Error> {
     })
 }
 
-/// A subscriber: times every command frame; an adapter also answers each with `done`.
-async fn subscribe(mut ws: Ws, job: Arc<Job>, answer: bool) {
+/// A subscriber: times every command frame (when `timed`); an adapter also answers each with
+/// `done`.
+async fn subscribe(mut ws: Ws, job: Arc<Job>, answer: bool, timed: bool) {
     while let Some(msg) = ws.next().await {
         let text = match msg {
             Ok(Message::Text(text)) => text,
@@ -163,7 +173,9 @@ async fn subscribe(mut ws: Ws, job: Arc<Job>, answer: bool) {
         };
         match frame.kind.as_str() {
             "command" => {
-                if let Some(number) = frame.reference.as_deref().and_then(client::ref_number) {
+                if let Some(number) = frame.reference.as_deref().and_then(client::ref_number)
+                    && timed
+                {
                     job.tally.deliver(number, at);
                 }
                 if answer
@@ -249,6 +261,15 @@ async fn open_loop(ws: &mut Ws, job: &Job, clock: Clock, k: usize, rate: f64) ->
         let number = job.tally.register(due, due >= clock.measure_from, None);
         ws.send(client::trigger(&job.label, number)).await?;
     }
+    if job.answers {
+        // The last answers are read too (the caller bounds the wait by the drain).
+        let all_answered = async {
+            while job.tally.outstanding() > 0 {
+                sleep(Duration::from_millis(5)).await;
+            }
+        };
+        read_until(ws, job, all_answered).await?;
+    }
     Ok(())
 }
 
@@ -267,8 +288,8 @@ async fn closed_loop(ws: &mut Ws, job: &Job, clock: Clock) -> Result<(), Error> 
     }
 }
 
-/// Waits for `until` while reading the sender's own connection (its `triggered` answers and,
-/// for an operator, every event), counting `error` frames.
+/// Waits for `until` while reading the sender's own connection (its `triggered` answers,
+/// timed when the job times answers), counting `error` frames.
 async fn read_until<F: Future>(ws: &mut Ws, job: &Job, until: F) -> Result<F::Output, Error> {
     tokio::pin!(until);
     loop {
@@ -282,6 +303,13 @@ async fn read_until<F: Future>(ws: &mut Ws, job: &Job, until: F) -> Result<F::Ou
                     if text.starts_with(r#"{"type":"error""#) {
                         let frame = client::parse(&text);
                         job.tally.error(frame.and_then(|f| f.message).as_deref().unwrap_or(&text));
+                    } else if job.answers && text.starts_with(r#"{"type":"triggered""#) {
+                        let at = Instant::now();
+                        let frame = client::parse(&text);
+                        let number = frame.and_then(|f| f.reference).as_deref().and_then(client::ref_number);
+                        if let Some(number) = number {
+                            job.tally.deliver(number, at);
+                        }
                     }
                 }
                 Some(Ok(Message::Close(_))) | None => {

@@ -6,6 +6,8 @@
 //! - `adapter`: senders (operators) at a fixed rate, open loop; one ws adapter answering `done`.
 //! - `kiosk`: the same, with 50 kiosk clients each receiving every `DISPLAY_PAGE`.
 //! - `max`: closed loop against the ws adapter: the highest sustained throughput.
+//! - `flood`: many senders at a fixed rate, each timing its own `triggered` answers (bundle
+//!   kiosk, one kiosk connected): the latency an operator or dialog manager feels under a flood.
 //! - `idle`: 1,000 idle kiosk connections and the server memory they take.
 //!
 //! Prints one JSON line per scenario on stdout as it finishes, then a table.
@@ -42,6 +44,8 @@ enum Scenario {
     Max,
     /// Idle kiosk connections and their memory (bundle kiosk).
     Idle,
+    /// Open loop, senders timing their own answers (bundle kiosk, one kiosk).
+    Flood,
 }
 
 impl Scenario {
@@ -51,13 +55,14 @@ impl Scenario {
             Scenario::Kiosk => "kiosk",
             Scenario::Max => "max",
             Scenario::Idle => "idle",
+            Scenario::Flood => "flood",
         }
     }
 
     fn bundle(self) -> &'static str {
         match self {
             Scenario::Adapter | Scenario::Max => "ws-adapter",
-            Scenario::Kiosk | Scenario::Idle => "kiosk",
+            Scenario::Kiosk | Scenario::Idle | Scenario::Flood => "kiosk",
         }
     }
 }
@@ -213,12 +218,14 @@ fn plan(
 ) -> Plan {
     let (subscriber, subscribers, senders, rate) = match scenario {
         Scenario::Kiosk => (Role::Kiosk, args.kiosks, args.senders, Some(args.rate)),
+        Scenario::Flood => (Role::Kiosk, 1, args.senders, Some(args.rate)),
         Scenario::Max => (Role::SayAdapter, 1, args.max_senders, None),
         _ => (Role::SayAdapter, 1, args.senders, Some(args.rate)),
     };
     Plan {
         url: server.url.clone(),
         label: "OK".to_owned(),
+        answers: scenario == Scenario::Flood,
         subscriber,
         subscribers,
         senders,

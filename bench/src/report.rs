@@ -135,6 +135,10 @@ pub fn table(outcomes: &[Outcome]) -> String {
                 };
                 let plural = if plan.subscribers == 1 { "" } else { "s" };
                 let load = match plan.rate {
+                    Some(rate) if plan.answers => format!(
+                        "{}×{rate}/s, own answers ({} {who}{plural})",
+                        plan.senders, plan.subscribers
+                    ),
                     Some(rate) => format!(
                         "{}×{rate}/s → {} {who}{plural}",
                         plan.senders, plan.subscribers

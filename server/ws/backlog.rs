@@ -4,6 +4,8 @@
 //! instead of its queue overflowing or its falling behind the event stream and being closed.
 //! The reader takes a frame only while the connection's queue is at most half full and the
 //! writer at most [`HIGH_WATER`] events behind; the writer reports after every batch it sent.
+//! Adapters are not paced: their reports make no answers, and their queue is filled by the
+//! commands others trigger.
 
 use std::sync::atomic::{AtomicUsize, Ordering};
 

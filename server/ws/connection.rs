@@ -20,6 +20,7 @@ use futures_util::StreamExt;
 use tokio::sync::oneshot;
 
 use crate::access::ClientAddress;
+use crate::events::ClientRole;
 use crate::http::ConnectionSlot;
 use crate::http::auth::{Peer, same_origin};
 use crate::state::AppState;
@@ -119,6 +120,9 @@ async fn serve(socket: WebSocket, state: AppState, address: ClientAddress) {
     let mut allowance = Allowance::new(Instant::now());
     let outbox = session.client().outbox.clone();
     let ended = loop {
+        // An adapter's reports make no answers to it, while commands others send fill its
+        // queue: waiting to read them would only hold up the commands' outcomes.
+        let paced = session.role() != Some(ClientRole::Adapter);
         let next = tokio::select! {
             // The client's frames first; the budget of tokio's cooperative scheduling still
             // lets the others be seen during a flood.
@@ -127,7 +131,9 @@ async fn serve(socket: WebSocket, state: AppState, address: ClientAddress) {
                 // A log falling behind slows every client down, at the socket; answers and
                 // events a client has not read yet slow it down.
                 state.hub.room_to_log().await;
-                backlog.room(&outbox).await;
+                if paced {
+                    backlog.room(&outbox).await;
+                }
                 stream.next().await
             } => next,
             () = &mut idle => break Ended::Reader("idle timeout"),
