@@ -32,6 +32,7 @@ mod dispatch_sequencing;
 mod dm_example;
 mod documented_limits;
 mod fleet_broker_restart;
+mod fleet_flood;
 mod fleet_mqtt;
 mod fleet_stop;
 mod fleet_tls;

@@ -5,7 +5,8 @@
 //! evenly over one period, and latency runs from the time a trigger was *due*, so a server that
 //! stalls the client is charged for the wait (no coordinated omission). tokio's timer has 1 ms
 //! resolution, so each sender has its own thread and ends its wait with a thread sleep and a
-//! spin of at most 100 µs. Closed loop: each sender sends its next trigger once the previous one
+//! spin of at most 100 µs (only up to 2,000 triggers a second in all: beyond, the spinning would
+//! take a core from the server). Closed loop: each sender sends its next trigger once the previous one
 //! reached every subscriber (or after `drain`, when its missing frames count as lost).
 //! All subscribers share the calling thread, as in /work/shared/bench's wsload.
 
@@ -100,7 +101,12 @@ pub async fn run(plan: &Plan) -> Result<Measured, Error> {
     for _ in 0..plan.subscribers {
         let ws = client::connect(&plan.url, plan.subscriber).await?;
         let answer = plan.subscriber == Role::SayAdapter;
-        subscribers.push(tokio::spawn(subscribe(ws, job.clone(), answer, !plan.answers)));
+        subscribers.push(tokio::spawn(subscribe(
+            ws,
+            job.clone(),
+            answer,
+            !plan.answers,
+        )));
     }
 
     // Each sender reports once connected and once finished; all start on one clock.
@@ -237,11 +243,17 @@ fn sender_thread(
 const COARSE: Duration = Duration::from_millis(2);
 const SPIN: Duration = Duration::from_micros(100);
 
-fn wait_precisely(due: Instant) {
+/// Above this many triggers a second in all, senders do not spin: 10,000 spins of 100 µs a
+/// second would take a whole core from the server on a 2-core machine, and a sender that
+/// wakes a little late is charged for it anyway (latency runs from the due time).
+const MOST_SPUN_PER_SECOND: f64 = 2_000.0;
+
+fn wait_precisely(due: Instant, spin: bool) {
+    let spin = if spin { SPIN } else { Duration::ZERO };
     if let Some(rest) = due.checked_duration_since(Instant::now())
-        && rest > SPIN
+        && rest > spin
     {
-        thread::sleep(rest - SPIN);
+        thread::sleep(rest - spin);
     }
     while Instant::now() < due {
         std::hint::spin_loop();
@@ -251,13 +263,14 @@ fn wait_precisely(due: Instant) {
 async fn open_loop(ws: &mut Ws, job: &Job, clock: Clock, k: usize, rate: f64) -> Result<(), Error> {
     // Senders are spread evenly over one period instead of all firing together.
     let offset = k as f64 / job.senders as f64;
+    let spin = job.senders as f64 * rate <= MOST_SPUN_PER_SECOND;
     let schedule = (0u64..)
         .map(|i| clock.start + Duration::from_secs_f64((i as f64 + offset) / rate))
         .take_while(|due| *due < clock.end);
     for due in schedule {
         let coarse = due.checked_sub(COARSE).unwrap_or(due);
         read_until(ws, job, sleep_until(coarse.into())).await?;
-        wait_precisely(due);
+        wait_precisely(due, spin);
         let number = job.tally.register(due, due >= clock.measure_from, None);
         ws.send(client::trigger(&job.label, number)).await?;
     }

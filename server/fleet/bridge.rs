@@ -170,8 +170,19 @@ impl Bridge {
         let from = (self.broker_host.as_str(), self.identity.robot.as_str());
         match commands::check(&self.state, from, &mut self.replays, payload) {
             Ok(verified) => {
-                if commands.try_send(verified).is_err() {
-                    tracing::warn!("a signed MQTT command was dropped: too many waiting");
+                if let Err(mpsc::error::TrySendError::Full(verified)) = commands.try_send(verified)
+                {
+                    tracing::warn!(
+                        "a signed MQTT command was refused: {COMMAND_QUEUE} wait to run"
+                    );
+                    let reply = commands::busy(&self.identity.robot, &verified, COMMAND_QUEUE);
+                    let topic = topic(&self.identity.robot, "reply");
+                    if (self.client)
+                        .try_publish(&topic, QoS::AtLeastOnce, false, reply)
+                        .is_err()
+                    {
+                        tracing::debug!("a refusal on {topic} was not sent: the link is busy");
+                    }
                 }
             }
             Err(reply) => {

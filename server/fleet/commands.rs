@@ -100,16 +100,36 @@ pub async fn run(
         session.answers().await
     };
     (frames.into_iter())
-        .map(|frame| {
-            let text = signed::reply_text(robot, &command.reference, &frame);
-            json_text(&SignedReply {
-                robot: robot.to_owned(),
-                reference: Some(command.reference.clone()),
-                mac: Some(signed::mac(&command.key, &text)),
-                frame,
-            })
-        })
+        .map(|frame| signed_reply(robot, &command, frame))
         .collect()
+}
+
+/// The reply to a verified `command` that was not run because `waiting` commands wait to run
+/// already (signed, as its answers would be): the sender learns at once, instead of waiting
+/// for an answer that will not come.
+pub fn busy(robot: &str, command: &Verified, waiting: usize) -> String {
+    let message = format!(
+        "not run: {waiting} commands wait to run on this robot already; send it again in a \
+         moment"
+    );
+    let frame = error_frame(
+        ErrorCode::RateLimited,
+        &message,
+        Some(&command.reference),
+        None,
+    );
+    signed_reply(robot, command, frame)
+}
+
+/// A reply envelope for `command` carrying `frame`, signed with the command's credential.
+fn signed_reply(robot: &str, command: &Verified, frame: String) -> String {
+    let text = signed::reply_text(robot, &command.reference, &frame);
+    json_text(&SignedReply {
+        robot: robot.to_owned(),
+        reference: Some(command.reference.clone()),
+        mac: Some(signed::mac(&command.key, &text)),
+        frame,
+    })
 }
 
 fn json_text(reply: &SignedReply) -> String {
