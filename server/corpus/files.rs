@@ -17,6 +17,12 @@ pub(super) trait Sink {
     fn written(&mut self);
     /// Syncs the open file completely and closes it.
     fn close(&mut self) -> io::Result<()>;
+    /// Whether the open file was removed (its folder deleted, say) since it was opened: lines
+    /// written to it are then in no file anyone can read.
+    fn removed(&mut self) -> io::Result<bool>;
+    /// Closes the open file without waiting for it (it was removed): the next
+    /// [`Sink::file_for`] makes it again, with its folders.
+    fn forget(&mut self);
 }
 
 /// The open log file and its syncer.
@@ -72,6 +78,27 @@ impl Sink for Files {
         match self.open.take() {
             Some(open) => open.syncer.finish(&open.file),
             None => Ok(()),
+        }
+    }
+
+    fn removed(&mut self) -> io::Result<bool> {
+        use std::os::unix::fs::MetadataExt;
+        match &self.open {
+            // One `fstat` per batch written: no name left means removed.
+            Some(open) => Ok(open.file.metadata()?.nlink() == 0),
+            None => Ok(false),
+        }
+    }
+
+    fn forget(&mut self) {
+        if let Some(open) = self.open.take() {
+            // Syncing a removed file keeps nothing; only its thread is stopped.
+            drop(open.syncer);
+            tracing::warn!(
+                path = %open.path.display(),
+                "the corpus log was removed under the running server: making it again and \
+                 writing its last lines there"
+            );
         }
     }
 }

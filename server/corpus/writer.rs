@@ -1,22 +1,27 @@
 //! The writer thread's loop: group commit. Each batch of events becomes one buffer of whole
 //! JSON lines per file it goes to (`route.rs` decides: a session's log or the day log), each
 //! handed to the operating system with one `write(2)` (more only if the kernel takes part of
-//! it); only when that returned does the hub learn the batch is logged. A failed write
-//! (a full disk) keeps the bytes not written, in order, and retries them, so the file never
-//! gets a line with a gap in it; meanwhile acknowledgements are refused, and events wait in
-//! memory up to [`MAX_UNWRITTEN`].
+//! it); only when that returned does the hub learn the batch is logged.
+//!
+//! The writer never gives up. A failed write (a full or read-only disk, an I/O error) keeps
+//! the bytes not written, in order (`unwritten.rs`), reports the failure (acknowledgements
+//! are refused meanwhile), publishes `corpus.unwritable` with words for the operator, and
+//! tries again every second; the first write that works writes everything kept, then
+//! publishes `corpus.gap` (when events had to be dropped) and `corpus.writable`. A log file
+//! removed under it (its folder deleted) is made again, its last lines written there, and
+//! `corpus.recreated` said.
 
-use std::collections::VecDeque;
 use std::io;
-use std::path::PathBuf;
 use std::sync::{Arc, Mutex};
 use std::time::Duration;
 
 use crate::failures::Failures;
 use crate::files::{Files, Sink};
-use crate::manifest::SessionManifest;
-use crate::route::{Place, Route};
-use docent_protocol::events::Event;
+use crate::route::Route;
+use crate::unwritten::{MAX_UNWRITTEN, Unwritten};
+use docent_protocol::events::{
+    CorpusFault, CorpusGap, CorpusRecreated, CorpusWritable, Event, EventKind,
+};
 
 use crate::lock;
 
@@ -26,8 +31,10 @@ pub struct Logged {
     /// Every event up to this `seq` has been handed to the operating system (`write(2)`
     /// returned), so it survives a crash or `kill -9` of Docent.
     pub through: u64,
-    /// Why the log cannot be written now (a full disk, an I/O error); `None` while it can.
+    /// Why the log cannot be written now (the operating system's error); `None` while it can.
     pub failure: Option<Arc<str>>,
+    /// What the operator is told while it cannot (what happened and what to do).
+    pub alert: Option<Arc<str>>,
     /// The writer has stopped: nothing published later will be written.
     pub ended: bool,
 }
@@ -50,6 +57,9 @@ pub trait Feed: Send + Sync + 'static {
     fn sleep_until_published(&self);
     /// Reports how far the log is written.
     fn report(&self, logged: Logged);
+    /// Publishes an event about the log itself (`corpus.*`) like any other: clients see it
+    /// at once, and the writer takes it with the next batch.
+    fn publish(&self, kind: EventKind);
 }
 
 /// Writes the pending events at once, on the caller's thread, if no one else is writing:
@@ -72,10 +82,6 @@ const MAX_BACKOFF: u32 = 4;
 /// After this many ticks without events (about a second), the writer sleeps until the next
 /// publish wakes it.
 const QUIET_TICKS: u32 = 16;
-
-/// While the log cannot be written, at most this many bytes of events wait for it; events
-/// beyond are lost (counted, and the run ends with an error).
-const MAX_UNWRITTEN: usize = 64 * 1024 * 1024;
 
 /// Runs until the hub closes the corpus; returns the number of events written.
 pub(super) fn run<F: Feed>(route: Route, feed: F, sync_interval: Duration) -> io::Result<u64> {
@@ -152,147 +158,102 @@ impl<S: Sink> Log<S> {
         let took = self.batch.len();
         for event in self.batch.drain(..) {
             let place = self.route.place(&event);
-            self.out.push(&event, place, &mut self.failures);
+            self.out.push(&event, place);
         }
         if self.out.is_empty() || !self.failures.may_retry() {
             return took;
         }
-        match self.out.write_to(&mut self.files) {
+        let written = self.out.write_to(&mut self.files);
+        self.tell_remade(feed);
+        match written {
             Ok(()) => {
-                self.failures.recovered();
+                let recovered = self.failures.recovered();
                 feed.report(self.out.logged(None));
+                if let Some((failed_for, fault)) = recovered {
+                    self.tell_recovered(feed, failed_for, fault);
+                }
             }
             Err(error) => {
-                let message = self.failures.note(&error);
-                feed.report(self.out.logged(Some(message)));
+                if let Some(event) = self.failures.note(&error, self.route.corpus()) {
+                    feed.publish(EventKind::CorpusUnwritable(event));
+                }
+                feed.report(self.out.logged(self.failures.report()));
             }
         }
         took
     }
 
-    /// The last write, the last sync, and the run's verdict.
+    /// Says which files were made again, and writes the session's manifest beside a
+    /// session's log made again (its folder went with it).
+    fn tell_remade(&mut self, feed: &impl Feed) {
+        let dir = self.route.corpus().display().to_string();
+        for path in std::mem::take(&mut self.out.remade) {
+            if let Some((folder, manifest)) = self.route.open_session()
+                && path.parent() == Some(folder.as_path())
+                && let Err(error) = manifest.write_to(&folder)
+            {
+                tracing::error!(%error, folder = %folder.display(), "cannot write the session's manifest again");
+            }
+            let path = path.display().to_string();
+            feed.publish(EventKind::CorpusRecreated(CorpusRecreated::of(&path, &dir)));
+        }
+    }
+
+    /// Says that the log is written again, and first which events it lost meanwhile.
+    fn tell_recovered(&mut self, feed: &impl Feed, failed_for: Duration, fault: CorpusFault) {
+        let path = self.route.corpus().display().to_string();
+        let mut message =
+            format!("The corpus log is written again ({path}): triggers are accepted.");
+        if let Some((from, to, count)) = self.out.dropped.take() {
+            self.failures.lost += count;
+            let reason = format!(
+                "more than {} MiB of events waited for the log to be written",
+                MAX_UNWRITTEN >> 20
+            );
+            message += &format!(
+                " {count} events published while it could not be were lost (seq {from} to {to})."
+            );
+            feed.publish(EventKind::CorpusGap(CorpusGap {
+                from,
+                to,
+                count,
+                fault,
+                reason,
+            }));
+        }
+        let unwritable_ms = u64::try_from(failed_for.as_millis()).unwrap_or(u64::MAX);
+        feed.publish(EventKind::CorpusWritable(CorpusWritable {
+            path,
+            unwritable_ms,
+            message,
+        }));
+    }
+
+    /// The last write, the last sync, and the run's verdict: an error when events were lost.
     fn finish(&mut self, feed: &impl Feed) -> io::Result<u64> {
         if !self.out.is_empty()
             && let Err(error) = self.out.write_to(&mut self.files)
         {
-            self.failures.note(&error);
+            self.failures.note(&error, self.route.corpus());
             // What is still unwritten now never will be.
             self.failures.lost += self.out.waiting;
         }
-        feed.report(self.out.logged(self.failures.current.clone()));
+        if let Some((_, _, count)) = self.out.dropped.take() {
+            self.failures.lost += count;
+        }
+        feed.report(self.out.logged(self.failures.report()));
         let synced = self.files.close();
-        match self.failures.count + self.failures.lost {
-            0 => synced.map(|()| self.out.lines),
-            _ => Err(io::Error::other(self.failures.summary())),
+        if self.failures.lost > 0 {
+            return Err(io::Error::other(self.failures.summary()));
         }
-    }
-}
-
-/// Lines handed to the writer and not yet written, in order, one segment per run of lines
-/// for the same file; and how far the log is written.
-#[derive(Default)]
-struct Unwritten {
-    segments: VecDeque<Segment>,
-    /// Bytes in all segments.
-    bytes: usize,
-    /// Every line up to this `seq` is written.
-    through: u64,
-    /// Lines written.
-    lines: u64,
-    /// Lines in the segments.
-    waiting: u64,
-}
-
-/// Lines for one file.
-struct Segment {
-    file: PathBuf,
-    bytes: Vec<u8>,
-    /// The `seq` of its last line.
-    last_seq: u64,
-    lines: u64,
-    /// A session's manifest as its lines leave it, written once they are.
-    manifest: Option<(PathBuf, SessionManifest)>,
-}
-
-impl Unwritten {
-    fn is_empty(&self) -> bool {
-        self.segments.is_empty()
-    }
-
-    fn push(&mut self, event: &Event, place: Place, failures: &mut Failures) {
-        let json = event.json();
-        if self.bytes + json.len() >= MAX_UNWRITTEN {
-            failures.lost += 1;
-            return;
+        if self.failures.count > 0 {
+            // Every event reached the log in the end: said, but not a failed run.
+            tracing::warn!(
+                "{}; every event was written in the end",
+                self.failures.summary()
+            );
         }
-        let same_file = self.segments.back().is_some_and(|s| s.file == place.file);
-        if !same_file {
-            self.segments.push_back(Segment {
-                file: place.file,
-                bytes: Vec::new(),
-                last_seq: 0,
-                lines: 0,
-                manifest: None,
-            });
-        }
-        let segment = self.segments.back_mut().expect("pushed above");
-        let before = segment.bytes.len();
-        event.write_line(&mut segment.bytes, place.session_start_us);
-        self.bytes += segment.bytes.len() - before;
-        segment.last_seq = event.seq;
-        segment.lines += 1;
-        if place.manifest.is_some() {
-            segment.manifest = place.manifest;
-        }
-        self.waiting += 1;
-    }
-
-    /// Writes every waiting segment to its file, in order, and the manifests they carry;
-    /// keeps what the kernel did not take when a write fails.
-    fn write_to(&mut self, sink: &mut impl Sink) -> io::Result<()> {
-        while let Some(segment) = self.segments.front_mut() {
-            let file = sink.file_for(&segment.file)?;
-            let mut done = 0;
-            let result = loop {
-                if done == segment.bytes.len() {
-                    break Ok(());
-                }
-                match file.write(&segment.bytes[done..]) {
-                    Ok(0) => break Err(io::Error::from(io::ErrorKind::WriteZero)),
-                    Ok(n) => done += n,
-                    Err(e) if e.kind() == io::ErrorKind::Interrupted => {}
-                    Err(e) => break Err(e),
-                }
-            };
-            // What was taken is not written again: the rest follows right after it.
-            segment.bytes.drain(..done);
-            self.bytes -= done;
-            if done > 0 {
-                sink.written();
-            }
-            result?;
-            if let Some((dir, manifest)) = &segment.manifest {
-                manifest.write_to(dir)?;
-                if manifest.ended.is_some() {
-                    // A finished session's log is synced and closed (its lock released) now,
-                    // not when the next event goes elsewhere.
-                    sink.close()?;
-                }
-            }
-            self.through = segment.last_seq;
-            self.lines += segment.lines;
-            self.waiting -= segment.lines;
-            self.segments.pop_front();
-        }
-        Ok(())
-    }
-
-    fn logged(&self, failure: Option<Arc<str>>) -> Logged {
-        Logged {
-            through: self.through,
-            failure,
-            ended: false,
-        }
+        synced.map(|()| self.out.lines)
     }
 }
 
@@ -301,7 +262,8 @@ mod tests {
     use std::io::Write;
 
     use super::*;
-    use docent_protocol::events::{EventKind, Source};
+    use crate::route::Place;
+    use docent_protocol::events::Source;
 
     fn event(seq: u64) -> Event {
         let kind = EventKind::ContextChanged {
@@ -327,6 +289,12 @@ mod tests {
         fn close(&mut self) -> io::Result<()> {
             Ok(())
         }
+
+        fn removed(&mut self) -> io::Result<bool> {
+            Ok(false)
+        }
+
+        fn forget(&mut self) {}
     }
 
     /// Every file is `/dev/full`.
@@ -342,6 +310,12 @@ mod tests {
         fn close(&mut self) -> io::Result<()> {
             Ok(())
         }
+
+        fn removed(&mut self) -> io::Result<bool> {
+            Ok(false)
+        }
+
+        fn forget(&mut self) {}
     }
 
     fn place() -> Place {
@@ -371,14 +345,13 @@ mod tests {
     #[test]
     fn a_write_cut_short_by_a_full_disk_is_completed_without_a_gap_when_space_returns() {
         let mut out = Unwritten::default();
-        let mut failures = Failures::default();
         let mut disk = Disk {
             data: Vec::new(),
             room: 30,
         };
         let (first, second) = (event(1), event(2));
-        out.push(&first, place(), &mut failures);
-        out.push(&second, place(), &mut failures);
+        out.push(&first, place());
+        out.push(&second, place());
         assert!(out.write_to(&mut disk).is_err());
         assert_eq!(out.logged(None).through, 0, "nothing confirmed");
         disk.room = usize::MAX;
@@ -393,6 +366,7 @@ mod tests {
     struct TestFeed {
         pending: Mutex<Vec<Arc<Event>>>,
         reports: Mutex<Vec<Logged>>,
+        published: Mutex<Vec<EventKind>>,
     }
 
     impl Feed for Arc<TestFeed> {
@@ -408,6 +382,9 @@ mod tests {
         fn sleep_until_published(&self) {}
         fn report(&self, logged: Logged) {
             lock(&self.reports).push(logged);
+        }
+        fn publish(&self, kind: EventKind) {
+            lock(&self.published).push(kind);
         }
     }
 

@@ -1,0 +1,168 @@
+//! The lines handed to the writer and not yet written, in order, and how far the log is
+//! written. A write that fails keeps what the kernel did not take; a file found removed after
+//! its lines were written to it gets them again in a new file, so that no acknowledged line is
+//! only in a file nobody can read; events that would take more than [`MAX_UNWRITTEN`] while
+//! the log cannot be written are dropped as one counted range (a gap), never some here and
+//! some there.
+
+use std::collections::VecDeque;
+use std::io;
+use std::path::PathBuf;
+use std::sync::Arc;
+
+use crate::files::Sink;
+use crate::manifest::SessionManifest;
+use crate::route::Place;
+use crate::writer::Logged;
+use docent_protocol::events::Event;
+
+/// While the log cannot be written, at most this many bytes of events wait for it; events
+/// beyond are dropped until everything kept is written (then a `corpus.gap` says which).
+pub(super) const MAX_UNWRITTEN: usize = 64 * 1024 * 1024;
+
+/// How often in a row a file is made again because it was removed again, before the write
+/// counts as failed (and is retried at the failures' pace).
+const MAX_REMADE: usize = 3;
+
+/// Lines not written yet, one segment per run of lines for the same file.
+#[derive(Default)]
+pub(super) struct Unwritten {
+    segments: VecDeque<Segment>,
+    /// Bytes in all segments.
+    bytes: usize,
+    /// Every line up to this `seq` is written.
+    pub(super) through: u64,
+    /// Lines written.
+    pub(super) lines: u64,
+    /// Lines in the segments.
+    pub(super) waiting: u64,
+    /// Events dropped since the buffer filled up, not yet told: `(first seq, last seq,
+    /// count)`. While it is set every event is dropped, so the gap is one range.
+    pub(super) dropped: Option<(u64, u64, u64)>,
+    /// Files found removed under the writer and made again, not yet told.
+    pub(super) remade: Vec<PathBuf>,
+}
+
+/// Lines for one file.
+struct Segment {
+    file: PathBuf,
+    bytes: Vec<u8>,
+    /// How many of `bytes` the current file took.
+    done: usize,
+    /// The `seq` of its last line.
+    last_seq: u64,
+    lines: u64,
+    /// A session's manifest as its lines leave it, written once they are.
+    manifest: Option<(PathBuf, SessionManifest)>,
+}
+
+impl Unwritten {
+    pub(super) fn is_empty(&self) -> bool {
+        self.segments.is_empty()
+    }
+
+    /// Adds `event`'s line for the file `place` names; drops it (counted in [`Self::dropped`])
+    /// when too much waits already, or when dropping began and what was kept is not written.
+    pub(super) fn push(&mut self, event: &Event, place: Place) {
+        let json = event.json();
+        if self.dropped.is_some() || self.bytes + json.len() >= MAX_UNWRITTEN {
+            let (from, _, count) = self.dropped.unwrap_or((event.seq, event.seq, 0));
+            self.dropped = Some((from, event.seq, count + 1));
+            return;
+        }
+        let same_file = self.segments.back().is_some_and(|s| s.file == place.file);
+        if !same_file {
+            self.segments.push_back(Segment {
+                file: place.file,
+                bytes: Vec::new(),
+                done: 0,
+                last_seq: 0,
+                lines: 0,
+                manifest: None,
+            });
+        }
+        let Some(segment) = self.segments.back_mut() else {
+            return;
+        };
+        let before = segment.bytes.len();
+        event.write_line(&mut segment.bytes, place.session_start_us);
+        self.bytes += segment.bytes.len() - before;
+        segment.last_seq = event.seq;
+        segment.lines += 1;
+        if place.manifest.is_some() {
+            segment.manifest = place.manifest;
+        }
+        self.waiting += 1;
+    }
+
+    /// Writes every waiting segment to its file, in order, and the manifests they carry;
+    /// keeps what the kernel did not take when a write fails.
+    pub(super) fn write_to(&mut self, sink: &mut impl Sink) -> io::Result<()> {
+        while let Some(segment) = self.segments.front_mut() {
+            let mut remade = 0;
+            loop {
+                write_segment(segment, sink)?;
+                // Lines written into a file that was removed meanwhile are in no file anyone
+                // can read: the whole segment goes into a new one.
+                if !sink.removed()? {
+                    break;
+                }
+                remade += 1;
+                if remade > MAX_REMADE {
+                    return Err(io::Error::other("the corpus log keeps being removed"));
+                }
+                sink.forget();
+                segment.done = 0;
+                self.remade.push(segment.file.clone());
+            }
+            if let Some((dir, manifest)) = &segment.manifest {
+                std::fs::create_dir_all(dir)?;
+                manifest.write_to(dir)?;
+                if manifest.ended.is_some() {
+                    // A finished session's log is synced and closed (its lock released) now,
+                    // not when the next event goes elsewhere.
+                    sink.close()?;
+                }
+            }
+            self.bytes -= segment.bytes.len();
+            self.through = segment.last_seq;
+            self.lines += segment.lines;
+            self.waiting -= segment.lines;
+            self.segments.pop_front();
+        }
+        Ok(())
+    }
+
+    /// How far the log is written, with the failure that stops it (and the operator's words).
+    pub(super) fn logged(&self, failure: Option<(Arc<str>, Arc<str>)>) -> Logged {
+        let (failure, alert) = failure.unzip();
+        Logged {
+            through: self.through,
+            failure,
+            alert,
+            ended: false,
+        }
+    }
+}
+
+/// Writes what of `segment` its file has not taken yet.
+fn write_segment(segment: &mut Segment, sink: &mut impl Sink) -> io::Result<()> {
+    let file = sink.file_for(&segment.file)?;
+    let start = segment.done;
+    let result = loop {
+        if segment.done == segment.bytes.len() {
+            break Ok(());
+        }
+        match file.write(&segment.bytes[segment.done..]) {
+            Ok(0) => break Err(io::Error::from(io::ErrorKind::WriteZero)),
+            Ok(n) => segment.done += n,
+            Err(e) if e.kind() == io::ErrorKind::Interrupted => {}
+            Err(e) => break Err(e),
+        }
+    };
+    // What was taken is not written again: the rest follows right after it.
+    if segment.done > start {
+        sink.written();
+    }
+    result
+}
