@@ -215,6 +215,8 @@ pub async fn get_state(State(state): State<AppState>, _: Authorized) -> Json<Val
         "consent": state.visits.consent(),
         "recording": state.recordings.view(),
         "fleet": state.fleet.state_json(),
+        // While the corpus log cannot be written: what the operator is told.
+        "corpus": state.hub.logged_progress().borrow().alert.as_deref(),
     }))
 }
 
