@@ -246,3 +246,62 @@ async fn a_corpus_folder_removed_under_the_server_is_made_again_and_the_operator
     }
     assert_eq!(of_type(&lines, "corpus.recreated").len(), 1);
 }
+
+/// PUTs chunk `seq` of the recording a `record` frame asked for.
+async fn put_chunk(server: &TestServer, record: &Value, seq: u64, body: &[u8]) -> (u16, Value) {
+    let url = server.url(&format!(
+        "{}{seq}",
+        record["upload"].as_str().expect("upload")
+    ));
+    let response = reqwest::Client::new()
+        .put(url)
+        .bearer_auth(record["token"].as_str().expect("token"))
+        .body(body.to_vec())
+        .send()
+        .await
+        .expect("PUT");
+    let status = response.status().as_u16();
+    (status, response.json().await.unwrap_or(Value::Null))
+}
+
+#[tokio::test]
+async fn a_recording_pauses_while_the_corpus_disk_is_full_and_goes_on_once_space_is_back() {
+    let settings = "corpus: {session_start: marked, record_limits: {keep_free: 1 KB}}\n";
+    let bundle = TempBundle::new(ACTS).with_file("docent.yaml", settings);
+    let scratch = tempfile::tempdir().expect("scratch");
+    let disk = Tmpfs::mount(&scratch.path().join("corpus"), 1024);
+    let server = TestServer::start_with(bundle.path(), |o| {
+        o.corpus_dir = scratch.path().join("corpus");
+        o.media_cache = scratch.path().join("media-cache");
+    })
+    .await;
+    let mut kiosk = server
+        .client(json!({"type": "hello", "role": "kiosk", "name": "kiosk"}))
+        .await;
+    let mut op = server.operator().await;
+    op.send(json!({"type": "mark", "mark": "session_start"}))
+        .await;
+    op.recv_type("marked").await;
+    let record = kiosk.recv_type("record").await;
+    assert_eq!(put_chunk(&server, &record, 0, b"HEAD").await.0, 200);
+
+    let filler = server.corpus.join("filler");
+    disk.fill_leaving(&filler, 0);
+    trigger_until_refused(&server).await;
+    op.event("corpus.unwritable").await;
+    let (status, paused) = put_chunk(&server, &record, 1, b"BODY").await;
+    assert_eq!(
+        (status, paused["code"].as_str()),
+        (503, Some("corpus-unwritable")),
+        "{paused}"
+    );
+    let error = paused["error"].as_str().unwrap_or_default();
+    assert!(error.contains("The recording pauses"), "{paused}");
+
+    std::fs::remove_file(&filler).expect("space freed");
+    op.event("corpus.writable").await;
+    let (status, stored) = put_chunk(&server, &record, 1, b"BODY").await;
+    assert_eq!((status, &stored["next"]), (200, &json!(2)), "{stored}");
+    server.stop().await;
+    drop(disk);
+}

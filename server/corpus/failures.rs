@@ -99,6 +99,12 @@ impl Failures {
         Some((current.since.elapsed(), current.fault))
     }
 
+    /// Lets the next write be tried at once (tests, which do not wait a second).
+    #[cfg(test)]
+    pub(super) fn retry_now(&mut self) {
+        self.failed_at = None;
+    }
+
     pub(super) fn summary(&self) -> String {
         let mut text = format!("{} corpus writes failed", self.count);
         if self.lost > 0 {

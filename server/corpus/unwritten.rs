@@ -25,9 +25,10 @@ pub(super) const MAX_UNWRITTEN: usize = 64 * 1024 * 1024;
 const MAX_REMADE: usize = 3;
 
 /// Lines not written yet, one segment per run of lines for the same file.
-#[derive(Default)]
 pub(super) struct Unwritten {
     segments: VecDeque<Segment>,
+    /// At most this many bytes wait ([`MAX_UNWRITTEN`] but in tests).
+    limit: usize,
     /// Bytes in all segments.
     bytes: usize,
     /// Every line up to this `seq` is written.
@@ -57,6 +58,20 @@ struct Segment {
 }
 
 impl Unwritten {
+    /// Nothing waiting; at most `limit` bytes will.
+    pub(super) fn new(limit: usize) -> Self {
+        Unwritten {
+            segments: VecDeque::new(),
+            limit,
+            bytes: 0,
+            through: 0,
+            lines: 0,
+            waiting: 0,
+            dropped: None,
+            remade: Vec::new(),
+        }
+    }
+
     pub(super) fn is_empty(&self) -> bool {
         self.segments.is_empty()
     }
@@ -65,7 +80,7 @@ impl Unwritten {
     /// when too much waits already, or when dropping began and what was kept is not written.
     pub(super) fn push(&mut self, event: &Event, place: Place) {
         let json = event.json();
-        if self.dropped.is_some() || self.bytes + json.len() >= MAX_UNWRITTEN {
+        if self.dropped.is_some() || self.bytes + json.len() >= self.limit {
             let (from, _, count) = self.dropped.unwrap_or((event.seq, event.seq, 0));
             self.dropped = Some((from, event.seq, count + 1));
             return;
@@ -165,4 +180,65 @@ fn write_segment(segment: &mut Segment, sink: &mut impl Sink) -> io::Result<()> 
         sink.written();
     }
     result
+}
+
+#[cfg(test)]
+mod tests {
+    use std::time::Duration;
+
+    use super::*;
+    use crate::files::Files;
+    use docent_protocol::events::{EventKind, Source};
+
+    fn event(seq: u64) -> Event {
+        let kind = EventKind::ContextChanged {
+            source: Source::Http,
+            context: format!("T{seq}"),
+        };
+        Event::new(
+            seq,
+            std::time::UNIX_EPOCH + Duration::from_secs(1_795_000_000),
+            seq,
+            kind,
+        )
+    }
+
+    fn at(file: &std::path::Path) -> Place {
+        Place {
+            file: file.to_owned(),
+            session_start_us: None,
+            manifest: None,
+        }
+    }
+
+    #[test]
+    fn lines_written_into_a_log_removed_meanwhile_are_written_again_into_a_new_one() {
+        let corpus = tempfile::tempdir().unwrap();
+        let log = corpus.path().join("days/2026-11-29/09-00-00Z.jsonl");
+        let mut files = Files::new(Duration::from_secs(3600));
+        let mut out = Unwritten::new(MAX_UNWRITTEN);
+        out.push(&event(1), at(&log));
+        out.write_to(&mut files).unwrap();
+        std::fs::remove_dir_all(corpus.path().join("days")).unwrap();
+
+        out.push(&event(2), at(&log));
+        out.write_to(&mut files).unwrap();
+        assert_eq!(out.remade, [log.clone()], "said once");
+        let text = std::fs::read_to_string(&log).expect("made again");
+        assert_eq!(text, format!("{}\n", event(2).json()));
+        assert_eq!((out.through, out.lines), (2, 2));
+    }
+
+    #[test]
+    fn events_beyond_the_limit_are_dropped_as_one_range_until_what_was_kept_is_written() {
+        let (first, second) = (event(1), event(2));
+        let mut out = Unwritten::new(first.json().len() + 10);
+        let log = std::path::Path::new("days/x.jsonl");
+        out.push(&first, at(log));
+        out.push(&second, at(log));
+        // Would fit beside the first, but the range stays one.
+        out.push(&event(3), at(log));
+        assert_eq!(out.dropped, Some((2, 3, 2)));
+        assert_eq!(out.waiting, 1);
+    }
 }

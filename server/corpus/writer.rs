@@ -96,7 +96,7 @@ fn run_into<S: Sink + Send + 'static, F: Feed>(files: S, route: Route, feed: F) 
             route,
             files,
             batch: Vec::new(),
-            out: Unwritten::default(),
+            out: Unwritten::new(MAX_UNWRITTEN),
             failures: Failures::default(),
         }),
         feed,
@@ -270,7 +270,12 @@ mod tests {
             source: Source::Http,
             context: format!("T{seq}"),
         };
-        Event::new(seq, std::time::SystemTime::now(), seq, kind)
+        Event::new(
+            seq,
+            std::time::UNIX_EPOCH + Duration::from_secs(1_795_000_000),
+            seq,
+            kind,
+        )
     }
 
     /// Takes `room` bytes, then fails as a full disk does, until given more room.
@@ -344,7 +349,7 @@ mod tests {
 
     #[test]
     fn a_write_cut_short_by_a_full_disk_is_completed_without_a_gap_when_space_returns() {
-        let mut out = Unwritten::default();
+        let mut out = Unwritten::new(MAX_UNWRITTEN);
         let mut disk = Disk {
             data: Vec::new(),
             room: 30,
@@ -406,5 +411,69 @@ mod tests {
             .expect("the failure is reported");
         assert!(failure.contains("No space left on device"), "{failure}");
         assert!(reports.iter().all(|r| r.through == 0), "nothing confirmed");
+    }
+
+    #[test]
+    fn a_full_disk_is_told_once_and_its_recovery_after_the_events_it_had_to_drop() {
+        let feed = Arc::new(TestFeed::default());
+        let corpus = std::path::PathBuf::from("/srv/corpus");
+        let mut log = Log {
+            route: Route::new(corpus),
+            files: Disk {
+                data: Vec::new(),
+                room: 0,
+            },
+            batch: Vec::new(),
+            out: Unwritten::new(event(1).json().len() + 10),
+            failures: Failures::default(),
+        };
+        lock(&feed.pending).extend([1, 2].map(|seq| Arc::new(event(seq))));
+        log.commit(&feed);
+        log.failures.retry_now();
+        log.commit(&feed);
+        let failing = lock(&feed.reports).last().cloned().expect("reported");
+        assert_eq!(failing.through, 0);
+        let alert = failing.alert.expect("the operator's words");
+        assert!(
+            alert.starts_with("The corpus disk is full (/srv/corpus)"),
+            "{alert}"
+        );
+
+        lock(&feed.pending).push(Arc::new(event(3)));
+        log.files.room = usize::MAX;
+        log.failures.retry_now();
+        log.commit(&feed);
+        let written = lock(&feed.reports).last().cloned().expect("reported");
+        assert_eq!((written.through, written.failure), (1, None));
+        assert_eq!(
+            String::from_utf8(log.files.data.clone()).unwrap(),
+            format!("{}\n", event(1).json())
+        );
+        let told: Vec<String> = lock(&feed.published)
+            .iter()
+            .map(|k| serde_json::to_string(k).unwrap())
+            .collect();
+        assert_eq!(told.len(), 3, "{told:?}");
+        assert!(
+            told[0].contains(r#""type":"corpus.unwritable","fault":"disk-full""#),
+            "{}",
+            told[0]
+        );
+        assert!(
+            told[1].contains(r#""type":"corpus.gap","from":2,"to":3,"count":2"#),
+            "{}",
+            told[1]
+        );
+        assert!(
+            told[2].contains(r#""type":"corpus.writable""#),
+            "{}",
+            told[2]
+        );
+        assert!(
+            told[2].contains("2 events published while it could not be were lost (seq 2 to 3)"),
+            "{}",
+            told[2]
+        );
+        assert_eq!(log.failures.lost, 2);
     }
 }
