@@ -223,7 +223,7 @@ mod tests {
 
         out.push(&event(2), at(&log));
         out.write_to(&mut files).unwrap();
-        assert_eq!(out.remade, [log.clone()], "said once");
+        assert_eq!(out.remade, std::slice::from_ref(&log), "said once");
         let text = std::fs::read_to_string(&log).expect("made again");
         assert_eq!(text, format!("{}\n", event(2).json()));
         assert_eq!((out.through, out.lines), (2, 2));
