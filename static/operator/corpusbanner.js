@@ -1,9 +1,9 @@
 // corpusbanner.js: the corpus banner. While the corpus log cannot be written (a full or
 // read-only disk) the server refuses triggers; this banner says so in the server's own words
 // (what happened, what to do), from `welcome`/`state` (state.corpus) and `corpus.unwritable`
-// events, until `corpus.writable`, whose words it shows for a moment. A log file removed under
-// the server (`corpus.recreated`) and events lost meanwhile (`corpus.gap`) are shown the same
-// way. Nothing is decided here: the server sends the words.
+// events, until `corpus.writable`, whose words (with any events lost meanwhile) it shows for
+// a moment; so for a log file removed under the server and made again (`corpus.recreated`).
+// Nothing is decided here: the server sends the words.
 
 const SHOWN_MS = 15_000;
 
