@@ -79,6 +79,19 @@ fn complete_log(corpus: &Path, acknowledged: &[u64]) -> Vec<Value> {
     lines
 }
 
+/// `rm -rf dir`, again if the writer made a file in it meanwhile (a late line of the last
+/// trigger found its file removed), until it is gone.
+fn remove_all(dir: &Path) {
+    for _ in 0..10 {
+        match std::fs::remove_dir_all(dir) {
+            Ok(()) => return,
+            Err(e) if e.kind() == std::io::ErrorKind::DirectoryNotEmpty => continue,
+            Err(e) => panic!("rm -rf {}: {e}", dir.display()),
+        }
+    }
+    panic!("{} could not be removed", dir.display());
+}
+
 fn of_type<'a>(lines: &'a [Value], kind: &str) -> Vec<&'a Value> {
     lines.iter().filter(|e| e["type"] == kind).collect()
 }
@@ -201,12 +214,15 @@ async fn a_disk_remounted_read_only_refuses_triggers_until_it_is_writable_again(
 }
 
 #[tokio::test]
-async fn a_corpus_folder_removed_under_the_server_is_made_again_and_the_operator_told() {
+async fn a_corpus_folder_removed_mid_session_is_made_again_and_the_operator_told() {
     let bundle = TempBundle::new(ACTS);
     let server = TestServer::start(bundle.path()).await;
     let mut op = server.operator().await;
+    op.send(json!({"type": "mark", "mark": "session_start"}))
+        .await;
+    op.recv_type("marked").await;
     server.trigger("OK", json!({"ref": "before"})).await;
-    std::fs::remove_dir_all(&server.corpus).expect("rm -rf corpus");
+    remove_all(&server.corpus);
 
     let mut acknowledged = Vec::new();
     for n in 0..3 {
@@ -215,19 +231,31 @@ async fn a_corpus_folder_removed_under_the_server_is_made_again_and_the_operator
             .await;
         acknowledged.push(ok["trigger"].as_u64().expect("trigger id"));
     }
+    // The session's log was open: found removed after the next write, and written again.
     let told = op.event("corpus.recreated").await;
+    let session_log = told["path"].as_str().unwrap_or_default().to_owned();
+    assert!(session_log.ends_with("/events.jsonl"), "{told}");
     let message = told["message"].as_str().unwrap_or_default();
-    let path = told["path"].as_str().unwrap_or_default();
-    assert!(
-        path.starts_with(&server.corpus.display().to_string()),
-        "{told}"
-    );
     assert!(
         message.contains("was removed while Docent was running: Docent made it again"),
         "{told}"
     );
+    op.send(json!({"type": "mark", "mark": "session_end"}))
+        .await;
+    op.recv_type("marked").await;
+    let folder = Path::new(&session_log).parent().expect("session folder");
+    let manifest: Value =
+        serde_json::from_slice(&std::fs::read(folder.join("session.json")).expect("manifest"))
+            .expect("JSON");
+    assert!(manifest["ended"].is_object(), "{manifest}");
+    // The day log was closed during the session: found missing when opened again.
+    let ok = server.trigger("OK", json!({"ref": "between"})).await;
+    acknowledged.push(ok["trigger"].as_u64().expect("trigger id"));
+    let day = op.event("corpus.recreated").await;
+    let day_log = day["path"].as_str().unwrap_or_default().to_owned();
+    assert!(day_log.contains("/days/"), "{day}");
+    assert!(Path::new(&day_log).is_file(), "{day_log} made again");
 
-    assert!(Path::new(path).is_file(), "{path} made again");
     let lines = server.stop().await;
     // What was removed is gone; from the first line written again on, nothing is missing.
     let first = lines[0]["seq"].as_u64().expect("seq");
@@ -244,7 +272,7 @@ async fn a_corpus_folder_removed_under_the_server_is_made_again_and_the_operator
             "trigger {trigger}, acknowledged after the removal, is not in the log"
         );
     }
-    assert_eq!(of_type(&lines, "corpus.recreated").len(), 1);
+    assert_eq!(of_type(&lines, "corpus.recreated").len(), 2);
 }
 
 /// PUTs chunk `seq` of the recording a `record` frame asked for.

@@ -116,7 +116,9 @@ impl Unwritten {
         while let Some(segment) = self.segments.front_mut() {
             let mut remade = 0;
             loop {
-                write_segment(segment, sink)?;
+                let written = write_segment(segment, sink);
+                self.remade.extend(sink.take_remade());
+                written?;
                 // Lines written into a file that was removed meanwhile are in no file anyone
                 // can read: the whole segment goes into a new one.
                 if !sink.removed()? {
@@ -227,6 +229,28 @@ mod tests {
         let text = std::fs::read_to_string(&log).expect("made again");
         assert_eq!(text, format!("{}\n", event(2).json()));
         assert_eq!((out.through, out.lines), (2, 2));
+    }
+
+    #[test]
+    fn a_closed_log_found_removed_when_it_is_opened_again_is_said_to_be_made_again() {
+        let corpus = tempfile::tempdir().unwrap();
+        let day = corpus.path().join("days/2026-11-29/09-00-00Z.jsonl");
+        let session = corpus
+            .path()
+            .join("sessions/2026-11-29T09-00-01Z/events.jsonl");
+        let mut files = Files::new(Duration::from_secs(3600));
+        let mut out = Unwritten::new(MAX_UNWRITTEN);
+        out.push(&event(1), at(&day));
+        out.push(&event(2), at(&session));
+        out.write_to(&mut files).unwrap();
+        assert!(out.remade.is_empty());
+        std::fs::remove_dir_all(corpus.path().join("days")).unwrap();
+
+        out.push(&event(3), at(&day));
+        out.write_to(&mut files).unwrap();
+        assert_eq!(out.remade, std::slice::from_ref(&day));
+        let text = std::fs::read_to_string(&day).expect("made again");
+        assert_eq!(text, format!("{}\n", event(3).json()));
     }
 
     #[test]

@@ -300,6 +300,10 @@ mod tests {
         }
 
         fn forget(&mut self) {}
+
+        fn take_remade(&mut self) -> Option<std::path::PathBuf> {
+            None
+        }
     }
 
     /// Every file is `/dev/full`.
@@ -321,6 +325,10 @@ mod tests {
         }
 
         fn forget(&mut self) {}
+
+        fn take_remade(&mut self) -> Option<std::path::PathBuf> {
+            None
+        }
     }
 
     fn place() -> Place {
