@@ -16,6 +16,9 @@ use serde_json::{Value, json};
 
 const ACTS: &str = "- Label: OK\n  Cmds: [DISPLAY_PAGE index.html]\n";
 
+/// Recordings may use all but 1 KB of the small test disks (the default keeps 1 GB free).
+const SMALL_RESERVE: &str = "corpus: {record_limits: {keep_free: 1 KB}}\n";
+
 /// Far more triggers than the room left holds (each writes about 1.5 KB of events).
 const MAX_TRIGGERS: usize = 2_000;
 
@@ -159,7 +162,7 @@ async fn a_full_disk_mid_session_refuses_triggers_tells_the_operator_and_recover
 
 #[tokio::test]
 async fn a_disk_remounted_read_only_refuses_triggers_until_it_is_writable_again() {
-    let bundle = TempBundle::new(ACTS);
+    let bundle = TempBundle::new(ACTS).with_file("docent.yaml", SMALL_RESERVE);
     let scratch = tempfile::tempdir().expect("scratch");
     let corpus = scratch.path().join("corpus");
     // The sessions' folders on a disk of their own: a remount needs no file open for
@@ -175,6 +178,10 @@ async fn a_disk_remounted_read_only_refuses_triggers_until_it_is_writable_again(
         acknowledged.push(ok["trigger"].as_u64().expect("trigger id"));
     }
     disk.remount(false);
+    // A kiosk that comes now is asked to record the next session once it can be stored.
+    let mut kiosk = server
+        .client(json!({"type": "hello", "role": "kiosk", "name": "kiosk"}))
+        .await;
 
     // The next session's folder cannot be made: its start is carried out, not confirmed.
     op.send(json!({"type": "mark", "mark": "session_start", "ref": "ro"}))
@@ -195,6 +202,9 @@ async fn a_disk_remounted_read_only_refuses_triggers_until_it_is_writable_again(
 
     disk.remount(true);
     op.event("corpus.writable").await;
+    // The session begun meanwhile is recorded from now on.
+    let record = kiosk.recv_type("record").await;
+    assert_eq!(record["file"], "media/audio-1.webm", "{record}");
     let ok = server.trigger("OK", json!({"ref": "after"})).await;
     acknowledged.push(ok["trigger"].as_u64().expect("trigger id"));
     op.send(json!({"type": "mark", "mark": "session_end"}))
@@ -294,8 +304,7 @@ async fn put_chunk(server: &TestServer, record: &Value, seq: u64, body: &[u8]) -
 
 #[tokio::test]
 async fn a_recording_pauses_while_the_corpus_disk_is_full_and_goes_on_once_space_is_back() {
-    let settings = "corpus: {session_start: marked, record_limits: {keep_free: 1 KB}}\n";
-    let bundle = TempBundle::new(ACTS).with_file("docent.yaml", settings);
+    let bundle = TempBundle::new(ACTS).with_file("docent.yaml", SMALL_RESERVE);
     let scratch = tempfile::tempdir().expect("scratch");
     let disk = Tmpfs::mount(&scratch.path().join("corpus"), 1024);
     let server = TestServer::start_with(bundle.path(), |o| {
