@@ -186,7 +186,6 @@ impl<S: Sink> Log<S> {
     /// Says which files were made again, and writes the session's manifest beside a
     /// session's log made again (its folder went with it).
     fn tell_remade(&mut self, feed: &impl Feed) {
-        let dir = self.route.corpus().display().to_string();
         for path in std::mem::take(&mut self.out.remade) {
             if let Some((folder, manifest)) = self.route.open_session()
                 && path.parent() == Some(folder.as_path())
@@ -195,7 +194,7 @@ impl<S: Sink> Log<S> {
                 tracing::error!(%error, folder = %folder.display(), "cannot write the session's manifest again");
             }
             let path = path.display().to_string();
-            feed.publish(EventKind::CorpusRecreated(CorpusRecreated::of(&path, &dir)));
+            feed.publish(EventKind::CorpusRecreated(CorpusRecreated::of(&path)));
         }
     }
 

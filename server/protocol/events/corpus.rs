@@ -119,12 +119,12 @@ pub struct CorpusRecreated {
 }
 
 impl CorpusRecreated {
-    /// The event for the log file `path` (in the corpus folder `dir`), found removed.
-    pub fn of(path: &str, dir: &str) -> Self {
+    /// The event for the log file `path`, found removed.
+    pub fn of(path: &str) -> Self {
         let message = format!(
             "The corpus log {path} was removed while Docent was running: Docent made it again \
-             and goes on writing it. What was in {dir} before is gone unless it is restored \
-             from a backup."
+             and goes on writing it. What it held before is gone unless it is restored from a \
+             backup."
         );
         CorpusRecreated {
             path: path.to_owned(),

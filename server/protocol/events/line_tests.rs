@@ -318,7 +318,7 @@ fn every_kind() -> Vec<EventKind> {
             fault: CorpusFault::ReadOnly,
             reason: "64 MiB waited".into(),
         }),
-        CorpusRecreated(Recreated::of("/srv/corpus/days/x.jsonl", "/srv/corpus")),
+        CorpusRecreated(Recreated::of("/srv/corpus/days/x.jsonl")),
     ]
 }
 
