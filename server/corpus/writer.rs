@@ -169,8 +169,10 @@ impl<S: Sink> Log<S> {
             Ok(()) => {
                 let recovered = self.failures.recovered();
                 feed.report(self.out.logged(None));
-                if let Some((failed_for, fault)) = recovered {
-                    self.tell_recovered(feed, failed_for, fault);
+                // Everything kept is written: events are kept again from here on.
+                let lost = self.tell_gap(feed, recovered.map(|(_, fault)| fault));
+                if let Some((failed_for, _)) = recovered {
+                    self.tell_recovered(feed, failed_for, lost);
                 }
             }
             Err(error) => {
@@ -198,28 +200,39 @@ impl<S: Sink> Log<S> {
         }
     }
 
-    /// Says that the log is written again, and first which events it lost meanwhile.
-    fn tell_recovered(&mut self, feed: &impl Feed, failed_for: Duration, fault: CorpusFault) {
+    /// Says which events were dropped while what was kept waited, if any; returns the words
+    /// for the operator about them.
+    fn tell_gap(&mut self, feed: &impl Feed, fault: Option<CorpusFault>) -> Option<String> {
+        let (from, to, count) = self.out.dropped.take()?;
+        self.failures.lost += count;
+        tracing::error!(
+            from,
+            to,
+            count,
+            "corpus events lost: too many waited to be written"
+        );
+        let reason = format!(
+            "more than {} MiB of events waited for the log to be written",
+            MAX_UNWRITTEN >> 20
+        );
+        feed.publish(EventKind::CorpusGap(CorpusGap {
+            from,
+            to,
+            count,
+            fault,
+            reason,
+        }));
+        Some(format!(
+            " {count} events published while it could not be were lost (seq {from} to {to})."
+        ))
+    }
+
+    /// Says that the log is written again (after `failed_for`), with what it `lost`.
+    fn tell_recovered(&mut self, feed: &impl Feed, failed_for: Duration, lost: Option<String>) {
         let path = self.route.corpus().display().to_string();
         let mut message =
             format!("The corpus log is written again ({path}): triggers are accepted.");
-        if let Some((from, to, count)) = self.out.dropped.take() {
-            self.failures.lost += count;
-            let reason = format!(
-                "more than {} MiB of events waited for the log to be written",
-                MAX_UNWRITTEN >> 20
-            );
-            message += &format!(
-                " {count} events published while it could not be were lost (seq {from} to {to})."
-            );
-            feed.publish(EventKind::CorpusGap(CorpusGap {
-                from,
-                to,
-                count,
-                fault,
-                reason,
-            }));
-        }
+        message += lost.as_deref().unwrap_or_default();
         let unwritable_ms = u64::try_from(failed_for.as_millis()).unwrap_or(u64::MAX);
         feed.publish(EventKind::CorpusWritable(CorpusWritable {
             path,
@@ -482,5 +495,31 @@ mod tests {
             told[2]
         );
         assert_eq!(log.failures.lost, 2);
+    }
+
+    #[test]
+    fn events_dropped_while_the_log_could_be_written_are_told_and_the_next_ones_kept() {
+        let feed = Arc::new(TestFeed::default());
+        let mut log = Log {
+            route: Route::new("/srv/corpus".into()),
+            files: Disk {
+                data: Vec::new(),
+                room: usize::MAX,
+            },
+            batch: Vec::new(),
+            out: Unwritten::new(event(1).json().len() + 10),
+            failures: Failures::default(),
+        };
+        lock(&feed.pending).extend([1, 2, 3].map(|seq| Arc::new(event(seq))));
+        log.commit(&feed);
+        lock(&feed.pending).push(Arc::new(event(4)));
+        log.commit(&feed);
+        let expected = format!("{}\n{}\n", event(1).json(), event(4).json());
+        assert_eq!(String::from_utf8(log.files.data.clone()).unwrap(), expected);
+        let told = lock(&feed.published);
+        let [EventKind::CorpusGap(gap)] = told.as_slice() else {
+            panic!("one gap: {told:?}");
+        };
+        assert_eq!((gap.from, gap.to, gap.count, gap.fault), (2, 3, 2, None));
     }
 }

@@ -92,8 +92,8 @@ pub struct CorpusWritable {
 }
 
 /// Events that could not be kept while the log could not be written (`corpus.gap`): the
-/// `seq`s from `from` through `to` are missing from the log, and this says so where they
-/// would have been.
+/// `seq`s from `from` through `to` are missing from the log, and this says so as soon as
+/// the log is written again.
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
 pub struct CorpusGap {
     /// The first `seq` lost.
@@ -102,8 +102,10 @@ pub struct CorpusGap {
     pub to: u64,
     /// How many events were lost (`to - from + 1`).
     pub count: u64,
-    /// Why the log could not be written then.
-    pub fault: CorpusFault,
+    /// Why the log could not be written then; absent when it could, only slower than the
+    /// events came (more than the memory bound in one batch).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub fault: Option<CorpusFault>,
     /// Why they were dropped rather than kept, in words.
     pub reason: String,
 }

@@ -315,7 +315,7 @@ fn every_kind() -> Vec<EventKind> {
             from: 20,
             to: 29,
             count: 10,
-            fault: CorpusFault::ReadOnly,
+            fault: Some(CorpusFault::ReadOnly),
             reason: "64 MiB waited".into(),
         }),
         CorpusRecreated(Recreated::of("/srv/corpus/days/x.jsonl")),
