@@ -307,6 +307,13 @@ impl AppState {
                 media: self.media.views(),
                 ..self.reload.view()
             },
+            corpus: self
+                .hub
+                .logged_progress()
+                .borrow()
+                .alert
+                .as_deref()
+                .map(str::to_owned),
         }
     }
 }

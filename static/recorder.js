@@ -2,7 +2,8 @@
 // frames in docs/PROTOCOL.md). On a `record` frame it opens the microphone (and camera), records
 // WebM with MediaRecorder in one-second chunks and uploads them strictly in order, each with the
 // recording's own token, keeping the chunks not yet acknowledged in a bounded queue: a network
-// error or a 5xx is retried with back-off, a 409 resumes from the chunk the server names, a 410
+// error or a 5xx is retried with back-off (a 503 `corpus-unwritable` pauses: a full or
+// read-only corpus disk does not run down the retry budget), a 409 resumes from the chunk the server names, a 410
 // ends the recording (stopped, or consent withdrawn), and so does a 507 (a recording limit). It places the first sample on the server's
 // clock (a few `clock` round trips, the best kept) and says so in `recording-started`; on
 // `record-stop` it stops, uploads what is left and says `recording-stopped`. Whatever fails
@@ -165,6 +166,11 @@ function record(frame, { send, syncClock }) {
     if (response && response.status < 500) {
       return fail("upload-failed", `the server refused chunk ${chunk.seq}: HTTP ${response.status}`);
     }
+    // 503 corpus-unwritable: the corpus disk is full or read-only, which the operators are
+    // told; the recording pauses (the chunks wait in the queue) instead of running down the
+    // retry budget, and goes on once the server stores chunks again.
+    const refusal = response?.status === 503 ? await response.json().catch(() => ({})) : {};
+    if (refusal.code === "corpus-unwritable") failingSince = null;
     failingSince ??= performance.now();
     if (performance.now() - failingSince > RETRY_BUDGET_MS) {
       const why = response ? `HTTP ${response.status}` : "the network failed";

@@ -2,14 +2,17 @@
 //! binary and a real file system: `docent` runs under a 64 KiB file size limit (`ulimit -f`,
 //! with `SIGXFSZ` ignored, so a write beyond it fails with `EFBIG` as a full disk would). It is
 //! triggered over HTTP until it answers `503 corpus-unwritable` (the request that met the limit
-//! is carried out but not confirmed; the next is refused); then every trigger it answered `202`
-//! is in the log, every line written is whole, and the run ends with exit status 1.
+//! is carried out but not confirmed; the next is refused). The server keeps serving, and says
+//! why in the operator's words (`/api/state`'s `corpus`, the `corpus.unwritable` event); every
+//! trigger it answered `202` is in the log, every line written is whole. The limit never goes
+//! away, so the events kept in memory are lost at the stop: the run ends with exit status 1.
 
 use crate::common;
 
 use std::process::Command;
 
 use common::TempBundle;
+use common::WsClient;
 use common::process::{serve_args, start};
 use serde_json::{Value, json};
 
@@ -33,6 +36,7 @@ async fn a_log_that_cannot_grow_refuses_triggers_and_keeps_every_acknowledged_on
         .arg(env!("CARGO_BIN_EXE_docent"))
         .args(serve_args(bundle.path(), &corpus));
     let (mut child, addr) = start(command);
+    let mut op = WsClient::operator_at(&addr).await;
 
     let client = reqwest::Client::new();
     let url = format!("http://{addr}/api/acts/OK/trigger");
@@ -78,7 +82,22 @@ async fn a_log_that_cannot_grow_refuses_triggers_and_keeps_every_acknowledged_on
         acknowledged.len()
     );
 
-    // A graceful stop: the run reports the failed writes with exit status 1.
+    // The server keeps serving, and the operator is told what to do.
+    let told = op.event("corpus.unwritable").await;
+    assert_eq!(told["fault"], "too-large", "{told}");
+    let state: Value = (client.get(format!("http://{addr}/api/state")))
+        .bearer_auth(common::OPERATOR_TOKEN)
+        .send()
+        .await
+        .expect("the server answers")
+        .json()
+        .await
+        .expect("a JSON body");
+    let words = state["corpus"].as_str().expect("the operator's words");
+    assert_eq!(words, told["message"], "{state}");
+    assert!(words.contains("raise the file size limit"), "{words}");
+
+    // A graceful stop: the events still waiting are lost, so the run ends with exit status 1.
     let stopped = Command::new("kill")
         .arg(child.id().to_string())
         .status()

@@ -20,6 +20,7 @@ mod consent_under_load;
 mod corpus_annotations;
 mod corpus_cli;
 mod corpus_export;
+mod corpus_faults;
 mod corpus_kill;
 mod corpus_log;
 mod corpus_recording;

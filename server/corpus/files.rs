@@ -2,6 +2,7 @@
 //! (a day log, a session's log); the writer switches when the next lines belong elsewhere,
 //! syncing the file it leaves completely first, so that a finished session is on disk.
 
+use std::collections::HashSet;
 use std::fs::{File, OpenOptions};
 use std::io::{self, Read, Seek, SeekFrom, Write};
 use std::path::{Path, PathBuf};
@@ -17,12 +18,25 @@ pub(super) trait Sink {
     fn written(&mut self);
     /// Syncs the open file completely and closes it.
     fn close(&mut self) -> io::Result<()>;
+    /// Whether the open file was removed (its folder deleted, say) since it was opened: lines
+    /// written to it are then in no file anyone can read.
+    fn removed(&mut self) -> io::Result<bool>;
+    /// Closes the open file without waiting for it (it was removed): the next
+    /// [`Sink::file_for`] makes it again, with its folders.
+    fn forget(&mut self);
+    /// A file this run wrote before, closed, and found missing when it opened it again (so
+    /// made it again), once.
+    fn take_remade(&mut self) -> Option<PathBuf>;
 }
 
 /// The open log file and its syncer.
 pub(super) struct Files {
     sync_interval: Duration,
     open: Option<Open>,
+    /// Every file opened in this run (the day log is opened again after each session).
+    opened: HashSet<PathBuf>,
+    /// One of them, found missing when opened again.
+    remade: Option<PathBuf>,
 }
 
 struct Open {
@@ -37,6 +51,8 @@ impl Files {
         Files {
             sync_interval,
             open: None,
+            opened: HashSet::new(),
+            remade: None,
         }
     }
 
@@ -45,7 +61,12 @@ impl Files {
             self.close()?;
         }
         if self.open.is_none() {
+            if self.opened.contains(path) && !path.exists() {
+                tracing::warn!(path = %path.display(), "a corpus log this run wrote was removed: making it again");
+                self.remade = Some(path.to_owned());
+            }
             let file = open_for_append(path)?;
+            self.opened.insert(path.to_owned());
             let syncer = Syncer::start(file.try_clone()?, self.sync_interval)?;
             self.open = Some(Open {
                 path: path.to_owned(),
@@ -72,6 +93,33 @@ impl Sink for Files {
         match self.open.take() {
             Some(open) => open.syncer.finish(&open.file),
             None => Ok(()),
+        }
+    }
+
+    fn removed(&mut self) -> io::Result<bool> {
+        use std::os::unix::fs::MetadataExt;
+        match &self.open {
+            // One `fstat` per batch written: no name left means removed.
+            Some(open) => Ok(open.file.metadata()?.nlink() == 0),
+            None => Ok(false),
+        }
+    }
+
+    fn take_remade(&mut self) -> Option<PathBuf> {
+        self.remade.take()
+    }
+
+    fn forget(&mut self) {
+        if let Some(open) = self.open.take() {
+            // Told by the writer already: not again when it is made again.
+            self.opened.remove(&open.path);
+            // Syncing a removed file keeps nothing; only its thread is stopped.
+            drop(open.syncer);
+            tracing::warn!(
+                path = %open.path.display(),
+                "the corpus log was removed under the running server: making it again and \
+                 writing its last lines there"
+            );
         }
     }
 }

@@ -16,6 +16,8 @@
 //! - `files`: the file being appended to, switched when the lines belong elsewhere; `sync`:
 //!   the thread that syncs it at the `--corpus-sync` interval.
 //! - `manifest`: a session's `session.json`, replaced whole after its lines are written.
+//! - `unwritten`: the lines not written yet, kept in order through a failing disk, written
+//!   again into a log file removed under the writer.
 //! - `failures`: write failures (a full disk) counted, said and retried at a bounded pace.
 //!
 //! Reading. [`catalog`], [`session_folder`], [`log_lock`], [`log_scan`] and [`purge`] read a
@@ -42,6 +44,7 @@ pub mod recover;
 mod route;
 pub mod session_folder;
 mod sync;
+mod unwritten;
 mod writer;
 
 use std::io;

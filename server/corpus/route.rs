@@ -80,6 +80,16 @@ impl Route {
         Route { folders, ..self }
     }
 
+    /// The corpus folder.
+    pub(super) fn corpus(&self) -> &std::path::Path {
+        &self.corpus
+    }
+
+    /// The running session's folder and its manifest as the last event placed left it.
+    pub(super) fn open_session(&self) -> Option<(PathBuf, SessionManifest)> {
+        self.open.clone()
+    }
+
     /// Where `event` goes; call once per event, in `seq` order.
     pub(super) fn place(&mut self, event: &Event) -> Place {
         let mut changed = false;

@@ -1,22 +1,27 @@
 //! The writer thread's loop: group commit. Each batch of events becomes one buffer of whole
 //! JSON lines per file it goes to (`route.rs` decides: a session's log or the day log), each
 //! handed to the operating system with one `write(2)` (more only if the kernel takes part of
-//! it); only when that returned does the hub learn the batch is logged. A failed write
-//! (a full disk) keeps the bytes not written, in order, and retries them, so the file never
-//! gets a line with a gap in it; meanwhile acknowledgements are refused, and events wait in
-//! memory up to [`MAX_UNWRITTEN`].
+//! it); only when that returned does the hub learn the batch is logged.
+//!
+//! The writer never gives up. A failed write (a full or read-only disk, an I/O error) keeps
+//! the bytes not written, in order (`unwritten.rs`), reports the failure (acknowledgements
+//! are refused meanwhile), publishes `corpus.unwritable` with words for the operator, and
+//! tries again every second; the first write that works writes everything kept, then
+//! publishes `corpus.gap` (when events had to be dropped) and `corpus.writable`. A log file
+//! removed under it (its folder deleted) is made again, its last lines written there, and
+//! `corpus.recreated` said.
 
-use std::collections::VecDeque;
 use std::io;
-use std::path::PathBuf;
 use std::sync::{Arc, Mutex};
 use std::time::Duration;
 
 use crate::failures::Failures;
 use crate::files::{Files, Sink};
-use crate::manifest::SessionManifest;
-use crate::route::{Place, Route};
-use docent_protocol::events::Event;
+use crate::route::Route;
+use crate::unwritten::{MAX_UNWRITTEN, Unwritten};
+use docent_protocol::events::{
+    CorpusFault, CorpusGap, CorpusRecreated, CorpusWritable, Event, EventKind,
+};
 
 use crate::lock;
 
@@ -26,8 +31,10 @@ pub struct Logged {
     /// Every event up to this `seq` has been handed to the operating system (`write(2)`
     /// returned), so it survives a crash or `kill -9` of Docent.
     pub through: u64,
-    /// Why the log cannot be written now (a full disk, an I/O error); `None` while it can.
+    /// Why the log cannot be written now (the operating system's error); `None` while it can.
     pub failure: Option<Arc<str>>,
+    /// What the operator is told while it cannot (what happened and what to do).
+    pub alert: Option<Arc<str>>,
     /// The writer has stopped: nothing published later will be written.
     pub ended: bool,
 }
@@ -50,6 +57,9 @@ pub trait Feed: Send + Sync + 'static {
     fn sleep_until_published(&self);
     /// Reports how far the log is written.
     fn report(&self, logged: Logged);
+    /// Publishes an event about the log itself (`corpus.*`) like any other: clients see it
+    /// at once, and the writer takes it with the next batch.
+    fn publish(&self, kind: EventKind);
 }
 
 /// Writes the pending events at once, on the caller's thread, if no one else is writing:
@@ -73,10 +83,6 @@ const MAX_BACKOFF: u32 = 4;
 /// publish wakes it.
 const QUIET_TICKS: u32 = 16;
 
-/// While the log cannot be written, at most this many bytes of events wait for it; events
-/// beyond are lost (counted, and the run ends with an error).
-const MAX_UNWRITTEN: usize = 64 * 1024 * 1024;
-
 /// Runs until the hub closes the corpus; returns the number of events written.
 pub(super) fn run<F: Feed>(route: Route, feed: F, sync_interval: Duration) -> io::Result<u64> {
     run_into(Files::new(sync_interval), route, feed)
@@ -90,7 +96,7 @@ fn run_into<S: Sink + Send + 'static, F: Feed>(files: S, route: Route, feed: F) 
             route,
             files,
             batch: Vec::new(),
-            out: Unwritten::default(),
+            out: Unwritten::new(MAX_UNWRITTEN),
             failures: Failures::default(),
         }),
         feed,
@@ -152,147 +158,114 @@ impl<S: Sink> Log<S> {
         let took = self.batch.len();
         for event in self.batch.drain(..) {
             let place = self.route.place(&event);
-            self.out.push(&event, place, &mut self.failures);
+            self.out.push(&event, place);
         }
         if self.out.is_empty() || !self.failures.may_retry() {
             return took;
         }
-        match self.out.write_to(&mut self.files) {
+        let written = self.out.write_to(&mut self.files);
+        self.tell_remade(feed);
+        match written {
             Ok(()) => {
-                self.failures.recovered();
+                let recovered = self.failures.recovered();
                 feed.report(self.out.logged(None));
+                // Everything kept is written: events are kept again from here on.
+                let lost = self.tell_gap(feed, recovered.map(|(_, fault)| fault));
+                if let Some((failed_for, _)) = recovered {
+                    self.tell_recovered(feed, failed_for, lost);
+                }
             }
             Err(error) => {
-                let message = self.failures.note(&error);
-                feed.report(self.out.logged(Some(message)));
+                if let Some(event) = self.failures.note(&error, self.route.corpus()) {
+                    feed.publish(EventKind::CorpusUnwritable(event));
+                }
+                feed.report(self.out.logged(self.failures.report()));
             }
         }
         took
     }
 
-    /// The last write, the last sync, and the run's verdict.
+    /// Says which files were made again, and writes the session's manifest beside a
+    /// session's log made again (its folder went with it).
+    fn tell_remade(&mut self, feed: &impl Feed) {
+        for path in std::mem::take(&mut self.out.remade) {
+            if let Some((folder, manifest)) = self.route.open_session()
+                && path.parent() == Some(folder.as_path())
+                && let Err(error) = manifest.write_to(&folder)
+            {
+                tracing::error!(%error, folder = %folder.display(), "cannot write the session's manifest again");
+            }
+            let path = path.display().to_string();
+            feed.publish(EventKind::CorpusRecreated(CorpusRecreated::of(&path)));
+        }
+    }
+
+    /// Says which events were dropped while what was kept waited, if any; returns the words
+    /// for the operator about them.
+    fn tell_gap(&mut self, feed: &impl Feed, fault: Option<CorpusFault>) -> Option<String> {
+        let (from, to, count) = self.out.dropped.take()?;
+        self.failures.lost += count;
+        tracing::error!(
+            from,
+            to,
+            count,
+            "corpus events lost: too many waited to be written"
+        );
+        let reason = format!(
+            "more than {} MiB of events waited for the log to be written",
+            MAX_UNWRITTEN >> 20
+        );
+        feed.publish(EventKind::CorpusGap(CorpusGap {
+            from,
+            to,
+            count,
+            fault,
+            reason,
+        }));
+        Some(format!(
+            " {count} events published while it could not be were lost (seq {from} to {to})."
+        ))
+    }
+
+    /// Says that the log is written again (after `failed_for`), with what it `lost`.
+    fn tell_recovered(&mut self, feed: &impl Feed, failed_for: Duration, lost: Option<String>) {
+        let path = self.route.corpus().display().to_string();
+        let mut message =
+            format!("The corpus log is written again ({path}): triggers are accepted.");
+        message += lost.as_deref().unwrap_or_default();
+        let unwritable_ms = u64::try_from(failed_for.as_millis()).unwrap_or(u64::MAX);
+        feed.publish(EventKind::CorpusWritable(CorpusWritable {
+            path,
+            unwritable_ms,
+            message,
+        }));
+    }
+
+    /// The last write, the last sync, and the run's verdict: an error when events were lost.
     fn finish(&mut self, feed: &impl Feed) -> io::Result<u64> {
         if !self.out.is_empty()
             && let Err(error) = self.out.write_to(&mut self.files)
         {
-            self.failures.note(&error);
+            self.failures.note(&error, self.route.corpus());
             // What is still unwritten now never will be.
             self.failures.lost += self.out.waiting;
         }
-        feed.report(self.out.logged(self.failures.current.clone()));
+        if let Some((_, _, count)) = self.out.dropped.take() {
+            self.failures.lost += count;
+        }
+        feed.report(self.out.logged(self.failures.report()));
         let synced = self.files.close();
-        match self.failures.count + self.failures.lost {
-            0 => synced.map(|()| self.out.lines),
-            _ => Err(io::Error::other(self.failures.summary())),
+        if self.failures.lost > 0 {
+            return Err(io::Error::other(self.failures.summary()));
         }
-    }
-}
-
-/// Lines handed to the writer and not yet written, in order, one segment per run of lines
-/// for the same file; and how far the log is written.
-#[derive(Default)]
-struct Unwritten {
-    segments: VecDeque<Segment>,
-    /// Bytes in all segments.
-    bytes: usize,
-    /// Every line up to this `seq` is written.
-    through: u64,
-    /// Lines written.
-    lines: u64,
-    /// Lines in the segments.
-    waiting: u64,
-}
-
-/// Lines for one file.
-struct Segment {
-    file: PathBuf,
-    bytes: Vec<u8>,
-    /// The `seq` of its last line.
-    last_seq: u64,
-    lines: u64,
-    /// A session's manifest as its lines leave it, written once they are.
-    manifest: Option<(PathBuf, SessionManifest)>,
-}
-
-impl Unwritten {
-    fn is_empty(&self) -> bool {
-        self.segments.is_empty()
-    }
-
-    fn push(&mut self, event: &Event, place: Place, failures: &mut Failures) {
-        let json = event.json();
-        if self.bytes + json.len() >= MAX_UNWRITTEN {
-            failures.lost += 1;
-            return;
+        if self.failures.count > 0 {
+            // Every event reached the log in the end: said, but not a failed run.
+            tracing::warn!(
+                "{}; every event was written in the end",
+                self.failures.summary()
+            );
         }
-        let same_file = self.segments.back().is_some_and(|s| s.file == place.file);
-        if !same_file {
-            self.segments.push_back(Segment {
-                file: place.file,
-                bytes: Vec::new(),
-                last_seq: 0,
-                lines: 0,
-                manifest: None,
-            });
-        }
-        let segment = self.segments.back_mut().expect("pushed above");
-        let before = segment.bytes.len();
-        event.write_line(&mut segment.bytes, place.session_start_us);
-        self.bytes += segment.bytes.len() - before;
-        segment.last_seq = event.seq;
-        segment.lines += 1;
-        if place.manifest.is_some() {
-            segment.manifest = place.manifest;
-        }
-        self.waiting += 1;
-    }
-
-    /// Writes every waiting segment to its file, in order, and the manifests they carry;
-    /// keeps what the kernel did not take when a write fails.
-    fn write_to(&mut self, sink: &mut impl Sink) -> io::Result<()> {
-        while let Some(segment) = self.segments.front_mut() {
-            let file = sink.file_for(&segment.file)?;
-            let mut done = 0;
-            let result = loop {
-                if done == segment.bytes.len() {
-                    break Ok(());
-                }
-                match file.write(&segment.bytes[done..]) {
-                    Ok(0) => break Err(io::Error::from(io::ErrorKind::WriteZero)),
-                    Ok(n) => done += n,
-                    Err(e) if e.kind() == io::ErrorKind::Interrupted => {}
-                    Err(e) => break Err(e),
-                }
-            };
-            // What was taken is not written again: the rest follows right after it.
-            segment.bytes.drain(..done);
-            self.bytes -= done;
-            if done > 0 {
-                sink.written();
-            }
-            result?;
-            if let Some((dir, manifest)) = &segment.manifest {
-                manifest.write_to(dir)?;
-                if manifest.ended.is_some() {
-                    // A finished session's log is synced and closed (its lock released) now,
-                    // not when the next event goes elsewhere.
-                    sink.close()?;
-                }
-            }
-            self.through = segment.last_seq;
-            self.lines += segment.lines;
-            self.waiting -= segment.lines;
-            self.segments.pop_front();
-        }
-        Ok(())
-    }
-
-    fn logged(&self, failure: Option<Arc<str>>) -> Logged {
-        Logged {
-            through: self.through,
-            failure,
-            ended: false,
-        }
+        synced.map(|()| self.out.lines)
     }
 }
 
@@ -301,14 +274,20 @@ mod tests {
     use std::io::Write;
 
     use super::*;
-    use docent_protocol::events::{EventKind, Source};
+    use crate::route::Place;
+    use docent_protocol::events::Source;
 
     fn event(seq: u64) -> Event {
         let kind = EventKind::ContextChanged {
             source: Source::Http,
             context: format!("T{seq}"),
         };
-        Event::new(seq, std::time::SystemTime::now(), seq, kind)
+        Event::new(
+            seq,
+            std::time::UNIX_EPOCH + Duration::from_secs(1_795_000_000),
+            seq,
+            kind,
+        )
     }
 
     /// Takes `room` bytes, then fails as a full disk does, until given more room.
@@ -327,6 +306,16 @@ mod tests {
         fn close(&mut self) -> io::Result<()> {
             Ok(())
         }
+
+        fn removed(&mut self) -> io::Result<bool> {
+            Ok(false)
+        }
+
+        fn forget(&mut self) {}
+
+        fn take_remade(&mut self) -> Option<std::path::PathBuf> {
+            None
+        }
     }
 
     /// Every file is `/dev/full`.
@@ -341,6 +330,16 @@ mod tests {
 
         fn close(&mut self) -> io::Result<()> {
             Ok(())
+        }
+
+        fn removed(&mut self) -> io::Result<bool> {
+            Ok(false)
+        }
+
+        fn forget(&mut self) {}
+
+        fn take_remade(&mut self) -> Option<std::path::PathBuf> {
+            None
         }
     }
 
@@ -370,15 +369,14 @@ mod tests {
 
     #[test]
     fn a_write_cut_short_by_a_full_disk_is_completed_without_a_gap_when_space_returns() {
-        let mut out = Unwritten::default();
-        let mut failures = Failures::default();
+        let mut out = Unwritten::new(MAX_UNWRITTEN);
         let mut disk = Disk {
             data: Vec::new(),
             room: 30,
         };
         let (first, second) = (event(1), event(2));
-        out.push(&first, place(), &mut failures);
-        out.push(&second, place(), &mut failures);
+        out.push(&first, place());
+        out.push(&second, place());
         assert!(out.write_to(&mut disk).is_err());
         assert_eq!(out.logged(None).through, 0, "nothing confirmed");
         disk.room = usize::MAX;
@@ -393,6 +391,7 @@ mod tests {
     struct TestFeed {
         pending: Mutex<Vec<Arc<Event>>>,
         reports: Mutex<Vec<Logged>>,
+        published: Mutex<Vec<EventKind>>,
     }
 
     impl Feed for Arc<TestFeed> {
@@ -408,6 +407,9 @@ mod tests {
         fn sleep_until_published(&self) {}
         fn report(&self, logged: Logged) {
             lock(&self.reports).push(logged);
+        }
+        fn publish(&self, kind: EventKind) {
+            lock(&self.published).push(kind);
         }
     }
 
@@ -429,5 +431,95 @@ mod tests {
             .expect("the failure is reported");
         assert!(failure.contains("No space left on device"), "{failure}");
         assert!(reports.iter().all(|r| r.through == 0), "nothing confirmed");
+    }
+
+    #[test]
+    fn a_full_disk_is_told_once_and_its_recovery_after_the_events_it_had_to_drop() {
+        let feed = Arc::new(TestFeed::default());
+        let corpus = std::path::PathBuf::from("/srv/corpus");
+        let mut log = Log {
+            route: Route::new(corpus),
+            files: Disk {
+                data: Vec::new(),
+                room: 0,
+            },
+            batch: Vec::new(),
+            out: Unwritten::new(event(1).json().len() + 10),
+            failures: Failures::default(),
+        };
+        lock(&feed.pending).extend([1, 2].map(|seq| Arc::new(event(seq))));
+        log.commit(&feed);
+        log.failures.retry_now();
+        log.commit(&feed);
+        let failing = lock(&feed.reports).last().cloned().expect("reported");
+        assert_eq!(failing.through, 0);
+        let alert = failing.alert.expect("the operator's words");
+        assert!(
+            alert.starts_with("The corpus disk is full (/srv/corpus)"),
+            "{alert}"
+        );
+
+        lock(&feed.pending).push(Arc::new(event(3)));
+        log.files.room = usize::MAX;
+        log.failures.retry_now();
+        log.commit(&feed);
+        let written = lock(&feed.reports).last().cloned().expect("reported");
+        assert_eq!((written.through, written.failure), (1, None));
+        assert_eq!(
+            String::from_utf8(log.files.data.clone()).unwrap(),
+            format!("{}\n", event(1).json())
+        );
+        let told: Vec<String> = lock(&feed.published)
+            .iter()
+            .map(|k| serde_json::to_string(k).unwrap())
+            .collect();
+        assert_eq!(told.len(), 3, "{told:?}");
+        assert!(
+            told[0].contains(r#""type":"corpus.unwritable","fault":"disk-full""#),
+            "{}",
+            told[0]
+        );
+        assert!(
+            told[1].contains(r#""type":"corpus.gap","from":2,"to":3,"count":2"#),
+            "{}",
+            told[1]
+        );
+        assert!(
+            told[2].contains(r#""type":"corpus.writable""#),
+            "{}",
+            told[2]
+        );
+        assert!(
+            told[2].contains("2 events published while it could not be were lost (seq 2 to 3)"),
+            "{}",
+            told[2]
+        );
+        assert_eq!(log.failures.lost, 2);
+    }
+
+    #[test]
+    fn events_dropped_while_the_log_could_be_written_are_told_and_the_next_ones_kept() {
+        let feed = Arc::new(TestFeed::default());
+        let mut log = Log {
+            route: Route::new("/srv/corpus".into()),
+            files: Disk {
+                data: Vec::new(),
+                room: usize::MAX,
+            },
+            batch: Vec::new(),
+            out: Unwritten::new(event(1).json().len() + 10),
+            failures: Failures::default(),
+        };
+        lock(&feed.pending).extend([1, 2, 3].map(|seq| Arc::new(event(seq))));
+        log.commit(&feed);
+        lock(&feed.pending).push(Arc::new(event(4)));
+        log.commit(&feed);
+        let expected = format!("{}\n{}\n", event(1).json(), event(4).json());
+        assert_eq!(String::from_utf8(log.files.data.clone()).unwrap(), expected);
+        let told = lock(&feed.published);
+        let [EventKind::CorpusGap(gap)] = told.as_slice() else {
+            panic!("one gap: {told:?}");
+        };
+        assert_eq!((gap.from, gap.to, gap.count, gap.fault), (2, 3, 2, None));
     }
 }

@@ -347,6 +347,12 @@ impl Feed for CorpusFeed {
     fn report(&self, logged: Logged) {
         self.inner.logged.send_replace(logged);
     }
+
+    /// Publishes the writer's own news (`corpus.*`) like any event.
+    fn publish(&self, kind: EventKind) {
+        let inner = Arc::clone(&self.inner);
+        Hub { inner }.publish(kind);
+    }
 }
 
 impl Drop for CorpusFeed {
@@ -393,8 +399,7 @@ mod tests {
         );
         feed.report(Logged {
             through: 10,
-            failure: None,
-            ended: false,
+            ..Logged::default()
         });
         let then = std::future::poll_fn(|cx| Poll::Ready(waiting.as_mut().poll(cx))).await;
         assert!(then.is_ready(), "the log caught up: readers go on");

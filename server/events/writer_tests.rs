@@ -91,7 +91,7 @@ async fn a_failure_the_writer_reports_refuses_acknowledgements_in_words() {
     feed.report(Logged {
         through: 0,
         failure: Some("No space left on device (os error 28)".into()),
-        ended: false,
+        ..Logged::default()
     });
     let refused = hub.logged(event.seq).await.unwrap_err();
     assert!(

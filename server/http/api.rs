@@ -216,6 +216,8 @@ pub async fn get_state(State(state): State<AppState>, _: Authorized) -> Json<Val
         "recording": state.recordings.view(),
         "fleet": state.fleet.state_json(),
         "limits": LimitsView::new(&state.limits.server, state.limits.open_files),
+        // While the corpus log cannot be written: what the operator is told.
+        "corpus": state.hub.logged_progress().borrow().alert.as_deref(),
     }))
 }
 

@@ -44,6 +44,7 @@ fn home_state(pose: Option<Pose>) -> StateView {
         context: "Text".into(),
         language: english(),
         reload: ReloadView::default(),
+        corpus: None,
     }
 }
 

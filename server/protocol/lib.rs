@@ -13,7 +13,7 @@
 //! Map:
 //! - `events/`: [`events::EventKind`] and its parts, one file per family (`origin.rs`: who
 //!   triggered; `session.rs`: why a session ended; `recording.rs`; `robot.rs`;
-//!   `robot_link.rs`; `touch.rs`; `attract.rs`), `stamped.rs`, the [`events::Event`] line, and
+//!   `robot_link.rs`; `corpus.rs`: the log's own faults; `touch.rs`; `attract.rs`), `stamped.rs`, the [`events::Event`] line, and
 //!   `line.rs`, the same line read back ([`events::Line`]).
 //! - `open`: [`Open`], a code as written by a newer Docent, read back.
 //! - `client_frames`: [`client_frames::ClientFrame`], what a websocket client sends (its

@@ -25,6 +25,10 @@ pub struct StateView {
     /// Live reload: a refused save's problems, a folder that cannot be watched, settings not
     /// yet in effect (the operator console's banner).
     pub reload: ReloadView,
+    /// While the corpus log cannot be written: what the operator is told (the words of the
+    /// last `corpus.unwritable`); left out while it can.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub corpus: Option<String>,
 }
 
 /// What the touchscreen and projector show.

@@ -86,6 +86,17 @@ impl Recordings {
                 self.stop_all(StopReason::SessionEnded);
             }
             EventKind::ServerStopping => self.stop_all(StopReason::ServerStopping),
+            // A session that began while the log could not be written (its folder not made)
+            // is recorded from now on.
+            EventKind::CorpusWritable(_) => {
+                let waiting = lock(&self.inner).session.is_none();
+                if let Some((number, seq, mono)) = *running
+                    && waiting
+                    && self.visits.consent_of(number) == Some(Consent::Recorded)
+                {
+                    self.begin(number, seq, mono, settings()).await;
+                }
+            }
             EventKind::ClientConnected {
                 client,
                 role: ClientRole::Kiosk,
@@ -116,7 +127,8 @@ impl Recordings {
     }
 
     /// Session `number` may be recorded: once its first line is logged (its folder made), every
-    /// connected kiosk is asked to record.
+    /// connected kiosk is asked to record. While the log cannot be written it waits for
+    /// `corpus.writable`, which calls it again.
     async fn begin(
         self: &Arc<Self>,
         number: u64,
@@ -125,7 +137,12 @@ impl Recordings {
         settings: CorpusSettings,
     ) {
         let tracks = settings.record;
-        if !tracks.any() || self.hub.logged(seq).await.is_err() {
+        if !tracks.any() {
+            return;
+        }
+        if let Err(failure) = self.hub.logged(seq).await {
+            // Begun again on `corpus.writable`.
+            tracing::warn!(session = number, %failure, "the session is recorded once the corpus can be written");
             return;
         }
         let Some(dir) = self.folders.folder(seq) else {
@@ -258,7 +275,8 @@ impl Recordings {
     }
 }
 
-/// The events the controller acts on: sessions, consents, kiosks coming and going, shutdown.
+/// The events the controller acts on: sessions, consents, kiosks coming and going, shutdown,
+/// and the corpus written again (a session begun meanwhile is recorded from then on).
 fn acted_on(kind: &EventKind) -> bool {
     matches!(
         kind,
@@ -266,6 +284,7 @@ fn acted_on(kind: &EventKind) -> bool {
             | EventKind::ConsentChanged { .. }
             | EventKind::SessionEnded { .. }
             | EventKind::ServerStopping
+            | EventKind::CorpusWritable(_)
             | EventKind::ClientConnected {
                 role: ClientRole::Kiosk,
                 ..

@@ -73,6 +73,11 @@ pub async fn put_chunk(
             ));
         }
     };
+    // While the log cannot be written the recording waits: the kiosk keeps its chunks and
+    // sends them again (a 5xx), and the operators were told why (`corpus.unwritable`).
+    if let Some(failure) = state.hub.log_failure() {
+        return Err(paused(seq, &failure.to_string()));
+    }
     let (head, body) = request.into_parts();
     let limit = (head.extensions.get::<ConnectionLimits>())
         .map_or(ConnectionLimits::default().body_timeout, |l| l.body_timeout);
@@ -109,6 +114,15 @@ pub async fn put_chunk(
             })),
         )
             .into_response()),
+        // A disk that is full or read-only now may not be later: the kiosk tries again.
+        Appending::Done(Err(e))
+            if matches!(
+                e.kind(),
+                std::io::ErrorKind::StorageFull | std::io::ErrorKind::ReadOnlyFilesystem
+            ) =>
+        {
+            Err(paused(seq, &e.to_string()))
+        }
         Appending::Done(Err(e)) => {
             let message = format!("the server could not store chunk {seq} of recording {id}: {e}");
             recordings.failed(client, Some(id), FailureCode::DiskError, &message);
@@ -158,6 +172,15 @@ fn too_large() -> AppError {
         ErrorCode::BodyTooLarge,
         message,
     )
+}
+
+/// 503 `corpus-unwritable`: chunk `seq` is not stored because of `why`; the kiosk keeps it
+/// and the ones after it, and sends it again (`static/recorder.js` pauses).
+fn paused(seq: u64, why: &str) -> AppError {
+    AppError::log_unwritable(format!(
+        "chunk {seq} not stored: {why}. The recording pauses: send it again once the corpus \
+         can be written."
+    ))
 }
 
 /// 410 `recording-gone`: the kiosk stops uploading this recording.

@@ -5,6 +5,7 @@
 // the server has it). Signing in, the one websocket as an operator and lockouts are access.js;
 // the server's frames and events reach the panels through events.js; Stop, which never waits
 // (over HTTP when the websocket cannot or does not answer), is stop.js; keys.js the keyboard.
+// The corpus banner (the log cannot be written, in the server's words) is corpusbanner.js.
 // The live-reload banner (a refused save, a folder gone) is reloadbanner.js; after a good save
 // the act list is loaded again. What is left here: firing acts, answering proposals, marks, the notice line, and loading the
 // acts and the console's settings.
@@ -17,6 +18,7 @@ import { createCameraPanel } from "./camerapanel.js";
 import { createClients } from "./clients.js";
 import { createCaptionLine } from "./caption.js";
 import { createContext } from "./context.js";
+import { createCorpusBanner } from "./corpusbanner.js";
 import { byId, createNotice } from "./dom.js";
 import { createEvents } from "./events.js";
 import { createHistory } from "./history.js";
@@ -116,6 +118,7 @@ const robotLink = createRobotLink(byId("robot-link"));
 const captionLine = createCaptionLine(byId("caption-line"));
 const recording = createRecording({ status: byId("recording-status"), alert: byId("recording-alert") });
 
+const corpusBanner = createCorpusBanner(byId("corpus-banner"));
 const reloadBanner = createReloadBanner({
   element: byId("reload-banner"),
   onReloaded: () => loadActs().catch((error) => notice(`The acts could not be loaded: ${error.message}`)),
@@ -128,6 +131,7 @@ const access = createAccess({
   open,
   ...accessElements(byId),
   onFrame: (frame) => {
+    corpusBanner.onFrame(frame);
     reloadBanner.onFrame(frame);
     captionLine.onFrame(frame);
     events.onFrame(frame);

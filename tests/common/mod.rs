@@ -11,6 +11,7 @@ pub mod check;
 pub mod corpus;
 pub mod languages;
 pub mod mac_copy;
+pub mod mount;
 pub mod process;
 
 #[allow(unused_imports)] // As `dead_code` above.

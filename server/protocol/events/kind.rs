@@ -556,6 +556,19 @@ pub enum EventKind {
     /// The link to the robot's rosbridge server went up or down.
     #[serde(rename = "robot.link")]
     RobotLink(super::RobotLinkEvent),
+    /// The corpus log cannot be written (a full disk, a read-only one): events wait in
+    /// memory and new triggers are refused until it can (`docs/CORPUS.md`).
+    #[serde(rename = "corpus.unwritable")]
+    CorpusUnwritable(super::CorpusUnwritable),
+    /// The corpus log can be written again; the events kept meanwhile are in it, before this.
+    #[serde(rename = "corpus.writable")]
+    CorpusWritable(super::CorpusWritable),
+    /// Events lost while the log could not be written: their `seq`s are missing.
+    #[serde(rename = "corpus.gap")]
+    CorpusGap(super::CorpusGap),
+    /// A corpus log file was removed under the running server and made again.
+    #[serde(rename = "corpus.recreated")]
+    CorpusRecreated(super::CorpusRecreated),
     /// A recording started, stopped, failed or was deleted (`recording.*`, its own tag;
     /// written and read by the trait impls below).
     #[serde(skip)]

@@ -6,8 +6,10 @@ use std::time::{Duration, UNIX_EPOCH};
 
 use super::*;
 use crate::events::{
-    ActRef, AttractEnd, ClientRole, Consent, Event, FailureCode, LinkState, RecordingEvent,
-    RobotEvent, RobotLinkEvent, SessionEnd, Source, StopReason, Track,
+    ActRef, AttractEnd, ClientRole, Consent, CorpusFault, CorpusGap as Gap,
+    CorpusRecreated as Recreated, CorpusUnwritable as Unwritable, CorpusWritable as Writable,
+    Event, FailureCode, LinkState, RecordingEvent, RobotEvent, RobotLinkEvent, SessionEnd, Source,
+    StopReason, Track,
 };
 use crate::fleet_link::{LinkState as BrokerState, LinkView};
 use crate::{ErrorCode, Open, ProjectorState};
@@ -300,6 +302,25 @@ fn every_kind() -> Vec<EventKind> {
             file: "media/scan.tif".into(),
             reason: "ffmpeg cannot read it (Invalid data found when processing input)".into(),
         },
+        CorpusUnwritable(Unwritable {
+            fault: CorpusFault::DiskFull,
+            path: "/srv/corpus".into(),
+            error: "No space left on device (os error 28)".into(),
+            message: "The corpus disk is full (/srv/corpus): free space on it".into(),
+        }),
+        CorpusWritable(Writable {
+            path: "/srv/corpus".into(),
+            unwritable_ms: 4200,
+            message: "The corpus log is written again".into(),
+        }),
+        CorpusGap(Gap {
+            from: 20,
+            to: 29,
+            count: 10,
+            fault: Some(CorpusFault::ReadOnly),
+            reason: "64 MiB waited".into(),
+        }),
+        CorpusRecreated(Recreated::of("/srv/corpus/days/x.jsonl")),
     ]
 }
 
@@ -355,6 +376,10 @@ fn variant(kind: &EventKind) -> usize {
         Recording(RecordingEvent::Deleted { .. }) => 44,
         MediaConverted { .. } => 45,
         MediaFailed { .. } => 46,
+        CorpusUnwritable(_) => 47,
+        CorpusWritable(_) => 48,
+        CorpusGap(_) => 49,
+        CorpusRecreated(_) => 50,
     }
 }
 
@@ -373,7 +398,7 @@ fn every_variant_is_written_and_read_back_the_same_through_the_same_type() {
     let places: Vec<usize> = kinds.iter().map(variant).collect();
     assert_eq!(
         places,
-        (0..=46).collect::<Vec<_>>(),
+        (0..=50).collect::<Vec<_>>(),
         "one of each, in order"
     );
     let time = UNIX_EPOCH + Duration::from_millis(1_795_000_000_123);
@@ -499,7 +524,7 @@ fn a_type_newer_than_this_docent_is_passed_over_by_name() {
     // Every variant's tag, as serde's derived deserializers know them.
     assert_eq!(
         (EventKind::names().len(), RecordingEvent::names().len()),
-        (43, 4)
+        (47, 4)
     );
 }
 

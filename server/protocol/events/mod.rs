@@ -7,6 +7,7 @@
 //! corpus reads its lines back through the same types ([`Line`]).
 
 mod attract;
+mod corpus;
 mod kind;
 mod line;
 mod origin;
@@ -18,6 +19,7 @@ mod stamped;
 mod touch;
 
 pub use attract::{AttractEnd, AttractState};
+pub use corpus::{CorpusFault, CorpusGap, CorpusRecreated, CorpusUnwritable, CorpusWritable};
 pub use kind::EventKind;
 pub use line::{Head, Line, LineEvent, is_event_type, is_pose};
 pub use origin::{ActRef, ClientRole, Source};
