@@ -134,8 +134,9 @@ async fn tap_pause_and_jump(
     }
     let waited = tapped.elapsed();
     assert!(waited >= Duration::from_secs(2), "over after {waited:?}");
+    // Not an hour later, as on a wall clock moved back (wide: a busy machine is slow).
     assert!(
-        waited < Duration::from_secs(5),
+        waited < Duration::from_secs(15),
         "over only after {waited:?}"
     );
     events

@@ -55,10 +55,15 @@ async fn a_burst_of_signed_commands_is_answered_every_one() {
             };
             assert!(kind == "triggered" || kind == "rate-limited", "{frame}");
             let reference = reply["ref"].as_str().expect("a ref").to_owned();
-            answers.insert(reference, kind);
+            let again = answers.insert(reference, kind);
+            assert_eq!(again, None, "answered twice: {reply}");
         }
     }
     assert!(asked.iter().all(|r| answers.contains_key(r)));
     let refused = answers.values().filter(|k| *k == "rate-limited").count();
     println!("{COMMANDS} commands: {refused} refused as rate-limited, the rest run");
+    assert!(
+        refused > 0,
+        "bursts of {BURST} never filled the queue of 32"
+    );
 }

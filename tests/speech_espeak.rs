@@ -298,7 +298,7 @@ async fn a_hung_espeak_is_stopped_after_its_hang_limit_and_the_next_say_speaks()
         "failed after {waited:?}, before the limit {limit:?}"
     );
     assert!(
-        waited < limit + std::time::Duration::from_secs(2),
+        waited < limit + std::time::Duration::from_secs(5),
         "failed after {waited:?}, long after the limit {limit:?}"
     );
     assert!(

@@ -42,6 +42,8 @@ pub(super) struct Unwritten {
     pub(super) dropped: Option<(u64, u64, u64)>,
     /// Files found removed under the writer and made again, not yet told.
     pub(super) remade: Vec<PathBuf>,
+    /// The ranges dropped and told, reported in every [`Logged`].
+    pub(super) lost: Vec<(u64, u64)>,
 }
 
 /// Lines for one file.
@@ -69,6 +71,7 @@ impl Unwritten {
             waiting: 0,
             dropped: None,
             remade: Vec::new(),
+            lost: Vec::new(),
         }
     }
 
@@ -158,6 +161,7 @@ impl Unwritten {
             failure,
             alert,
             ended: false,
+            lost: self.lost.clone(),
         }
     }
 }

@@ -37,6 +37,20 @@ pub struct Logged {
     pub alert: Option<Arc<str>>,
     /// The writer has stopped: nothing published later will be written.
     pub ended: bool,
+    /// Ranges of `seq`s (first, last) dropped while the log could not be written: never
+    /// written although `through` passed them (`corpus.gap`), so never acknowledged.
+    pub lost: Vec<(u64, u64)>,
+}
+
+impl Logged {
+    /// Whether event `seq` is in the log: written through, and not in a range dropped.
+    pub fn holds(&self, seq: u64) -> bool {
+        self.through >= seq
+            && !self
+                .lost
+                .iter()
+                .any(|&(from, to)| (from..=to).contains(&seq))
+    }
 }
 
 /// The writer's end of whoever publishes events (the runtime's hub): where it takes events
@@ -205,6 +219,10 @@ impl<S: Sink> Log<S> {
     fn tell_gap(&mut self, feed: &impl Feed, fault: Option<CorpusFault>) -> Option<String> {
         let (from, to, count) = self.out.dropped.take()?;
         self.failures.lost += count;
+        // Told before `through` can pass the range: an acknowledgement waiting for one of
+        // these events is refused, never given.
+        self.out.lost.push((from, to));
+        feed.report(self.out.logged(None));
         tracing::error!(
             from,
             to,
@@ -521,5 +539,12 @@ mod tests {
             panic!("one gap: {told:?}");
         };
         assert_eq!((gap.from, gap.to, gap.count, gap.fault), (2, 3, 2, None));
+        // Every report that passes the dropped events says they are not in the log, so an
+        // acknowledgement waiting for one is refused.
+        for logged in lock(&feed.reports).iter().filter(|l| l.through >= 2) {
+            assert!(!logged.holds(2) && !logged.holds(3), "{logged:?}");
+        }
+        let last = lock(&feed.reports).last().cloned().expect("reported");
+        assert!(last.holds(1) && last.holds(4), "{last:?}");
     }
 }

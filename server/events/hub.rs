@@ -172,7 +172,7 @@ impl Hub {
 
     /// Whether every event up to `seq` is written to the operating system already.
     pub fn is_logged(&self, seq: u64) -> bool {
-        self.inner.logged.borrow().through >= seq
+        self.inner.logged.borrow().holds(seq)
     }
 
     /// Waits until every event up to `seq` is written to the operating system, so that an
@@ -182,18 +182,18 @@ impl Hub {
     pub async fn logged(&self, seq: u64) -> Result<(), LogUnwritable> {
         let mut rx = self.inner.logged.subscribe();
         if rx.borrow().through >= seq {
-            return Ok(());
+            return check_logged(&rx.borrow(), seq);
         }
         if self.inner.wrote_a_moment_ago() {
             // Under load: wait for company, so that one write serves every acknowledgement
             // of the next moment, and their answers leave together.
             tokio::time::sleep(GATHER).await;
             if rx.borrow().through >= seq {
-                return Ok(());
+                return check_logged(&rx.borrow(), seq);
             }
         }
         if self.inner.try_commit() && rx.borrow().through >= seq {
-            return Ok(());
+            return check_logged(&rx.borrow(), seq);
         }
         self.inner.ask_write();
         let waited = rx.wait_for(|l| l.through >= seq || l.failure.is_some() || l.ended);

@@ -33,8 +33,13 @@ impl LogUnwritable {
 
 /// `Ok` when `logged` covers `seq`; otherwise why not.
 pub(super) fn check_logged(logged: &Logged, seq: u64) -> Result<(), LogUnwritable> {
-    if logged.through >= seq {
+    if logged.holds(seq) {
         return Ok(());
+    }
+    if logged.through >= seq {
+        return Err(LogUnwritable(
+            "it was dropped while the log could not be written (see corpus.gap)".into(),
+        ));
     }
     Err(LogUnwritable(match &logged.failure {
         Some(failure) => Arc::clone(failure),

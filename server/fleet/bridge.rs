@@ -169,9 +169,9 @@ impl Bridge {
     fn command(&mut self, payload: &[u8], commands: &mpsc::Sender<Verified>) {
         let from = (self.broker_host.as_str(), self.identity.robot.as_str());
         match commands::check(&self.state, from, &mut self.replays, payload) {
-            Ok(verified) => {
-                if let Err(mpsc::error::TrySendError::Full(verified)) = commands.try_send(verified)
-                {
+            Ok(verified) => match commands.try_send(verified) {
+                Ok(()) => {}
+                Err(mpsc::error::TrySendError::Full(verified)) => {
                     tracing::warn!(
                         "a signed MQTT command was refused: {COMMAND_QUEUE} wait to run"
                     );
@@ -181,10 +181,15 @@ impl Bridge {
                         .try_publish(&topic, QoS::AtLeastOnce, false, reply)
                         .is_err()
                     {
-                        tracing::debug!("a refusal on {topic} was not sent: the link is busy");
+                        tracing::warn!(
+                            "a signed MQTT command was neither run nor answered: the link is busy"
+                        );
                     }
                 }
-            }
+                Err(mpsc::error::TrySendError::Closed(_)) => {
+                    tracing::warn!("a signed MQTT command was not run: the server is stopping");
+                }
+            },
             Err(reply) => {
                 let topic = topic(&self.identity.robot, "reply");
                 // Not waited for: a flood of refusals must not hold up the loop.

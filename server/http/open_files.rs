@@ -3,7 +3,7 @@
 //! espeak-ng and ffmpeg. A process that runs out of them cannot accept (the accept loop logs
 //! and waits) and cannot open files, which is worse than the `503 too-many-connections` the
 //! connection limit gives. So at start-up the soft limit (`RLIMIT_NOFILE`) is raised to the hard
-//! one when `server: connections: total` needs it (systemd's default soft limit is 1,024, the
+//! one when `server: connections: total` needs it (to what it needs, no more) (systemd's default soft limit is 1,024, the
 //! hard one 524,288), and when even the hard limit is too low the person starting Docent is
 //! told which setting to change.
 
@@ -50,14 +50,16 @@ pub fn make_room(total: usize) -> OpenFiles {
     }
 }
 
-/// The soft limit to set for `needed` descriptors: the hard limit (or `needed` when there
-/// is none); `None` when the soft limit is enough already, or cannot go higher.
+/// The soft limit to set for `needed` descriptors: `needed`, or the hard limit when it is
+/// lower; `None` when the soft limit is enough already, or cannot go higher. Never more than
+/// needed: espeak-ng and ffmpeg inherit it, and a program that uses `select()` breaks beyond
+/// 1,024 (why systemd keeps the soft limit there).
 fn raise_to(limit: &Rlimit, needed: u64) -> Option<u64> {
     let soft = limit.current?;
     if soft >= needed {
         return None;
     }
-    let target = limit.maximum.unwrap_or(needed);
+    let target = limit.maximum.map_or(needed, |hard| hard.min(needed));
     (target > soft).then_some(target)
 }
 
@@ -86,11 +88,11 @@ mod tests {
     }
 
     #[test]
-    fn the_soft_limit_is_raised_to_the_hard_one_only_when_needed() {
-        // systemd's defaults and the default total: raised to the hard limit.
+    fn the_soft_limit_is_raised_to_what_is_needed_only_when_needed() {
+        // systemd's defaults and the default total: raised to what is needed, no further.
         assert_eq!(
             raise_to(&limit(Some(1024), Some(524_288)), 1088),
-            Some(524_288)
+            Some(1088)
         );
         assert_eq!(raise_to(&limit(Some(4096), Some(4096)), 1088), None);
         // Hard limit lower than needed: raised as far as it goes.

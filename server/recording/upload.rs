@@ -114,12 +114,14 @@ pub async fn put_chunk(
             })),
         )
             .into_response()),
-        // A disk that is full or read-only now may not be later: the kiosk tries again.
+        // A disk that is full or read-only now may not be later: the kiosk tries again, while
+        // the log's own failure tells the operator. With the log still written, nobody else
+        // would tell: the recording fails with the reason instead (below).
         Appending::Done(Err(e))
             if matches!(
                 e.kind(),
                 std::io::ErrorKind::StorageFull | std::io::ErrorKind::ReadOnlyFilesystem
-            ) =>
+            ) && state.hub.log_failure().is_some() =>
         {
             Err(paused(seq, &e.to_string()))
         }

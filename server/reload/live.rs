@@ -11,7 +11,7 @@ use std::time::Instant;
 use tokio::sync::mpsc;
 
 use crate::content::config::SiteConfig;
-use crate::content::{Bundle, Diagnostic, corpus_fingerprint, load_bundle};
+use crate::content::{Bundle, Diagnostic, LoadReport, corpus_fingerprint, load_bundle};
 use crate::events::{ClientRole, EventKind};
 use crate::reload::settings::{kiosk_shell_changed, not_applied};
 use crate::reload::watch::{BundleWatcher, Seen};
@@ -134,15 +134,7 @@ impl Reloader {
         }
         let started = Instant::now();
         let root = self.root.clone();
-        let loaded = tokio::task::spawn_blocking(move || {
-            let report = load_bundle(&root);
-            // Only for a bundle that goes live; the same thread, so the same files.
-            let hash = report
-                .bundle
-                .as_ref()
-                .and_then(|_| corpus_fingerprint(&root));
-            (report, hash)
-        });
+        let loaded = tokio::task::spawn_blocking(move || loaded_with_hash(&root));
         let (report, bundle_hash) = match loaded.await {
             Ok(loaded) => loaded,
             Err(e) => {
@@ -258,4 +250,26 @@ impl Reloader {
 
 fn millis(since: Instant) -> u64 {
     u64::try_from(since.elapsed().as_millis()).unwrap_or(u64::MAX)
+}
+
+/// The bundle at `root` and, for one that loaded, the fingerprint of the files it was loaded
+/// from (`act.triggered`'s `bundle_hash`): taken before and after the load, which is done
+/// again when a save fell between them; `None` when the files kept changing.
+fn loaded_with_hash(root: &std::path::Path) -> (LoadReport, Option<String>) {
+    let mut tries = 0;
+    loop {
+        let before = corpus_fingerprint(root);
+        let report = load_bundle(root);
+        if report.bundle.is_none() {
+            return (report, None);
+        }
+        let after = corpus_fingerprint(root);
+        if before == after {
+            return (report, after);
+        }
+        tries += 1;
+        if tries == 3 {
+            return (report, None);
+        }
+    }
 }

@@ -9,6 +9,7 @@
 
 use std::net::IpAddr;
 use std::pin::pin;
+use std::sync::atomic::{AtomicBool, Ordering};
 use std::time::{Duration, Instant};
 
 use axum::Extension;
@@ -119,6 +120,8 @@ async fn serve(socket: WebSocket, state: AppState, address: ClientAddress) {
     let mut idle = pin!(tokio::time::sleep(IDLE_TIMEOUT));
     let mut allowance = Allowance::new(Instant::now());
     let outbox = session.client().outbox.clone();
+    // Set while the reader waits for room rather than for the client.
+    let waiting = AtomicBool::new(false);
     let ended = loop {
         // An adapter's reports make no answers to it, while commands others send fill its
         // queue: waiting to read them would only hold up the commands' outcomes.
@@ -130,13 +133,22 @@ async fn serve(socket: WebSocket, state: AppState, address: ClientAddress) {
             next = async {
                 // A log falling behind slows every client down, at the socket; answers and
                 // events a client has not read yet slow it down.
+                waiting.store(true, Ordering::Relaxed);
                 state.hub.room_to_log().await;
                 if paced {
                     backlog.room(&outbox).await;
                 }
+                waiting.store(false, Ordering::Relaxed);
                 stream.next().await
             } => next,
-            () = &mut idle => break Ended::Reader("idle timeout"),
+            () = &mut idle => {
+                // Silent because Docent holds its frames back, not because it is idle.
+                if waiting.load(Ordering::Relaxed) {
+                    idle.as_mut().reset(tokio::time::Instant::now() + IDLE_TIMEOUT);
+                    continue;
+                }
+                break Ended::Reader("idle timeout");
+            }
             () = &mut kicked => {
                 let words = "too slow: the outgoing queue was full";
                 let Violation { reason, close } = closed(TOO_SLOW, close_code::POLICY, words);

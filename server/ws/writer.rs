@@ -66,7 +66,7 @@ impl WriterEnd {
             WriterEnd::WriteFailed => "connection lost",
             WriterEnd::NotReading => "too slow: did not read its frames",
             WriterEnd::FellBehind(_) => "too slow: fell behind the event stream",
-            WriterEnd::ServerClosing => "server closing",
+            WriterEnd::ServerClosing => "server shutting down",
         }
     }
 
@@ -184,8 +184,14 @@ pub async fn run_writer(
             }
             batch += 1;
         }
-        // Notices waiting for company ride along.
-        for frame in lingering.take() {
+        // Notices waiting for company ride along; after the queue's, which may hold older
+        // ones the flusher moved there.
+        let lingering_now = if queue.is_empty() {
+            lingering.take()
+        } else {
+            Vec::new()
+        };
+        for frame in lingering_now {
             if let Err(end) = write(&stop, sink.feed(Message::Text(frame))).await {
                 break 'writing end;
             }
@@ -209,7 +215,12 @@ pub async fn run_writer(
         }
         sink.close().await
     };
-    let _ = tokio::time::timeout(CLOSE_TIMEOUT, closing).await;
+    // A client that fell behind still reads: give it time to reach the close frame.
+    let patience = match end {
+        WriterEnd::FellBehind(_) => WRITE_TIMEOUT,
+        _ => CLOSE_TIMEOUT,
+    };
+    let _ = tokio::time::timeout(patience, closing).await;
     end
 }
 

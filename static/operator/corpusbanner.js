@@ -51,6 +51,7 @@ export function createCorpusBanner(element) {
       failing = null;
       tell(e.message);
     } else if (e.type === "corpus.recreated") tell(e.message);
+    else if (e.type === "corpus.gap") tell(`${e.count} events (seq ${e.from} to ${e.to}) are not in the corpus: ${e.reason}.`);
     else return;
     render();
   }
