@@ -1,0 +1,139 @@
+#!/usr/bin/env node
+// key-paint: an operator's key in the console to the kiosk's new page painted (issue 27).
+//
+//   cargo build --release && DOCENT_BIN=target/release/docent node bench/key-paint.mjs \
+//     [--switches 100] [--warmup 10] [--gap 150]
+//
+// One Docent (with the test credentials, as the browser tests), one headless Chromium with two
+// contexts: the operator console (`/operator` at 1440x900, signed in with the operator
+// credential through its form, lib/operator.mjs) and the kiosk shell (`/` at 1280x800). Two
+// contexts, not two tabs of one window: a tab behind another gets no animation frames, and
+// the console and the kiosk are two screens. The acts SHOW_A and SHOW_B (`Key: A`, `Key: B`)
+// show the two pages of lib/pages.mjs. Two keyboard paths the console offers
+// (static/operator/keys.js), alternating:
+//   alt     Alt+B (the act's `Key`): one key fires the act;
+//   search  the label typed into the search (untimed), then Enter fires the chosen act.
+// From the key's `keydown` (event.timeStamp in the console) to the new page painted in the
+// kiosk (the first requestAnimationFrame after its frame is shown: lib/shell-probe.mjs).
+// Both are epoch ms (performance.timeOrigin + each document's own clock); the run checks how
+// far the two documents' readings disagree and prints it.
+
+import os from 'node:os';
+
+import { makeBundle, removeTemp, startDocent } from '../tests/e2e/lib/docent.mjs';
+import { launchBrowser, newTouchContext, watchExceptions } from '../tests/e2e/lib/browser.mjs';
+import { openShell } from '../tests/e2e/lib/kiosk.mjs';
+import { newConsoleContext, signIn } from '../tests/e2e/lib/operator.mjs';
+import { twoPageBundle } from './lib/pages.mjs';
+import {
+  clockAgreement,
+  environment,
+  environmentLine,
+  parseArgs,
+  pause,
+  save,
+  summary,
+  tableRows,
+} from './lib/report.mjs';
+import { installShellProbe } from './lib/shell-probe.mjs';
+
+const USAGE = 'usage: node bench/key-paint.mjs [--switches N (100)] [--warmup N (10)] [--gap MS (150)]';
+const DEADLINE_MS = 10_000;
+
+// Runs in the console: keeps the time of the last keydown of `key` (epoch ms).
+function installKeyProbe() {
+  window.__keyAt = {};
+  addEventListener('keydown', (e) => {
+    window.__keyAt[e.key.toLowerCase()] = performance.timeOrigin + e.timeStamp;
+  }, { capture: true });
+}
+
+async function keySwitch(console_, kiosk, target, path) {
+  const letter = target[0]; // 'a' or 'b'
+  if (path === 'search') await console_.keyboard.type(`SHOW_${letter.toUpperCase()}`);
+  await kiosk.evaluate((p) => window.__shellProbe.arm(p), target);
+  const key = path === 'alt' ? letter : 'enter';
+  await console_.keyboard.press(path === 'alt' ? `Alt+Key${letter.toUpperCase()}` : 'Enter');
+  const t = await kiosk.evaluate((ms) => window.__shellProbe.result(ms), DEADLINE_MS);
+  t.keyAt = await console_.evaluate((k) => window.__keyAt[k], key);
+  return t;
+}
+
+async function main() {
+  const opts = parseArgs(process.argv.slice(2), { switches: 100, warmup: 10, gap: 150 }, USAGE);
+  const acts =
+    '- Label: SHOW_A\n  Key: A\n  Cmds:\n    - DISPLAY_PAGE a.html\n' +
+    '- Label: SHOW_B\n  Key: B\n  Cmds:\n    - DISPLAY_PAGE b.html\n';
+  const bundle = makeBundle({ ...twoPageBundle(), 'acts.yaml': acts });
+  let server;
+  let browser;
+  try {
+    server = await startDocent(bundle, { args: ['--no-watch'] });
+    browser = await launchBrowser();
+    const kiosk = await (await newTouchContext(browser)).newPage();
+    const console_ = await (await newConsoleContext(browser)).newPage();
+    const errors = [...watchExceptions(kiosk), ...watchExceptions(console_)];
+    await openShell(kiosk, server, 'a.html');
+    await kiosk.evaluate(installShellProbe);
+    await signIn(console_, server, 'bench-console');
+    await console_.evaluate(installKeyProbe);
+    const clock = await clockAgreement(console_, kiosk);
+
+    const samples = { alt: [], search: [] };
+    const loadBefore = os.loadavg()[0];
+    for (let i = 0; i < opts.warmup + opts.switches; i++) {
+      // Each pair goes to b and back to a; which path goes first alternates.
+      const order = i % 2 === 0 ? ['alt', 'search'] : ['search', 'alt'];
+      for (const [k, path] of order.entries()) {
+        const page = k === 0 ? 'b.html' : 'a.html';
+        const t = await keySwitch(console_, kiosk, page, path);
+        if (!Number.isFinite(t.keyAt)) throw new Error(`${path}: the console saw no key (${JSON.stringify(t)})`);
+        if (i >= opts.warmup) samples[path].push(t);
+        await pause(opts.gap);
+      }
+    }
+    if (errors.length) throw new Error(`a page failed: ${errors.join('; ')}`);
+    const env = environment(loadBefore);
+
+    const ms = (list, a, b) => list.filter((t) => t[a] !== undefined && t[b] !== undefined).map((t) => t[b] - t[a]);
+    const alt = summary(ms(samples.alt, 'keyAt', 'painted'));
+    const search = summary(ms(samples.search, 'keyAt', 'painted'));
+    const rows = [
+      ['Alt+key → kiosk page painted (first rAF after shown)', alt],
+      ['search + Enter → kiosk page painted', search],
+      ['  key → DISPLAY_PAGE at the kiosk (both paths)', summary(ms([...samples.alt, ...samples.search], 'keyAt', 'cmd'))],
+      ['  DISPLAY_PAGE → shown (frame load)', summary(ms([...samples.alt, ...samples.search], 'cmd', 'shown'))],
+      ['  shown → first rAF', summary(ms([...samples.alt, ...samples.search], 'shown', 'painted'))],
+    ];
+    const lines = [
+      `key-paint: ${opts.switches} switches per path (after ${opts.warmup} warm-up), paths interleaved, ` +
+        `${opts.gap} ms apart; console 1440x900 and kiosk 1280x800 in one headless Chromium, epoch ms`,
+      environmentLine(env) + `; ${env.chromium}`,
+      `clock: the console's and the kiosk's performance.timeOrigin + now() disagreed by at most ` +
+        `${clock.outside_ms} ms (checked within brackets of ${clock.bracket_p50_ms} ms, median)`,
+      '',
+      ...tableRows(rows),
+    ];
+    save('key-paint', lines, {
+      bench: 'key-paint',
+      switches: opts.switches,
+      warmup: opts.warmup,
+      gap_ms: opts.gap,
+      alt_key_paint_ms: alt,
+      search_enter_paint_ms: search,
+      key_to_command_ms: rows[2][1],
+      clock,
+      ...env,
+    });
+  } finally {
+    await browser?.close().catch(() => {});
+    await server?.stop().catch(() => {});
+    removeTemp(bundle);
+    if (server) removeTemp(server.corpusDir);
+  }
+}
+
+main().catch((error) => {
+  console.error(`key-paint: ${error.stack ?? error}`);
+  process.exitCode = 1;
+});
