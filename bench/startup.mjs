@@ -15,9 +15,10 @@
 // The TCP accept alone says little: Docent binds its socket before it starts the server
 // (server/main.rs), and the kernel completes connections from then on, which wait unanswered
 // until it serves. It also notes when the address line ("websocket: ws://...") is printed,
-// and the resident memory once answered. Then SIGTERM, and the next. The floor is a Node
-// process that answers every request with "ok" (`http.createServer().listen`), spawned and
-// polled the same way. The three alternate, in a
+// and the resident memory once answered. Then SIGTERM, and the next. The floors, spawned and
+// polled the same way: a Node process that answers every request with "ok"
+// (`http.createServer().listen`), and `python3 -m http.server` (/usr/bin/python3; a 404 for
+// /healthz is an answer). The five alternate, in a
 // rotating order, `--runs` times; times are this process's performance.now() in ms.
 
 import { execFileSync, spawn } from 'node:child_process';
@@ -28,6 +29,7 @@ import os from 'node:os';
 import path from 'node:path';
 
 import {
+  copyBundle,
   DM_TOKEN,
   docentBin,
   freePort,
@@ -41,6 +43,8 @@ import { environment, environmentLine, parseArgs, ratio, save, summary, tableRow
 
 const USAGE = 'usage: node bench/startup.mjs [--runs N (10)]';
 const DEADLINE_MS = 30_000;
+/** Python for the second floor: the system's, not a version manager's shim (a shell script). */
+const PYTHON = process.env.PYTHON_BIN ?? (fs.existsSync('/usr/bin/python3') ? '/usr/bin/python3' : 'python3');
 
 /** Resolves once a TCP connection to `port` is accepted; tries every millisecond. */
 function acceptedAt(port, child) {
@@ -102,10 +106,10 @@ function rssMiB(pid) {
 async function startOnce(kind, bundle, cache) {
   const port = await freePort();
   const corpus = tempDir('docent-bench-corpus-');
-  const [cmd, args] =
-    kind === 'floor'
-      ? [process.execPath, ['-e', `require('http').createServer((q, s) => s.end('ok')).listen(${port}, '127.0.0.1')`]]
-      : [docentBin(), ['serve', bundle, '--listen', `127.0.0.1:${port}`, '--corpus', corpus]];
+  const [cmd, args] = {
+    'floor-node': [process.execPath, ['-e', `require('http').createServer((q, s) => s.end('ok')).listen(${port}, '127.0.0.1')`]],
+    'floor-python': [PYTHON, ['-m', 'http.server', String(port), '--bind', '127.0.0.1', '--directory', corpus]],
+  }[kind] ?? [docentBin(), ['serve', bundle, '--listen', `127.0.0.1:${port}`, '--corpus', corpus]];
   const t0 = performance.now();
   const child = spawn(cmd, args, {
     stdio: ['ignore', 'pipe', 'pipe'],
@@ -130,7 +134,7 @@ async function startOnce(kind, bundle, cache) {
   try {
     const accepted = await withDeadline(acceptedAt(port, child), DEADLINE_MS, `${kind} did not accept within ${DEADLINE_MS} ms`);
     const answer = await withDeadline(answeredAt(port, child), DEADLINE_MS, `${kind} did not answer within ${DEADLINE_MS} ms`);
-    if (answer.status !== 200) throw new Error(`GET /healthz answered ${answer.status}`);
+    if (!kind.startsWith('floor') && answer.status !== 200) throw new Error(`GET /healthz answered ${answer.status}`);
     const rss = rssMiB(child.pid);
     return {
       ms: answer.at - t0,
@@ -154,7 +158,20 @@ async function main() {
   const big = tempDir('docent-bench-10k-');
   execFileSync(checkBench, ['--write', big], { stdio: 'ignore' });
   const cache = tempDir('docent-bench-cache-');
-  const bundles = { 'museum-tour': path.join(REPO, 'dialogs/museum-tour'), '10k-acts': big, floor: null };
+  // The tour again with `speech: {adapter: log}`: what the espeak-ng probes at start-up cost
+  // (server/serve.rs runs `espeak-ng --version`, `--voices` and a silent utterance in turn).
+  const tourYaml = fs.readFileSync(path.join(REPO, 'dialogs/museum-tour/docent.yaml'), 'utf8');
+  if (!/^speech: \{/m.test(tourYaml)) throw new Error('dialogs/museum-tour/docent.yaml has no one-line speech: {...} to replace');
+  const tourLog = copyBundle('museum-tour', {
+    'docent.yaml': tourYaml.replace(/^speech: \{/m, 'speech: { adapter: log,'),
+  });
+  const bundles = {
+    'museum-tour': path.join(REPO, 'dialogs/museum-tour'),
+    'museum-tour-log': tourLog,
+    '10k-acts': big,
+    'floor-node': null,
+    'floor-python': null,
+  };
   const kinds = Object.keys(bundles);
   const samples = Object.fromEntries(kinds.map((k) => [k, []]));
   try {
@@ -171,19 +188,23 @@ async function main() {
     const s = (kind, key) => summary(samples[kind].map((t) => t[key]).filter((v) => v !== undefined && v !== null));
     const tour = s('museum-tour', 'ms');
     const tenK = s('10k-acts', 'ms');
-    const floor = s('floor', 'ms');
+    const floor = s('floor-node', 'ms');
+    const python = s('floor-python', 'ms');
     const rows = [
       ['docent serve dialogs/museum-tour: spawn → GET /healthz answered', tour],
       ['docent serve 10,000-act bundle: spawn → GET /healthz answered', tenK],
       ['floor: node http.createServer().listen: spawn → GET answered', floor],
+      ['floor: python3 -m http.server: spawn → GET answered', python],
+      ['  museum-tour with speech: {adapter: log}: spawn → GET /healthz answered', s('museum-tour-log', 'ms')],
       ['  museum-tour: spawn → TCP connect accepted (listening socket bound)', s('museum-tour', 'tcp_ms')],
       ['  10,000 acts: spawn → TCP connect accepted', s('10k-acts', 'tcp_ms')],
-      ['  floor: spawn → TCP connect accepted', s('floor', 'tcp_ms')],
+      ['  node floor: spawn → TCP connect accepted', s('floor-node', 'tcp_ms')],
       ['  museum-tour: spawn → address line printed', s('museum-tour', 'printed_ms')],
       ['  10,000 acts: spawn → address line printed', s('10k-acts', 'printed_ms')],
-      ['  RSS at accept, MiB: museum-tour', s('museum-tour', 'rss')],
-      ['  RSS at accept, MiB: 10,000 acts', s('10k-acts', 'rss')],
-      ['  RSS at accept, MiB: floor', s('floor', 'rss')],
+      ['  RSS when answered, MiB: museum-tour', s('museum-tour', 'rss')],
+      ['  RSS when answered, MiB: 10,000 acts', s('10k-acts', 'rss')],
+      ['  RSS when answered, MiB: node floor', s('floor-node', 'rss')],
+      ['  RSS when answered, MiB: python floor', s('floor-python', 'rss')],
     ];
     const lines = [
       `startup: ${opts.runs} starts each (after one untimed), interleaved; spawn → first HTTP answer, ` +
@@ -192,21 +213,26 @@ async function main() {
       '',
       ...tableRows(rows),
       '',
-      `museum-tour / floor at p50: ${ratio(tour.p50, floor.p50)}x; 10,000 acts / floor: ${ratio(tenK.p50, floor.p50)}x`,
+      `at p50, museum-tour / node floor: ${ratio(tour.p50, floor.p50)}x, / python floor: ${ratio(tour.p50, python.p50)}x; ` +
+        `10,000 acts / node floor: ${ratio(tenK.p50, floor.p50)}x, / python floor: ${ratio(tenK.p50, python.p50)}x`,
     ];
     save('startup', lines, {
       bench: 'startup',
       runs: opts.runs,
       museum_tour_ms: tour,
       acts_10k_ms: tenK,
-      floor_ms: floor,
-      ratio_tour_p50: ratio(tour.p50, floor.p50),
-      ratio_10k_p50: ratio(tenK.p50, floor.p50),
-      rss_mib: { museum_tour: rows[8][1].p50, acts_10k: rows[9][1].p50, floor: rows[10][1].p50 },
+      floor_node_ms: floor,
+      floor_python_ms: python,
+      ratio_tour_node_p50: ratio(tour.p50, floor.p50),
+      ratio_10k_node_p50: ratio(tenK.p50, floor.p50),
+      ratio_tour_python_p50: ratio(tour.p50, python.p50),
+      ratio_10k_python_p50: ratio(tenK.p50, python.p50),
+      rss_mib: Object.fromEntries(rows.slice(-4).map(([name, v]) => [name.split(': ')[1], v.p50])),
       ...env,
     });
   } finally {
     removeTemp(big);
+    removeTemp(tourLog);
     removeTemp(cache);
   }
 }
