@@ -27,6 +27,7 @@ import { newConsoleContext, signIn } from '../tests/e2e/lib/operator.mjs';
 import { twoPageBundle } from './lib/pages.mjs';
 import {
   clockAgreement,
+  clockLine,
   environment,
   environmentLine,
   parseArgs,
@@ -109,8 +110,7 @@ async function main() {
       `key-paint: ${opts.switches} switches per path (after ${opts.warmup} warm-up), paths interleaved, ` +
         `${opts.gap} ms apart; console 1440x900 and kiosk 1280x800 in one headless Chromium, epoch ms`,
       environmentLine(env) + `; ${env.chromium}`,
-      `clock: the console's and the kiosk's performance.timeOrigin + now() disagreed by at most ` +
-        `${clock.outside_ms} ms (checked within brackets of ${clock.bracket_p50_ms} ms, median)`,
+      clockLine("the console's and the kiosk's", clock),
       '',
       ...tableRows(rows),
     ];

@@ -27,6 +27,7 @@ import { openShell } from '../tests/e2e/lib/kiosk.mjs';
 import { BUTTON, LINK, middle, twoPageBundle } from './lib/pages.mjs';
 import {
   clockAgreement,
+  clockLine,
   environment,
   environmentLine,
   parseArgs,
@@ -114,8 +115,7 @@ async function main() {
       `tap-paint: ${opts.switches} switches each (after ${opts.warmup} warm-up), kiosk and floor interleaved, ` +
         `${opts.gap} ms apart, headless Chromium ${VIEWPORT.width}x${VIEWPORT.height} with touch, epoch ms`,
       environmentLine(env) + `; ${env.chromium}`,
-      `clock: two documents' performance.timeOrigin + now() disagreed by at most ${clock.outside_ms} ms ` +
-        `(checked within brackets of ${clock.bracket_p50_ms} ms, median)`,
+      clockLine("the shell's and the floor tab's", clock),
       '',
       ...tableRows(rows),
       '',

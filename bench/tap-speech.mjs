@@ -10,7 +10,7 @@
 // (server/adapters/speech_espeak.rs). The tap is a kiosk's websocket `trigger` frame (role
 // `kiosk`, `via: touch`), as the shell sends it for a tap on a `data-act` button; the act's
 // `Text` becomes a SAY. The floor starts the same espeak-ng command on the same text from this
-// process (spawn, text on stdin, stdin closed), with `-w` into a second folder.
+// process (spawn, its stdin a file holding the text), with `-w` into a second folder.
 //
 // The first audio byte is the moment the WAV file first holds more than its 44-byte header,
 // seen the same way for both: fs.watch (inotify) on the folder, a stat() of the file at each
@@ -66,14 +66,19 @@ function firstByteWatcher(dir) {
   };
 }
 
-/** The floor: espeak-ng alone, as Docent starts it. Resolves once it has exited. */
-function espeakAlone(dir, n, watcher) {
+/**
+ * The floor: espeak-ng alone, as Docent starts it, its standard input the text in a file (so
+ * the text is there at once, not written by this process's event loop after the spawn).
+ * Resolves once it has exited.
+ */
+function espeakAlone(dir, n, watcher, textFile) {
   const first = watcher.next();
+  const input = fs.openSync(textFile, 'r');
   const t0 = performance.now();
   const child = spawn('espeak-ng', ['--stdin', '-v', VOICE, '-s', String(RATE), '-w', path.join(dir, `floor-${n}.wav`)], {
-    stdio: ['pipe', 'ignore', 'ignore'],
+    stdio: [input, 'ignore', 'ignore'],
   });
-  child.stdin.end(TEXT);
+  fs.closeSync(input);
   const exited = new Promise((resolve) => child.once('exit', resolve));
   return first.then(async (f) => {
     await exited;
@@ -94,6 +99,9 @@ async function main() {
   const floorWav = tempDir('docent-bench-floor-wav-');
   const docentFiles = firstByteWatcher(docentWav);
   const floorFiles = firstByteWatcher(floorWav);
+  const textDir = tempDir('docent-bench-text-');
+  const textFile = path.join(textDir, 'text.txt');
+  fs.writeFileSync(textFile, TEXT);
   let server;
   const clients = [];
   try {
@@ -125,7 +133,7 @@ async function main() {
     for (let i = 0; i < opts.warmup + opts.runs; i++) {
       const order = i % 2 === 0 ? ['docent', 'floor'] : ['floor', 'docent'];
       for (const which of order) {
-        const t = which === 'docent' ? await docentTap(i) : await espeakAlone(floorWav, i, floorFiles);
+        const t = which === 'docent' ? await docentTap(i) : await espeakAlone(floorWav, i, floorFiles, textFile);
         if (i >= opts.warmup) samples[which].push(t);
         await pause(opts.gap);
       }
@@ -165,7 +173,7 @@ async function main() {
     await server?.stop().catch(() => {});
     docentFiles.close();
     floorFiles.close();
-    for (const dir of [bundle, docentWav, floorWav]) removeTemp(dir);
+    for (const dir of [bundle, docentWav, floorWav, textDir]) removeTemp(dir);
     if (server) removeTemp(server.corpusDir);
   }
 }

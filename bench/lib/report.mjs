@@ -111,23 +111,36 @@ export function pause(ms) {
 }
 
 /**
- * How far apart two documents' epoch clocks (performance.timeOrigin + performance.now()) can
- * be: reads `a`, then `b`, then `a` again, `rounds` times; `b`'s reading must lie between the
- * two of `a`. Returns the largest amount by which it fell outside (0 when it never did) and
- * the median bracket width (how tightly this can be checked), in ms.
+ * How far apart two documents' epoch clocks (performance.timeOrigin + performance.now()) are:
+ * reads `a`, then `b`, then `a` again, `rounds` times. `b`'s reading was taken between the two
+ * of `a`, so each round bounds b's clock minus a's to (b - a_after, b - a_before); the bounds
+ * of all rounds intersect in `offset_ms` [low, high]. A constant offset lies in it; an empty
+ * interval (low > high) would mean the clocks do not run together. Also the median bracket
+ * (how long one round's a → b → a took), in ms.
  */
 export async function clockAgreement(a, b, rounds = 50) {
   const now = () => performance.timeOrigin + performance.now();
-  let worst = 0;
+  let low = -Infinity;
+  let high = Infinity;
   const widths = [];
   for (let i = 0; i < rounds; i++) {
     const before = await a.evaluate(now);
     const mid = await b.evaluate(now);
     const after = await a.evaluate(now);
-    worst = Math.max(worst, before - mid, mid - after);
+    low = Math.max(low, mid - after);
+    high = Math.min(high, mid - before);
     widths.push(after - before);
   }
   widths.sort((x, y) => x - y);
   const r = (x) => Math.round(x * 1000) / 1000;
-  return { outside_ms: r(worst), bracket_p50_ms: r(quantile(widths, 0.5)) };
+  return { offset_ms: [r(low), r(high)], consistent: low <= high, bracket_p50_ms: r(quantile(widths, 0.5)) };
+}
+
+/** The clock line of a table: what `clockAgreement` found, in words. */
+export function clockLine(what, clock) {
+  const [low, high] = clock.offset_ms;
+  return clock.consistent
+    ? `clock: ${what} epoch clocks (performance.timeOrigin + now()) differ by between ${low} and ${high} ms ` +
+        `(${clock.bracket_p50_ms} ms per check, median)`
+    : `clock: ${what} epoch clocks do NOT agree (offset bounds ${low} > ${high} ms): read the cross-document rows with care`;
 }
