@@ -78,12 +78,21 @@ function espeakAlone(dir, n, watcher, textFile) {
   const child = spawn('espeak-ng', ['--stdin', '-v', VOICE, '-s', String(RATE), '-w', path.join(dir, `floor-${n}.wav`)], {
     stdio: [input, 'ignore', 'ignore'],
   });
+  // spawn() returns once the child has exec'd (libuv waits for it): the cost of starting a
+  // process from this one, which Docent pays in its own way for its espeak-ng.
+  const spawned = performance.now();
   fs.closeSync(input);
   const exited = new Promise((resolve) => child.once('exit', resolve));
   return first.then(async (f) => {
     await exited;
-    return { ms: f.at - t0, size: f.size };
+    return { ms: f.at - t0, spawn_ms: spawned - t0, after_spawn_ms: f.at - spawned, size: f.size };
   });
+}
+
+/** `x` rounded to 0.1 with its sign: +1.5, -0.5. */
+function signed(x) {
+  const r = Math.round(x * 10) / 10;
+  return r >= 0 ? `+${r}` : String(r);
 }
 
 async function main() {
@@ -145,6 +154,8 @@ async function main() {
       ['Docent: kiosk trigger sent → first audio byte in the WAV', docent],
       ['floor: espeak-ng spawned → first audio byte in the WAV', floor],
       ['  Docent: trigger sent → `triggered` answer received', summary(samples.docent.map((t) => t.answered_ms))],
+      ['  floor: spawn() called → returned (fork and exec from Node)', summary(samples.floor.map((t) => t.spawn_ms))],
+      ['  floor: spawn() returned → first audio byte', summary(samples.floor.map((t) => t.after_spawn_ms))],
     ];
     const lines = [
       `tap-speech: ${opts.runs} runs each (after ${opts.warmup} warm-up), Docent and floor interleaved, ` +
@@ -153,7 +164,7 @@ async function main() {
       '',
       ...tableRows(rows),
       '',
-      `Docent / floor at p50: ${ratio(docent.p50, floor.p50)}x (+${Math.round((docent.p50 - floor.p50) * 10) / 10} ms), ` +
+      `Docent / floor at p50: ${ratio(docent.p50, floor.p50)}x (${signed(docent.p50 - floor.p50)} ms), ` +
         `at p90: ${ratio(docent.p90, floor.p90)}x`,
     ];
     save('tap-speech', lines, {

@@ -3,7 +3,9 @@
 // times taken in another document (the content page tapped, the operator console):
 //
 //   tapAt   a `pointerdown` in the shown content page (its event.timeStamp on its own clock)
-//   clickAt the `click` that follows it, where docent-page.js triggers the act
+//   clickAt the `click` that follows it, where docent-page.js triggers the act (its timeStamp)
+//   clickRun when that click's listeners run (a click made from a touch may be dispatched
+//            well after its timeStamp)
 //   cmd     the DISPLAY_PAGE frame reaches the shell (docentShell.on('command'))
 //   shown   the frame with the new page gets class `shown` (kiosk.js does this at its `load`)
 //   painted the first requestAnimationFrame callback after that: the frame that paints it
@@ -28,7 +30,10 @@ export function installShellProbe() {
         if (probe.current && probe.current.tapAt === undefined) probe.current.tapAt = win.performance.timeOrigin + e.timeStamp;
       }, { capture: true });
       win.addEventListener('click', (e) => {
-        if (probe.current && probe.current.clickAt === undefined) probe.current.clickAt = win.performance.timeOrigin + e.timeStamp;
+        if (probe.current && probe.current.clickAt === undefined) {
+          probe.current.clickAt = win.performance.timeOrigin + e.timeStamp;
+          probe.current.clickRun = now();
+        }
       }, { capture: true });
     };
     frame.addEventListener('load', attach);
@@ -80,8 +85,8 @@ export function installShellProbe() {
       const finish = () => {
         clearTimeout(timer);
         probe.current = null;
-        const { tapAt, clickAt, cmd, shown, painted, post } = run;
-        resolve({ tapAt, clickAt, cmd, shown, painted, post });
+        const { tapAt, clickAt, clickRun, cmd, shown, painted, post } = run;
+        resolve({ tapAt, clickAt, clickRun, cmd, shown, painted, post });
       };
       const timer = setTimeout(() => {
         probe.current = null;
