@@ -16,7 +16,9 @@
 // From the key's `keydown` (event.timeStamp in the console) to the new page painted in the
 // kiosk (the first requestAnimationFrame after its frame is shown: lib/shell-probe.mjs).
 // Both are epoch ms (performance.timeOrigin + each document's own clock); the run checks how
-// far the two documents' readings disagree and prints it.
+// far the two documents' readings disagree and prints it. The floor, in a third context and
+// interleaved: a tap on a plain link between the same two pages opened directly, to the new
+// page painted (as in tap-paint.mjs).
 
 import os from 'node:os';
 
@@ -24,7 +26,7 @@ import { makeBundle, removeTemp, startDocent } from '../tests/e2e/lib/docent.mjs
 import { launchBrowser, newTouchContext, watchExceptions } from '../tests/e2e/lib/browser.mjs';
 import { openShell } from '../tests/e2e/lib/kiosk.mjs';
 import { newConsoleContext, signIn } from '../tests/e2e/lib/operator.mjs';
-import { twoPageBundle } from './lib/pages.mjs';
+import { floorSwitch, twoPageBundle } from './lib/pages.mjs';
 import {
   clockAgreement,
   clockLine,
@@ -32,6 +34,7 @@ import {
   environmentLine,
   parseArgs,
   pause,
+  ratio,
   save,
   summary,
   tableRows,
@@ -76,15 +79,26 @@ async function main() {
     const errors = [...watchExceptions(kiosk), ...watchExceptions(console_)];
     await openShell(kiosk, server, 'a.html');
     await kiosk.evaluate(installShellProbe);
+    const floor = await (await newTouchContext(browser)).newPage();
+    errors.push(...watchExceptions(floor));
+    await floor.goto(`${server.base}/pages/a.html`);
+    await floor.evaluate(() => window.__painted);
     await signIn(console_, server, 'bench-console');
     await console_.evaluate(installKeyProbe);
     const clock = await clockAgreement(console_, kiosk);
 
-    const samples = { alt: [], search: [] };
+    const samples = { alt: [], search: [], floor: [] };
+    const floorTurn = async (i) => {
+      const t = await floorSwitch(floor, i % 2 === 0 ? 'b.html' : 'a.html', DEADLINE_MS);
+      if (!Number.isFinite(t.tapAt) || t.tapAt === 0) throw new Error(`floor: the tap was not seen (${JSON.stringify(t)})`);
+      if (i >= opts.warmup) samples.floor.push(t);
+      await pause(opts.gap);
+    };
     const loadBefore = os.loadavg()[0];
     for (let i = 0; i < opts.warmup + opts.switches; i++) {
       // Each pair goes to b and back to a; which path goes first alternates.
       const order = i % 2 === 0 ? ['alt', 'search'] : ['search', 'alt'];
+      if (i % 2 === 1) await floorTurn(i);
       for (const [k, path] of order.entries()) {
         const page = k === 0 ? 'b.html' : 'a.html';
         const t = await keySwitch(console_, kiosk, page, path);
@@ -92,6 +106,7 @@ async function main() {
         if (i >= opts.warmup) samples[path].push(t);
         await pause(opts.gap);
       }
+      if (i % 2 === 0) await floorTurn(i);
     }
     if (errors.length) throw new Error(`a page failed: ${errors.join('; ')}`);
     const env = environment(loadBefore);
@@ -99,20 +114,25 @@ async function main() {
     const ms = (list, a, b) => list.filter((t) => t[a] !== undefined && t[b] !== undefined).map((t) => t[b] - t[a]);
     const alt = summary(ms(samples.alt, 'keyAt', 'painted'));
     const search = summary(ms(samples.search, 'keyAt', 'painted'));
+    const floorPaint = summary(ms(samples.floor, 'tapAt', 'painted'));
     const rows = [
       ['Alt+key → kiosk page painted (first rAF after shown)', alt],
       ['search + Enter → kiosk page painted', search],
+      ['floor: tap on a link → new page painted (first rAF after load)', floorPaint],
       ['  key → DISPLAY_PAGE at the kiosk (both paths)', summary(ms([...samples.alt, ...samples.search], 'keyAt', 'cmd'))],
       ['  DISPLAY_PAGE → shown (frame load)', summary(ms([...samples.alt, ...samples.search], 'cmd', 'shown'))],
       ['  shown → first rAF', summary(ms([...samples.alt, ...samples.search], 'shown', 'painted'))],
     ];
     const lines = [
-      `key-paint: ${opts.switches} switches per path (after ${opts.warmup} warm-up), paths interleaved, ` +
+      `key-paint: ${opts.switches} switches per key path and as many floor switches (after ${opts.warmup} warm-up), interleaved, ` +
         `${opts.gap} ms apart; console 1440x900 and kiosk 1280x800 in one headless Chromium, epoch ms`,
       environmentLine(env) + `; ${env.chromium}`,
       clockLine("the console's and the kiosk's", clock),
       '',
       ...tableRows(rows),
+      '',
+      `key / floor at p50: Alt+key ${ratio(alt.p50, floorPaint.p50)}x, search + Enter ${ratio(search.p50, floorPaint.p50)}x; ` +
+        `at p90: ${ratio(alt.p90, floorPaint.p90)}x, ${ratio(search.p90, floorPaint.p90)}x`,
     ];
     save('key-paint', lines, {
       bench: 'key-paint',
@@ -121,7 +141,10 @@ async function main() {
       gap_ms: opts.gap,
       alt_key_paint_ms: alt,
       search_enter_paint_ms: search,
-      key_to_command_ms: rows[2][1],
+      floor_paint_ms: floorPaint,
+      ratio_alt_p50: ratio(alt.p50, floorPaint.p50),
+      ratio_search_p50: ratio(search.p50, floorPaint.p50),
+      key_to_command_ms: rows[3][1],
       clock,
       ...env,
     });

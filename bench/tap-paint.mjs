@@ -24,7 +24,7 @@ import os from 'node:os';
 import { makeBundle, removeTemp, startDocent } from '../tests/e2e/lib/docent.mjs';
 import { launchBrowser, newTouchContext, VIEWPORT, watchExceptions } from '../tests/e2e/lib/browser.mjs';
 import { openShell } from '../tests/e2e/lib/kiosk.mjs';
-import { BUTTON, LINK, middle, twoPageBundle } from './lib/pages.mjs';
+import { BUTTON, floorSwitch, middle, twoPageBundle } from './lib/pages.mjs';
 import {
   clockAgreement,
   clockLine,
@@ -53,14 +53,6 @@ async function kioskSwitch(shell, target) {
   return shell.evaluate((ms) => window.__shellProbe.result(ms), DEADLINE_MS);
 }
 
-async function floorSwitch(floor, target) {
-  await floor.bringToFront();
-  const at = middle(LINK);
-  await floor.touchscreen.tap(at.x, at.y);
-  await floor.waitForURL(`**/pages/${target}`, { timeout: DEADLINE_MS });
-  return floor.evaluate(() => window.__painted);
-}
-
 async function main() {
   const opts = parseArgs(process.argv.slice(2), { switches: 100, warmup: 10, gap: 150 }, USAGE);
   const bundle = makeBundle(twoPageBundle());
@@ -86,7 +78,7 @@ async function main() {
       const target = i % 2 === 0 ? 'b.html' : 'a.html';
       const order = i % 4 < 2 ? ['kiosk', 'floor'] : ['floor', 'kiosk'];
       for (const which of order) {
-        const t = which === 'kiosk' ? await kioskSwitch(shell, target) : await floorSwitch(floor, target);
+        const t = which === 'kiosk' ? await kioskSwitch(shell, target) : await floorSwitch(floor, target, DEADLINE_MS);
         if (t.tapAt === undefined || !Number.isFinite(t.tapAt) || t.tapAt === 0) {
           throw new Error(`${which}: the tap was not seen by the page (${JSON.stringify(t)})`);
         }

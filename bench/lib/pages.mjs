@@ -62,6 +62,20 @@ export function pageHtml(name, other, colour) {
   );
 }
 
+/**
+ * The floor's switch: a tap on the link of the page open in `floor` (opened directly, not in
+ * the shell) to `target`; resolves with that page's `__painted` times once it has loaded.
+ * The tab is brought to the front first: Chromium gives a tab behind another no animation
+ * frames.
+ */
+export async function floorSwitch(floor, target, deadlineMs) {
+  await floor.bringToFront();
+  const at = middle(LINK);
+  await floor.touchscreen.tap(at.x, at.y);
+  await floor.waitForURL(`**/pages/${target}`, { timeout: deadlineMs });
+  return floor.evaluate(() => window.__painted);
+}
+
 /** The bundle: pages a.html and b.html, their pictures, and the acts SHOW_A and SHOW_B. */
 export function twoPageBundle(extraActs = '') {
   return {
