@@ -9,34 +9,11 @@ use crate::fleet_support;
 
 use std::time::Instant;
 
-use common::{WsClient, bundle};
-use fleet_support::{Mosquitto, Robot, TestClient, logged};
+use common::load::{each_once, keep_triggering};
+use common::{WsClient, bundle, read_corpus};
+use fleet_support::{Mosquitto, Robot, TestClient};
 use serde_json::{Value, json};
 use tokio_util::sync::CancellationToken;
-
-/// Triggers from a dialog manager at `addr` in rounds of ten until `stop`; the refs answered.
-async fn keep_triggering(addr: String, stop: CancellationToken) -> Vec<String> {
-    let mut dm = WsClient::connect(&format!("ws://{addr}/ws")).await;
-    let hello = json!({"type": "hello", "role": "dm", "token": common::DM_TOKEN, "events": false});
-    dm.send(hello).await;
-    dm.recv_type("welcome").await;
-    let mut answered = Vec::new();
-    for round in 0.. {
-        if stop.is_cancelled() {
-            break;
-        }
-        for i in 0..10 {
-            let reference = format!("load-{round}-{i}");
-            dm.send(json!({"type": "trigger", "label": "WELCOME", "ref": reference}))
-                .await;
-        }
-        for _ in 0..10 {
-            let answer = dm.recv_type("triggered").await;
-            answered.push(answer["ref"].as_str().expect("its ref").to_owned());
-        }
-    }
-    answered
-}
 
 #[tokio::test]
 async fn a_broker_restart_is_survived() {
@@ -47,7 +24,11 @@ async fn a_broker_restart_is_survived() {
     mqtt.next("docent/gate-1/state", |s| s["online"] == true)
         .await;
     let stop_load = CancellationToken::new();
-    let load = tokio::spawn(keep_triggering(robot.addr.clone(), stop_load.clone()));
+    let load = tokio::spawn(keep_triggering(
+        robot.addr.clone(),
+        "WELCOME",
+        stop_load.clone(),
+    ));
 
     broker.kill();
     let down = operator
@@ -90,18 +71,7 @@ async fn a_broker_restart_is_survived() {
     stop_load.cancel();
     let answered = load.await.expect("the load ran");
     // Every trigger answered while the link went and came back is in the corpus, once.
-    let triggered = logged(&robot.corpus, "act.triggered");
-    for reference in &answered {
-        let times = (triggered.iter())
-            .filter(|e| e["ref"] == reference.as_str())
-            .count();
-        assert_eq!(times, 1, "{reference} in the corpus {times} times");
-    }
-    assert!(
-        answered.len() >= 10,
-        "the load ran: {} answered",
-        answered.len()
-    );
+    each_once(&answered, &read_corpus(&robot.corpus));
     println!("{} triggers answered during the restart", answered.len());
     drop(broker);
 }

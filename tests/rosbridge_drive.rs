@@ -10,9 +10,11 @@ use crate::ros;
 
 use std::time::{Duration, Instant};
 
+use common::load::{each_once, keep_triggering};
 use common::{TempBundle, TestServer, WsClient};
 use ros::{ROS_DEADLINE, RosClient, RosSide, docent};
 use serde_json::{Value, json};
+use tokio_util::sync::CancellationToken;
 
 const ACTS: &str = "\
 - Label: TOUR
@@ -27,6 +29,8 @@ const ACTS: &str = "\
 - Label: HALT
   Text: [Wait here.]
   Cmds: [DRIVE_STOP]
+- Label: CHAT
+  Text: [Nice weather.]
 ";
 
 fn bundle(ros: &RosSide, extra: &str) -> TempBundle {
@@ -223,6 +227,13 @@ async fn a_lost_link_fails_the_drive_and_comes_back_with_its_subscriptions() {
     );
     let (server, mut op) = docent(&b).await;
     let (mut linked, mut back) = (Vec::new(), Vec::new());
+    // A dialog manager keeps triggering all along: nothing it was answered may be lost.
+    let stop_load = CancellationToken::new();
+    let load = tokio::spawn(keep_triggering(
+        server.addr.to_string(),
+        "CHAT",
+        stop_load.clone(),
+    ));
     for run in 0..3 {
         let mut log = sim_log(&ros).await;
         server.trigger("FAR", json!({})).await;
@@ -274,6 +285,13 @@ async fn a_lost_link_fails_the_drive_and_comes_back_with_its_subscriptions() {
         .expect("the bumper's message arrives");
         assert_eq!(event["topic"], "/bumper");
     }
+    stop_load.cancel();
+    let answered = load.await.expect("the load ran");
+    eprintln!(
+        "{} triggers answered through three rosbridge restarts",
+        answered.len()
+    );
+    each_once(&answered, &server.stop().await);
     eprintln!(
         "rosbridge back on its port to the link up again: {}",
         percentiles(&linked)

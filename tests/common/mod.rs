@@ -10,6 +10,7 @@ pub mod channels;
 pub mod check;
 pub mod corpus;
 pub mod languages;
+pub mod load;
 pub mod mac_copy;
 pub mod mount;
 pub mod process;
