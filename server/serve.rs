@@ -290,11 +290,23 @@ fn speech_adapter(
     output: &SpeechOutput,
     warnings: &mut Vec<String>,
 ) -> AdapterKind {
-    let kind = choose_speech(config.adapter, espeak_available(), warnings);
+    if let Some(kind) = config.adapter.filter(|&k| k != AdapterKind::Espeak) {
+        return kind;
+    }
+    // The three asks of espeak-ng side by side: one after another they were half of a small
+    // bundle's start-up (bench/startup.mjs).
+    let (available, installed, can_play) = std::thread::scope(|s| {
+        let voices = s.spawn(espeak_voices);
+        let playing = (*output == SpeechOutput::Audio).then(|| s.spawn(espeak_can_play));
+        let available = espeak_available();
+        let installed = voices.join().unwrap_or_default();
+        let can_play = playing.is_none_or(|p| p.join().unwrap_or(false));
+        (available, installed, can_play)
+    });
+    let kind = choose_speech(config.adapter, available, warnings);
     if kind != AdapterKind::Espeak {
         return kind;
     }
-    let installed = espeak_voices();
     if !installed.contains(&config.voice) {
         let voice = &config.voice;
         warnings.push(format!(
@@ -311,7 +323,7 @@ fn speech_adapter(
             ));
         }
     }
-    if *output == SpeechOutput::Audio && !espeak_can_play() {
+    if !can_play {
         if config.adapter.is_none() {
             warnings.push(
                 "espeak-ng cannot reach a sound device here, so speech is only logged \
