@@ -86,9 +86,11 @@ impl Plan {
         (self.length / 10).max(Duration::from_secs(30))
     }
 
-    /// The spans whose largest RSS and descriptor counts are compared: a tenth of the run,
-    /// at least 6 s (two storms, so one dip in the descriptors cannot fill it).
+    /// The spans whose RSS and descriptor counts are compared: a tenth of the run, and at
+    /// least one visit and its pause, since the descriptors follow the visits (a session's
+    /// recordings hold a file and an upload connection per kiosk: 219 open during a visit,
+    /// 119 in a pause, in one-minute runs).
     pub fn growth_span(&self) -> Duration {
-        (self.length / 10).max(Duration::from_secs(6))
+        (self.length / 10).max(self.visit + self.pause)
     }
 }

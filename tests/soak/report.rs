@@ -54,7 +54,9 @@ pub fn write(dir: &Path, plan: &Plan, run: &Run, verdict: &Verdict) {
         "rss_kb_after_warmup_and_at_end": f.rss_kb, "fds_after_warmup_and_at_end": f.fds,
         "rss_growth_pct": f.rss_growth_pct, "fds_growth_pct": f.fds_growth_pct,
         "p99_first_ms": f.p99_first_ms, "p99_last_ms": f.p99_last_ms,
-        "rules": {"growth_pct_below": GROWTH_PCT, "p99_second_half_at_most": format!("{FACTOR} x first half + {SLACK_MS} ms")},
+        "p99_slices_after_warmup_ms": f.p99_slices_ms,
+        "rules": {"growth_pct_below": GROWTH_PCT, "p99_median_of_last_five_slices_at_most": format!("{FACTOR} x that of the first five + {SLACK_MS} ms")},
+        "server_warning_count": f.server_warning_count, "server_warnings": f.server_warnings,
         "windows": windows, "failures": verdict.failures,
     });
     let text = serde_json::to_string_pretty(&report).expect("JSON");
