@@ -17,6 +17,8 @@ mod kiosk;
 mod ledger;
 #[path = "soak/plan.rs"]
 mod plan;
+#[path = "soak/planted.rs"]
+mod planted;
 #[path = "soak/recorder.rs"]
 mod recorder;
 #[path = "soak/report.rs"]
