@@ -39,7 +39,7 @@ async fn a_compressed_day_of_taps_storms_reloads_and_recordings_leaks_nothing_an
     let plan = plan::Plan::from_env();
     let run = run::soak(&plan).await;
     let verdict = verdict::judge(&plan, &run);
-    eprintln!("{}", verdict::summary(&run, &verdict));
+    eprintln!("{}", report::summary(&run, &verdict));
     if let Some(dir) = &plan.out {
         report::write(dir, &plan, &run, &verdict);
     }

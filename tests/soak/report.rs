@@ -1,7 +1,7 @@
 //! The bench's record of a soak, in `DOCENT_SOAK_OUT`: `soak-latest.csv` (the server sampled
 //! every second), `soak-latest.json` (the plan, each tenth's figures, the verdict) and
 //! `soak-latest.svg` (RSS, descriptors and latency over the run, drawn here: no plotting
-//! tool to install).
+//! tool to install); and the paragraph the test prints.
 
 use std::fmt::Write as _;
 use std::path::Path;
@@ -61,15 +61,16 @@ pub fn write(dir: &Path, plan: &Plan, run: &Run, verdict: &Verdict) {
     });
     let text = serde_json::to_string_pretty(&report).expect("JSON");
     std::fs::write(dir.join("soak-latest.json"), text + "\n").expect("soak-latest.json");
-    std::fs::write(dir.join("soak-latest.svg"), svg(run, verdict)).expect("soak-latest.svg");
+    std::fs::write(dir.join("soak-latest.svg"), svg(plan, run, verdict)).expect("soak-latest.svg");
 }
 
 const WIDTH: f64 = 640.0;
 const PANEL: f64 = 120.0;
 const LEFT: f64 = 70.0;
 
-/// Three panels over the run's seconds: RSS (MB), open descriptors, p50/p99 per tenth (ms).
-fn svg(run: &Run, verdict: &Verdict) -> String {
+/// Three panels over the run's seconds: RSS (MB), open descriptors, p50/p99 per tenth (ms);
+/// a dashed line marks the end of the warm-up.
+fn svg(plan: &Plan, run: &Run, verdict: &Verdict) -> String {
     let length = run.samples.last().map_or(1.0, |s| s.at.max(1.0));
     let rss: Vec<(f64, f64)> = run
         .samples
@@ -114,6 +115,12 @@ fn svg(run: &Run, verdict: &Verdict) -> String {
             "<text x=\"{LEFT}\" y=\"{}\">{title}</text>",
             top + 10.0
         );
+        let warm = x0 + plan.warmup().as_secs_f64() / length * (x1 - x0);
+        let _ = writeln!(
+            out,
+            "<line x1=\"{warm:.1}\" y1=\"{y0}\" x2=\"{warm:.1}\" y2=\"{y1}\" \
+             stroke=\"#999\" stroke-dasharray=\"4 3\"/>"
+        );
         let _ = writeln!(
             out,
             "<line x1=\"{x0}\" y1=\"{y0}\" x2=\"{x1}\" y2=\"{y0}\" stroke=\"black\"/>"
@@ -155,4 +162,38 @@ fn svg(run: &Run, verdict: &Verdict) -> String {
     }
     out.push_str("</svg>\n");
     out
+}
+
+/// One paragraph for the test's output.
+pub fn summary(run: &Run, v: &Verdict) -> String {
+    let f = &v.figures;
+    format!(
+        "soak: {:.0} s wall, {} kiosk connections, {} storms, {} reloads, {} sessions, \
+         {} recordings ({} chunks), {} triggers acknowledged ({} act.triggered in {} events), \
+         refused {:?}, {} unanswered when a storm dropped them; RSS {:+.1} % ({} → {} kB), \
+         fds {:+.1} % ({} → {}), p99 {:.1} → {:.1} ms; {} warnings in the server log, \
+         the first: {:#?}",
+        run.wall.as_secs_f64(),
+        f.connections,
+        run.storms,
+        run.reloads,
+        f.sessions,
+        f.recordings,
+        f.chunks,
+        f.acked,
+        f.triggered_in_corpus,
+        f.events,
+        f.refused,
+        f.unanswered_at_drop,
+        f.rss_growth_pct,
+        f.rss_kb.0,
+        f.rss_kb.1,
+        f.fds_growth_pct,
+        f.fds.0,
+        f.fds.1,
+        f.p99_first_ms,
+        f.p99_last_ms,
+        f.server_warning_count,
+        &f.server_warnings[..f.server_warnings.len().min(5)],
+    )
 }

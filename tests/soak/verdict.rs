@@ -378,37 +378,3 @@ fn check_activity(run: &Run, f: &Figures, failures: &mut Vec<String>) {
         }
     }
 }
-
-/// One paragraph for the test's output.
-pub fn summary(run: &Run, v: &Verdict) -> String {
-    let f = &v.figures;
-    format!(
-        "soak: {:.0} s wall, {} kiosk connections, {} storms, {} reloads, {} sessions, \
-         {} recordings ({} chunks), {} triggers acknowledged ({} act.triggered in {} events), \
-         refused {:?}, {} unanswered when a storm dropped them; RSS {:+.1} % ({} → {} kB), \
-         fds {:+.1} % ({} → {}), p99 {:.1} → {:.1} ms; {} warnings in the server log, \
-         the first: {:#?}",
-        run.wall.as_secs_f64(),
-        f.connections,
-        run.storms,
-        run.reloads,
-        f.sessions,
-        f.recordings,
-        f.chunks,
-        f.acked,
-        f.triggered_in_corpus,
-        f.events,
-        f.refused,
-        f.unanswered_at_drop,
-        f.rss_growth_pct,
-        f.rss_kb.0,
-        f.rss_kb.1,
-        f.fds_growth_pct,
-        f.fds.0,
-        f.fds.1,
-        f.p99_first_ms,
-        f.p99_last_ms,
-        f.server_warning_count,
-        &f.server_warnings[..f.server_warnings.len().min(5)],
-    )
-}
