@@ -73,7 +73,17 @@ pub async fn soak(plan: &Plan) -> Run {
     let site = Site::new();
     let corpus_dir = tempfile::tempdir().expect("a corpus folder");
     let log = corpus_dir.path().with_extension("log");
-    let docent = Docent::start(&plan.docent, &site.bundle(), corpus_dir.path(), &log);
+    let (binary, bundle, corpus, server_log) = (
+        plan.docent.clone(),
+        site.bundle(),
+        corpus_dir.path().to_path_buf(),
+        log.clone(),
+    );
+    // Reading its first lines blocks: not on a worker of the runtime the clients share.
+    let docent =
+        tokio::task::spawn_blocking(move || Docent::start(&binary, &bundle, &corpus, &server_log))
+            .await
+            .expect("starting docent");
     let (visits, visiting) = watch::channel(false);
     let start = Instant::now();
     let ctx = Arc::new(Ctx {
