@@ -81,7 +81,7 @@ impl Plan {
     /// What is not judged: the first tenth of the run, and at least 30 s, in which the
     /// server's bounded tables fill (the 200 events of history, the 1,024 settled commands
     /// per connection, allocator arenas): in one-minute runs RSS rose 2 MB in the first 30 s,
-    /// then 0.5 MB in the next 30.
+    /// then under 1 MB in the next 30.
     pub fn warmup(&self) -> Duration {
         (self.length / 10).max(Duration::from_secs(30))
     }
