@@ -1,7 +1,8 @@
 //! Docent's integration tests, one binary (each file below was a binary of its own; linking
 //! the whole crate 60 times cost more than running the tests). They start real servers on
 //! 127.0.0.1:0, real processes of the `docent` binary, real brokers and real readers; every
-//! wait is for an event. `tests/flood.rs` is apart: it measures the memory of its process.
+//! wait is for an event. `tests/flood.rs` is apart: it measures the memory of its process;
+//! so is `tests/soak.rs`, a minute of compressed load measuring the server's (`bench/soak.sh`).
 
 mod common;
 mod fleet_support;
