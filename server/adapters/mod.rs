@@ -17,6 +17,7 @@ mod drive_sim;
 pub mod external;
 pub mod rosbridge;
 mod router;
+mod speech_choice;
 mod speech_espeak;
 mod speech_log;
 mod worker;
@@ -27,6 +28,7 @@ pub use drive_sim::{DriveSim, Pose};
 pub use external::ExternalAdapters;
 pub use rosbridge::RosbridgeDrive;
 pub use router::{Devices, Router};
+pub use speech_choice::speech_adapter;
 pub use speech_espeak::{
     HANG_GRACE, SpeechOutput, espeak_adapter, espeak_available, espeak_can_play, espeak_voices,
     hang_limit,
