@@ -25,9 +25,9 @@ import { execFileSync } from 'node:child_process';
 import fs from 'node:fs';
 import os from 'node:os';
 import path from 'node:path';
-import zlib from 'node:zlib';
 
 import { docentBin, makeBundle, removeTemp, REPO, startDocent } from '../tests/e2e/lib/docent.mjs';
+import { png } from './lib/pages.mjs';
 import { launchBrowser, newTouchContext, VIEWPORT, watchExceptions } from '../tests/e2e/lib/browser.mjs';
 import { openShell } from '../tests/e2e/lib/kiosk.mjs';
 
@@ -47,49 +47,6 @@ function parseArgs(argv) {
   }
   if (opts.switches < 1) throw new Error('--switches wants at least 1');
   return opts;
-}
-
-// A small PNG (RGB, a two-colour gradient) made here, so the bench needs no media files.
-function png(width, height, [r0, g0, b0], [r1, g1, b1]) {
-  const row = 1 + width * 3;
-  const raw = Buffer.alloc(row * height);
-  for (let y = 0; y < height; y++) {
-    for (let x = 0; x < width; x++) {
-      const t = (x + y) / (width + height);
-      const o = y * row + 1 + x * 3;
-      raw[o] = r0 + (r1 - r0) * t;
-      raw[o + 1] = g0 + (g1 - g0) * t;
-      raw[o + 2] = b0 + (b1 - b0) * t;
-    }
-  }
-  const chunk = (type, data) => {
-    const len = Buffer.alloc(4);
-    len.writeUInt32BE(data.length);
-    const body = Buffer.concat([Buffer.from(type, 'ascii'), data]);
-    const crc = Buffer.alloc(4);
-    crc.writeUInt32BE(crc32(body));
-    return Buffer.concat([len, body, crc]);
-  };
-  const ihdr = Buffer.alloc(13);
-  ihdr.writeUInt32BE(width, 0);
-  ihdr.writeUInt32BE(height, 4);
-  ihdr[8] = 8; // bit depth
-  ihdr[9] = 2; // truecolour
-  return Buffer.concat([
-    Buffer.from([0x89, 0x50, 0x4e, 0x47, 0x0d, 0x0a, 0x1a, 0x0a]),
-    chunk('IHDR', ihdr),
-    chunk('IDAT', zlib.deflateSync(raw)),
-    chunk('IEND', Buffer.alloc(0)),
-  ]);
-}
-
-function crc32(buf) {
-  let c = ~0;
-  for (const byte of buf) {
-    c ^= byte;
-    for (let k = 0; k < 8; k++) c = (c >>> 1) ^ (0xedb88320 & -(c & 1));
-  }
-  return ~c >>> 0;
 }
 
 const pageHtml = (title, image, colour) =>

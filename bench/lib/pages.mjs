@@ -92,8 +92,8 @@ export function twoPageBundle(extraActs = '') {
   };
 }
 
-// A small PNG (RGB, a two-colour gradient), as bench/page-switch.mjs makes it.
-function png(width, height, [r0, g0, b0], [r1, g1, b1]) {
+// A small PNG (RGB, a two-colour gradient) made here, so the benches need no media files.
+export function png(width, height, [r0, g0, b0], [r1, g1, b1]) {
   const row = 1 + width * 3;
   const raw = Buffer.alloc(row * height);
   for (let y = 0; y < height; y++) {
