@@ -14,6 +14,15 @@
 #   bench/compare.sh                              # ~10 min: two shared runs
 #   CONFIGS=kiosk bench/compare.sh                # one configuration
 #   ROUNDS=5 TARGETS="raw-tungstenite docent" bench/compare.sh
+#
+# A regression guard: DOCENT_BEFORE=DIR adds a target `docent-before`, the release binary
+# DIR/target/release/docent (a worktree of an older commit, built) serving DIR's own bench
+# bundle, interleaved with today's in the same run, so that a change can be told from the
+# machine's noise (bench/README.md, "Noise or a cost that crept in?"):
+#
+#   git worktree add /tmp/before OLD && (cd /tmp/before && cargo build --release --bin docent)
+#   DOCENT_BEFORE=/tmp/before CONFIGS=kiosk ROUNDS=5 \
+#     TARGETS="raw-tungstenite docent-before docent" bench/compare.sh
 set -euo pipefail
 cd "$(dirname "$0")/.."
 ROOT=$PWD
@@ -32,6 +41,21 @@ tar -C "$SHARED" --exclude=./results --exclude=./RESULTS.md \
   --exclude=./relays/node-ws/node_modules --exclude=./relays/python-socketio/.venv \
   -cf - . | tar -C "$SCRATCH/bench" -xf -
 chmod -R u+w "$SCRATCH/bench"
+if [[ -n ${DOCENT_BEFORE:-} ]]; then
+  [[ -x $DOCENT_BEFORE/target/release/docent ]] || {
+    echo "DOCENT_BEFORE: no $DOCENT_BEFORE/target/release/docent (build it there first)" >&2
+    exit 1
+  }
+  cp "$DOCENT_BEFORE/target/release/docent" "$SCRATCH/docent-before"
+  # The harness knows one Docent target; the scratch copy learns a second, started by
+  # DOCENT_BEFORE_CMD and spoken to like the first.
+  sed -i 's/^    docent)$/    docent-before)\n      SERVER=(bash -c "exec ${DOCENT_BEFORE_CMD\/\/\\{port\\}\/$2}")\n      eval "LOAD=(--url \\"\\$url\/ws\\" $DOCENT_LOAD)" ;;\n    docent)/' \
+    "$SCRATCH/bench/run.sh"
+  grep -q '^    docent-before)$' "$SCRATCH/bench/run.sh" || {
+    echo "the shared run.sh changed: cannot add the docent-before target" >&2
+    exit 1
+  }
+fi
 export CARGO_TARGET_DIR=${CARGO_TARGET_DIR:-/tmp/bench-target}
 
 TRIGGER='{"type":"trigger","label":"{label}","ref":"{ref}"}'
@@ -45,6 +69,8 @@ for config in $CONFIGS; do
   esac
   corpus=$SCRATCH/corpus-$config
   rm -rf "$corpus"
+  # The older binary gets no --open: access control came later, and its bundle is its own.
+  export DOCENT_BEFORE_CMD="$SCRATCH/docent-before serve ${DOCENT_BEFORE:-}/bench/bundles/$config --listen 127.0.0.1:{port} --corpus $corpus-before"
   export DOCENT_CMD="$SCRATCH/docent serve $ROOT/bench/bundles/$config --listen 127.0.0.1:{port} --open --corpus $corpus"
   # Shell words, eval'd by the shared run.sh.
   export DOCENT_LOAD="--trigger-template '$TRIGGER' --hello '$hello' --sender-hello '$OPERATOR' --match-field ref --match-if type=command"
@@ -59,6 +85,6 @@ for config in $CONFIGS; do
     cat "$SCRATCH/bench/RESULTS.md"
   } >"$out"
   cp "$SCRATCH/bench/results/docent.log" "bench/results/compare-$config-$STAMP.docent.log" 2>/dev/null || true
-  rm -rf "$corpus"
+  rm -rf "$corpus" "$corpus-before"
   echo "== saved $out" >&2
 done
