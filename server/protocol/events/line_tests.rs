@@ -11,6 +11,7 @@ use crate::events::{
     Event, FailureCode, LinkState, RecordingEvent, RobotEvent, RobotLinkEvent, SessionEnd, Source,
     StopReason, Track,
 };
+use crate::events::{BundleRefused, CommandSent, SessionEnded, SessionStarted};
 use crate::fleet_link::{LinkState as BrokerState, LinkView};
 use crate::{ErrorCode, Open, ProjectorState};
 use docent_content::{Args, Language};
@@ -56,36 +57,36 @@ fn every_kind() -> Vec<EventKind> {
             code: ErrorCode::NotOffered.into(),
             message: "no page offers it".into(),
         },
-        CommandSent {
+        CommandSent(crate::events::CommandSent {
             command: 5,
             act: act(),
             verb: "SAY".into(),
             arg: text("Hello"),
             args: Arc::new(Args::None {}),
             adapter: "espeak".into(),
-        },
-        CommandStarted {
+        }),
+        CommandStarted(crate::events::CommandStarted {
             command: 5,
             act: act(),
             verb: "SAY".into(),
-        },
-        CommandDone {
+        }),
+        CommandDone(crate::events::CommandDone {
             command: 5,
             act: act(),
             verb: "SAY".into(),
-        },
-        CommandFailed {
+        }),
+        CommandFailed(crate::events::CommandFailed {
             command: 5,
             act: act(),
             verb: "SAY".into(),
             reason: "no sound card".into(),
-        },
-        CommandCancelled {
+        }),
+        CommandCancelled(crate::events::CommandCancelled {
             command: 5,
             act: act(),
             verb: "SAY".into(),
             reason: "stop request".into(),
-        },
+        }),
         DisplayChanged {
             page: text("index.html"),
             projector: text("film.mp4"),
@@ -116,99 +117,99 @@ fn every_kind() -> Vec<EventKind> {
             source: Source::Server,
             reason: "the server is shutting down".into(),
         },
-        ProposalMade {
+        ProposalMade(crate::events::ProposalMade {
             proposal: 1,
             client: 3,
             label: "TOUR".into(),
             context: None,
             reason: text("they asked"),
-        },
-        ProposalAccepted {
+        }),
+        ProposalAccepted(crate::events::ProposalAccepted {
             proposal: 1,
             client: 2,
             label: "TOUR".into(),
             trigger: 9,
-        },
-        ProposalDismissed {
+        }),
+        ProposalDismissed(crate::events::ProposalDismissed {
             proposal: 1,
             client: 2,
             label: "TOUR".into(),
-        },
-        ProposalWithdrawn {
+        }),
+        ProposalWithdrawn(crate::events::ProposalWithdrawn {
             proposal: 1,
             client: 3,
             label: "TOUR".into(),
             reason: "the dialog manager left".into(),
-        },
-        SessionStarted {
+        }),
+        SessionStarted(crate::events::SessionStarted {
             session: 1,
             source: Source::Kiosk,
             client: Some(1),
             consent: Consent::Declined,
             page: text("index.html"),
             projector: None,
-        },
-        Touch {
+        }),
+        Touch(crate::events::Touch {
             client: 1,
             page: text("index.html"),
             element: text("button#start"),
             act: text("TOUR"),
             link: None,
-        },
-        AttractStarted { client: 1 },
-        AttractEnded {
+        }),
+        AttractStarted(crate::events::AttractStarted { client: 1 }),
+        AttractEnded(crate::events::AttractEnded {
             client: 1,
             by: AttractEnd::Schedule,
-        },
+        }),
         Robot(RobotEvent {
             client: None,
             topic: text("/people"),
             event: "person.near".into(),
             data: serde_json::json!({"distance": 1.2}),
         }),
-        TopicRefused {
+        TopicRefused(crate::events::TopicRefused {
             topic: "/pose".into(),
             event: None,
             reason: "no position".into(),
-        },
-        ReactionFailed {
+        }),
+        ReactionFailed(crate::events::ReactionFailed {
             reaction: 2,
             event: "person.near".into(),
             act: "HELLO".into(),
             reason: "no distance".into(),
-        },
-        ConsentChanged {
+        }),
+        ConsentChanged(crate::events::ConsentChanged {
             session: 1,
             consent: Consent::Withdrawn,
             source: Source::Operator,
             client: 2,
-        },
-        SessionEnded {
+        }),
+        SessionEnded(crate::events::SessionEnded {
             session: 1,
             source: Source::Server,
             client: None,
             reason: SessionEnd::Idle,
-        },
-        VisitorGroup {
+        }),
+        VisitorGroup(crate::events::VisitorGroup {
             session: Some(1),
             group: "children".into(),
             context: text("TextChild"),
             source: Source::Operator,
             client: 2,
-        },
-        SituationMarked {
+        }),
+        SituationMarked(crate::events::SituationMarked {
             session: None,
             situation: "laughter".into(),
             source: Source::Dm,
             client: 3,
-        },
-        NoteWritten {
+        }),
+        NoteWritten(crate::events::NoteWritten {
             session: Some(1),
             text: "they laughed".into(),
             source: Source::Operator,
             client: 2,
-        },
-        BundleReloaded {
+        }),
+        BundleReloaded(crate::events::BundleReloaded {
             bundle_hash: None,
             acts: 3,
             contexts: 2,
@@ -217,41 +218,41 @@ fn every_kind() -> Vec<EventKind> {
             changed: vec!["acts.yaml".into()],
             elapsed_ms: 12,
             not_applied: vec!["server.port".into()],
-        },
-        BundleRefused {
+        }),
+        BundleRefused(crate::events::BundleRefused {
             diagnostics: Vec::new(),
             changed: vec!["acts.yaml".into()],
             elapsed_ms: 4,
-        },
-        BundleWatchFailed {
+        }),
+        BundleWatchFailed(crate::events::BundleWatchFailed {
             code: "folder-missing".into(),
             message: "the folder is gone".into(),
-        },
-        ClientRefused {
+        }),
+        ClientRefused(crate::events::ClientRefused {
             role: ClientRole::Operator,
             code: ErrorCode::Unauthorized.into(),
             address: text("10.0.0.9"),
             unlogged: 3,
-        },
-        RequestRefused {
+        }),
+        RequestRefused(crate::events::RequestRefused {
             method: "POST".into(),
             path: "/api/stop".into(),
             code: ErrorCode::TooManyAttempts.into(),
             address: None,
             unlogged: 0,
-        },
-        ClientConnected {
+        }),
+        ClientConnected(crate::events::ClientConnected {
             client: 4,
             role: ClientRole::Adapter,
             name: text("lights"),
             verbs: vec!["LIGHTS".into()],
-        },
-        ClientLeft {
+        }),
+        ClientLeft(crate::events::ClientLeft {
             client: 4,
             role: ClientRole::Adapter,
             reason: "too slow: fell behind the event stream".into(),
             code: Some(1013),
-        },
+        }),
         FleetLink(LinkView {
             broker: "mqtt://fleet.local".into(),
             state: BrokerState::Down,
@@ -292,16 +293,16 @@ fn every_kind() -> Vec<EventKind> {
             files: vec!["media/audio-2.webm".into()],
             consent: Consent::Withdrawn,
         }),
-        MediaConverted {
+        MediaConverted(crate::events::MediaConverted {
             file: "media/Exhibit/video.mpg".into(),
             format: "MPEG-1/2".into(),
             elapsed_ms: 812,
             bytes: 401_233,
-        },
-        MediaFailed {
+        }),
+        MediaFailed(crate::events::MediaFailed {
             file: "media/scan.tif".into(),
             reason: "ffmpeg cannot read it (Invalid data found when processing input)".into(),
-        },
+        }),
         CorpusUnwritable(Unwritable {
             fault: CorpusFault::DiskFull,
             path: "/srv/corpus".into(),
@@ -438,7 +439,7 @@ fn the_two_fields_not_read_back_read_as_none_and_empty() {
     let (_, sent) = known(
         r#"{"v":4,"type":"command.sent","command":2,"trigger":1,"source":"http","label":"GO","at":"a.yaml:1","verb":"SET_WAYPOINT","arg":"1 2","args":{"x":1.0,"y":2.0,"heading":null},"adapter":"sim"}"#,
     );
-    let EventKind::CommandSent { args, adapter, .. } = sent else {
+    let EventKind::CommandSent(CommandSent { args, adapter, .. }) = sent else {
         panic!("{sent:?}")
     };
     assert_eq!((*args).clone(), Args::None {});
@@ -446,7 +447,7 @@ fn the_two_fields_not_read_back_read_as_none_and_empty() {
     let (_, refused) = known(
         r#"{"v":4,"type":"bundle.refused","diagnostics":[{"severity":"error","code":"x","message":"m","file":"a.yaml","line":1,"column":2}],"changed":["a.yaml"],"elapsed_ms":3}"#,
     );
-    let EventKind::BundleRefused { diagnostics, .. } = refused else {
+    let EventKind::BundleRefused(BundleRefused { diagnostics, .. }) = refused else {
         panic!("{refused:?}")
     };
     assert!(diagnostics.is_empty());
@@ -461,7 +462,10 @@ fn lines_of_the_older_formats_still_read() {
         r#"{"v":1,"seq":3,"time":"2026-11-22T19:01:36.288Z","mono_us":5463977,"type":"command.sent","command":2,"trigger":1,"source":"http","label":"GREETING","at":"smalltalk.yaml:7","verb":"SAY","arg":"Hi!","adapter":"espeak"}"#,
     );
     assert_eq!((head.v, head.session_us), (Some(1), None));
-    assert!(matches!(sent, EventKind::CommandSent { command: 2, .. }));
+    assert!(matches!(
+        sent,
+        EventKind::CommandSent(CommandSent { command: 2, .. })
+    ));
     // Format 2: a `display.changed` from before `projector_state`, a `session.ended` without
     // its `reason`.
     let (_, shown) = known(
@@ -482,10 +486,10 @@ fn lines_of_the_older_formats_still_read() {
     );
     assert!(matches!(
         ended,
-        EventKind::SessionEnded {
+        EventKind::SessionEnded(SessionEnded {
             reason: SessionEnd::Marked,
             ..
-        }
+        })
     ));
     // Format 3: a session's line, its `session.started` without `consent` and `page`, an
     // `act.triggered` without `language`.
@@ -493,7 +497,7 @@ fn lines_of_the_older_formats_still_read() {
         r#"{"v":3,"seq":5,"time":"2026-11-24T10:15:02.000Z","mono_us":100,"session_us":0,"type":"session.started","session":1,"source":"operator","client":1}"#,
     );
     assert_eq!(head.session_us, Some(0));
-    let EventKind::SessionStarted { consent, page, .. } = started else {
+    let EventKind::SessionStarted(SessionStarted { consent, page, .. }) = started else {
         panic!("{started:?}")
     };
     assert_eq!((consent, page), (Consent::Recorded, None));
