@@ -21,26 +21,20 @@
 
 import os from 'node:os';
 
-import { makeBundle, removeTemp, startDocent } from '../tests/e2e/lib/docent.mjs';
-import { launchBrowser, newTouchContext, VIEWPORT, watchExceptions } from '../tests/e2e/lib/browser.mjs';
-import { openShell } from '../tests/e2e/lib/kiosk.mjs';
+import { newTouchContext, VIEWPORT, watchExceptions } from '../tests/e2e/lib/browser.mjs';
 import { BUTTON, floorSwitch, middle, twoPageBundle } from './lib/pages.mjs';
+import { DEADLINE_MS, intervals as ms, openFloor, openProbedShell, runPaintBench, tapSeen } from './lib/paint-run.mjs';
 import {
   clockAgreement,
   clockLine,
   environment,
   environmentLine,
-  parseArgs,
   pause,
   ratio,
   save,
   summary,
   tableRows,
 } from './lib/report.mjs';
-import { installShellProbe } from './lib/shell-probe.mjs';
-
-const USAGE = 'usage: node bench/tap-paint.mjs [--switches N (100)] [--warmup N (10)] [--gap MS (150)]';
-const DEADLINE_MS = 10_000;
 
 // Each tab is brought to the front before its switch: Chromium throttles a background tab's
 // timers and animation frames (a kiosk's tab is always in front), and the two tabs share one
@@ -53,89 +47,71 @@ async function kioskSwitch(shell, target) {
   return shell.evaluate((ms) => window.__shellProbe.result(ms), DEADLINE_MS);
 }
 
-async function main() {
-  const opts = parseArgs(process.argv.slice(2), { switches: 100, warmup: 10, gap: 150 }, USAGE);
-  const bundle = makeBundle(twoPageBundle());
-  let server;
-  let browser;
-  try {
-    server = await startDocent(bundle, { args: ['--open', '--no-watch'] });
-    browser = await launchBrowser();
-    const context = await newTouchContext(browser);
-    const shell = await context.newPage();
-    const floor = await context.newPage();
-    const errors = [...watchExceptions(shell), ...watchExceptions(floor)];
-    await openShell(shell, server, 'a.html');
-    await shell.evaluate(installShellProbe);
-    await floor.goto(`${server.base}/pages/a.html`);
-    await floor.evaluate(() => window.__painted);
-    const clock = await clockAgreement(shell, floor);
+// One run: the kiosk and the floor, interleaved, and their table.
+async function measure({ opts, server, browser }) {
+  const context = await newTouchContext(browser);
+  const shell = await context.newPage();
+  const floor = await context.newPage();
+  const errors = [...watchExceptions(shell), ...watchExceptions(floor)];
+  await openProbedShell(shell, server);
+  await openFloor(floor, server);
+  const clock = await clockAgreement(shell, floor);
 
-    const kiosk = [];
-    const plain = [];
-    const loadBefore = os.loadavg()[0];
-    for (let i = 0; i < opts.warmup + opts.switches; i++) {
-      const target = i % 2 === 0 ? 'b.html' : 'a.html';
-      const order = i % 4 < 2 ? ['kiosk', 'floor'] : ['floor', 'kiosk'];
-      for (const which of order) {
-        const t = which === 'kiosk' ? await kioskSwitch(shell, target) : await floorSwitch(floor, target, DEADLINE_MS);
-        if (t.tapAt === undefined || !Number.isFinite(t.tapAt) || t.tapAt === 0) {
-          throw new Error(`${which}: the tap was not seen by the page (${JSON.stringify(t)})`);
-        }
-        if (i >= opts.warmup) (which === 'kiosk' ? kiosk : plain).push(t);
-        await pause(opts.gap);
+  const kiosk = [];
+  const plain = [];
+  const loadBefore = os.loadavg()[0];
+  for (let i = 0; i < opts.warmup + opts.switches; i++) {
+    const target = i % 2 === 0 ? 'b.html' : 'a.html';
+    const order = i % 4 < 2 ? ['kiosk', 'floor'] : ['floor', 'kiosk'];
+    for (const which of order) {
+      const t = which === 'kiosk' ? await kioskSwitch(shell, target) : await floorSwitch(floor, target, DEADLINE_MS);
+      if (!tapSeen(t)) {
+        throw new Error(`${which}: the tap was not seen by the page (${JSON.stringify(t)})`);
       }
+      if (i >= opts.warmup) (which === 'kiosk' ? kiosk : plain).push(t);
+      await pause(opts.gap);
     }
-    if (errors.length) throw new Error(`a page failed: ${errors.join('; ')}`);
-    const env = environment(loadBefore);
-
-    const ms = (samples, a, b) => samples.filter((t) => t[a] !== undefined && t[b] !== undefined).map((t) => t[b] - t[a]);
-    const kioskPaint = summary(ms(kiosk, 'tapAt', 'painted'));
-    const floorPaint = summary(ms(plain, 'tapAt', 'painted'));
-    const rows = [
-      ['kiosk: tap → new page painted (first rAF after shown)', kioskPaint],
-      ['floor: tap on a link → new page painted (first rAF after load)', floorPaint],
-      ['floor: tap on a link → first contentful paint', summary(ms(plain, 'tapAt', 'fcp'))],
-      ['  kiosk: tap → click (pointerdown to click, timeStamps)', summary(ms(kiosk, 'tapAt', 'clickAt'))],
-      ['  kiosk: click timeStamp → its listeners run', summary(ms(kiosk, 'clickAt', 'clickRun'))],
-      ['  kiosk: click listeners → DISPLAY_PAGE at the shell', summary(ms(kiosk, 'clickRun', 'cmd'))],
-      ['  kiosk: DISPLAY_PAGE → shown (frame load)', summary(ms(kiosk, 'cmd', 'shown'))],
-      ['  kiosk: shown → first rAF', summary(ms(kiosk, 'shown', 'painted'))],
-      ['  kiosk: tap → after paint (rAF + message)', summary(ms(kiosk, 'tapAt', 'post'))],
-      ['  floor: tap → navigation start of the new page', summary(ms(plain, 'tapAt', 'navStart'))],
-    ];
-    const lines = [
-      `tap-paint: ${opts.switches} switches each (after ${opts.warmup} warm-up), kiosk and floor interleaved, ` +
-        `${opts.gap} ms apart, headless Chromium ${VIEWPORT.width}x${VIEWPORT.height} with touch, epoch ms`,
-      environmentLine(env) + `; ${env.chromium}`,
-      clockLine("the shell's and the floor tab's", clock),
-      '',
-      ...tableRows(rows),
-      '',
-      `kiosk / floor at p50: ${ratio(kioskPaint.p50, floorPaint.p50)}x, at p90: ${ratio(kioskPaint.p90, floorPaint.p90)}x`,
-    ];
-    save('tap-paint', lines, {
-      bench: 'tap-paint',
-      switches: opts.switches,
-      warmup: opts.warmup,
-      gap_ms: opts.gap,
-      kiosk_paint_ms: kioskPaint,
-      floor_paint_ms: floorPaint,
-      floor_fcp_ms: rows[2][1],
-      ratio_p50: ratio(kioskPaint.p50, floorPaint.p50),
-      ratio_p90: ratio(kioskPaint.p90, floorPaint.p90),
-      clock,
-      ...env,
-    });
-  } finally {
-    await browser?.close().catch(() => {});
-    await server?.stop().catch(() => {});
-    removeTemp(bundle);
-    if (server) removeTemp(server.corpusDir);
   }
+  if (errors.length) throw new Error(`a page failed: ${errors.join('; ')}`);
+  const env = environment(loadBefore);
+
+  const kioskPaint = summary(ms(kiosk, 'tapAt', 'painted'));
+  const floorPaint = summary(ms(plain, 'tapAt', 'painted'));
+  const rows = [
+    ['kiosk: tap → new page painted (first rAF after shown)', kioskPaint],
+    ['floor: tap on a link → new page painted (first rAF after load)', floorPaint],
+    ['floor: tap on a link → first contentful paint', summary(ms(plain, 'tapAt', 'fcp'))],
+    ['  kiosk: tap → click (pointerdown to click, timeStamps)', summary(ms(kiosk, 'tapAt', 'clickAt'))],
+    ['  kiosk: click timeStamp → its listeners run', summary(ms(kiosk, 'clickAt', 'clickRun'))],
+    ['  kiosk: click listeners → DISPLAY_PAGE at the shell', summary(ms(kiosk, 'clickRun', 'cmd'))],
+    ['  kiosk: DISPLAY_PAGE → shown (frame load)', summary(ms(kiosk, 'cmd', 'shown'))],
+    ['  kiosk: shown → first rAF', summary(ms(kiosk, 'shown', 'painted'))],
+    ['  kiosk: tap → after paint (rAF + message)', summary(ms(kiosk, 'tapAt', 'post'))],
+    ['  floor: tap → navigation start of the new page', summary(ms(plain, 'tapAt', 'navStart'))],
+  ];
+  const lines = [
+    `tap-paint: ${opts.switches} switches each (after ${opts.warmup} warm-up), kiosk and floor interleaved, ` +
+      `${opts.gap} ms apart, headless Chromium ${VIEWPORT.width}x${VIEWPORT.height} with touch, epoch ms`,
+    environmentLine(env) + `; ${env.chromium}`,
+    clockLine("the shell's and the floor tab's", clock),
+    '',
+    ...tableRows(rows),
+    '',
+    `kiosk / floor at p50: ${ratio(kioskPaint.p50, floorPaint.p50)}x, at p90: ${ratio(kioskPaint.p90, floorPaint.p90)}x`,
+  ];
+  save('tap-paint', lines, {
+    bench: 'tap-paint',
+    switches: opts.switches,
+    warmup: opts.warmup,
+    gap_ms: opts.gap,
+    kiosk_paint_ms: kioskPaint,
+    floor_paint_ms: floorPaint,
+    floor_fcp_ms: rows[2][1],
+    ratio_p50: ratio(kioskPaint.p50, floorPaint.p50),
+    ratio_p90: ratio(kioskPaint.p90, floorPaint.p90),
+    clock,
+    ...env,
+  });
 }
 
-main().catch((error) => {
-  console.error(`tap-paint: ${error.stack ?? error}`);
-  process.exitCode = 1;
-});
+runPaintBench('tap-paint', { files: twoPageBundle(), args: ['--open', '--no-watch'] }, measure);

@@ -11,7 +11,7 @@ use std::path::{Path, PathBuf};
 use std::process::{Child, Command};
 use std::time::{Duration, Instant, SystemTime, UNIX_EPOCH};
 
-use common::process::{serve_args, start};
+use common::process::{serve_args, start, stop};
 use common::{TempBundle, WsClient, json_lines};
 use serde_json::{Value, json};
 
@@ -75,14 +75,6 @@ impl FakeClock {
             .env("TZ", "UTC");
         start(command)
     }
-}
-
-/// Stops `docent` as systemd would (SIGTERM) and waits for it: the corpus is complete.
-fn stop(mut child: Child) {
-    let sent = Command::new("kill").arg(child.id().to_string()).status();
-    assert!(sent.is_ok_and(|s| s.success()), "kill");
-    let exit = child.wait().expect("docent exits");
-    assert!(exit.success(), "{exit}");
 }
 
 fn unix_now() -> i64 {

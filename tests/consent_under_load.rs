@@ -16,7 +16,9 @@ use std::sync::{Arc, Mutex};
 
 use common::{DEADLINE, TempBundle, TestServer, WsClient, session_dirs};
 use docent::corpus::export::{ExportFormat, ExportWarning, export_session};
-use docent::events::{Consent, EVENT_CHANNEL_CAPACITY, EventKind, Hub, SessionEnd, Source};
+use docent::events::{
+    Consent, EVENT_CHANNEL_CAPACITY, EventKind, Hub, NoteWritten, SessionEnd, Source,
+};
 use docent::state::AppState;
 use serde_json::{Value, json};
 use tokio::sync::watch;
@@ -91,12 +93,12 @@ async fn chunk(http: &reqwest::Client, server: &TestServer, record: &Value, seq:
 /// broadcast subscriber that did not run meanwhile lags past them.
 fn flood(hub: &Hub) {
     for i in 0..2 * EVENT_CHANNEL_CAPACITY {
-        hub.publish(EventKind::NoteWritten {
+        hub.publish(EventKind::NoteWritten(NoteWritten {
             session: None,
             text: format!("flood {i}"),
             source: Source::Server,
             client: 0,
-        });
+        }));
     }
 }
 

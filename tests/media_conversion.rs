@@ -7,7 +7,7 @@
 use std::path::Path;
 use std::process::Command;
 
-use docent::events::EventKind;
+use docent::events::{EventKind, MediaConverted};
 use docent::media::{MediaState, Tools};
 use serde_json::Value;
 
@@ -281,7 +281,7 @@ async fn a_film_replaced_while_serving_is_converted_again_and_its_new_content_se
     let converted = async {
         loop {
             let event = events_seen.recv().await.expect("the hub runs");
-            if let EventKind::MediaConverted { bytes, .. } = event.kind
+            if let EventKind::MediaConverted(MediaConverted { bytes, .. }) = event.kind
                 && bytes != first_size
             {
                 return;

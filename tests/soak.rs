@@ -11,6 +11,8 @@
 //! (`DOCENT_SOAK_SECONDS`, `DOCENT_SOAK_BIN`), keeping its samples and plot
 //! (`DOCENT_SOAK_OUT`). A binary of its own: it owns the machine's cores while it measures.
 
+#[path = "common/mod.rs"]
+mod common;
 #[path = "soak/kiosk.rs"]
 mod kiosk;
 #[path = "soak/ledger.rs"]

@@ -2,10 +2,14 @@
 //! through its WAV output: one utterance at a time, in order, each with real audio whose length
 //! follows its text. espeak-ng must be installed (the test script installs it).
 
+#[path = "speech_espeak/watched.rs"]
+mod watched;
+
 use crate::common;
 
 use common::{TempBundle, TestServer};
 use serde_json::{Value, json};
+use watched::{BLOCKED, WatchedEspeak, unblock};
 
 const ACTS: &str = r#"
 - Label: SHORT
@@ -150,59 +154,6 @@ fn an_unknown_voice_is_reported_at_start_up() {
     );
 }
 
-/// A server speaking into `wavs`, where the first commands' WAV paths are named pipes nobody
-/// reads: the real espeak-ng blocks opening them, mid-utterance, until the test acts on it.
-async fn server_with_blocked_espeak(b: &TempBundle, wavs: &std::path::Path) -> TestServer {
-    for id in 1..=BLOCKED {
-        let fifo = wavs.join(format!("{id}.wav"));
-        let made = std::process::Command::new("mkfifo").arg(&fifo).status();
-        assert!(made.is_ok_and(|s| s.success()), "mkfifo {}", fifo.display());
-    }
-    TestServer::start_with(b.path(), |o| o.speech_wav = Some(wavs.to_owned())).await
-}
-
-/// How many command ids get a blocking pipe (a fresh server numbers its commands from 1).
-const BLOCKED: u64 = 4;
-
-/// Lets the commands after the blocked one write real files.
-fn unblock(wavs: &std::path::Path) {
-    for id in 1..=BLOCKED {
-        let _ = std::fs::remove_file(wavs.join(format!("{id}.wav")));
-    }
-}
-
-/// The pid of the espeak-ng this process (the server's) started to write into `wavs`, once it
-/// is running: looked up as the server's child in /proc.
-async fn espeak_child(wavs: &std::path::Path) -> u32 {
-    let parent = std::process::id().to_string();
-    let wavs = wavs.to_string_lossy().into_owned();
-    let found = common::within(common::DEADLINE, async {
-        loop {
-            for entry in std::fs::read_dir("/proc").unwrap().flatten() {
-                let Ok(pid) = entry.file_name().to_string_lossy().parse::<u32>() else {
-                    continue;
-                };
-                let stat = std::fs::read_to_string(entry.path().join("stat")).unwrap_or_default();
-                // `pid (comm) state ppid ...`
-                let Some((comm, rest)) = stat.split_once(") ") else {
-                    continue;
-                };
-                let ppid = rest.split(' ').nth(1).unwrap_or_default();
-                let cmdline = std::fs::read(entry.path().join("cmdline")).unwrap_or_default();
-                if comm.ends_with("(espeak-ng")
-                    && ppid == parent
-                    && String::from_utf8_lossy(&cmdline).contains(&wavs)
-                {
-                    return pid;
-                }
-            }
-            // A real process appearing is not an event the test can await: look again soon.
-            tokio::time::sleep(std::time::Duration::from_millis(10)).await;
-        }
-    });
-    found.await.expect("espeak-ng started within the deadline")
-}
-
 fn signal(pid: u32, signal: &str) {
     let sent = std::process::Command::new("kill")
         .args([signal, &pid.to_string()])
@@ -234,11 +185,11 @@ async fn an_espeak_killed_mid_utterance_fails_the_say_at_once_and_the_next_one_s
     );
     let b = TempBundle::new(ACTS).with_file("docent.yaml", "speech: {adapter: espeak}\n");
     let wavs = tempfile::tempdir().unwrap();
-    let server = server_with_blocked_espeak(&b, wavs.path()).await;
+    let mut server = WatchedEspeak::start(&b, wavs.path());
     let mut op = server.operator().await;
-    let first = id(&server.trigger("LONG", json!({})).await);
+    let first = server.trigger("LONG").await;
     assert!(first <= BLOCKED, "command {first} has no blocking pipe");
-    let pid = espeak_child(wavs.path()).await;
+    let pid = server.next_espeak().await;
     let killed_at = std::time::Instant::now();
     signal(pid, "-KILL");
     let failed = next_outcome(&mut op, first).await;
@@ -253,11 +204,11 @@ async fn an_espeak_killed_mid_utterance_fails_the_say_at_once_and_the_next_one_s
     assert!(!exists(pid), "espeak-ng {pid} was not reaped");
 
     unblock(wavs.path());
-    let second = id(&server.trigger("SHORT", json!({})).await);
+    let second = server.trigger("SHORT").await;
     let done = next_outcome(&mut op, second).await;
     assert_eq!(done["type"], "command.done", "{done}");
     assert!(wav_seconds(&wavs.path().join(format!("{second}.wav"))) > 0.2);
-    server.stop().await;
+    server.stop();
 }
 
 #[tokio::test(flavor = "multi_thread", worker_threads = 2)]
@@ -271,11 +222,11 @@ async fn a_hung_espeak_is_stopped_after_its_hang_limit_and_the_next_say_speaks()
         "speech: {adapter: espeak, voice: en, rate: 220}\n",
     );
     let wavs = tempfile::tempdir().unwrap();
-    let server = server_with_blocked_espeak(&b, wavs.path()).await;
+    let mut server = WatchedEspeak::start(&b, wavs.path());
     let mut op = server.operator().await;
-    let first = id(&server.trigger("SHORT", json!({})).await);
+    let first = server.trigger("SHORT").await;
     assert!(first <= BLOCKED, "command {first} has no blocking pipe");
-    let pid = espeak_child(wavs.path()).await;
+    let pid = server.next_espeak().await;
     // Stopped, it neither finishes nor exits: a hang, whatever it was blocked on before.
     signal(pid, "-STOP");
     let events = op
@@ -307,10 +258,10 @@ async fn a_hung_espeak_is_stopped_after_its_hang_limit_and_the_next_say_speaks()
     );
 
     unblock(wavs.path());
-    let second = id(&server.trigger("SHORT", json!({})).await);
+    let second = server.trigger("SHORT").await;
     let done = next_outcome(&mut op, second).await;
     assert_eq!(done["type"], "command.done", "{done}");
-    server.stop().await;
+    server.stop();
 }
 
 /// Texts espeak-ng takes far longer to say than their words suggest: numbers read out,

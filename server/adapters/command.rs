@@ -10,7 +10,9 @@ use docent_protocol::frames::{CommandFrame, command_frame};
 use tokio::sync::oneshot;
 
 use crate::content::{Args, Verb, speaking_time};
-use crate::events::{ActRef, EventKind, Hub};
+use crate::events::{
+    ActRef, CommandCancelled, CommandDone, CommandFailed, CommandStarted, EventKind, Hub,
+};
 
 /// A command on its way to an adapter. Cheap to clone.
 #[derive(Clone, Debug)]
@@ -140,11 +142,11 @@ impl Reply {
 
     /// Reports that execution began.
     pub fn started(&self) {
-        self.hub.publish(EventKind::CommandStarted {
+        self.hub.publish(EventKind::CommandStarted(CommandStarted {
             command: self.command.id,
             act: Arc::clone(&self.command.act),
             verb: self.command.verb.to_string(),
-        });
+        }));
     }
 
     /// Reports the outcome.
@@ -158,19 +160,19 @@ impl Reply {
         let act = Arc::clone(&self.command.act);
         let verb = self.command.verb.to_string();
         let kind = match &outcome {
-            Outcome::Done => EventKind::CommandDone { command, act, verb },
-            Outcome::Failed(reason) => EventKind::CommandFailed {
+            Outcome::Done => EventKind::CommandDone(CommandDone { command, act, verb }),
+            Outcome::Failed(reason) => EventKind::CommandFailed(CommandFailed {
                 command,
                 act,
                 verb,
                 reason: reason.clone(),
-            },
-            Outcome::Cancelled(reason) => EventKind::CommandCancelled {
+            }),
+            Outcome::Cancelled(reason) => EventKind::CommandCancelled(CommandCancelled {
                 command,
                 act,
                 verb,
                 reason: reason.clone(),
-            },
+            }),
         };
         self.hub.publish(kind);
         if let Some(waiter) = self.waiter.take() {

@@ -10,7 +10,10 @@ use std::sync::{Arc, Mutex};
 use crate::layout::{SESSION_EVENTS, new_day_log, new_session_dir, utc_date};
 use crate::manifest::{MANIFEST_FORMAT, MediaFile, SessionManifest, SessionMark};
 use docent_content::DEFAULT_VARIANT;
-use docent_protocol::events::{Event, EventKind, RecordingEvent};
+use docent_protocol::events::{
+    BundleReloaded, ConsentChanged, Event, EventKind, RecordingEvent, SessionEnded, SessionStarted,
+    VisitorGroup,
+};
 
 /// Where one event goes.
 pub(super) struct Place {
@@ -104,7 +107,9 @@ impl Route {
             }
             // A bundle that goes live during a session changes what it was recorded with: the
             // manifest keeps the one it started with, the log has the reload.
-            EventKind::BundleReloaded { bundle_hash, .. } => self.bundle_hash = bundle_hash.clone(),
+            EventKind::BundleReloaded(BundleReloaded { bundle_hash, .. }) => {
+                self.bundle_hash = bundle_hash.clone()
+            }
             EventKind::ContextChanged { context, .. } => {
                 self.context = Some(context.clone());
                 if let Some((_, manifest)) = &mut self.open {
@@ -112,12 +117,12 @@ impl Route {
                     changed = true;
                 }
             }
-            EventKind::SessionStarted {
+            EventKind::SessionStarted(SessionStarted {
                 session,
                 source,
                 consent,
                 ..
-            } => {
+            }) => {
                 let dir = self.new_dir(event);
                 let manifest = SessionManifest {
                     format: MANIFEST_FORMAT,
@@ -137,20 +142,20 @@ impl Route {
                 self.open = Some((dir, manifest));
                 changed = true;
             }
-            EventKind::ConsentChanged { consent, .. } => {
+            EventKind::ConsentChanged(ConsentChanged { consent, .. }) => {
                 if let Some((_, manifest)) = &mut self.open {
                     manifest.consent = consent.as_str().to_owned();
                     changed = true;
                 }
             }
-            EventKind::VisitorGroup { group, .. } => {
+            EventKind::VisitorGroup(VisitorGroup { group, .. }) => {
                 if let Some((_, manifest)) = &mut self.open {
                     manifest.group = Some(group.clone());
                     changed = true;
                 }
             }
             EventKind::Recording(recording) => changed = self.media(recording),
-            EventKind::SessionEnded { source, reason, .. } => {
+            EventKind::SessionEnded(SessionEnded { source, reason, .. }) => {
                 if let Some((_, manifest)) = &mut self.open {
                     manifest.ended = Some(mark(event, source.as_str(), Some(reason.as_str())));
                     changed = true;
@@ -273,14 +278,14 @@ mod tests {
     #[test]
     fn a_session_started_before_any_context_change_is_in_the_default_context() {
         let mut route = Route::new("/corpus".into());
-        let start = EventKind::SessionStarted {
+        let start = EventKind::SessionStarted(SessionStarted {
             session: 1,
             source: Source::Kiosk,
             client: Some(2),
             consent: Consent::Recorded,
             page: None,
             projector: None,
-        };
+        });
         let (_, manifest) = route.place(&at(1, start)).manifest.unwrap();
         assert_eq!(manifest.context.as_deref(), Some("Text"));
     }
@@ -299,14 +304,14 @@ mod tests {
         assert_eq!(route.place(&at(1, started)).file, day);
         assert_eq!(route.place(&at(2, context("TextChild"))).file, day);
 
-        let start = EventKind::SessionStarted {
+        let start = EventKind::SessionStarted(SessionStarted {
             session: 1,
             source: Source::Operator,
             client: Some(4),
             consent: Consent::Declined,
             page: None,
             projector: None,
-        };
+        });
         let first = route.place(&at(3, start));
         let folder = corpus.join("sessions/2026-11-18T11-06-43Z");
         assert_eq!(first.file, folder.join("events.jsonl"));
@@ -324,12 +329,12 @@ mod tests {
         let inside = route.place(&at(4, context("Text")));
         assert_eq!(inside.file, folder.join("events.jsonl"));
         assert_eq!(inside.manifest.unwrap().1.context.as_deref(), Some("Text"));
-        let end = EventKind::SessionEnded {
+        let end = EventKind::SessionEnded(SessionEnded {
             session: 1,
             source: Source::Server,
             client: None,
             reason: SessionEnd::ServerStopping,
-        };
+        });
         let last = route.place(&at(5, end));
         assert_eq!(
             last.file,

@@ -14,7 +14,7 @@ use crate::content::config::Channel;
 use crate::dispatch::channels::{Decision, LaneStatus, Waiting};
 use crate::dispatch::state::{State, Turn};
 use crate::dispatch::{Dispatcher, priority};
-use crate::events::EventKind;
+use crate::events::{CommandSent, EventKind};
 use crate::sync::lock;
 pub use docent_protocol::server_frames::Speaking;
 
@@ -71,14 +71,14 @@ impl Dispatcher {
         waiter: Option<oneshot::Sender<Outcome>>,
     ) {
         let adapter = self.router.adapter_for(&command.verb);
-        self.hub.publish(EventKind::CommandSent {
+        self.hub.publish(EventKind::CommandSent(CommandSent {
             command: command.id,
             act: Arc::clone(&command.act),
             verb: command.verb.to_string(),
             arg: command.arg.as_deref().map(str::to_owned),
             args: Arc::clone(&command.args),
             adapter: adapter.map_or("none", |a| a.name()).into(),
-        });
+        }));
         let channel = Channel::of(&command.verb);
         let (Some(_), Some(channel)) = (adapter, channel) else {
             let reason = format!("no adapter serves {}", command.verb);

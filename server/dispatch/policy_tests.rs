@@ -10,7 +10,9 @@ use tokio::time::Instant;
 
 use crate::content::{Bundle, load_bundle, speaking_time};
 use crate::dispatch::{Dispatcher, TriggerError, TriggerRequest};
-use crate::events::{Event, EventKind, Hub, Source};
+use crate::events::{
+    CommandCancelled, CommandDone, CommandFailed, CommandStarted, Event, EventKind, Hub, Source,
+};
 
 const LONG: &str = "one two three four five six seven eight nine ten eleven twelve thirteen \
                     fourteen fifteen sixteen seventeen eighteen nineteen twenty";
@@ -80,14 +82,18 @@ impl Rig {
         loop {
             let event = self.events.recv().await.expect("events");
             let (kind, id, reason) = match &event.kind {
-                EventKind::CommandStarted { command, .. } => ("started", *command, String::new()),
-                EventKind::CommandDone { command, .. } => ("done", *command, String::new()),
-                EventKind::CommandCancelled {
+                EventKind::CommandStarted(CommandStarted { command, .. }) => {
+                    ("started", *command, String::new())
+                }
+                EventKind::CommandDone(CommandDone { command, .. }) => {
+                    ("done", *command, String::new())
+                }
+                EventKind::CommandCancelled(CommandCancelled {
                     command, reason, ..
-                } => ("cancelled", *command, reason.clone()),
-                EventKind::CommandFailed {
+                }) => ("cancelled", *command, reason.clone()),
+                EventKind::CommandFailed(CommandFailed {
                     command, reason, ..
-                } => ("failed", *command, reason.clone()),
+                }) => ("failed", *command, reason.clone()),
                 _ => continue,
             };
             if id == command {

@@ -17,7 +17,7 @@ use crate::adapters::{Command, Outcome, Reply};
 use crate::content::{Args, Verb};
 use crate::dispatch::Dispatcher;
 use crate::dispatch::state::{State, Turn};
-use crate::events::EventKind;
+use crate::events::{CommandSent, EventKind};
 
 /// One act's commands on their way out.
 pub struct Sequence {
@@ -128,14 +128,14 @@ impl Sequence {
     /// Runs one `WAIT`; on a stop or an earlier failure, why the rest is not sent.
     async fn wait(&mut self, command: Command) -> Result<(), String> {
         let hub = self.dispatcher.hub().clone();
-        hub.publish(EventKind::CommandSent {
+        hub.publish(EventKind::CommandSent(CommandSent {
             command: command.id,
             act: Arc::clone(&command.act),
             verb: command.verb.to_string(),
             arg: command.arg.as_deref().map(str::to_owned),
             args: Arc::clone(&command.args),
             adapter: "dispatcher".into(),
-        });
+        }));
         let pause = match *command.args {
             Args::Wait { pause } => pause,
             _ => None,

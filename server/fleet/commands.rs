@@ -29,7 +29,7 @@ use serde_json::{Map, Value};
 
 use super::signed::{self, Replays, SignedCommand, SignedReply, Unfresh};
 use crate::access::{ClientAddress, Counted, Needed, Refusal, Secret, whole_seconds};
-use crate::events::{ClientRole, EventKind};
+use crate::events::{ClientRefused, ClientRole, EventKind};
 use crate::state::AppState;
 use crate::wire::ErrorCode;
 use crate::ws::EmbeddedSession;
@@ -324,12 +324,12 @@ fn log_refusal(state: &AppState, broker: &str, role: ClientRole, refusal: Refusa
         unlogged,
         "MQTT command refused"
     );
-    state.hub.publish(EventKind::ClientRefused {
+    state.hub.publish(EventKind::ClientRefused(ClientRefused {
         role,
         code: code.into(),
         address,
         unlogged,
-    });
+    }));
 }
 
 #[cfg(test)]

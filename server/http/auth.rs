@@ -13,7 +13,7 @@ use axum::http::request::Parts;
 use axum::http::{HeaderMap, HeaderValue, StatusCode, header};
 
 use crate::access::{Access, ClientAddress, Needed, Refusal, whole_seconds};
-use crate::events::{EventKind, Hub};
+use crate::events::{EventKind, Hub, RequestRefused};
 use crate::http::AppError;
 use crate::state::AppState;
 use crate::wire::ErrorCode;
@@ -96,13 +96,13 @@ pub(crate) fn log_refusal(
         "HTTP credential refused"
     );
     if let Some(hub) = hub {
-        hub.publish(EventKind::RequestRefused {
+        hub.publish(EventKind::RequestRefused(RequestRefused {
             method,
             path,
             code: code.into(),
             address,
             unlogged,
-        });
+        }));
     }
 }
 

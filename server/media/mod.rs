@@ -23,7 +23,7 @@ use tokio::sync::{Notify, watch};
 use tokio_util::sync::CancellationToken;
 
 use crate::content::{Bundle, Conversion};
-use crate::events::{EventKind, Hub};
+use crate::events::{EventKind, Hub, MediaFailed};
 use crate::lifecycle::Lifecycle;
 use crate::sync::lock;
 pub use cache::default_folder;
@@ -224,10 +224,10 @@ impl Media {
     /// Tells the log and the corpus that `shown` cannot be shown, and why.
     fn failed(&self, shown: &str, reason: String) {
         tracing::warn!("{shown} will not be shown: {reason}");
-        self.publish(EventKind::MediaFailed {
+        self.publish(EventKind::MediaFailed(MediaFailed {
             file: shown.to_owned(),
             reason,
-        });
+        }));
     }
 
     fn publish(&self, kind: EventKind) {

@@ -9,7 +9,7 @@ use indicatif::{ProgressBar, ProgressStyle};
 use tokio_util::sync::CancellationToken;
 
 use crate::content::{Conversion, ConvertInto};
-use crate::events::EventKind;
+use crate::events::{EventKind, MediaConverted};
 use crate::sync::lock;
 
 use super::{Media, Status, cache, recipe, run};
@@ -64,12 +64,12 @@ impl Media {
                 }
                 if made {
                     tracing::info!(file = %shown, elapsed_ms, bytes, "media converted");
-                    self.publish(EventKind::MediaConverted {
+                    self.publish(EventKind::MediaConverted(MediaConverted {
                         file: shown.clone(),
                         format: conversion.format.to_owned(),
                         elapsed_ms,
                         bytes,
-                    });
+                    }));
                 } else {
                     tracing::debug!(file = %shown, "media converted before, taken from the cache");
                 }

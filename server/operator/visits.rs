@@ -14,7 +14,9 @@ use tokio_util::sync::CancellationToken;
 
 use crate::adapters::Display;
 use crate::content::config::{CorpusSettings, SessionStart};
-use crate::events::{Consent, EventKind, Hub, SessionEnd, Source};
+use crate::events::{
+    Consent, ConsentChanged, EventKind, Hub, SessionEnd, SessionEnded, SessionStarted, Source,
+};
 use crate::sync::lock;
 
 /// What the screens show now (the display state's snapshot).
@@ -120,12 +122,12 @@ impl Visits {
             return Err(ConsentRefused::Withdrawn);
         }
         current.consent = consent;
-        self.hub.publish(EventKind::ConsentChanged {
+        self.hub.publish(EventKind::ConsentChanged(ConsentChanged {
             session: current.number,
             consent,
             source,
             client,
-        });
+        }));
         Ok(current.number)
     }
 
@@ -259,24 +261,24 @@ impl Visits {
             last_touch: Instant::now(),
         });
         let shown = (self.shown)();
-        self.hub.publish(EventKind::SessionStarted {
+        self.hub.publish(EventKind::SessionStarted(SessionStarted {
             session: number,
             source,
             client,
             consent: settings.consent,
             page: shown.page,
             projector: shown.projector,
-        });
+        }));
         number
     }
 
     fn publish_end(&self, session: u64, source: Source, client: Option<u64>, reason: SessionEnd) {
-        self.hub.publish(EventKind::SessionEnded {
+        self.hub.publish(EventKind::SessionEnded(SessionEnded {
             session,
             source,
             client,
             reason,
-        });
+        }));
         (self.after_end)();
     }
 }
@@ -394,7 +396,7 @@ mod tests {
         assert_eq!(visits.current(), Some(1), "kept going by the touch");
         loop {
             let event = events.recv().await.unwrap();
-            if let EventKind::SessionEnded { reason, source, .. } = &event.kind {
+            if let EventKind::SessionEnded(SessionEnded { reason, source, .. }) = &event.kind {
                 assert_eq!((*reason, *source), (SessionEnd::Idle, Source::Server));
                 break;
             }

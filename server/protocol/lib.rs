@@ -12,9 +12,11 @@
 //!
 //! Map:
 //! - `events/`: [`events::EventKind`] and its parts, one file per family (`origin.rs`: who
-//!   triggered; `session.rs`: why a session ended; `recording.rs`; `robot.rs`;
-//!   `robot_link.rs`; `corpus.rs`: the log's own faults; `touch.rs`; `attract.rs`), `stamped.rs`, the [`events::Event`] line, and
-//!   `line.rs`, the same line read back ([`events::Line`]).
+//!   triggered; `command.rs`; `proposal.rs`; `session.rs`: a visitor session, its marks and
+//!   why it ended; `recording.rs`; `robot.rs`; `robot_link.rs`; `bundle.rs`: reloads and
+//!   media; `client.rs`; `corpus.rs`: the log's own faults; `touch.rs`; `attract.rs`),
+//!   `stamped.rs`, the [`events::Event`] line, and `line.rs`, the same line read back
+//!   ([`events::Line`]).
 //! - `open`: [`Open`], a code as written by a newer Docent, read back.
 //! - `client_frames`: [`client_frames::ClientFrame`], what a websocket client sends (its
 //!   `hello` and `trigger` as structs of their own), and the HTTP trigger's body,

@@ -21,7 +21,10 @@ use super::{
 };
 use crate::access::Secret;
 use crate::content::config::{CorpusSettings, RecordTracks};
-use crate::events::{ClientRole, Consent, Event, EventKind, FailureCode, StopReason, Track};
+use crate::events::{
+    ClientConnected, ClientLeft, ClientRole, Consent, ConsentChanged, Event, EventKind,
+    FailureCode, SessionStarted, StopReason, Track,
+};
 use crate::sync::lock;
 use crate::wire::outbox::Frame;
 
@@ -58,18 +61,18 @@ impl Recordings {
         settings: &impl Fn() -> CorpusSettings,
     ) {
         match &event.kind {
-            EventKind::SessionStarted {
+            EventKind::SessionStarted(SessionStarted {
                 session, consent, ..
-            } => {
+            }) => {
                 *running = Some((*session, event.seq, event.mono_us));
                 if *consent == Consent::Recorded {
                     self.begin(*session, event.seq, event.mono_us, settings())
                         .await;
                 }
             }
-            EventKind::ConsentChanged {
+            EventKind::ConsentChanged(ConsentChanged {
                 session, consent, ..
-            } => match (consent, *running) {
+            }) => match (consent, *running) {
                 (Consent::Recorded, Some((number, seq, mono))) if number == *session => {
                     let recording = lock(&self.inner).session.is_some();
                     if !recording {
@@ -97,19 +100,19 @@ impl Recordings {
                     self.begin(number, seq, mono, settings()).await;
                 }
             }
-            EventKind::ClientConnected {
+            EventKind::ClientConnected(ClientConnected {
                 client,
                 role: ClientRole::Kiosk,
                 ..
-            } => {
+            }) => {
                 lock(&self.inner).kiosks.insert(*client, off(*client));
                 self.start_for(*client).await;
             }
-            EventKind::ClientLeft {
+            EventKind::ClientLeft(ClientLeft {
                 client,
                 role: ClientRole::Kiosk,
                 ..
-            } => {
+            }) => {
                 let mine: Vec<u64> = {
                     let mut inner = lock(&self.inner);
                     inner.kiosks.remove(client);
@@ -285,14 +288,14 @@ fn acted_on(kind: &EventKind) -> bool {
             | EventKind::SessionEnded { .. }
             | EventKind::ServerStopping
             | EventKind::CorpusWritable(_)
-            | EventKind::ClientConnected {
+            | EventKind::ClientConnected(ClientConnected {
                 role: ClientRole::Kiosk,
                 ..
-            }
-            | EventKind::ClientLeft {
+            })
+            | EventKind::ClientLeft(ClientLeft {
                 role: ClientRole::Kiosk,
                 ..
-            }
+            })
     )
 }
 

@@ -12,7 +12,7 @@ use tokio::sync::mpsc;
 
 use crate::content::config::SiteConfig;
 use crate::content::{Bundle, Diagnostic, LoadReport, corpus_fingerprint, load_bundle};
-use crate::events::{ClientRole, EventKind};
+use crate::events::{BundleRefused, BundleReloaded, BundleWatchFailed, ClientRole, EventKind};
 use crate::reload::settings::{kiosk_shell_changed, not_applied};
 use crate::reload::watch::{BundleWatcher, Seen};
 use crate::reload::{FOLDER_RECHECK, ReloadOptions};
@@ -178,16 +178,18 @@ impl Reloader {
             tracing::warn!("a changed setting is not in effect yet: {sentence}");
         }
         self.state.reload.went_live(not_applied.clone());
-        self.state.hub.publish(EventKind::BundleReloaded {
-            bundle_hash,
-            acts,
-            contexts,
-            page_acts,
-            warnings: diagnostics.iter().filter(|d| d.is_warning()).count(),
-            changed: changed.clone(),
-            elapsed_ms,
-            not_applied,
-        });
+        self.state
+            .hub
+            .publish(EventKind::BundleReloaded(BundleReloaded {
+                bundle_hash,
+                acts,
+                contexts,
+                page_acts,
+                warnings: diagnostics.iter().filter(|d| d.is_warning()).count(),
+                changed: changed.clone(),
+                elapsed_ms,
+                not_applied,
+            }));
         let pages: Vec<&str> = (changed.iter())
             .filter_map(|f| f.strip_prefix("pages/"))
             .collect();
@@ -207,11 +209,13 @@ impl Reloader {
             tracing::warn!("{d}");
         }
         self.state.reload.refused(diagnostics.clone());
-        self.state.hub.publish(EventKind::BundleRefused {
-            diagnostics,
-            changed,
-            elapsed_ms,
-        });
+        self.state
+            .hub
+            .publish(EventKind::BundleRefused(BundleRefused {
+                diagnostics,
+                changed,
+                elapsed_ms,
+            }));
     }
 
     /// The folder is gone: stop watching it and look for it again every second.
@@ -229,10 +233,12 @@ impl Reloader {
         );
         tracing::error!("{message}");
         self.state.reload.trouble(message.clone());
-        self.state.hub.publish(EventKind::BundleWatchFailed {
-            code: "folder-missing".into(),
-            message,
-        });
+        self.state
+            .hub
+            .publish(EventKind::BundleWatchFailed(BundleWatchFailed {
+                code: "folder-missing".into(),
+                message,
+            }));
     }
 
     fn watch_failed(&mut self, message: String) {
@@ -241,10 +247,12 @@ impl Reloader {
         }
         tracing::error!("{message}");
         self.state.reload.trouble(message.clone());
-        self.state.hub.publish(EventKind::BundleWatchFailed {
-            code: "watcher-error".into(),
-            message,
-        });
+        self.state
+            .hub
+            .publish(EventKind::BundleWatchFailed(BundleWatchFailed {
+                code: "watcher-error".into(),
+                message,
+            }));
     }
 }
 

@@ -12,7 +12,7 @@ use tokio::time::Instant;
 
 use crate::content::config::Reaction;
 use crate::dispatch::{Dispatcher, TriggerRequest};
-use crate::events::{EventKind, Hub, Source};
+use crate::events::{EventKind, Hub, ReactionFailed, Source};
 use crate::sync::lock;
 
 /// A reaction's identity across live reloads: its place and what it maps, so an edited
@@ -65,7 +65,7 @@ impl Reactions {
                 Err(reason) => {
                     if !recent(&self.told, &key, now, reaction) {
                         lock(&self.told).insert(key, now);
-                        hub.publish(EventKind::ReactionFailed {
+                        hub.publish(EventKind::ReactionFailed(ReactionFailed {
                             reaction: index + 1,
                             event: event.to_owned(),
                             act: reaction.act.clone(),
@@ -78,7 +78,7 @@ impl Reactions {
                                     .map(ToString::to_string)
                                     .unwrap_or_default()
                             ),
-                        });
+                        }));
                     }
                     Reacted::Undecided(reason)
                 }

@@ -9,7 +9,7 @@ use serde_json::json;
 use super::{Reacted, Reactions};
 use crate::content::load_bundle;
 use crate::dispatch::Dispatcher;
-use crate::events::{EventKind, Hub};
+use crate::events::{EventKind, Hub, ReactionFailed};
 
 const CONFIG: &str = "speech: {adapter: log}\nreactions:\n  - {event: person.near, if: distance < 2, act: HELLO, cooldown: 30s}\n";
 
@@ -70,7 +70,7 @@ async fn an_undecidable_condition_is_told_once_per_cooldown() {
     assert_eq!(react(), [undecided]);
     let mut told = 0;
     while let Ok(event) = events.try_recv() {
-        if let EventKind::ReactionFailed { reaction, .. } = &event.kind {
+        if let EventKind::ReactionFailed(ReactionFailed { reaction, .. }) = &event.kind {
             assert_eq!(*reaction, 1);
             told += 1;
         }

@@ -4,7 +4,9 @@
 //! started when none runs), while the loop's own pages and act never start a session.
 
 use crate::access::KioskAllowance;
-use crate::events::{AttractEnd, AttractState, ClientRole, EventKind};
+use crate::events::{
+    AttractEnd, AttractEnded, AttractStarted, AttractState, ClientRole, EventKind, Touch,
+};
 use crate::wire::ErrorCode;
 use crate::ws::client::Client;
 use crate::ws::triggers::kiosk_allowance;
@@ -30,7 +32,9 @@ pub(super) fn reported(
     let hub = &client.state.hub;
     let by = match (state, by) {
         (AttractState::Started, _) => {
-            hub.publish(EventKind::AttractStarted { client: client.id });
+            hub.publish(EventKind::AttractStarted(AttractStarted {
+                client: client.id,
+            }));
             return;
         }
         (AttractState::Ended, Some(by)) => by,
@@ -40,19 +44,19 @@ pub(super) fn reported(
             return client.reply_error(ErrorCode::BadFrame, message, None, None);
         }
     };
-    hub.publish(EventKind::AttractEnded {
+    hub.publish(EventKind::AttractEnded(AttractEnded {
         client: client.id,
         by,
-    });
+    }));
     if by == AttractEnd::Touch {
         let corpus = client.state.dispatcher.bundle().config.corpus;
         client.state.visits.touched(&corpus, client.id);
-        hub.publish(EventKind::Touch {
+        hub.publish(EventKind::Touch(Touch {
             client: client.id,
             page: client.state.devices.display.snapshot().page,
             element: Some(ENDING_TOUCH.to_owned()),
             act: None,
             link: None,
-        });
+        }));
     }
 }

@@ -18,7 +18,10 @@ use tokio_util::sync::CancellationToken;
 
 use crate::content::Verb;
 use crate::content::config::CaptionSettings;
-use crate::events::{ClientRole, Event, EventKind};
+use crate::events::{
+    ClientRole, CommandCancelled, CommandDone, CommandFailed, CommandSent, CommandStarted, Event,
+    EventKind,
+};
 use crate::state::ClientLinks;
 use crate::sync::lock;
 use crate::wire::outbox::Frame;
@@ -49,27 +52,29 @@ impl Now {
     /// Takes one event; true when the caption in force changed.
     fn take(&mut self, kind: &EventKind) -> bool {
         match kind {
-            EventKind::CommandSent {
+            EventKind::CommandSent(CommandSent {
                 command,
                 verb,
                 arg,
                 args,
                 ..
-            } if verb == Verb::Say.as_str() => {
+            }) if verb == Verb::Say.as_str() => {
                 let text = args.say_text().or(arg.as_deref()).unwrap_or_default();
                 self.texts.insert(*command, Arc::from(text));
                 false
             }
-            EventKind::CommandStarted { command, .. } => match self.texts.get(command) {
-                Some(text) => {
-                    self.shown = Some((*command, Arc::clone(text)));
-                    true
+            EventKind::CommandStarted(CommandStarted { command, .. }) => {
+                match self.texts.get(command) {
+                    Some(text) => {
+                        self.shown = Some((*command, Arc::clone(text)));
+                        true
+                    }
+                    None => false,
                 }
-                None => false,
-            },
-            EventKind::CommandDone { command, .. }
-            | EventKind::CommandFailed { command, .. }
-            | EventKind::CommandCancelled { command, .. } => {
+            }
+            EventKind::CommandDone(CommandDone { command, .. })
+            | EventKind::CommandFailed(CommandFailed { command, .. })
+            | EventKind::CommandCancelled(CommandCancelled { command, .. }) => {
                 self.texts.remove(command);
                 if self.shown.as_ref().is_some_and(|(id, _)| id == command) {
                     self.shown = None;
@@ -201,7 +206,7 @@ mod tests {
     }
 
     fn sent(command: u64, verb: &str, text: &str) -> EventKind {
-        EventKind::CommandSent {
+        EventKind::CommandSent(CommandSent {
             command,
             act: act(),
             verb: verb.to_owned(),
@@ -211,23 +216,23 @@ mod tests {
                 language: None,
             }),
             adapter: "log".into(),
-        }
+        })
     }
 
     fn started(command: u64) -> EventKind {
-        EventKind::CommandStarted {
+        EventKind::CommandStarted(CommandStarted {
             command,
             act: act(),
             verb: "SAY".to_owned(),
-        }
+        })
     }
 
     fn done(command: u64) -> EventKind {
-        EventKind::CommandDone {
+        EventKind::CommandDone(CommandDone {
             command,
             act: act(),
             verb: "SAY".to_owned(),
-        }
+        })
     }
 
     const ALL_ON: CaptionSettings = CaptionSettings {

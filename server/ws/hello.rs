@@ -15,7 +15,9 @@
 
 use crate::access::{Needed, Refusal};
 use crate::content::{BundleArea, resolve_in_bundle};
-use crate::events::{ClientRole, EventKind, robot_event_name_problem};
+use crate::events::{
+    ClientConnected, ClientRefused, ClientRole, EventKind, robot_event_name_problem,
+};
 use crate::state::ClientInfo;
 use crate::wire::ErrorCode;
 use crate::wire::outbox::Frame;
@@ -264,12 +266,14 @@ pub(super) fn join(client: &Client, admitted: Admitted) {
             client.outbox.send(frame);
         });
     }
-    state.hub.publish(EventKind::ClientConnected {
-        client: client.id,
-        role,
-        name,
-        verbs,
-    });
+    state
+        .hub
+        .publish(EventKind::ClientConnected(ClientConnected {
+            client: client.id,
+            role,
+            name,
+            verbs,
+        }));
 }
 
 /// Logs a counted refusal, within the shared allowance; an address already waiting is
@@ -290,12 +294,15 @@ fn log_refusal(client: &Client, role: ClientRole, refusal: Refusal) {
         unlogged,
         "websocket credential refused"
     );
-    client.state.hub.publish(EventKind::ClientRefused {
-        role,
-        code: code.into(),
-        address,
-        unlogged,
-    });
+    client
+        .state
+        .hub
+        .publish(EventKind::ClientRefused(ClientRefused {
+            role,
+            code: code.into(),
+            address,
+            unlogged,
+        }));
 }
 
 /// Tells an adapter, in one frame, which of its verbs this bundle sends elsewhere: it

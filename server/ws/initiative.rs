@@ -5,7 +5,10 @@
 //! changes the session: each handler answers the [`Client`] it is lent.
 
 use crate::dispatch::TriggerRequest;
-use crate::events::{ClientRole, Consent, EventKind, SessionEnd};
+use crate::events::{
+    ClientRole, Consent, EventKind, NoteWritten, ProposalAccepted, ProposalDismissed, ProposalMade,
+    ProposalWithdrawn, SessionEnd, SituationMarked, VisitorGroup,
+};
 use crate::operator::{ConsentRefused, Proposal, VISITOR_GROUPS};
 use crate::wire::ErrorCode;
 use crate::ws::client::Client;
@@ -34,13 +37,13 @@ pub(super) fn propose(
     }
     let hub = &client.state.hub;
     let announce = |p: &Proposal| {
-        hub.publish(EventKind::ProposalMade {
+        hub.publish(EventKind::ProposalMade(ProposalMade {
             proposal: p.proposal,
             client: p.client,
             label: p.label.clone(),
             context: p.context.clone(),
             reason: p.reason.clone(),
-        });
+        }));
     };
     let made = (client.state.proposals).propose(client.id, label, context, reason, announce);
     match made {
@@ -52,12 +55,15 @@ pub(super) fn propose(
 /// Withdraws the pending proposals of a dialog manager that left.
 pub(super) fn withdraw_proposals(client: &Client) {
     for p in client.state.proposals.withdraw_from(client.id) {
-        client.state.hub.publish(EventKind::ProposalWithdrawn {
-            proposal: p.proposal,
-            client: p.client,
-            label: p.label,
-            reason: "the dialog manager left".into(),
-        });
+        client
+            .state
+            .hub
+            .publish(EventKind::ProposalWithdrawn(ProposalWithdrawn {
+                proposal: p.proposal,
+                client: p.client,
+                label: p.label,
+                reason: "the dialog manager left".into(),
+            }));
     }
 }
 
@@ -89,12 +95,15 @@ pub(super) fn accept(
     };
     match client.state.dispatcher.trigger(request) {
         Ok(t) => {
-            client.state.hub.publish(EventKind::ProposalAccepted {
-                proposal: id,
-                client: client.id,
-                label: proposal.label,
-                trigger: t.trigger,
-            });
+            client
+                .state
+                .hub
+                .publish(EventKind::ProposalAccepted(ProposalAccepted {
+                    proposal: id,
+                    client: client.id,
+                    label: proposal.label,
+                    trigger: t.trigger,
+                }));
             // After the event, so that the acknowledgement waits for it in the log too.
             client.send_logged(triggered_frame(&t), reference.as_deref());
         }
@@ -124,11 +133,14 @@ pub(super) fn dismiss(
     }
     match client.state.proposals.settle(id) {
         Ok(p) => {
-            client.state.hub.publish(EventKind::ProposalDismissed {
-                proposal: id,
-                client: client.id,
-                label: p.label,
-            });
+            client
+                .state
+                .hub
+                .publish(EventKind::ProposalDismissed(ProposalDismissed {
+                    proposal: id,
+                    client: client.id,
+                    label: p.label,
+                }));
             client.send_logged(dismissed_frame(reference, id), reference);
         }
         Err(e) => client.reply_error(e.code(), &e.to_string(), reference, None),
@@ -194,13 +206,13 @@ pub(super) fn mark(
             };
             let context = group_context(client, group);
             let session = visits.current();
-            hub.publish(EventKind::VisitorGroup {
+            hub.publish(EventKind::VisitorGroup(VisitorGroup {
                 session,
                 group: group.to_owned(),
                 context: context.clone(),
                 source,
                 client: id,
-            });
+            }));
             if let Some(context) = context {
                 // Known to exist: the loader checked the site's mapping.
                 let _ = client.state.dispatcher.set_context(&context, source);
@@ -216,12 +228,12 @@ pub(super) fn mark(
                 return;
             };
             let session = visits.current();
-            hub.publish(EventKind::SituationMarked {
+            hub.publish(EventKind::SituationMarked(SituationMarked {
                 session,
                 situation: situation.to_owned(),
                 source,
                 client: id,
-            });
+            }));
             session
         }
         MarkKind::Note => {
@@ -229,12 +241,12 @@ pub(super) fn mark(
                 return;
             };
             let session = visits.current();
-            hub.publish(EventKind::NoteWritten {
+            hub.publish(EventKind::NoteWritten(NoteWritten {
                 session,
                 text: text.to_owned(),
                 source,
                 client: id,
-            });
+            }));
             session
         }
     };

@@ -12,7 +12,7 @@ use tokio_util::sync::CancellationToken;
 
 use crate::access::TokenBucket;
 use crate::adapters::ScreenReport;
-use crate::events::{ClientRole, EventKind};
+use crate::events::{ClientLeft, ClientRole, EventKind};
 use crate::wire::ErrorCode;
 use crate::ws::client::Client;
 use crate::ws::diagnose::diagnose;
@@ -247,11 +247,11 @@ impl Session {
             initiative::withdraw_proposals(client);
         }
         let reason = reason.to_owned();
-        state.hub.publish(EventKind::ClientLeft {
+        state.hub.publish(EventKind::ClientLeft(ClientLeft {
             client: client.id,
             role,
             reason,
             code,
-        });
+        }));
     }
 }

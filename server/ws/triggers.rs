@@ -12,7 +12,7 @@ use std::time::Instant;
 use crate::access::KioskAllowance;
 use crate::content::{Bundle, BundleArea, resolve_in_bundle};
 use crate::dispatch::{Answer, TriggerRequest};
-use crate::events::{ClientRole, EventKind, KioskCause, element_description};
+use crate::events::{ClientRole, EventKind, KioskCause, Touch, element_description};
 use crate::wire::ErrorCode;
 use crate::ws::client::Client;
 use crate::ws::protocol::{
@@ -314,12 +314,12 @@ struct Touched {
 impl Touched {
     /// Logs the touch on `page`, the page the server's display state has the kiosk on.
     fn log(self, client: &Client, page: Option<String>) {
-        client.state.hub.publish(EventKind::Touch {
+        client.state.hub.publish(EventKind::Touch(Touch {
             client: client.id,
             page,
             element: self.element,
             act: self.act,
             link: self.link,
-        });
+        }));
     }
 }

@@ -47,12 +47,17 @@ pub fn spawn_docent(bundle: &Path, corpus: &Path) -> (Child, String) {
 
 /// Starts `command` (which runs `docent serve` on port 0, perhaps through a shell) and waits
 /// for the address it prints; its output is read on until it exits.
-pub fn start(mut command: Command) -> (Child, String) {
+pub fn start(command: Command) -> (Child, String) {
+    start_logging(command, Stdio::null())
+}
+
+/// As [`start`], with the server's stderr (its log) going to `stderr`.
+pub fn start_logging(mut command: Command, stderr: impl Into<Stdio>) -> (Child, String) {
     let mut child = command
         .stdout(Stdio::piped())
-        .stderr(Stdio::null())
+        .stderr(stderr)
         .spawn()
-        .expect("docent starts");
+        .unwrap_or_else(|e| panic!("starting {:?}: {e}", command.get_program()));
     let mut lines = BufReader::new(child.stdout.take().expect("stdout")).lines();
     let addr = (&mut lines)
         .map_while(Result::ok)
@@ -67,4 +72,18 @@ pub fn start(mut command: Command) -> (Child, String) {
         .expect("docent prints its websocket address");
     std::thread::spawn(move || lines.for_each(drop));
     (child, addr)
+}
+
+/// Sends `pid` SIGTERM, as systemd stops Docent.
+pub fn terminate(pid: u32) {
+    let sent = Command::new("kill").arg(pid.to_string()).status();
+    assert!(sent.is_ok_and(|s| s.success()), "kill -TERM {pid}");
+}
+
+/// Stops `docent` as systemd would (SIGTERM) and waits for it: it exits cleanly, its corpus
+/// complete.
+pub fn stop(mut docent: Child) {
+    terminate(docent.id());
+    let exit = docent.wait().expect("docent exits");
+    assert!(exit.success(), "{exit}");
 }

@@ -2,10 +2,11 @@
 //! manager's credentials in its environment and live reload on (as a site runs it), measured
 //! from /proc while it runs, and stopped as systemd stops it (SIGTERM).
 
-use std::io::{BufRead, BufReader};
 use std::path::Path;
 use std::process::{Child, Command, ExitStatus, Stdio};
 use std::time::Duration;
+
+use crate::common::process::{start_logging, terminate};
 
 /// The operator's credential the soak's server is started with.
 pub const OPERATOR_TOKEN: &str = "soak-operator-credential";
@@ -24,31 +25,16 @@ impl Docent {
     /// address it prints.
     pub fn start(docent: &Path, bundle: &Path, corpus: &Path, log: &Path) -> Docent {
         let stderr = std::fs::File::create(log).expect("server log");
-        let mut child = Command::new(docent)
+        let mut command = Command::new(docent);
+        command
             .arg("serve")
             .arg(bundle)
             .args(["--listen", "127.0.0.1:0", "--corpus"])
             .arg(corpus)
             .env("DOCENT_OPERATOR_TOKEN", OPERATOR_TOKEN)
             .env("DOCENT_DM_TOKEN", DM_TOKEN)
-            .stdin(Stdio::null())
-            .stdout(Stdio::piped())
-            .stderr(stderr)
-            .spawn()
-            .unwrap_or_else(|e| panic!("starting {}: {e}", docent.display()));
-        let mut lines = BufReader::new(child.stdout.take().expect("stdout")).lines();
-        let addr = (&mut lines)
-            .map_while(Result::ok)
-            .find_map(|l| {
-                let url = l.trim().strip_prefix("websocket:")?.trim();
-                Some(
-                    url.trim_start_matches("ws://")
-                        .trim_end_matches("/ws")
-                        .to_owned(),
-                )
-            })
-            .expect("docent prints its websocket address");
-        std::thread::spawn(move || lines.for_each(drop));
+            .stdin(Stdio::null());
+        let (child, addr) = start_logging(command, stderr);
         Docent { child, addr }
     }
 
@@ -61,8 +47,7 @@ impl Docent {
     /// exit in time (it is then killed).
     pub fn stop(mut self, limit: Duration) -> Option<ExitStatus> {
         let pid = self.pid().to_string();
-        let sent = Command::new("kill").arg(&pid).status();
-        assert!(sent.is_ok_and(|s| s.success()), "kill -TERM docent");
+        terminate(self.pid());
         let (tx, rx) = std::sync::mpsc::channel();
         std::thread::spawn(move || tx.send(self.child.wait().expect("docent's status")));
         let status = rx.recv_timeout(limit).ok();

@@ -13,7 +13,7 @@ use serde_json::Value;
 use super::link::Inbound;
 use super::{Robot, messages};
 use crate::adapters::drive_sim::Pose;
-use crate::events::EventKind;
+use crate::events::{EventKind, TopicRefused};
 use crate::robot::{RobotNotice, RobotOrigin};
 use crate::sync::lock;
 use crate::ws::ROBOT_DATA_BYTES;
@@ -118,11 +118,11 @@ fn refused(robot: &Robot, topic: &str, event: Option<&str>, reason: String) {
         return;
     }
     tracing::warn!(topic, event, "{reason}");
-    robot.hub.publish(EventKind::TopicRefused {
+    robot.hub.publish(EventKind::TopicRefused(TopicRefused {
         topic: topic.to_owned(),
         event: event.map(str::to_owned),
         reason,
-    });
+    }));
 }
 
 #[cfg(test)]

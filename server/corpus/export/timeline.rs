@@ -13,7 +13,11 @@ use std::collections::{BTreeMap, HashMap};
 use std::sync::Arc;
 
 use docent_protocol::EVENT_FORMAT_VERSION;
-use docent_protocol::events::{ActRef, EventKind, Head, LineEvent, Source, is_pose};
+use docent_protocol::events::{
+    self, ActRef, CommandCancelled, CommandDone, CommandFailed, CommandSent, CommandStarted,
+    EventKind, Head, LineEvent, NoteWritten, SessionStarted, SituationMarked, Source, VisitorGroup,
+    is_pose,
+};
 
 mod parts;
 
@@ -142,7 +146,7 @@ impl TimelineReader {
                     None => self.timeline.touches.push(Touch { at_us: at, what }),
                 }
             }
-            EventKind::Touch { act, link, .. } => {
+            EventKind::Touch(events::Touch { act, link, .. }) => {
                 let what = match (act, link) {
                     (Some(label), _) => Touched::Act { label },
                     (None, Some(page)) => Touched::Page { page },
@@ -150,58 +154,58 @@ impl TimelineReader {
                 };
                 self.timeline.touches.push(Touch { at_us: at, what });
             }
-            EventKind::CommandSent {
+            EventKind::CommandSent(CommandSent {
                 command,
                 act,
                 verb,
                 arg,
                 ..
-            } => {
+            }) => {
                 let pending = self.command(at, command, &act, verb);
                 pending.sent_us = Some(at);
                 if arg.is_some() {
                     pending.arg = arg;
                 }
             }
-            EventKind::CommandStarted { command, act, verb } => {
+            EventKind::CommandStarted(CommandStarted { command, act, verb }) => {
                 self.command(at, command, &act, verb).started_us = Some(at);
             }
-            EventKind::CommandDone { command, act, verb } => {
+            EventKind::CommandDone(CommandDone { command, act, verb }) => {
                 self.command(at, command, &act, verb).end = Some((at, Outcome::Done));
             }
-            EventKind::CommandFailed {
+            EventKind::CommandFailed(CommandFailed {
                 command,
                 act,
                 verb,
                 reason,
-            } => {
+            }) => {
                 self.command(at, command, &act, verb).end = Some((at, Outcome::Failed(reason)));
             }
-            EventKind::CommandCancelled {
+            EventKind::CommandCancelled(CommandCancelled {
                 command,
                 act,
                 verb,
                 reason,
-            } => {
+            }) => {
                 let end = Some((at, Outcome::Cancelled(reason)));
                 self.command(at, command, &act, verb).end = end;
             }
             EventKind::DisplayChanged { page, .. } => self.page_changed(at, page),
-            EventKind::SituationMarked { situation, .. } => {
+            EventKind::SituationMarked(SituationMarked { situation, .. }) => {
                 let what = Marked::Situation(situation);
                 self.timeline.marks.push(Mark { at_us: at, what });
             }
-            EventKind::NoteWritten { text, .. } => {
+            EventKind::NoteWritten(NoteWritten { text, .. }) => {
                 let what = Marked::Note(text);
                 self.timeline.marks.push(Mark { at_us: at, what });
             }
-            EventKind::VisitorGroup { group, .. } => {
+            EventKind::VisitorGroup(VisitorGroup { group, .. }) => {
                 let what = Marked::Group(group);
                 self.timeline.marks.push(Mark { at_us: at, what });
             }
-            EventKind::SessionStarted {
+            EventKind::SessionStarted(SessionStarted {
                 page: Some(page), ..
-            } => self.page = Some((at, page)),
+            }) => self.page = Some((at, page)),
             EventKind::SessionEnded { .. } => self.timeline.ended = true,
             // Every other event draws nothing on the timeline (MCAP reads the lines again).
             _ => {}

@@ -25,3 +25,19 @@ pub enum AttractEnd {
     /// The schedule closed the kiosk or changed the loop.
     Schedule,
 }
+
+/// The fields of a `attract.started` event ([`super::EventKind::AttractStarted`]).
+#[derive(Debug, Serialize, Deserialize)]
+pub struct AttractStarted {
+    /// The kiosk.
+    pub client: u64,
+}
+
+/// The fields of a `attract.ended` event ([`super::EventKind::AttractEnded`]).
+#[derive(Debug, Serialize, Deserialize)]
+pub struct AttractEnded {
+    /// The kiosk.
+    pub client: u64,
+    /// What ended it.
+    pub by: AttractEnd,
+}

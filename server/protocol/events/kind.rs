@@ -1,9 +1,13 @@
-//! The event types: [`EventKind`], one variant per thing that happens. Field names here are
-//! the corpus format; change them only with a version bump. Who asked (`origin.rs`) and the
-//! hub's stamps (`stamped.rs`) live beside it, so that this file is the format alone.
+//! The event types: [`EventKind`], one variant per thing that happens. Field names here and
+//! in the families' files are the corpus format; change them only with a version bump. The
+//! fields of the larger families are structs in their own files (`command.rs`,
+//! `proposal.rs`, `session.rs`, `touch.rs`, `attract.rs`, `robot.rs`, `bundle.rs`,
+//! `client.rs`, `corpus.rs`, `recording.rs`), serialized as the variant's own fields would be.
+//! Who asked (`origin.rs`) and the hub's stamps (`stamped.rs`) live beside it, so that these
+//! files are the format alone.
 //!
 //! The same enum reads the lines back (`line.rs`): every field a format version before the
-//! newest lacks has its default here, said beside it. Two fields are not read back, because
+//! newest lacks has its default beside it, said there. Two fields are not read back, because
 //! no reader needs them and their types are the content model's, which only writes them: a
 //! `command.sent`'s parsed `args` (read as none) and a `bundle.refused`'s `diagnostics` (read
 //! as empty). Every other field reads back as written (`line_tests.rs` writes and reads every
@@ -14,11 +18,10 @@ use std::sync::Arc;
 
 use serde::{Deserialize, Deserializer, Serialize, Serializer};
 
-use super::origin::{ActRef, ClientRole, Source};
+use super::origin::{ActRef, Source};
 use super::recording::RecordingEvent;
-use super::session::{Consent, SessionEnd};
 use crate::{ErrorCode, Open};
-use docent_content::{Args, Language};
+use docent_content::Language;
 
 /// One thing that happened. Serialized with `type` as the tag.
 ///
@@ -94,71 +97,19 @@ pub enum EventKind {
     },
     /// A command was handed to its adapter.
     #[serde(rename = "command.sent")]
-    CommandSent {
-        /// Command id.
-        command: u64,
-        /// The trigger and act.
-        #[serde(flatten)]
-        act: Arc<ActRef>,
-        /// Verb.
-        verb: String,
-        /// Argument as written.
-        arg: Option<String>,
-        /// The argument parsed (the `args` of `command` frames; format 2). Not read back: read
-        /// as none (`Args::None`), as format 1 lines, which lack it, are.
-        #[serde(skip_deserializing, default = "no_args")]
-        args: Arc<Args>,
-        /// The adapter it went to.
-        adapter: Cow<'static, str>,
-    },
+    CommandSent(super::CommandSent),
     /// An adapter started executing a command.
     #[serde(rename = "command.started")]
-    CommandStarted {
-        /// Command id.
-        command: u64,
-        /// The trigger and act.
-        #[serde(flatten)]
-        act: Arc<ActRef>,
-        /// Verb.
-        verb: String,
-    },
+    CommandStarted(super::CommandStarted),
     /// A command finished.
     #[serde(rename = "command.done")]
-    CommandDone {
-        /// Command id.
-        command: u64,
-        /// The trigger and act.
-        #[serde(flatten)]
-        act: Arc<ActRef>,
-        /// Verb.
-        verb: String,
-    },
+    CommandDone(super::CommandDone),
     /// A command failed.
     #[serde(rename = "command.failed")]
-    CommandFailed {
-        /// Command id.
-        command: u64,
-        /// The trigger and act.
-        #[serde(flatten)]
-        act: Arc<ActRef>,
-        /// Verb.
-        verb: String,
-        /// Why, in words.
-        reason: String,
-    },
+    CommandFailed(super::CommandFailed),
     /// A command was dropped or cut short by a stop, `DRIVE_STOP` or an interrupting trigger.
     #[serde(rename = "command.cancelled")]
-    CommandCancelled {
-        /// Command id.
-        command: u64,
-        /// The trigger and act.
-        #[serde(flatten)]
-        act: Arc<ActRef>,
-        /// Verb.
-        verb: String,
-        /// Why.
-        reason: String,
-    },
+    CommandCancelled(super::CommandCancelled),
     /// What the touchscreen or projector shows changed.
     #[serde(rename = "display.changed")]
     DisplayChanged {
@@ -240,316 +191,85 @@ pub enum EventKind {
     },
     /// A dialog manager proposed an act for the operator to accept or dismiss.
     #[serde(rename = "proposal.made")]
-    ProposalMade {
-        /// The proposal's id.
-        proposal: u64,
-        /// The dialog manager's connection.
-        client: u64,
-        /// The act proposed.
-        label: String,
-        /// The context it would be triggered in (the current one when absent).
-        context: Option<String>,
-        /// Why, in the dialog manager's words.
-        reason: Option<String>,
-    },
+    ProposalMade(super::ProposalMade),
     /// An operator accepted a proposal; the act was triggered as `trigger`.
     #[serde(rename = "proposal.accepted")]
-    ProposalAccepted {
-        /// The proposal's id.
-        proposal: u64,
-        /// The operator's connection.
-        client: u64,
-        /// The act.
-        label: String,
-        /// The trigger it became.
-        trigger: u64,
-    },
+    ProposalAccepted(super::ProposalAccepted),
     /// An operator dismissed a proposal; nothing was triggered.
     #[serde(rename = "proposal.dismissed")]
-    ProposalDismissed {
-        /// The proposal's id.
-        proposal: u64,
-        /// The operator's connection.
-        client: u64,
-        /// The act.
-        label: String,
-    },
+    ProposalDismissed(super::ProposalDismissed),
     /// A proposal was taken back before anyone answered it (its dialog manager left).
     #[serde(rename = "proposal.withdrawn")]
-    ProposalWithdrawn {
-        /// The proposal's id.
-        proposal: u64,
-        /// The dialog manager's connection.
-        client: u64,
-        /// The act.
-        label: String,
-        /// Why.
-        reason: String,
-    },
+    ProposalWithdrawn(super::ProposalWithdrawn),
     /// A visitor session began (marked by an operator).
     #[serde(rename = "session.started")]
-    SessionStarted {
-        /// The session's number, from 1 within one server run.
-        session: u64,
-        /// Who marked it.
-        source: Source,
-        /// The marking client.
-        #[serde(skip_serializing_if = "Option::is_none")]
-        client: Option<u64>,
-        /// The consent it starts with (the site's `corpus.consent`). Format 3 lines before
-        /// consent was logged lack it: read as `recorded`, the site's default then.
-        #[serde(default = "recorded")]
-        consent: Consent,
-        /// The page the touchscreen showed as it began (the session's pages start with it).
-        page: Option<String>,
-        /// The film or picture the projector showed as it began.
-        projector: Option<String>,
-    },
+    SessionStarted(super::SessionStarted),
     /// A visitor touched the kiosk: a `data-act` element (its trigger follows) or a link (the
     /// page change follows).
     #[serde(rename = "touch")]
-    Touch {
-        /// The kiosk.
-        client: u64,
-        /// The page touched, as the server's display state had it.
-        page: Option<String>,
-        /// The element, as the kiosk described it (`button#start [data-act=GREETING] "Hello"`).
-        element: Option<String>,
-        /// The act it asked for.
-        #[serde(skip_serializing_if = "Option::is_none")]
-        act: Option<String>,
-        /// The page a link led to.
-        #[serde(skip_serializing_if = "Option::is_none")]
-        link: Option<String>,
-    },
+    Touch(super::Touch),
     /// A kiosk's attract loop began: its pages and act are the screen's own doing.
     #[serde(rename = "attract.started")]
-    AttractStarted {
-        /// The kiosk.
-        client: u64,
-    },
+    AttractStarted(super::AttractStarted),
     /// A kiosk's attract loop ended (a touch's own `touch` event follows it).
     #[serde(rename = "attract.ended")]
-    AttractEnded {
-        /// The kiosk.
-        client: u64,
-        /// What ended it.
-        by: super::AttractEnd,
-    },
+    AttractEnded(super::AttractEnded),
     /// The robot's software noticed something (an adapter process sent it).
     #[serde(rename = "robot")]
     Robot(super::RobotEvent),
     /// A message on a ROS topic could not be used (told once per topic and problem).
     #[serde(rename = "topic.refused")]
-    TopicRefused {
-        /// The topic.
-        topic: String,
-        /// The robot event it would have been, if any (not for the pose topic).
-        #[serde(skip_serializing_if = "Option::is_none")]
-        event: Option<String>,
-        /// Why, and what to change.
-        reason: String,
-    },
+    TopicRefused(super::TopicRefused),
     /// A reaction's condition could not be decided on a robot event's data.
     #[serde(rename = "reaction.failed")]
-    ReactionFailed {
-        /// The reaction's place in `reactions:`, from 1.
-        reaction: usize,
-        /// The robot event.
-        event: String,
-        /// The act it would have triggered.
-        act: String,
-        /// Why, and what to fix.
-        reason: String,
-    },
+    ReactionFailed(super::ReactionFailed),
     /// An operator noted what the session's visitors agreed to.
     #[serde(rename = "consent.changed")]
-    ConsentChanged {
-        /// The session.
-        session: u64,
-        /// The new state.
-        consent: Consent,
-        /// Who noted it.
-        source: Source,
-        /// The noting client.
-        client: u64,
-    },
+    ConsentChanged(super::ConsentChanged),
     /// A visitor session ended.
     #[serde(rename = "session.ended")]
-    SessionEnded {
-        /// The session's number.
-        session: u64,
-        /// Who ended it.
-        source: Source,
-        /// The client that ended it.
-        #[serde(skip_serializing_if = "Option::is_none")]
-        client: Option<u64>,
-        /// Why it ended (format 3). Format 1 and 2 lines lack it: read as `marked`.
-        #[serde(default = "marked")]
-        reason: SessionEnd,
-    },
+    SessionEnded(super::SessionEnded),
     /// The operator noted who the visitors are.
     #[serde(rename = "visitor.group")]
-    VisitorGroup {
-        /// The running session, if any.
-        session: Option<u64>,
-        /// `single`, `group` or `children`.
-        group: String,
-        /// The context this set, when the site maps the group to one.
-        context: Option<String>,
-        /// Who marked it.
-        source: Source,
-        /// The marking client.
-        client: u64,
-    },
+    VisitorGroup(super::VisitorGroup),
     /// The operator marked a dialog situation (`question`, `laughter`, ... as the site lists).
     #[serde(rename = "situation.marked")]
-    SituationMarked {
-        /// The running session, if any.
-        session: Option<u64>,
-        /// The situation's name.
-        situation: String,
-        /// Who marked it.
-        source: Source,
-        /// The marking client.
-        client: u64,
-    },
+    SituationMarked(super::SituationMarked),
     /// An operator wrote a note about the moment, in their own words.
     #[serde(rename = "note.written")]
-    NoteWritten {
-        /// The running session, if any.
-        session: Option<u64>,
-        /// The note, trimmed.
-        text: String,
-        /// Who wrote it.
-        source: Source,
-        /// The writing client.
-        client: u64,
-    },
+    NoteWritten(super::NoteWritten),
     /// A saved bundle without errors went live in place of the running one.
     #[serde(rename = "bundle.reloaded")]
-    BundleReloaded {
-        /// The new bundle's content, `sha256:…`, as in `server.started`.
-        bundle_hash: Option<String>,
-        /// Acts in the new bundle.
-        acts: usize,
-        /// Contexts in the new bundle.
-        contexts: usize,
-        /// Acts the new bundle's pages offer to a touchscreen.
-        page_acts: usize,
-        /// Warnings the check found (errors would have refused it; notes are not counted).
-        warnings: usize,
-        /// Files changed since the last bundle went live, relative to the bundle folder.
-        changed: Vec<String>,
-        /// Milliseconds from the first change seen to the new bundle being live.
-        elapsed_ms: u64,
-        /// Settings changed in `docent.yaml` that take effect only after a restart (or a
-        /// reload of a screen), each as a sentence for the operator; empty when none.
-        not_applied: Vec<String>,
-    },
+    BundleReloaded(super::BundleReloaded),
     /// A saved bundle had errors: it was refused and the last good one keeps running.
     #[serde(rename = "bundle.refused")]
-    BundleRefused {
-        /// Every problem found, errors, warnings and notes, as `docent check --format json`
-        /// gives them.
-        /// Not read back (read as empty).
-        #[serde(skip_deserializing)]
-        diagnostics: Vec<docent_content::Diagnostic>,
-        /// Files changed since the last bundle went live, relative to the bundle folder.
-        changed: Vec<String>,
-        /// Milliseconds the check took.
-        elapsed_ms: u64,
-    },
+    BundleRefused(super::BundleRefused),
     /// The bundle folder cannot be watched or read any more (deleted, renamed, a watcher
     /// error); the last good bundle keeps running.
     #[serde(rename = "bundle.watch-failed")]
-    BundleWatchFailed {
-        /// `folder-missing` or `watcher-error`.
-        code: Cow<'static, str>,
-        /// What happened and what to do, in plain words.
-        message: String,
-    },
+    BundleWatchFailed(super::BundleWatchFailed),
     /// A media file Chromium cannot show as it is was converted for it (into the media
     /// cache; the file itself is unchanged). Not logged when the result was already cached.
     #[serde(rename = "media.converted")]
-    MediaConverted {
-        /// The file from the bundle folder (`media/Exhibit/video.mpg`).
-        file: String,
-        /// Its format (`MPEG-1/2`, `HEIC`).
-        format: String,
-        /// Milliseconds the conversion took.
-        elapsed_ms: u64,
-        /// The converted file's size in bytes.
-        bytes: u64,
-    },
+    MediaConverted(super::MediaConverted),
     /// A media file could not be converted: showing it fails with this reason until the file
     /// is replaced (or the missing converter installed and Docent restarted).
     #[serde(rename = "media.failed")]
-    MediaFailed {
-        /// The file from the bundle folder.
-        file: String,
-        /// Why, in words, with what to do.
-        reason: String,
-    },
+    MediaFailed(super::MediaFailed),
     /// A websocket client's credential was refused (the connection was closed), or a command
     /// over MQTT was badly signed.
     #[serde(rename = "client.refused")]
-    ClientRefused {
-        /// The role it asked for.
-        role: ClientRole,
-        /// `unauthorized`, `bad-signature` (MQTT) or `too-many-attempts`.
-        code: Open<ErrorCode>,
-        /// Its network address, when known (never for MQTT: the broker does not say).
-        address: Option<String>,
-        /// Credential refusals (websocket and HTTP) left out of the log just before this one,
-        /// because refusals from many addresses came faster than they are logged.
-        #[serde(default, skip_serializing_if = "is_zero")]
-        unlogged: u64,
-    },
+    ClientRefused(super::ClientRefused),
     /// An HTTP request's credential was refused (`401`, or the `429` that made its address
     /// wait).
     #[serde(rename = "request.refused")]
-    RequestRefused {
-        /// The request's method.
-        method: String,
-        /// The request's path (without the query), at most 256 bytes.
-        path: String,
-        /// `unauthorized` or `too-many-attempts`.
-        code: Open<ErrorCode>,
-        /// The client's network address, when known.
-        address: Option<String>,
-        /// As for `client.refused`.
-        #[serde(default, skip_serializing_if = "is_zero")]
-        unlogged: u64,
-    },
+    RequestRefused(super::RequestRefused),
     /// A websocket client said hello.
     #[serde(rename = "client.connected")]
-    ClientConnected {
-        /// The connection's id.
-        client: u64,
-        /// Its role.
-        role: ClientRole,
-        /// Its self-given name.
-        name: Option<String>,
-        /// Verbs it serves (adapters).
-        #[serde(default, skip_serializing_if = "Vec::is_empty")]
-        verbs: Vec<String>,
-    },
+    ClientConnected(super::ClientConnected),
     /// A websocket client left or was dropped.
     #[serde(rename = "client.left")]
-    ClientLeft {
-        /// The connection's id.
-        client: u64,
-        /// Its role.
-        role: ClientRole,
-        /// Why it ended.
-        reason: String,
-        /// The close code the server ended the connection with, when the server decided the
-        /// end (`1008` a client that stopped reading, `1013` one that fell behind the event
-        /// stream, `1001` shutdown, the RFC 6455 code of a protocol violation).
-        #[serde(default, skip_serializing_if = "Option::is_none")]
-        code: Option<u16>,
-    },
+    ClientLeft(super::ClientLeft),
     /// The robot's link to the fleet's MQTT broker came up or went down (`docs/FLEET.md`).
     #[serde(rename = "fleet.link")]
     FleetLink(crate::fleet_link::LinkView),
@@ -613,21 +333,6 @@ fn not_a_number() -> f64 {
     f64::NAN
 }
 
-/// What a line without `args` reads as.
-fn no_args() -> Arc<Args> {
-    Arc::new(Args::None {})
-}
-
-/// What a `session.started` without `consent` reads as.
-fn recorded() -> Consent {
-    Consent::Recorded
-}
-
-/// What a `session.ended` without `reason` reads as.
-fn marked() -> SessionEnd {
-    SessionEnd::Marked
-}
-
 impl EventKind {
     /// Whether an operator or dialog manager joining later should see this event again (the
     /// console's history, pending proposals and marks).
@@ -650,8 +355,4 @@ impl EventKind {
                 | EventKind::RobotLink(_)
         )
     }
-}
-
-fn is_zero(n: &u64) -> bool {
-    *n == 0
 }

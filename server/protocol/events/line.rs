@@ -171,5 +171,8 @@ impl Tagged for RecordingEvent {
 }
 
 #[cfg(test)]
+#[path = "line_samples.rs"]
+mod samples;
+#[cfg(test)]
 #[path = "line_tests.rs"]
 mod tests;

@@ -7,10 +7,14 @@
 //! corpus reads its lines back through the same types ([`Line`]).
 
 mod attract;
+mod bundle;
+mod client;
+mod command;
 mod corpus;
 mod kind;
 mod line;
 mod origin;
+mod proposal;
 mod recording;
 mod robot;
 mod robot_link;
@@ -18,14 +22,23 @@ mod session;
 mod stamped;
 mod touch;
 
-pub use attract::{AttractEnd, AttractState};
+pub use attract::{AttractEnd, AttractEnded, AttractStarted, AttractState};
+pub use bundle::{BundleRefused, BundleReloaded, BundleWatchFailed, MediaConverted, MediaFailed};
+pub use client::{ClientConnected, ClientLeft, ClientRefused, RequestRefused};
+pub use command::{CommandCancelled, CommandDone, CommandFailed, CommandSent, CommandStarted};
 pub use corpus::{CorpusFault, CorpusGap, CorpusRecreated, CorpusUnwritable, CorpusWritable};
 pub use kind::EventKind;
 pub use line::{Head, Line, LineEvent, is_event_type, is_pose};
 pub use origin::{ActRef, ClientRole, Source};
+pub use proposal::{ProposalAccepted, ProposalDismissed, ProposalMade, ProposalWithdrawn};
 pub use recording::{FailureCode, RecordingEvent, StopReason, Track};
-pub use robot::{ROBOT_EVENT_NAME_CHARS, RobotEvent, robot_event_name_problem};
+pub use robot::{
+    ROBOT_EVENT_NAME_CHARS, ReactionFailed, RobotEvent, TopicRefused, robot_event_name_problem,
+};
 pub use robot_link::{LinkState, RobotLinkEvent};
-pub use session::{Consent, SessionEnd};
+pub use session::{
+    Consent, ConsentChanged, NoteWritten, SessionEnd, SessionEnded, SessionStarted,
+    SituationMarked, VisitorGroup,
+};
 pub use stamped::Event;
-pub use touch::{ELEMENT_CHARS, KioskCause, element_description};
+pub use touch::{ELEMENT_CHARS, KioskCause, Touch, element_description};

@@ -22,3 +22,28 @@ pub struct RobotEvent {
     /// What the adapter said about it, as sent (`null` when nothing).
     pub data: serde_json::Value,
 }
+
+/// The fields of a `topic.refused` event ([`super::EventKind::TopicRefused`]).
+#[derive(Debug, Serialize, Deserialize)]
+pub struct TopicRefused {
+    /// The topic.
+    pub topic: String,
+    /// The robot event it would have been, if any (not for the pose topic).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub event: Option<String>,
+    /// Why, and what to change.
+    pub reason: String,
+}
+
+/// The fields of a `reaction.failed` event ([`super::EventKind::ReactionFailed`]).
+#[derive(Debug, Serialize, Deserialize)]
+pub struct ReactionFailed {
+    /// The reaction's place in `reactions:`, from 1.
+    pub reaction: usize,
+    /// The robot event.
+    pub event: String,
+    /// The act it would have triggered.
+    pub act: String,
+    /// Why, and what to fix.
+    pub reason: String,
+}

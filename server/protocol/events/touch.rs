@@ -50,6 +50,23 @@ pub fn element_description(element: Option<String>) -> Option<String> {
     Some(cut)
 }
 
+/// The fields of a `touch` event ([`super::EventKind::Touch`]).
+#[derive(Debug, Serialize, Deserialize)]
+pub struct Touch {
+    /// The kiosk.
+    pub client: u64,
+    /// The page touched, as the server's display state had it.
+    pub page: Option<String>,
+    /// The element, as the kiosk described it (`button#start [data-act=GREETING] "Hello"`).
+    pub element: Option<String>,
+    /// The act it asked for.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub act: Option<String>,
+    /// The page a link led to.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub link: Option<String>,
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
