@@ -14,7 +14,7 @@ use std::sync::Arc;
 
 use serde::{Deserialize, Deserializer, Serialize, Serializer};
 
-use super::origin::{ActRef, ClientRole, Source};
+use super::origin::{ActRef, ClientRole, Ended, Source};
 use super::recording::RecordingEvent;
 use super::session::{Consent, SessionEnd};
 use crate::{ErrorCode, Open};
@@ -542,8 +542,16 @@ pub enum EventKind {
         client: u64,
         /// Its role.
         role: ClientRole,
+        /// Its self-given name, as in its `client.connected` (added without a version change:
+        /// older logs lack it).
+        #[serde(default, skip_serializing_if = "Option::is_none")]
+        name: Option<String>,
         /// Why it ended.
         reason: String,
+        /// Who ended it: the peer vanished (`lost`), the client closed it (`closed`), or Docent
+        /// did (`server`). Added without a version change: older logs lack it.
+        #[serde(default, skip_serializing_if = "Option::is_none")]
+        ended: Option<Ended>,
         /// The close code the server ended the connection with, when the server decided the
         /// end (`1008` a client that stopped reading, `1013` one that fell behind the event
         /// stream, `1001` shutdown, the RFC 6455 code of a protocol violation).

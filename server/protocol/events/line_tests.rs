@@ -8,8 +8,8 @@ use super::*;
 use crate::events::{
     ActRef, AttractEnd, ClientRole, Consent, CorpusFault, CorpusGap as Gap,
     CorpusRecreated as Recreated, CorpusUnwritable as Unwritable, CorpusWritable as Writable,
-    Event, FailureCode, LinkState, RecordingEvent, RobotEvent, RobotLinkEvent, SessionEnd, Source,
-    StopReason, Track,
+    Ended, Event, FailureCode, LinkState, RecordingEvent, RobotEvent, RobotLinkEvent, SessionEnd,
+    Source, StopReason, Track,
 };
 use crate::fleet_link::{LinkState as BrokerState, LinkView};
 use crate::{ErrorCode, Open, ProjectorState};
@@ -249,7 +249,9 @@ fn every_kind() -> Vec<EventKind> {
         ClientLeft {
             client: 4,
             role: ClientRole::Adapter,
+            name: text("lights"),
             reason: "too slow: fell behind the event stream".into(),
+            ended: Some(Ended::Server),
             code: Some(1013),
         },
         FleetLink(LinkView {
@@ -511,6 +513,20 @@ fn lines_of_the_older_formats_still_read() {
     };
     assert_eq!((&*act.label, act.source), ("TOUR", Source::Operator));
     assert_eq!((text.as_deref(), language), (Some("Follow me"), None));
+}
+
+#[test]
+fn a_client_left_from_before_name_and_ended_still_reads() {
+    let (_, left) = known(
+        r#"{"v":4,"seq":15,"time":"2026-11-22T19:02:15.020Z","mono_us":16360471,"type":"client.left","client":2,"role":"kiosk","reason":"connection lost"}"#,
+    );
+    let EventKind::ClientLeft {
+        name, ended, code, ..
+    } = left
+    else {
+        panic!("{left:?}")
+    };
+    assert_eq!((name, ended, code), (None, None, None));
 }
 
 #[test]

@@ -22,7 +22,7 @@ pub use attract::{AttractEnd, AttractState};
 pub use corpus::{CorpusFault, CorpusGap, CorpusRecreated, CorpusUnwritable, CorpusWritable};
 pub use kind::EventKind;
 pub use line::{Head, Line, LineEvent, is_event_type, is_pose};
-pub use origin::{ActRef, ClientRole, Source};
+pub use origin::{ActRef, ClientRole, Ended, Source};
 pub use recording::{FailureCode, RecordingEvent, StopReason, Track};
 pub use robot::{ROBOT_EVENT_NAME_CHARS, RobotEvent, robot_event_name_problem};
 pub use robot_link::{LinkState, RobotLinkEvent};
