@@ -33,6 +33,29 @@ async function openNamedKiosk(context, server, name) {
   return page;
 }
 
+test('kiosk and projector pages say hello with the name in their address, a bad one as their role', async () => {
+  const bundle = makeBundle({ 'acts.yaml': '- Label: OK\n  Cmds: [DISPLAY_PAGE index.html]\n', 'pages/index.html': PAGE });
+  const server = await startDocent(bundle);
+  const operator = await connectOperator(server.wsUrl);
+  const context = await newTouchContext(browser);
+  try {
+    const named = async (path) => {
+      const page = await context.newPage();
+      await page.goto(`${server.base}${path}`);
+      return operator.waitForEvent((e) => e.type === 'client.connected' && e.role !== 'operator');
+    };
+    assert.equal((await named('/projector?projector=hall')).name, 'hall');
+    assert.equal((await named('/?kiosk=%0Aentrance')).name, 'kiosk');
+    assert.equal((await named('/?kiosk=' + 'x'.repeat(41))).name, 'kiosk');
+    assert.equal((await named('/')).name, 'kiosk');
+  } finally {
+    await context.close();
+    await operator.close();
+    await server.stop();
+    removeTemp(bundle);
+  }
+});
+
 test('a crashed kiosk tab is named on the console until a kiosk of that name is back', { timeout: 90_000 }, async () => {
   const bundle = makeBundle({
     'acts.yaml': '- Label: OK\n  Cmds: [DISPLAY_PAGE index.html]\n',
