@@ -2,13 +2,18 @@
 # Starts Docent's touchscreen page and projector page in Chromium kiosk mode, one browser per
 # display, each under its own watchdog (kiosk/watchdog.sh) that restarts it if it exits.
 # Docent itself must already run (docent.service); this script waits for its /healthz first.
+# Each watchdog also asks Docent every few seconds whether its page is connected
+# (/healthz?role=kiosk&name=NAME), and restarts a browser whose tab crashed or hung.
 # Step-by-step set-up: docs/DEVICE.md.
 #
-#   kiosk/launch.sh [--dry-run] [--url URL] [--no-projector] [--state-dir DIR]
+#   kiosk/launch.sh [--dry-run] [--url URL] [--kiosk-name NAME] [--no-projector] [--state-dir DIR]
 #   kiosk/launch.sh --camera-policy [--url URL]
 #
 # Options (each also settable by the environment variable in brackets):
 #   --url URL                   Docent's address [DOCENT_URL] (http://127.0.0.1:8080)
+#   --kiosk-name NAME           the name both pages say hello with, shown on the operator
+#                               console [KIOSK_NAME] (this computer's host name): 1 to 40
+#                               letters, digits, ".", "_" or "-", starting with a letter or digit
 #   --touch-position X,Y        touchscreen window position [TOUCH_POSITION] (0,0)
 #   --touch-size W,H            touchscreen window size [TOUCH_SIZE] (1280,800)
 #   --projector-position X,Y    projector window position [PROJECTOR_POSITION] (1280,0)
@@ -27,7 +32,7 @@
 # More environment:
 #   DISABLE_FEATURES=A,B        extra Chromium features to disable (merged into the one switch)
 #   CHROMIUM_FLAGS='--x --y'    extra Chromium switches (split on spaces)
-#   WATCHDOG_*                  back-off settings, see kiosk/watchdog.sh
+#   WATCHDOG_*                  back-off and page-check settings, see kiosk/watchdog.sh
 set -euo pipefail
 
 here=$(cd -- "$(dirname -- "${BASH_SOURCE[0]}")" && pwd)
@@ -43,7 +48,21 @@ if [[ ${1:-} == --clear-crash-flags ]]; then
     exit 0
 fi
 
+# Asks Docent at URL whether a page of ROLE named NAME is connected, for the watchdog's
+# --alive (`--page-connected URL ROLE NAME`): exit 0 when it is (HTTP 200), 1 when it is not
+# (503), 2 when that cannot be told (Docent unreachable, any other answer). Internal helper.
+if [[ ${1:-} == --page-connected ]]; then
+    probe="${2:?--page-connected needs URL ROLE NAME}/healthz?role=${3:?}&name=${4:?}"
+    code=$(curl --silent --output /dev/null --max-time 2 --write-out '%{http_code}' -- "$probe") || true
+    case $code in
+        200) exit 0 ;;
+        503) exit 1 ;;
+        *) exit 2 ;;
+    esac
+fi
+
 url=${DOCENT_URL:-http://127.0.0.1:8080}
+kiosk_name=${KIOSK_NAME:-}
 touch_position=${TOUCH_POSITION:-0,0}
 touch_size=${TOUCH_SIZE:-1280,800}
 projector_position=${PROJECTOR_POSITION:-1280,0}
@@ -57,13 +76,14 @@ camera_policy=0
 dry_run=0
 
 usage() {
-    sed -n '7,30p' "${BASH_SOURCE[0]}" | sed 's/^# \{0,1\}//' >&2
+    sed -n '9,34p' "${BASH_SOURCE[0]}" | sed 's/^# \{0,1\}//' >&2
     exit 2
 }
 
 while (($# > 0)); do
     case $1 in
         --url) url=${2:?--url needs a value}; shift 2 ;;
+        --kiosk-name) kiosk_name=${2:?--kiosk-name needs a value}; shift 2 ;;
         --touch-position) touch_position=${2:?}; shift 2 ;;
         --touch-size) touch_size=${2:?}; shift 2 ;;
         --projector-position) projector_position=${2:?}; shift 2 ;;
@@ -89,6 +109,17 @@ done
     { echo "launch.sh: --camera-permission is switch or policy, not '$camera_permission'" >&2; exit 2; }
 [[ $url =~ ^(https?://[^/?#]+) ]] || { echo "launch.sh: '$url' is not an http(s) address" >&2; exit 2; }
 origin=${BASH_REMATCH[1]}
+# The pages' name (static/client-name.js takes the same, and more); no character in it needs
+# quoting in a URL. The host name's first label by default, cut to fit.
+name_pattern='^[A-Za-z0-9][A-Za-z0-9._-]{0,39}$'
+if [[ -z $kiosk_name ]]; then
+    kiosk_name=$(hostname 2>/dev/null || true)
+    kiosk_name=${kiosk_name%%.*}
+    kiosk_name=${kiosk_name:0:40}
+    [[ $kiosk_name =~ $name_pattern ]] || kiosk_name=kiosk
+fi
+[[ $kiosk_name =~ $name_pattern ]] ||
+    { echo "launch.sh: --kiosk-name '$kiosk_name' is not 1 to 40 letters, digits, '.', '_' or '-' (starting with a letter or digit)" >&2; exit 2; }
 
 # ---- Camera and microphone for the operator's live view ----------------------------------------
 # The touchscreen page answers the operator console's camera calls (operator.camera: webrtc in
@@ -226,14 +257,27 @@ if [[ -n ${CHROMIUM_FLAGS:-} ]]; then
     common+=("${extra[@]}")
 fi
 
-# The watchdog command for one browser: ROLE POSITION SIZE PAGE [SWITCH...].
+# Whether a page is connected is asked with curl (--page-connected); without curl the
+# watchdogs restart a browser only when it exits.
+alive_check=0
+if command -v curl >/dev/null 2>&1; then
+    alive_check=1
+else
+    echo "launch.sh: curl not found; a browser whose tab crashed is not restarted (apt-get install curl)" >&2
+fi
+
+# The watchdog command for one browser: ROLE POSITION SIZE PAGE CLIENT-ROLE [SWITCH...].
 browser_command() {
-    local role=$1 position=$2 size=$3 page=$4 profile
-    shift 4
+    local role=$1 position=$2 size=$3 page=$4 client_role=$5 profile alive=()
+    shift 5
     profile="$state_dir/$role"
+    if ((alive_check)); then
+        alive=(--alive "$(show "$here/launch.sh" --page-connected "$url" "$client_role" "$kiosk_name")")
+    fi
     cmd=(
         "$here/watchdog.sh" --name "$role"
         --before "$(show "$here/launch.sh" --clear-crash-flags "$profile")"
+        "${alive[@]}"
         -- "$chromium" "${common[@]}" "$@"
         "--user-data-dir=$profile"
         "--window-position=$position"
@@ -245,11 +289,11 @@ browser_command() {
 run mkdir -p -- "$state_dir/touch"
 ((projector == 0)) || run mkdir -p -- "$state_dir/projector"
 
-browser_command touch "$touch_position" "$touch_size" "$url/" "${camera_switches[@]}"
+browser_command touch "$touch_position" "$touch_size" "$url/?kiosk=$kiosk_name" kiosk "${camera_switches[@]}"
 touch_cmd=("${cmd[@]}")
 projector_cmd=()
 if ((projector != 0)); then
-    browser_command projector "$projector_position" "$projector_size" "$url/projector"
+    browser_command projector "$projector_position" "$projector_size" "$url/projector?projector=$kiosk_name" projector
     projector_cmd=("${cmd[@]}")
 fi
 

@@ -4,6 +4,7 @@ use std::collections::BTreeMap;
 use std::path::PathBuf;
 use std::sync::atomic::{AtomicU64, Ordering};
 use std::sync::{Arc, Mutex};
+use std::time::Instant;
 
 use serde::Serialize;
 
@@ -13,7 +14,7 @@ use crate::content::config::ServerLimits;
 use crate::corpus::SessionFolders;
 use crate::dispatch::Dispatcher;
 use crate::events::{ClientRole, Hub};
-use crate::http::{MissingPageReports, Replay};
+use crate::http::{Absences, MissingPageReports, Replay};
 use crate::lifecycle::Lifecycle;
 use crate::operator::{Proposals, Visits};
 use crate::recording::Recordings;
@@ -133,6 +134,8 @@ struct Clients {
     connected: Mutex<BTreeMap<u64, Connected>>,
     /// Sends the notices that found no company (`wire::linger`).
     linger: Arc<Linger>,
+    /// When each role and name was last left (`GET /healthz?role=...`).
+    absences: Absences,
 }
 
 struct Connected {
@@ -169,6 +172,7 @@ impl AppState {
             next: AtomicU64::default(),
             connected: Mutex::default(),
             linger: Linger::start(&life),
+            absences: Absences::default(),
         });
         let links = ClientLinks(Arc::clone(&clients));
         let captions = crate::ws::Captions::new(links.clone());
@@ -235,9 +239,17 @@ impl AppState {
         lock(&self.clients.connected).insert(id, client);
     }
 
-    /// Forgets a client.
-    pub fn client_left(&self, id: u64) {
-        lock(&self.clients.connected).remove(&id);
+    /// Forgets a client; returns what it was, and notes when its role and name were left.
+    pub fn client_left(&self, id: u64) -> Option<ClientInfo> {
+        let info = lock(&self.clients.connected).remove(&id)?.info;
+        let name = info.name.as_deref();
+        self.clients.absences.left(info.role, name, Instant::now());
+        Some(info)
+    }
+
+    /// When each role and name was last left.
+    pub fn absences(&self) -> &Absences {
+        &self.clients.absences
     }
 
     /// Sends `frame` to every connected client in `role` (a bundle change for kiosks).

@@ -19,7 +19,8 @@
 // idles nor attracts).
 // Captions (caption.js): what the robot says, in the page while it is said. While Docent is
 // away (outage.js) a calm notice shows and taps answer "one moment"; the hello of a new
-// connection says which page is shown, so a restarted server keeps the visitor there.
+// connection says which page is shown, so a restarted server keeps the visitor there. The
+// hello's name comes from the shell's address (`/?kiosk=entrance`, client-name.js).
 
 import { createAttract } from "./attract.js";
 import { answerCameraCalls } from "./camera-kiosk.js";
@@ -27,6 +28,7 @@ import { captions } from "./caption.js";
 import { outage } from "./outage.js";
 import { answerRecordRequests } from "./recorder.js";
 import { kioskLanguage } from "./language.js";
+import { clientName } from "./client-name.js";
 import { encodePath, keepConnected } from "./socket.js";
 import { startBrowserSpeech } from "./speech.js";
 import { askSchedule, followSchedule } from "./schedule.js";
@@ -237,7 +239,7 @@ const language = kioskLanguage({
 const socket = keepConnected({
   path: config.ws || "/ws",
   role: "kiosk",
-  name: "kiosk",
+  name: clientName("kiosk"),
   hello: helloExtra,
   onOnline: (online) => {
     outages.online(online);

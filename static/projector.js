@@ -21,6 +21,7 @@
 // is part of the exhibit, and a wall going dark mid-sentence alarms more than one that holds
 // still); the welcome after the return shows the server's state again.
 
+import { clientName } from "./client-name.js";
 import { encodePath, keepConnected } from "./socket.js";
 
 const config = document.body.dataset;
@@ -246,7 +247,7 @@ function caption(text) {
 link = keepConnected({
   path: config.ws || "/ws",
   role: "projector",
-  name: "projector",
+  name: clientName("projector"),
   onFrame: (frame) => {
     if (frame.type === "welcome") {
       connection += 1;

@@ -5,6 +5,9 @@
 // +-20 % at random so that many screens do not knock in step; at most one attempt a second
 // once the server has been away a while, a polite rate for a server starting up.
 // What a lost connection looks like to visitors is the shell's business (outage.js).
+// A page leaving on purpose (a reload, a navigation, its window closed) closes the socket with
+// 1000: the browser's own 1001 ("going away"), which Chromium also sends for a tab that
+// crashed, is then what tells Docent that a page vanished (`client.left` `ended: "lost"`).
 
 const FIRST_DELAY_MS = 250;
 const MAX_DELAY_MS = 1_000;
@@ -63,6 +66,16 @@ export function keepConnected({ path, role, name = null, hello = {}, onFrame, on
     // An error is always followed by `close`, which schedules the retry.
     ws.onerror = () => {};
   };
+
+  addEventListener("pagehide", () => {
+    const ws = socket;
+    socket = null; // no reconnecting from a page on its way out
+    ws?.close(1000, "page closed");
+  });
+  // Back from the back-forward cache: connect again.
+  addEventListener("pageshow", (event) => {
+    if (event.persisted && socket === null) open();
+  });
 
   open();
   return {

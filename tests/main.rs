@@ -42,6 +42,7 @@ mod forwarded_for;
 mod highlight;
 mod http_api;
 mod http_limits;
+mod kiosk_lost;
 mod languages;
 mod live_reload;
 mod live_reload_flood;

@@ -5,10 +5,10 @@ use std::collections::BTreeMap;
 
 use crate::content::schedule::WallClock;
 use axum::Json;
-use axum::extract::rejection::PathRejection;
-use axum::extract::{Path, State};
+use axum::extract::rejection::{PathRejection, QueryRejection};
+use axum::extract::{Path, Query, State};
 use axum::http::StatusCode;
-use axum::response::IntoResponse;
+use axum::response::{IntoResponse, Response};
 use serde::{Deserialize, Serialize};
 use serde_json::{Value, json};
 
@@ -18,12 +18,27 @@ use crate::events::Source;
 use crate::http::AppError;
 use crate::http::auth::Authorized;
 use crate::http::body::RequestBody;
+use crate::http::presence;
 use crate::state::AppState;
 use crate::wire::ErrorCode;
 use crate::ws::protocol::{LimitsView, PROTOCOL_VERSION, TriggerOptions};
 
-/// `GET /healthz`
-pub async fn health(State(state): State<AppState>) -> Json<Value> {
+/// `GET /healthz`: liveness and versions; with `?role=...&name=...`, whether such a client is
+/// connected (`presence`).
+pub async fn health(
+    State(state): State<AppState>,
+    query: Result<Query<Vec<(String, String)>>, QueryRejection>,
+) -> Response {
+    let Query(pairs) = match query {
+        Ok(pairs) => pairs,
+        Err(rejection) => return AppError::bad_request(rejection.body_text()).into_response(),
+    };
+    if !pairs.is_empty() {
+        return match presence::asked(pairs) {
+            Ok(asked) => presence::presence(&state, &asked),
+            Err(error) => error.into_response(),
+        };
+    }
     let bundle = state.dispatcher.bundle();
     Json(json!({
         "status": "ok",
@@ -31,6 +46,7 @@ pub async fn health(State(state): State<AppState>) -> Json<Value> {
         "protocol": PROTOCOL_VERSION,
         "acts": bundle.acts.len(),
     }))
+    .into_response()
 }
 
 #[derive(Serialize)]

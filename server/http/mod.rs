@@ -1,6 +1,7 @@
 //! The HTTP side: one route table ([`app`]), handlers grouped by resource.
 //!
 //! - `api`: the trigger API (`/api/...`, `/healthz`).
+//! - `presence`: `/healthz?role=kiosk&name=NAME`, whether such a client is connected.
 //! - `files`: bundle files under `/pages/` and `/media/`, never outside the bundle.
 //! - `act_timers`: pages served with their `data-act-after` delays in milliseconds.
 //! - `missing_page`: the friendly 404 page a touchscreen shows for a page that is not there.
@@ -30,6 +31,7 @@ mod framing;
 mod missing_page;
 mod open_files;
 mod operator;
+mod presence;
 mod report;
 mod session_name;
 mod sessions;
@@ -47,6 +49,7 @@ pub use connections::{ConnectionLimits, ConnectionSlot, serve_connections};
 pub use error::AppError;
 pub use missing_page::MissingPageReports;
 pub use open_files::{OWN_FILES, OpenFiles, make_room};
+pub use presence::Absences;
 pub use sessions_media::Replay;
 
 use crate::state::AppState;

@@ -21,7 +21,7 @@ use futures_util::StreamExt;
 use tokio::sync::oneshot;
 
 use crate::access::ClientAddress;
-use crate::events::ClientRole;
+use crate::events::{ClientRole, Ended};
 use crate::http::ConnectionSlot;
 use crate::http::auth::{Peer, same_origin};
 use crate::state::AppState;
@@ -31,7 +31,7 @@ use crate::wire::outbox::Outbox;
 use crate::ws::allowance::{self, Allowance, Verdict};
 use crate::ws::client::Client;
 use crate::ws::session::Session;
-use crate::ws::violation::{Violation, closed, violation};
+use crate::ws::violation::{Violation, client_closed, closed, violation};
 use crate::ws::writer::{Link, PING_INTERVAL, WriterEnd, run_writer};
 
 /// The per-connection read buffer (it grows for a larger frame).
@@ -122,7 +122,7 @@ async fn serve(socket: WebSocket, state: AppState, address: ClientAddress) {
     let outbox = session.client().outbox.clone();
     // Set while the reader waits for room rather than for the client.
     let waiting = AtomicBool::new(false);
-    let ended = loop {
+    let end = loop {
         // An adapter's reports make no answers to it, while commands others send fill its
         // queue: waiting to read them would only hold up the commands' outcomes.
         let paced = session.role() != Some(ClientRole::Adapter);
@@ -147,39 +147,55 @@ async fn serve(socket: WebSocket, state: AppState, address: ClientAddress) {
                     idle.as_mut().reset(tokio::time::Instant::now() + IDLE_TIMEOUT);
                     continue;
                 }
-                break Ended::Reader("idle timeout");
+                // Nothing heard, not even a pong: the peer vanished without a word.
+                break EndedBy::Reader("idle timeout", Ended::Lost);
             }
             () = &mut kicked => {
                 let words = "too slow: the outgoing queue was full";
-                let Violation { reason, close } = closed(TOO_SLOW, close_code::POLICY, words);
+                let Violation { reason, ended, close } =
+                    closed(TOO_SLOW, close_code::POLICY, words);
                 *lock(&close_with) = close;
                 logged(&state, id, peer, reason);
-                break Ended::Reader(reason);
+                break EndedBy::Reader(reason, ended);
             }
             () = &mut shutdown => {
                 let words = "server shutting down";
                 *lock(&close_with) = closed(words, close_code::AWAY, words).close;
-                break Ended::Reader(words);
+                break EndedBy::Reader(words, Ended::Server);
             }
-            () = &mut stopped => break Ended::Writer,
+            () = &mut stopped => break EndedBy::Writer,
         };
         // Extending a deadline does not touch the timer wheel until the old one passes.
         idle.as_mut()
             .reset(tokio::time::Instant::now() + IDLE_TIMEOUT);
         match next {
-            None | Some(Ok(Message::Close(_))) => break Ended::Reader("closed by client"),
+            // The stream ends without a close frame only after the closing handshake (an end of
+            // stream without it is an error, below).
+            None => break EndedBy::Reader("closed by client", Ended::Closed),
+            Some(Ok(Message::Close(frame))) => {
+                let (reason, ended) = client_closed(frame.as_ref());
+                break EndedBy::Reader(reason, ended);
+            }
             Some(Err(error)) => {
                 // The writer answers with the violation's close code as it closes.
-                let Violation { reason, close } = violation(error);
+                let Violation {
+                    reason,
+                    ended,
+                    close,
+                } = violation(error);
                 *lock(&close_with) = close;
-                break Ended::Reader(reason);
+                break EndedBy::Reader(reason, ended);
             }
             Some(Ok(Message::Ping(_) | Message::Pong(_))) => {
                 if allowance.ping(session.role(), Instant::now()) == Verdict::Close {
-                    let Violation { reason, close } = allowance::too_many_pings();
+                    let Violation {
+                        reason,
+                        ended,
+                        close,
+                    } = allowance::too_many_pings();
                     *lock(&close_with) = close;
                     logged(&state, id, peer, reason);
-                    break Ended::Reader(reason);
+                    break EndedBy::Reader(reason, ended);
                 }
             }
             Some(Ok(message)) => match allowance.frame(session.role(), Instant::now()) {
@@ -187,7 +203,7 @@ async fn serve(socket: WebSocket, state: AppState, address: ClientAddress) {
                     Message::Text(text) => {
                         session.on_text(text.as_str());
                         if let Some(reason) = session.closing() {
-                            break Ended::Reader(reason);
+                            break EndedBy::Reader(reason, Ended::Server);
                         }
                     }
                     _ => session.on_binary(),
@@ -208,28 +224,29 @@ async fn serve(socket: WebSocket, state: AppState, address: ClientAddress) {
         let _ = writer.await;
         return;
     }
-    let reason = match ended {
-        Ended::Writer => {
+    let (reason, ended) = match end {
+        EndedBy::Writer => {
             let end = writer.await.unwrap_or(WriterEnd::WriteFailed);
             if let Some(close) = end.close() {
                 logged(&state, id, peer, &close.reason);
             }
-            return session.leave(end.reason(), end.close().map(|c| c.code));
+            return session.leave(end.reason(), end.ended(), end.close().map(|c| c.code));
         }
-        Ended::Reader(reason) => reason,
+        EndedBy::Reader(reason, ended) => (reason, ended),
     };
     // Leave first: a writer stuck on a client that stopped reading must not delay failing the
     // commands an adapter owes, or the client.left event, past shutdown.
     let code = lock(&close_with).as_ref().map(|c| c.code);
-    session.leave(reason, code);
+    session.leave(reason, ended, code);
     stop.cancel();
     let _ = writer.await;
 }
 
 /// Which side ended the connection.
-enum Ended {
-    /// The reader, for this `client.left` reason (and the close frame in `CloseWith`, if any).
-    Reader(&'static str),
+enum EndedBy {
+    /// The reader, for this `client.left` reason and ending (and the close frame in
+    /// `CloseWith`, if any).
+    Reader(&'static str, Ended),
     /// The writer, which has the reason.
     Writer,
 }

@@ -102,9 +102,11 @@ impl EmbeddedSession {
         frames
     }
 
-    /// Ends the session for `reason` (`client.left`, as a websocket client's).
+    /// Ends the session for `reason` (`client.left`, as a websocket client's, ended by the
+    /// server: it answered what it was asked).
     pub fn leave(self, reason: &str) {
-        self.session.leave(reason, None);
+        self.session
+            .leave(reason, crate::events::Ended::Server, None);
     }
 }
 

@@ -12,7 +12,7 @@ use tokio_util::sync::CancellationToken;
 
 use crate::access::TokenBucket;
 use crate::adapters::ScreenReport;
-use crate::events::{ClientLeft, ClientRole, EventKind};
+use crate::events::{ClientLeft, ClientRole, Ended, EventKind};
 use crate::wire::ErrorCode;
 use crate::ws::client::Client;
 use crate::ws::diagnose::diagnose;
@@ -228,10 +228,10 @@ impl Session {
         signal::relay(&self.client, role, to, data);
     }
 
-    /// The connection ended for `reason`: whatever the client held is released (an adapter's
+    /// The connection ended for `reason`, `ended` by whom: whatever the client held is released (an adapter's
     /// commands fail, an operator's calls end, a dialog manager's proposals are withdrawn)
     /// and `client.left` is published. A client that never said `hello` left no trace.
-    pub(super) fn leave(self, reason: &str, code: Option<u16>) {
+    pub(super) fn leave(self, reason: &str, ended: Ended, code: Option<u16>) {
         let Some(role) = self.role else { return };
         let client = &self.client;
         let state = &client.state;
@@ -239,7 +239,7 @@ impl Session {
             state.devices.external.disconnect(client.id);
         }
         state.devices.display.left(role, client.id);
-        state.client_left(client.id);
+        let name = state.client_left(client.id).and_then(|info| info.name);
         if role == ClientRole::Operator {
             signal::hang_up_calls(client);
         }
@@ -250,7 +250,9 @@ impl Session {
         state.hub.publish(EventKind::ClientLeft(ClientLeft {
             client: client.id,
             role,
+            name,
             reason,
+            ended: Some(ended),
             code,
         }));
     }

@@ -14,7 +14,7 @@ use tokio::sync::broadcast::error::{RecvError, TryRecvError};
 use tokio::sync::{broadcast, mpsc, oneshot};
 use tokio_util::sync::CancellationToken;
 
-use crate::events::{ClientRole, Event, Hub, LogUnwritable};
+use crate::events::{ClientRole, Ended, Event, Hub, LogUnwritable};
 use crate::state::AppState;
 use crate::wire::linger::Lingering;
 use crate::wire::outbox::{Frame, Queued};
@@ -67,6 +67,17 @@ impl WriterEnd {
             WriterEnd::NotReading => "too slow: did not read its frames",
             WriterEnd::FellBehind(_) => "too slow: fell behind the event stream",
             WriterEnd::ServerClosing => "server shutting down",
+        }
+    }
+
+    /// Who ended the connection, as `client.left` gives it.
+    pub fn ended(self) -> Ended {
+        match self {
+            WriterEnd::WriteFailed => Ended::Lost,
+            WriterEnd::Closed => Ended::Closed,
+            WriterEnd::NotReading | WriterEnd::FellBehind(_) | WriterEnd::ServerClosing => {
+                Ended::Server
+            }
         }
     }
 

@@ -101,6 +101,10 @@ export function connect({ path, token, name, onFrame, onStatus }) {
     ws.onerror = () => {};
   };
 
+  // Leaving on purpose closes with 1000: Docent records the browser's own 1001 (going away) as
+  // a page that vanished (a crashed tab; socket.js).
+  addEventListener("pagehide", () => socket?.close(1000, "page closed"), { once: true });
+
   open();
   return {
     send(frame) {

@@ -7,7 +7,7 @@
 
 /**
  * @param {{panels: {live: object, clients: object, history: object, proposals: object,
- *          marks: object, map: object, robotLink?: object}, context: object, language: object,
+ *          marks: object, map: object, robotLink?: object, kiosks?: object}, context: object, language: object,
  *          camera: object,
  *          operatorName: HTMLElement, name: () => string|null, stopped: (ref: string) => void,
  *          notice: (message: string) => void,
@@ -47,6 +47,7 @@ export function createEvents({ panels, context, language, camera, operatorName, 
     proposals.event(e);
     marks.event(e);
     panels.recording?.event(e);
+    panels.kiosks?.event(e);
     if (e.type === "pose") map.pose(e);
     // The server parsed the waypoint at load: `args` is {x, y, heading}.
     else if (e.type === "command.sent" && e.verb === "SET_WAYPOINT") map.waypoint(e.args ?? null);
@@ -66,6 +67,7 @@ export function createEvents({ panels, context, language, camera, operatorName, 
     proposals.welcome();
     clients.welcome(me);
     panels.recording?.welcome();
+    panels.kiosks?.welcome();
     live.reset();
     live.welcome(frame.state);
     map.pose(frame.state?.pose);

@@ -1,7 +1,8 @@
 // history.js: what happened, newest first: every act triggered by anyone (time, source, act,
 // variant and the exact text chosen), stops, refused triggers, proposals accepted, dismissed or
 // withdrawn (their dialog manager left), context and language changes, corpus marks, robot events and
-// reactions to them that could not run, the fleet broker's link going down and up. An act whose
+// reactions to them that could not run, the fleet broker's link going down and up, a kiosk or
+// projector back after a lost connection (kioskbanner.js). An act whose
 // command was cancelled or failed says so on its line, with the reason: a text that was never
 // said must not read as said. Several consoles see each other's acts here live.
 
@@ -89,20 +90,27 @@ export function createHistory(list) {
     event(e) {
       if (e.type === "command.cancelled" || e.type === "command.failed") return notCarriedOut(e);
       const made = line(e);
-      if (!made) return;
-      const [kind, body] = made;
-      const item = h(
-        "li",
-        { class: `history-item ${kind}`, dataset: { seq: String(e.seq), type: e.type, trigger: String(e.trigger ?? "") } },
-        h("time", { datetime: e.time }, clock(e.time)),
-        h("span", { class: "history-source" }, who(e)),
-        h("span", { class: "history-body" }, body),
-      );
-      // Newest first by seq: a replayed event may arrive after a newer live one.
-      let before = list.firstElementChild;
-      while (before && Number(before.dataset.seq) > e.seq) before = before.nextElementSibling;
-      list.insertBefore(item, before);
-      while (list.childElementCount > KEEP) list.lastElementChild.remove();
+      if (made) insert(e, e.type, ...made);
+    },
+    /** A line this console wrote about event `e` (a kiosk back after a lost connection). */
+    note(e, type, text) {
+      insert(e, type, "mark", [text]);
     },
   };
+
+  /** One line for event `e`, in `seq` order. */
+  function insert(e, type, kind, body) {
+    const item = h(
+      "li",
+      { class: `history-item ${kind}`, dataset: { seq: String(e.seq), type, trigger: String(e.trigger ?? "") } },
+      h("time", { datetime: e.time }, clock(e.time)),
+      h("span", { class: "history-source" }, who(e)),
+      h("span", { class: "history-body" }, body),
+    );
+    // Newest first by seq: a replayed event may arrive after a newer live one.
+    let before = list.firstElementChild;
+    while (before && Number(before.dataset.seq) > e.seq) before = before.nextElementSibling;
+    list.insertBefore(item, before);
+    while (list.childElementCount > KEEP) list.lastElementChild.remove();
+  }
 }

@@ -6,6 +6,7 @@
 // the server's frames and events reach the panels through events.js; Stop, which never waits
 // (over HTTP when the websocket cannot or does not answer), is stop.js; keys.js the keyboard.
 // The corpus banner (the log cannot be written, in the server's words) is corpusbanner.js.
+// The kiosk banner (a kiosk or projector whose connection was lost) is kioskbanner.js.
 // The live-reload banner (a refused save, a folder gone) is reloadbanner.js; after a good save
 // the act list is loaded again. What is left here: firing acts, answering proposals, marks, the notice line, and loading the
 // acts and the console's settings.
@@ -19,9 +20,10 @@ import { createClients } from "./clients.js";
 import { createCaptionLine } from "./caption.js";
 import { createContext } from "./context.js";
 import { createCorpusBanner } from "./corpusbanner.js";
-import { byId, createNotice } from "./dom.js";
+import { byId, clock, createNotice } from "./dom.js";
 import { createEvents } from "./events.js";
 import { createHistory } from "./history.js";
+import { createKioskBanner } from "./kioskbanner.js";
 import { createLanguage } from "./language.js";
 import { bindKeys } from "./keys.js";
 import { createLive } from "./live.js";
@@ -119,6 +121,12 @@ const captionLine = createCaptionLine(byId("caption-line"));
 const recording = createRecording({ status: byId("recording-status"), alert: byId("recording-alert") });
 
 const corpusBanner = createCorpusBanner(byId("corpus-banner"));
+const kioskBanner = createKioskBanner({
+  element: byId("kiosk-banner"),
+  clock,
+  // Said by the kiosk: its line's source is its role and client id.
+  onBack: (e, text) => history.note({ ...e, source: e.role }, "client.back", text),
+});
 const reloadBanner = createReloadBanner({
   element: byId("reload-banner"),
   onReloaded: () => loadActs().catch((error) => notice(`The acts could not be loaded: ${error.message}`)),
@@ -150,7 +158,7 @@ const stopper = createStop({
   notice,
 });
 const events = createEvents({
-  panels: { live: liveView, clients, history, proposals, marks, map, recording, robotLink },
+  panels: { live: liveView, clients, history, proposals, marks, map, recording, robotLink, kiosks: kioskBanner },
   context,
   language,
   camera,

@@ -3,7 +3,7 @@
 
 use serde::{Deserialize, Serialize};
 
-use super::origin::ClientRole;
+use super::origin::{ClientRole, Ended};
 use crate::{ErrorCode, Open};
 
 /// The fields of a `client.refused` event ([`super::EventKind::ClientRefused`]).
@@ -58,8 +58,16 @@ pub struct ClientLeft {
     pub client: u64,
     /// Its role.
     pub role: ClientRole,
+    /// Its self-given name, as in its `client.connected` (added without a version change:
+    /// older logs lack it).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub name: Option<String>,
     /// Why it ended.
     pub reason: String,
+    /// Who ended it: the peer vanished (`lost`), the client closed it (`closed`), or Docent
+    /// did (`server`). Added without a version change: older logs lack it.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub ended: Option<Ended>,
     /// The close code the server ended the connection with, when the server decided the
     /// end (`1008` a client that stopped reading, `1013` one that fell behind the event
     /// stream, `1001` shutdown, the RFC 6455 code of a protocol violation).

@@ -248,7 +248,9 @@ pub(super) fn every_kind() -> Vec<EventKind> {
         ClientLeft(crate::events::ClientLeft {
             client: 4,
             role: ClientRole::Adapter,
+            name: text("lights"),
             reason: "too slow: fell behind the event stream".into(),
+            ended: Some(crate::events::Ended::Server),
             code: Some(1013),
         }),
         FleetLink(LinkView {

@@ -146,6 +146,20 @@ fn lines_of_the_older_formats_still_read() {
 }
 
 #[test]
+fn a_client_left_from_before_name_and_ended_still_reads() {
+    let (_, left) = known(
+        r#"{"v":4,"seq":15,"time":"2026-11-22T19:02:15.020Z","mono_us":16360471,"type":"client.left","client":2,"role":"kiosk","reason":"connection lost"}"#,
+    );
+    let EventKind::ClientLeft(crate::events::ClientLeft {
+        name, ended, code, ..
+    }) = left
+    else {
+        panic!("{left:?}")
+    };
+    assert_eq!((name, ended, code), (None, None, None));
+}
+
+#[test]
 fn a_type_newer_than_this_docent_is_passed_over_by_name() {
     let line = r#"{"v":4,"seq":1,"session_us":5,"type":"robot.dance","style":"waltz"}"#;
     let read = Line::parse(line.as_bytes()).unwrap();

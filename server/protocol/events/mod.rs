@@ -29,7 +29,7 @@ pub use command::{CommandCancelled, CommandDone, CommandFailed, CommandSent, Com
 pub use corpus::{CorpusFault, CorpusGap, CorpusRecreated, CorpusUnwritable, CorpusWritable};
 pub use kind::EventKind;
 pub use line::{Head, Line, LineEvent, is_event_type, is_pose};
-pub use origin::{ActRef, ClientRole, Source};
+pub use origin::{ActRef, ClientRole, Ended, Source};
 pub use proposal::{ProposalAccepted, ProposalDismissed, ProposalMade, ProposalWithdrawn};
 pub use recording::{FailureCode, RecordingEvent, StopReason, Track};
 pub use robot::{

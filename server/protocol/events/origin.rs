@@ -1,5 +1,5 @@
 //! Who asked for what happened: the [`Source`] of a trigger, the [`ClientRole`] a websocket
-//! client declares, and the [`ActRef`] every command event carries. Separate from the event
+//! client declares, how its connection [`Ended`], and the [`ActRef`] every command event carries. Separate from the event
 //! variants because the dispatcher and the websocket layer use them on their own.
 
 use std::sync::Arc;
@@ -45,7 +45,7 @@ impl Source {
 }
 
 /// The role a websocket client declares in `hello`.
-#[derive(Clone, Copy, Debug, PartialEq, Eq, Deserialize, Serialize)]
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, Deserialize, Serialize)]
 #[serde(rename_all = "lowercase")]
 pub enum ClientRole {
     /// The touchscreen shell.
@@ -71,6 +71,24 @@ impl ClientRole {
             ClientRole::Adapter => Source::Adapter,
         }
     }
+}
+
+/// How a websocket connection ended, as `client.left` gives it: what tells a kiosk whose tab
+/// crashed (its connection vanished) from one that was closed on purpose.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Deserialize, Serialize)]
+#[serde(rename_all = "lowercase")]
+pub enum Ended {
+    /// The peer vanished without closing the connection itself: it broke off (end of stream,
+    /// a reset, a failed write), fell silent past the idle timeout, or its browser closed it
+    /// for a page that did not (1001, going away: a crashed or killed tab). A browser or
+    /// computer gone, a network failure.
+    Lost,
+    /// The client closed the connection with a close frame of its own: it chose to leave (a
+    /// page of Docent's reloading or navigating away, a program closing its socket).
+    Closed,
+    /// Docent ended it: shutdown, a limit, a protocol violation, a refused credential, or
+    /// a command over MQTT answered (`code` says which close frame it sent, if any).
+    Server,
 }
 
 /// What every command event says about the trigger it came from, shared by all its commands.
