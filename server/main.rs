@@ -248,7 +248,11 @@ fn serve(args: &ServeArgs) -> anyhow::Result<ExitCode> {
     };
     let mqtt_file = bundle.config.mqtt.clone();
     let home = bundle.config.home.clone();
-    let runtime = tokio::runtime::Runtime::new().context("starting the async runtime")?;
+    let runtime = tokio::runtime::Builder::new_multi_thread()
+        .enable_all()
+        .max_blocking_threads(docent::serve::BLOCKING_THREADS)
+        .build()
+        .context("starting the async runtime")?;
     runtime.block_on(async move {
         let listener = TcpListener::bind(listen)
             .await

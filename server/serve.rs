@@ -26,6 +26,14 @@ use crate::reload::ReloadOptions;
 use crate::robot::RobotInbox;
 use crate::state::{AppState, Limits};
 
+/// Threads tokio may start for blocking work (tower-http's file reads, recording chunks with
+/// their `fsync`, exports, reports), beyond its workers; tokio's default is 512. Disk work
+/// does not go faster with more threads than this, and each thread keeps its own stack and
+/// allocator arena for as long as it lives: with 50 kiosks uploading recordings the server
+/// held 50 of them, and its memory grew through a day of reloads (bench/README.md, "Soak").
+/// Work beyond the limit waits in tokio's queue.
+pub const BLOCKING_THREADS: usize = 8;
+
 /// How long shutdown waits for connections and adapters to finish.
 const SHUTDOWN_GRACE: Duration = Duration::from_secs(5);
 

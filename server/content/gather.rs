@@ -2,16 +2,22 @@
 //! checked) and the pages are jobs taken in turn by a few worker threads. Results come back in
 //! job order, so what is reported never depends on which thread ran what.
 //!
-//! Every thread reading YAML gets a large stack (`on_reading_stack`): nesting is recursive to
-//! read, and a file nested as deep as the parser's budget allows must be refused with a
-//! message, not crash the load on a small thread stack (tokio's blocking threads have 2 MiB).
+//! Every thread reading YAML has a large stack: nesting is recursive to read, and a file nested
+//! as deep as the parser's budget allows must be refused with a message, not crash the load on
+//! a small thread stack (tokio's blocking threads have 2 MiB). These threads are made once and
+//! kept (`readers`): a server reloading its bundle all day would otherwise start new threads
+//! for every save, and each new thread takes over whichever of the allocator's arenas a thread
+//! that ended left free, mixing the long-lived bundle with the short-lived buffers of recording
+//! uploads there; the freed memory then stays in the process (bench/README.md, "Soak").
 
 use std::collections::BTreeMap;
 use std::io::Read;
 use std::num::NonZeroUsize;
 use std::path::Path;
-use std::sync::Arc;
 use std::sync::atomic::{AtomicUsize, Ordering};
+use std::sync::{Arc, OnceLock};
+
+use rayon::iter::{IntoParallelIterator, ParallelIterator};
 
 use crate::DiagnosticCode;
 use crate::acts_file::{WrittenAct, read_acts_file, yaml::MAX_FILE_BYTES};
@@ -29,26 +35,35 @@ use crate::pages::{PageLabels, check_pages};
 /// Stack of each thread reading YAML: room for nesting up to the parsers' depth limit.
 const READING_STACK_BYTES: usize = 32 << 20;
 
-/// Runs `work` on a thread with room for deep YAML, or here if no thread can be started.
-pub(super) fn on_reading_stack<T: Send>(work: impl FnOnce() -> T + Send) -> T {
-    let mut work = Some(work);
-    let done = std::thread::scope(|scope| {
-        let slot = &mut work;
-        let handle = reading_thread()
-            .spawn_scoped(scope, move || slot.take().map(|work| work()))
-            .ok()?;
-        handle
-            .join()
-            .unwrap_or_else(|panic| std::panic::resume_unwind(panic))
-    });
-    // No thread to spare (a process limit): still load, on this thread's stack.
-    done.unwrap_or_else(|| work.take().map(|work| work()).expect("the work runs once"))
+/// The threads that read bundles, one per core, started at the first load and kept.
+/// `None` when no thread could be started (a process limit).
+fn readers() -> Option<&'static rayon::ThreadPool> {
+    static READERS: OnceLock<Option<rayon::ThreadPool>> = OnceLock::new();
+    READERS
+        .get_or_init(|| {
+            rayon::ThreadPoolBuilder::new()
+                .num_threads(cores())
+                .stack_size(READING_STACK_BYTES)
+                .thread_name(|i| format!("bundle reader {i}"))
+                .build()
+                .inspect_err(|error| {
+                    tracing::warn!(%error, "no thread to read bundles on: reading on the caller's")
+                })
+                .ok()
+        })
+        .as_ref()
 }
 
-fn reading_thread() -> std::thread::Builder {
-    std::thread::Builder::new()
-        .name("bundle check".into())
-        .stack_size(READING_STACK_BYTES)
+fn cores() -> usize {
+    std::thread::available_parallelism().map_or(1, NonZeroUsize::get)
+}
+
+/// Runs `work` on a thread with room for deep YAML, or here if no thread can be started.
+pub(super) fn on_reading_stack<T: Send>(work: impl FnOnce() -> T + Send) -> T {
+    match readers() {
+        Some(readers) => readers.install(work),
+        None => work(),
+    }
 }
 
 /// One acts file, read and checked.
@@ -109,9 +124,7 @@ pub(super) fn gather(
     let jobs: Vec<Job<'_>> = std::iter::once(Job::Pages)
         .chain(names.iter().map(|name| Job::ActsFile(name)))
         .collect();
-    let workers = std::thread::available_parallelism()
-        .map_or(1, NonZeroUsize::get)
-        .min(jobs.len());
+    let workers = cores().min(jobs.len());
     let next = AtomicUsize::new(0);
     let work = || {
         // Each worker has its own checker: its caches are per thread, and a folder listed or
@@ -128,25 +141,10 @@ pub(super) fn gather(
             done.push((i, result, problems));
         }
     };
-    let results = std::thread::scope(|scope| {
-        let handles: Vec<_> = (0..workers)
-            .filter_map(|_| reading_thread().spawn_scoped(scope, work).ok())
-            .collect();
-        // No thread could be started (a process limit): do the work here rather than fail.
-        let mut results = if handles.is_empty() {
-            vec![work()]
-        } else {
-            Vec::new()
-        };
-        for handle in handles {
-            results.push(
-                handle
-                    .join()
-                    .unwrap_or_else(|panic| std::panic::resume_unwind(panic)),
-            );
-        }
-        results
-    });
+    // As many workers as cores, each taking the next job until none is left; on the reading
+    // threads (a nested `install` runs where it is).
+    let results: Vec<_> =
+        on_reading_stack(|| (0..workers).into_par_iter().map(|_| work()).collect());
     let (done, findings): (Vec<_>, Vec<_>) = results.into_iter().unzip();
     let (conversions, mut told) = MediaFindings::merge(findings);
     out.append(&mut told);

@@ -152,8 +152,15 @@ pub struct Recordings {
     folders: SessionFolders,
     /// Tracks the timers that close recordings whose kiosk never confirmed its last chunk.
     life: Lifecycle,
+    /// Chunks being written (each with its `fsync`) at once: half of the server's blocking
+    /// threads (`serve::BLOCKING_THREADS`), so that pages are still read from disk for the
+    /// kiosks while fifty of them upload.
+    writers: tokio::sync::Semaphore,
     inner: Mutex<Inner>,
 }
+
+/// How many chunks are written at once, at most.
+const CHUNK_WRITERS: usize = 4;
 
 impl Recordings {
     /// No recording yet; recordings go into the session folders `folders` names, for the
@@ -171,8 +178,17 @@ impl Recordings {
             links,
             folders,
             life,
+            writers: tokio::sync::Semaphore::new(CHUNK_WRITERS),
             inner: Mutex::default(),
         }
+    }
+
+    /// Waits for a turn to write a chunk; the turn ends when the permit is dropped. (An error
+    /// only if the semaphore were closed, which nothing does.)
+    pub(super) async fn turn_to_write(
+        &self,
+    ) -> Result<tokio::sync::SemaphorePermit<'_>, tokio::sync::AcquireError> {
+        self.writers.acquire().await
     }
 
     /// What each kiosk's recording is doing.

@@ -84,9 +84,14 @@ pub async fn put_chunk(
     let body = read_chunk(&head.headers, body, limit).await?;
     let all = std::sync::Arc::clone(recordings);
     let (session, client) = (recording.session, recording.client);
+    let turn = recordings
+        .turn_to_write()
+        .await
+        .map_err(AppError::internal)?;
     let stored = tokio::task::spawn_blocking(move || all.append(&recording, seq, &body))
         .await
         .map_err(AppError::internal)?;
+    drop(turn);
     match stored {
         Appending::Closed => Ok(gone(id)),
         Appending::OverLimit(over) => {
