@@ -172,8 +172,12 @@ async fn drive_stop_and_stop_halt_the_base() {
     for how in ["DRIVE_STOP", "Stop"] {
         server.trigger("FAR", json!({})).await;
         log_entry(&mut log, "goal").await;
-        op.event_where(|e| e["type"] == "pose" && e["moving"] == true)
-            .await;
+        // On its way: moving, and past where it started (a busy machine can report the
+        // start before the first step).
+        op.event_where(|e| {
+            e["type"] == "pose" && e["moving"] == true && e["x"].as_f64().is_some_and(|x| x > 0.0)
+        })
+        .await;
         if how == "DRIVE_STOP" {
             server.trigger("HALT", json!({})).await;
         } else {
