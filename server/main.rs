@@ -1,7 +1,7 @@
 //! The `docent` command: parses the command line, sets up logging and calls into the library
 //! (`docent check` is `cli/check.rs`, `docent corpus` `cli/corpus.rs`, and so on).
 
-use std::io::Write;
+use std::io::{IsTerminal, Write};
 use std::net::SocketAddr;
 use std::path::{Path, PathBuf};
 use std::process::ExitCode;
@@ -256,15 +256,12 @@ fn serve(args: &ServeArgs) -> anyhow::Result<ExitCode> {
     runtime.block_on(async move {
         let listener = TcpListener::bind(listen)
             .await
-            .with_context(|| format!("listening on {listen}"))?;
+            .map_err(|error| anyhow::anyhow!(cannot_listen(listen, &error)))?;
         let addr = listener.local_addr()?;
         let password = std::env::var(docent::fleet::MQTT_PASSWORD_ENV).ok();
         let bridge = docent::fleet::decide_bridge(&fleet_flags, &mqtt_file, password, addr)
             .map_err(anyhow::Error::msg)?;
         let server = Server::start(bundle, &options).context("starting the server")?;
-        for warning in &server.warnings {
-            tracing::warn!("{warning}");
-        }
         let fleet_line = bridge.as_ref().map(|b| {
             format!(
                 "  fleet:       {} as robot {}; fleet view http://{addr}/fleet (docs/FLEET.md)",
@@ -284,16 +281,25 @@ fn serve(args: &ServeArgs) -> anyhow::Result<ExitCode> {
                 ..ReloadOptions::default()
             });
         }
+        let preview_note = match mode {
+            Mode::Preview => "speech in the browser",
+            Mode::Robot => "for authors: the pages and acts, live as you save",
+        };
         // A closed stdout (a supervisor that stopped reading) must not stop the server.
         let _ = writeln!(
             std::io::stdout(),
-            "Docent is serving {}\n  kiosk:       http://{addr}/\n  projector:   http://{addr}/projector\n  home page:   http://{addr}/pages/{home}\n  trigger API: http://{addr}/api/acts  (docs/PROTOCOL.md)\n  websocket:   ws://{addr}/ws\n  corpus:      {}  (sessions/: one folder per visitor session; days/: other events)",
+            "Docent is serving {}\n  kiosk:       http://{addr}/\n  projector:   http://{addr}/projector\n  home page:   http://{addr}/pages/{home}\n  preview:     http://{addr}/preview  ({preview_note})\n  report:      http://{addr}/report  (the bundle's problems, as `docent check` tells them)\n  sessions:    http://{addr}/sessions  (recorded visits: replay, annotate, export)\n  trigger API: http://{addr}/api/acts  (docs/PROTOCOL.md)\n  websocket:   ws://{addr}/ws\n  corpus:      {}  (sessions/: one folder per visitor session; days/: other events)",
             bundle_dir.display(),
             server.corpus_path().display()
         );
         print_access(&setup, addr);
         if let Some(line) = fleet_line {
             let _ = writeln!(std::io::stdout(), "{line}");
+        }
+        // After the addresses, so that what the person starting Docent reads first is where
+        // it serves; the log has them too.
+        for warning in &server.warnings {
+            tracing::warn!("{warning}");
         }
         if mode == Mode::Preview {
             open_preview(&format!("http://{addr}/preview"));
@@ -303,6 +309,29 @@ fn serve(args: &ServeArgs) -> anyhow::Result<ExitCode> {
             .context("serving")?;
         anyhow::Ok(ExitCode::SUCCESS)
     })
+}
+
+/// What to do when Docent cannot listen on `listen`, in the words of the person starting it.
+fn cannot_listen(listen: SocketAddr, error: &std::io::Error) -> String {
+    let (ip, port) = (listen.ip(), listen.port());
+    let next = SocketAddr::new(ip, port.saturating_add(1));
+    match error.kind() {
+        std::io::ErrorKind::AddrInUse => format!(
+            "cannot listen on {listen}: another program already uses port {port} (another \
+             Docent, or the kiosk's own service: `ss -ltnp 'sport = :{port}'` names it). Stop \
+             it, or give another address: --listen {next}"
+        ),
+        std::io::ErrorKind::PermissionDenied => format!(
+            "cannot listen on {listen}: ports below 1024 need administrator rights. Give a \
+             higher port, for example --listen {ip}:8080"
+        ),
+        std::io::ErrorKind::AddrNotAvailable => format!(
+            "cannot listen on {listen}: this computer has no network address {ip}. Give one \
+             it has (`ip -brief address` lists them), 127.0.0.1 for this computer only, or \
+             0.0.0.0 for all of them"
+        ),
+        _ => format!("cannot listen on {listen}: {error}"),
+    }
 }
 
 /// `docent fleet`: the fleet view alone, behind the operator credential.
@@ -353,10 +382,6 @@ fn print_access(setup: &AccessSetup, addr: SocketAddr) {
 
 /// Prints the preview address and opens it in the desktop's browser when there is one.
 fn open_preview(url: &str) {
-    let _ = writeln!(
-        std::io::stdout(),
-        "  preview:     {url}  (speech in the browser)"
-    );
     let opened = std::process::Command::new("xdg-open")
         .arg(url)
         .stdout(std::process::Stdio::null())
@@ -378,6 +403,9 @@ fn init_logging() {
                 .unwrap_or_else(|_| "docent=info,tower_http=warn".into()),
         )
         .with_writer(std::io::stderr)
+        // Colours for a person at a terminal; none in a file, the journal or a pipe, nor
+        // with NO_COLOR set (no-color.org).
+        .with_ansi(std::io::stderr().is_terminal() && std::env::var_os("NO_COLOR").is_none())
         .init();
 }
 

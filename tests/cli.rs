@@ -217,6 +217,39 @@ fn a_missing_bundle_folder_is_a_clear_error() {
 }
 
 #[test]
+fn a_port_in_use_is_told_with_what_to_do() {
+    let taken = std::net::TcpListener::bind("127.0.0.1:0").unwrap();
+    let port = taken.local_addr().unwrap().port();
+    let listen = format!("127.0.0.1:{port}");
+    let out = serve_without_credentials(&["--listen", &listen, "--open", "--no-watch"])
+        .output()
+        .unwrap();
+    let err = String::from_utf8(out.stderr).unwrap();
+    assert_eq!(out.status.code(), Some(1), "{err}");
+    assert!(
+        err.contains(&format!("another program already uses port {port}")),
+        "{err}"
+    );
+    assert!(
+        err.contains(&format!("--listen 127.0.0.1:{}", port + 1)),
+        "{err}"
+    );
+}
+
+#[test]
+fn a_folder_of_bundles_is_told_with_the_path_to_give_instead() {
+    let (code, out, _) = run_docent(&["check", "dialogs"]);
+    assert_eq!(code, 1, "{out}");
+    assert!(out.contains("error[not-a-bundle]"), "{out}");
+    assert!(out.contains("`dialogs` is a folder of bundles"), "{out}");
+    assert!(out.contains("`museum-tour`"), "{out}");
+    assert!(out.contains("for example `dialogs/"), "{out}");
+    // One error, not a misplaced acts file and a missing home page besides.
+    assert_eq!(out.matches("error[").count(), 1, "{out}");
+    assert!(!out.contains("warning["), "{out}");
+}
+
+#[test]
 fn preview_serves_both_screens_and_speaks_in_the_browser() {
     use std::io::{BufRead, BufReader};
     let mut child = Command::new(env!("CARGO_BIN_EXE_docent"))
@@ -352,6 +385,16 @@ fn a_generated_credential_is_printed_once_and_works_but_is_never_logged() {
     assert!(child.wait().unwrap().success());
     let logged = std::fs::read_to_string(log.path()).unwrap();
     assert!(!logged.is_empty(), "debug logging wrote something");
+    assert!(
+        !logged.contains('\u{1b}'),
+        "a log file gets no colour codes: {logged}"
+    );
+    for page in ["/preview", "/report", "/sessions"] {
+        assert!(
+            lines.iter().any(|l| l.contains(&format!("{base}{page}"))),
+            "the start-up text names {page}: {lines:?}"
+        );
+    }
     assert!(!logged.contains(&token), "the log holds the credential");
     for file in docent::corpus::layout::event_logs(corpus.path()).unwrap() {
         let text = std::fs::read_to_string(file).unwrap();

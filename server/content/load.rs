@@ -8,7 +8,10 @@ use std::sync::Arc;
 
 use crate::DiagnosticCode;
 use crate::DiagnosticCode::{ConfigSyntax, FileEncoding, NotPlainText};
-use crate::commands::{CommandChecker, acts_files_elsewhere, no_acts, path_error_code};
+use crate::commands::{
+    CommandChecker, acts_files_elsewhere, bundles_inside, folder_of_bundles, no_acts,
+    path_error_code,
+};
 use crate::config::SiteConfig;
 use crate::config_file::attract::check_screen_refs;
 use crate::config_file::schedule::check_past_special_days;
@@ -84,6 +87,21 @@ fn load(root: &Path, replaced: &ActsReplacements) -> LoadReport {
             };
         }
     };
+    // `docent serve dialogs` for `docent serve dialogs/museum-tour`: one error saying so,
+    // rather than "move your acts file up" and a missing home page.
+    let yaml_at_top = (std::fs::read_dir(&root).into_iter().flatten().flatten()).any(|e| {
+        let name = e.file_name().to_string_lossy().to_ascii_lowercase();
+        name.ends_with(".yaml") || name.ends_with(".yml")
+    });
+    let has_own = yaml_at_top || root.join("pages").is_dir();
+    if !has_own && let Some(told) = folder_of_bundles(&root, &bundles_inside(&root)) {
+        diagnostics.push(told);
+        return LoadReport {
+            bundle: None,
+            diagnostics,
+            conversions: Vec::new(),
+        };
+    }
     let settings = read_settings(&root, &mut diagnostics);
     // A docent.yaml YAML could not read drops every setting (the idle act, the contexts):
     // warnings that follow from the defaults would only mislead.

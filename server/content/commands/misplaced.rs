@@ -66,6 +66,49 @@ pub(crate) fn acts_files_elsewhere(root: &Path) -> Vec<String> {
     found
 }
 
+/// The folders one down from `root` that are bundles of their own (acts files at their top,
+/// beside a `pages` folder or a `docent.yaml`), each with its first acts file: `root` is then
+/// a folder of bundles (`dialogs/`), given by mistake for one of them.
+pub(crate) fn bundles_inside(root: &Path) -> Vec<(String, String)> {
+    let mut found: Vec<(String, String)> = Vec::new();
+    for rel in acts_files_elsewhere(root) {
+        let Some((dir, _)) = rel.split_once('/') else {
+            continue;
+        };
+        let own = root.join(dir);
+        let bundle = own.join("pages").is_dir() || own.join("docent.yaml").is_file();
+        if bundle && !rel.ends_with("/docent.yaml") && found.last().is_none_or(|(d, _)| d != dir)
+        {
+            found.push((dir.to_owned(), rel));
+        }
+    }
+    found
+}
+
+/// `not-a-bundle` for a folder of bundles: names them and the path to give instead.
+pub(crate) fn folder_of_bundles(root: &Path, bundles: &[(String, String)]) -> Option<Diagnostic> {
+    let ((first, acts), rest) = bundles.split_first()?;
+    let folder = root
+        .file_name()
+        .map_or_else(|| root.display().to_string(), |n| n.to_string_lossy().into_owned());
+    let names = match rest {
+        [] => format!("`{first}` holds"),
+        _ => {
+            let all: Vec<String> = bundles.iter().map(|(d, _)| format!("`{d}`")).collect();
+            format!("{} each hold", all.join(", "))
+        }
+    };
+    let message = format!(
+        "`{folder}` is a folder of bundles, not a bundle: {names} acts files and pages of \
+         their own. Give the path of one of them instead, for example `{folder}/{first}`."
+    );
+    Some(Diagnostic::error(
+        DiagnosticCode::NotABundle,
+        &Pos::start_of(acts.as_str()),
+        message,
+    ))
+}
+
 /// `no-acts`: at the acts file saved in a folder, if there is one (told to move it up).
 pub(crate) fn no_acts(root: &Path) -> Diagnostic {
     let elsewhere = acts_files_elsewhere(root);

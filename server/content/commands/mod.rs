@@ -14,7 +14,7 @@ mod files;
 mod misplaced;
 
 pub(crate) use files::path_error_code;
-pub(crate) use misplaced::{acts_files_elsewhere, no_acts};
+pub(crate) use misplaced::{acts_files_elsewhere, bundles_inside, folder_of_bundles, no_acts};
 
 use crate::DiagnosticCode;
 use crate::args::Args;
