@@ -77,8 +77,7 @@ pub(crate) fn bundles_inside(root: &Path) -> Vec<(String, String)> {
         };
         let own = root.join(dir);
         let bundle = own.join("pages").is_dir() || own.join("docent.yaml").is_file();
-        if bundle && !rel.ends_with("/docent.yaml") && found.last().is_none_or(|(d, _)| d != dir)
-        {
+        if bundle && !rel.ends_with("/docent.yaml") && found.last().is_none_or(|(d, _)| d != dir) {
             found.push((dir.to_owned(), rel));
         }
     }
@@ -88,9 +87,10 @@ pub(crate) fn bundles_inside(root: &Path) -> Vec<(String, String)> {
 /// `not-a-bundle` for a folder of bundles: names them and the path to give instead.
 pub(crate) fn folder_of_bundles(root: &Path, bundles: &[(String, String)]) -> Option<Diagnostic> {
     let ((first, acts), rest) = bundles.split_first()?;
-    let folder = root
-        .file_name()
-        .map_or_else(|| root.display().to_string(), |n| n.to_string_lossy().into_owned());
+    let folder = root.file_name().map_or_else(
+        || root.display().to_string(),
+        |n| n.to_string_lossy().into_owned(),
+    );
     let names = match rest {
         [] => format!("`{first}` holds"),
         _ => {
