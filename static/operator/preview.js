@@ -32,7 +32,8 @@ export function showPreview(element, act, context, language = null) {
       { class: "preview-variant small" },
       variantNote,
       said.texts.length > 1 ? ` · one of ${said.texts.length}` : "",
-      said.language ? ` · ${said.language}` : "",
+      // The language said, where the bundle has several.
+      said.language && act.languages.get(said.variant)?.size > 1 ? ` · ${said.language}` : "",
     ),
     note ? h("p", { class: "preview-language small" }, `(${note})`) : null,
     said.texts.length
