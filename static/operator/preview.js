@@ -35,10 +35,9 @@ export function showPreview(element, act, context, language = null) {
       // The language said, where the bundle has several.
       said.language && act.languages.get(said.variant)?.size > 1 ? ` · ${said.language}` : "",
     ),
-    note ? h("p", { class: "preview-language small" }, `(${note})`) : null,
-    said.texts.length
-      ? h("ul", { class: "preview-texts" }, said.texts.map((t) => h("li", {}, t)))
-      : null,
+    ...(note ? [h("p", { class: "preview-language small" }, `(${note})`)] : []),
+    // replaceChildren writes a null as "null": leave absent parts out.
+    ...(said.texts.length ? [h("ul", { class: "preview-texts" }, said.texts.map((t) => h("li", {}, t)))] : []),
     act.commands.length
       ? h("ol", { class: "preview-commands" }, act.commands.map((c) => h("li", {}, h("code", {}, commandText(c)))))
       : h("p", { class: "muted small" }, "no commands"),

@@ -64,6 +64,7 @@ test('German visitors: the act list and the preview speak German; German words, 
       const preview = await page.locator('#preview').textContent();
       assert.match(preview, /Das ist der Meridian M-16/);
       assert.doesNotMatch(preview, /This is the Meridian M-16/);
+      assert.doesNotMatch(preview, /null/, 'no stray "null" where no language note is due');
 
       // An English word still finds its act while the visitor hears German.
       await searchFor(page, 'wardrobe');
