@@ -70,7 +70,10 @@ const language = createLanguage({
   buttons: byId("language-buttons"),
   note: byId("language-note"),
   ask: (wanted) => send({ type: "language", language: wanted, ref: ref("language") }, `language ${wanted}`),
-  onChange: (tag) => list.setLanguage(tag),
+  onChange: (tag) => {
+    list.setLanguage(tag);
+    proposals.refresh(); // proposals name the texts in the visitor's language
+  },
 });
 const liveView = createLive({
   kiosk: byId("kiosk-page"),

@@ -12,7 +12,7 @@ import { after, before, test } from 'node:test';
 
 import { launchBrowser, watchProblems } from './lib/browser.mjs';
 import { makeBundle, REPO, removeTemp } from './lib/docent.mjs';
-import { actLabels, chosenLabel, museumTour, signIn, withConsoleServer } from './lib/operator.mjs';
+import { actLabels, chosenLabel, connectWithToken, museumTour, signIn, withConsoleServer } from './lib/operator.mjs';
 
 const OUT = path.join(REPO, 'target/e2e/operator-language');
 
@@ -44,7 +44,7 @@ function buttonText(page, label) {
 test('German visitors: the act list and the preview speak German; German words, typos and an act\'s keywords find it', { timeout: 90_000 }, async () => {
   const bundle = museumTour();
   try {
-    await withConsoleServer(browser, bundle, async ({ server, observer, newPage }) => {
+    await withConsoleServer(browser, bundle, async ({ server, observer, newPage, cleanup }) => {
       const page = await newPage();
       const problems = watchProblems(page);
       await signIn(page, server);
@@ -54,6 +54,11 @@ test('German visitors: the act list and the preview speak German; German words, 
       await chooseLanguage(page, observer, 'de');
       await page.locator('#act-list .act[data-label="FOLLOW_ME"] .act-text', { hasText: 'Bitte folgen Sie mir' }).first().waitFor();
       assert.match(await buttonText(page, 'GREETING'), /Hallo! Willkommen/);
+      // A dialog manager's proposal names what the act would say, in German too.
+      const dm = await connectWithToken(server, 'dm', 'e2e-planner');
+      cleanup.unshift(() => dm.close());
+      dm.send({ type: 'propose', label: 'FAREWELL', reason: 'the visitors turned to the exit', ref: 'p1' });
+      await page.locator('#proposal-list', { hasText: 'Auf Wiedersehen!' }).waitFor();
 
       // A German word finds its act, and the preview shows the German texts.
       await searchFor(page, 'Kartenlocher');
