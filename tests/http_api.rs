@@ -301,3 +301,34 @@ async fn state_reports_display_pose_context_and_queues() {
     assert_eq!((status, stopped["stopped"].as_bool()), (202, Some(true)));
     server.stop().await;
 }
+
+#[tokio::test]
+async fn the_acts_listing_gives_each_variants_texts_per_language_with_the_fallback_named_and_keywords()
+ {
+    let acts = "- Label: HELLO\n  Text: [Hello, Hi]\n  Text@de: [Hallo, Servus]\n\
+                \x20 TextChild: [Hi kid]\n\
+                - Label: VIDEO\n  Keywords: [film, Projektion]\n  Text: [Watch this]\n\
+                - Label: QUIET\n  Keywords: movie\n  Cmds: [WAIT 1ms]\n";
+    let b = TempBundle::new(acts).with_file("docent.yaml", "languages: [en, de]\n");
+    let server = TestApp::start(b.path()).await;
+    let (status, body) = server.get("/api/acts").await;
+    assert_eq!(status, 200);
+    assert_eq!(body["languages"], json!(["en", "de"]), "the default first");
+    let hello = &body["acts"][0]["variants"];
+    assert_eq!(
+        hello[0]["languages"],
+        json!({
+            "en": {"language": "en", "texts": ["Hello", "Hi"]},
+            "de": {"language": "de", "texts": ["Hallo", "Servus"]},
+        })
+    );
+    // No German child text: in German the robot says the English one, and the listing says so.
+    assert_eq!(
+        hello[1]["languages"]["de"],
+        json!({"language": "en", "texts": ["Hi kid"]})
+    );
+    assert_eq!(body["acts"][1]["keywords"], json!(["film", "Projektion"]));
+    assert_eq!(body["acts"][2]["keywords"], json!(["movie"]));
+    assert_eq!(body["acts"][0]["keywords"], json!([]));
+    server.stop().await;
+}

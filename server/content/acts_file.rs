@@ -17,11 +17,13 @@ use crate::language::Language;
 use crate::model::{DEFAULT_VARIANT, Located, Pos, Variant};
 use crate::suggest::closest;
 
+mod keywords;
 mod texts;
 mod translations;
 mod values;
 pub(crate) mod yaml;
 
+use keywords::read_keywords;
 use values::{read_alternatives, read_commands, read_group, read_key, read_label};
 use yaml::{Kind, Node, Recovery};
 
@@ -38,6 +40,8 @@ pub(crate) struct WrittenAct {
     pub group: Option<String>,
     /// The console shortcut (`Key:`), upper case, with the place of its value.
     pub key: Option<Located<char>>,
+    /// Words the console's search also finds the act by (`Keywords:`), in written order.
+    pub keywords: Vec<String>,
     /// Every language written after the `@` of its text keys (`Text@de:`), the default
     /// language's too: what tells a `languages:` list written the wrong way round.
     pub tagged: BTreeSet<Language>,
@@ -57,7 +61,7 @@ pub(crate) struct ActsFile {
 }
 
 /// The keys an act may have besides `Text...` variants, for suggestions.
-pub(crate) const KEYS: [&str; 5] = ["Label", DEFAULT_VARIANT, "Cmds", "Group", "Key"];
+pub(crate) const KEYS: [&str; 6] = ["Label", DEFAULT_VARIANT, "Cmds", "Group", "Key", "Keywords"];
 
 /// What reading the texts of one file needs besides its tree.
 pub(crate) struct Reading<'a> {
@@ -174,6 +178,7 @@ fn read_act(node: &Node, reading: &Reading<'_>, out: &mut Vec<Diagnostic>) -> Op
         commands: Vec::new(),
         group: None,
         key: None,
+        keywords: Vec::new(),
         tagged: BTreeSet::new(),
     };
     let mut seen: Vec<(&str, &Pos)> = Vec::new();
@@ -242,6 +247,7 @@ fn read_act(node: &Node, reading: &Reading<'_>, out: &mut Vec<Diagnostic>) -> Op
             }
             "Group" => act.group = read_group(value, out),
             "Key" => act.key = read_key(value, out),
+            "Keywords" => act.keywords = read_keywords(value, out),
             "Cmds" => {
                 wrote_content |= match &value.kind {
                     Kind::Null => false,

@@ -132,6 +132,7 @@ mod tests {
             commands: Vec::new(),
             group: None,
             key: None,
+            keywords: Vec::new(),
         }
     }
 

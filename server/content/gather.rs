@@ -86,6 +86,7 @@ pub(super) struct CheckedAct {
     pub commands: Vec<Located<CommandSpec>>,
     pub group: Option<String>,
     pub key: Option<Located<char>>,
+    pub keywords: Vec<String>,
 }
 
 /// Everything read from the bundle's files.
@@ -226,6 +227,7 @@ fn read_checked(
                 commands,
                 group,
                 key,
+                keywords,
                 tagged: _,
             } = written;
             // An act without a usable label is reported by the reader and goes no further.
@@ -241,6 +243,7 @@ fn read_checked(
                 commands,
                 group,
                 key,
+                keywords,
             })
         })
         .collect();

@@ -75,6 +75,9 @@ pub struct Act {
     /// The console shortcut (`Key:`): `A`-`Z` or `0`-`9`, stored upper case. Alt+key fires
     /// the act; no two acts of a bundle share a key.
     pub key: Option<char>,
+    /// Words the console's search also finds the act by (`Keywords:`): what the act means
+    /// that it neither says nor shows (`film` for a projected video). Never spoken.
+    pub keywords: Vec<String>,
 }
 
 impl Act {
@@ -278,6 +281,7 @@ mod tests {
             commands: Vec::new(),
             group: group.map(str::to_owned),
             key: None,
+            keywords: Vec::new(),
         }
     }
 

@@ -60,6 +60,7 @@ mod tests {
             commands: Vec::new(),
             group: group.map(str::to_owned),
             key: None,
+            keywords: Vec::new(),
         }
     }
 

@@ -11,7 +11,7 @@ use crate::events::{EventKind, Source};
 use crate::sync::lock;
 
 /// The texts of a variant chosen for the visitor's language.
-pub(super) struct InLanguage<'b> {
+pub(crate) struct InLanguage<'b> {
     /// The alternatives to choose from.
     pub alternatives: &'b [Located<String>],
     /// The language they are in (the default one when the variant has no translation).
@@ -21,7 +21,7 @@ pub(super) struct InLanguage<'b> {
 }
 
 /// `variant`'s texts in `language`, falling back to the bundle's default language.
-pub(super) fn texts_in<'b>(
+pub(crate) fn texts_in<'b>(
     bundle: &Bundle,
     variant: &'b Variant,
     language: &Language,

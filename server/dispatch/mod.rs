@@ -60,6 +60,7 @@ use crate::content::{Args, Bundle, DEFAULT_VARIANT, Verb};
 use crate::events::{ActRef, EventKind, Hub, Source};
 use crate::lifecycle::Lifecycle;
 use crate::sync::lock;
+pub(crate) use language::texts_in;
 pub use rules::variant_for;
 use rules::{known_context, priority, resolved, speaking_act, suggest};
 use sequence::Sequence;

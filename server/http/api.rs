@@ -1,19 +1,16 @@
 //! The trigger API: acts, triggers, stop, context, state and health. Routes reach devices only
 //! through the dispatcher.
 
-use std::collections::BTreeMap;
-
 use crate::content::schedule::WallClock;
 use axum::Json;
 use axum::extract::rejection::{PathRejection, QueryRejection};
 use axum::extract::{Path, Query, State};
 use axum::http::StatusCode;
 use axum::response::{IntoResponse, Response};
-use serde::{Deserialize, Serialize};
+use serde::Deserialize;
 use serde_json::{Value, json};
 
-use crate::content::{Act, Pos};
-use crate::dispatch::{TriggerRequest, variant_for};
+use crate::dispatch::TriggerRequest;
 use crate::events::Source;
 use crate::http::AppError;
 use crate::http::auth::Authorized;
@@ -47,86 +44,6 @@ pub async fn health(
         "acts": bundle.acts.len(),
     }))
     .into_response()
-}
-
-#[derive(Serialize)]
-struct ActView<'a> {
-    label: &'a str,
-    at: &'a Pos,
-    /// The acts file, relative to the bundle.
-    file: &'a str,
-    /// The console group: the act's `Group`, else its file name without extension.
-    group: &'a str,
-    /// The console key (`Alt+` this), if the act has one.
-    key: Option<String>,
-    variants: Vec<VariantView<'a>>,
-    /// For each of the bundle's contexts, the variant the act speaks in it (null: nothing), so
-    /// that the console looks the server's choice up instead of repeating its rule.
-    speaks: BTreeMap<&'a str, Option<&'a str>>,
-    commands: Vec<CommandView<'a>>,
-}
-
-#[derive(Serialize)]
-struct VariantView<'a> {
-    name: &'a str,
-    at: &'a Pos,
-    alternatives: Vec<TextView<'a>>,
-}
-
-#[derive(Serialize)]
-struct TextView<'a> {
-    text: &'a str,
-    at: &'a Pos,
-}
-
-#[derive(Serialize)]
-struct CommandView<'a> {
-    verb: &'a str,
-    arg: Option<&'a str>,
-    at: &'a Pos,
-}
-
-fn act_view<'a>(act: &'a Act, contexts: &'a [String]) -> ActView<'a> {
-    ActView {
-        label: &act.label,
-        at: &act.pos,
-        file: &act.pos.file,
-        group: act.group_name(),
-        key: act.key.map(String::from),
-        variants: (act.variants.iter())
-            .map(|v| VariantView {
-                name: &v.name,
-                at: &v.pos,
-                alternatives: v
-                    .alternatives
-                    .iter()
-                    .map(|a| TextView {
-                        text: &a.value,
-                        at: &a.pos,
-                    })
-                    .collect(),
-            })
-            .collect(),
-        speaks: (contexts.iter())
-            .map(|c| (c.as_str(), variant_for(act, c).map(|v| v.name.as_str())))
-            .collect(),
-        commands: (act.commands.iter())
-            .map(|c| CommandView {
-                verb: c.value.verb.as_str(),
-                arg: c.value.arg.as_deref(),
-                at: &c.pos,
-            })
-            .collect(),
-    }
-}
-
-/// `GET /api/acts`: every act with its variants, commands and positions.
-pub async fn list_acts(State(state): State<AppState>) -> impl IntoResponse {
-    let bundle = state.dispatcher.bundle();
-    let acts: Vec<ActView<'_>> = (bundle.acts.iter())
-        .map(|act| act_view(act, &bundle.contexts))
-        .collect();
-    Json(json!({ "contexts": bundle.contexts, "acts": acts })).into_response()
 }
 
 /// `POST /api/acts/{label}/trigger` (credential needed): 202 with the trigger id and resolved

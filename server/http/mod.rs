@@ -1,6 +1,7 @@
 //! The HTTP side: one route table ([`app`]), handlers grouped by resource.
 //!
 //! - `api`: the trigger API (`/api/...`, `/healthz`).
+//! - `act_view`: `/api/acts`, every act as the console reads it (texts per language).
 //! - `presence`: `/healthz?role=kiosk&name=NAME`, whether such a client is connected.
 //! - `files`: bundle files under `/pages/` and `/media/`, never outside the bundle.
 //! - `act_timers`: pages served with their `data-act-after` delays in milliseconds.
@@ -20,6 +21,7 @@
 //! - `error`: [`AppError`], the one error type at the HTTP edge.
 
 mod act_timers;
+mod act_view;
 mod api;
 pub(crate) mod auth;
 mod body;
@@ -70,7 +72,7 @@ pub fn app(state: AppState) -> Router {
         .route("/static/{*path}", get(static_files::serve_static))
         .route("/favicon.ico", get(api::no_favicon))
         .route("/healthz", get(api::health))
-        .route("/api/acts", get(api::list_acts))
+        .route("/api/acts", get(act_view::list_acts))
         .route("/api/acts/{label}/trigger", post(api::trigger_act))
         .route("/api/stop", post(api::stop_all))
         .route("/api/context", get(api::get_context).put(api::put_context))

@@ -4,9 +4,11 @@
 // (Tab, a click): the chosen act is the one the preview shows and the one Enter fires; hovering
 // chooses nothing. A redraw (the context, a star, recently used) keeps the choice on the same
 // act while it is still listed; a changed search chooses its best match. A click fires (Shift
-// interrupts current speech); the star keeps an act among the favourites.
+// interrupts current speech); the star keeps an act among the favourites. Texts are shown in
+// the visitor's language (`setLanguage`); an act without a text in it shows what the robot
+// says instead, marked (`English: no German text`).
 
-import { groupActs, textsFor } from "./acts.js";
+import { groupActs, languageNote, textsFor } from "./acts.js";
 import { h, shorten, wrappableLabel } from "./dom.js";
 import { highlight, indexActs, search } from "./search.js";
 import * as store from "./store.js";
@@ -22,6 +24,7 @@ export function createActList({ element, count, onFire, onPreview }) {
   let byLabel = new Map();
   let index = [];
   let context = "Text";
+  let language = null; // the visitor's language; null: the bundle's default
   let query = "";
   let rows = []; // [{act, button}] in screen order
   let chosen = -1;
@@ -36,7 +39,9 @@ export function createActList({ element, count, onFire, onPreview }) {
   }
 
   function button(act, match) {
-    const said = textsFor(act, context);
+    const said = textsFor(act, context, language);
+    // The mark goes with the texts the robot says, not with another text a search matched.
+    const note = !match?.text || said.texts.includes(match.text) ? languageNote(said) : null;
     const text = match?.text ?? said.texts[0] ?? (act.commands[0] ? act.commands.map((c) => c.verb).join(" ") : "");
     const pieces = match ? highlight(text, query) : [{ text: shorten(text, 90), hit: false }];
     const fav = store.isFavourite(act.label);
@@ -46,7 +51,7 @@ export function createActList({ element, count, onFire, onPreview }) {
         type: "button",
         class: "act",
         dataset: { label: act.label },
-        title: said.texts.join("\n") || undefined,
+        title: [note, ...said.texts].filter(Boolean).join("\n") || undefined,
         "aria-keyshortcuts": act.key ? `Alt+${act.key}` : null,
         onclick: (event) => onFire(act, { interrupt: event.shiftKey }),
         // Tab (or a click) to a button chooses it: Enter then fires what the preview shows.
@@ -54,7 +59,12 @@ export function createActList({ element, count, onFire, onPreview }) {
       },
       h("span", { class: "act-label" }, wrappableLabel(act.label)),
       act.key ? h("kbd", { class: "act-key" }, `Alt+${act.key}`) : null,
-      h("span", { class: "act-text" }, pieces.map((p) => (p.hit ? h("mark", {}, p.text) : p.text))),
+      h(
+        "span",
+        { class: "act-text" },
+        note ? h("span", { class: "act-language muted" }, `(${note}) `) : null,
+        pieces.map((p) => (p.hit ? h("mark", {}, p.text) : p.text)),
+      ),
     );
     const star = h(
       "button",
@@ -97,7 +107,7 @@ export function createActList({ element, count, onFire, onPreview }) {
     const parts = [];
     const searching = Boolean(query.trim());
     if (searching) {
-      const matches = search(index, query, context);
+      const matches = search(index, query, context, language);
       count.textContent = matches.length === 1 ? "1 match" : `${matches.length} matches`;
       if (matches.length) parts.push(section("Matches", matches, { class: "matches" }));
       else parts.push(h("p", { class: "muted empty" }, "No act matches. Esc still stops."));
@@ -137,6 +147,14 @@ export function createActList({ element, count, onFire, onPreview }) {
       context = name;
       render();
     },
+    /** The visitor's language changed: texts (and the search's ranking) follow it. */
+    setLanguage(tag) {
+      if (tag === language) return;
+      language = tag;
+      render();
+    },
+    /** The visitor's language, as the list shows it (null: the default). */
+    language: () => language,
     setQuery(text) {
       if (text === query) return;
       query = text;

@@ -20,10 +20,11 @@ function languageName(tag) {
 
 /**
  * @param {{group: HTMLElement, buttons: HTMLElement, note: HTMLElement,
- *          ask: (language: string) => void}} options `group`: the labelled group, hidden with
- *          one language; `buttons`: where the buttons go; `ask`: sends the request
+ *          ask: (language: string) => void, onChange?: (language: string) => void}} options
+ *          `group`: the labelled group, hidden with one language; `buttons`: where the buttons
+ *          go; `ask`: sends the request; `onChange`: the server's language is now this one
  */
-export function createLanguage({ group, buttons, note, ask }) {
+export function createLanguage({ group, buttons, note, ask, onChange = () => {} }) {
   let language = null;
   let asked = null; // the language this console asked for last, until the server confirms
 
@@ -31,6 +32,7 @@ export function createLanguage({ group, buttons, note, ask }) {
     if (!tag) return;
     language = tag;
     for (const button of buttons.children) button.setAttribute("aria-pressed", String(button.dataset.language === tag));
+    onChange(tag);
   }
 
   return {

@@ -57,7 +57,7 @@ const list = createActList({
   element: byId("act-list"),
   count: byId("match-count"),
   onFire: (act, options) => fire(act, options),
-  onPreview: (act) => showPreview(previewEl, act, context.current()),
+  onPreview: (act) => showPreview(previewEl, act, context.current(), list.language()),
 });
 const context = createContext({
   select: byId("context"),
@@ -70,6 +70,10 @@ const language = createLanguage({
   buttons: byId("language-buttons"),
   note: byId("language-note"),
   ask: (wanted) => send({ type: "language", language: wanted, ref: ref("language") }, `language ${wanted}`),
+  onChange: (tag) => {
+    list.setLanguage(tag);
+    proposals.refresh(); // proposals name the texts in the visitor's language
+  },
 });
 const liveView = createLive({
   kiosk: byId("kiosk-page"),
@@ -94,7 +98,7 @@ const proposals = createProposals({
   dismiss: (id) => answerProposal("dismiss", id),
   says: (label, ctx) => {
     const act = list.act(label);
-    return act ? textsFor(act, ctx ?? context.current()).texts[0] ?? null : null;
+    return act ? textsFor(act, ctx ?? context.current(), list.language()).texts[0] ?? null : null;
   },
   who: (client) => {
     const c = clients.get().get(client);

@@ -209,3 +209,51 @@ fn the_museum_tour_gives_the_console_a_map_keys_and_situations() {
         "a {width}x{height} map of a {metres:?} m area has the same scale across and down"
     );
 }
+
+#[test]
+fn keywords_reach_the_act_and_bad_ones_are_located() {
+    let acts = yaml(&[
+        "- Label: VIDEO",
+        "  Keywords: [film, \" Projektion \"]",
+        "  Text: Watch",
+        "- Label: ONE",
+        "  Keywords: movie night",
+        "  Text: One",
+    ]);
+    let loaded_bundle = loaded(check(bundle(&[("acts.yaml", &acts)]).path()));
+    assert_eq!(
+        loaded_bundle.act("VIDEO").expect("act").keywords,
+        ["film", "Projektion"]
+    );
+    assert_eq!(
+        loaded_bundle.act("ONE").expect("act").keywords,
+        ["movie night"]
+    );
+
+    let acts = yaml(&[
+        "- Label: A",
+        "  Keywords: [film, \"\", [x]]",
+        "  Text: a",
+        "- Label: B",
+        "  Keywords:",
+        "  Text: b",
+    ]);
+    let dir = bundle(&[("acts.yaml", &acts)]);
+    let report = check(dir.path());
+    assert_eq!(
+        places(&report),
+        [
+            ("bad-value", "acts.yaml:2:20".to_owned()),
+            ("bad-value", "acts.yaml:2:24".to_owned()),
+            ("bad-value", "acts.yaml:5:11".to_owned()),
+        ]
+    );
+    for diagnostic in &report.diagnostics {
+        assert!(
+            diagnostic.message.contains("Keywords: [film, video"),
+            "{}",
+            diagnostic.message
+        );
+    }
+    assert_plain(&report);
+}

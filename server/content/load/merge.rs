@@ -53,6 +53,7 @@ pub(super) fn merge_acts(
                 commands,
                 group,
                 key,
+                keywords,
             } = act;
             // A translation in a file of its own is told once, not as a duplicate per act.
             if copies.leaves_out(&label.pos.file, &label.value) {
@@ -84,6 +85,7 @@ pub(super) fn merge_acts(
                 commands,
                 group,
                 key: key.map(|k| k.value),
+                keywords,
             });
         }
     }

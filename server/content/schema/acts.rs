@@ -1,5 +1,5 @@
 //! The acts file's schema: a list of acts, each a mapping of `Label`, `Text` and its variants,
-//! `Cmds`, `Group` and `Key`, nothing else (so a misspelt key is flagged where it is typed).
+//! `Cmds`, `Group`, `Key` and `Keywords`, nothing else (so a misspelt key is flagged where it is typed).
 
 use serde_json::{Value, json};
 
@@ -82,6 +82,16 @@ fn key_schema(key: &str) -> Value {
                             the letter, not `Alt+W`.",
             "examples": ["W", "1"],
         }),
+        "Keywords" => {
+            let one = words("One word (or a few) the operator may search this act by.");
+            json!({
+                "description": "Words the operator console's search also finds this act by, \
+                                in any language: what the act means that it neither says nor \
+                                shows, e.g. `Keywords: [film, video]` for an act projecting \
+                                `card-punch.webm`. Never spoken.",
+                "anyOf": [one, { "type": "array", "items": one }],
+            })
+        }
         // A key added to the loader without a schema here fails the tests (no description).
         _ => json!({}),
     }
