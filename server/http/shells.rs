@@ -9,6 +9,7 @@ use axum::response::{IntoResponse, Response};
 
 use crate::content::Languages;
 use crate::content::config::{AdapterKind, Camera, SiteConfig};
+use crate::content::shell_strings::{ShellString, shell_table};
 use crate::http::AppError;
 use crate::http::missing_page::MissingPage;
 use crate::state::AppState;
@@ -52,6 +53,13 @@ pub struct KioskShell<'a> {
     /// The friendly "not available" page (`pages/missing/missing.html`), shown in place of a
     /// page the browser could not load at all; empty: the browser's own error screen.
     pub unavailable_page: &'a str,
+    /// Every word the shell shows visitors, by key, by declared language, as JSON for
+    /// `static/shell-text.js` (`content::shell_strings`: built in, and `kiosk: strings:`).
+    pub strings: String,
+    /// "Starting…" in the default language, until the shell's script runs.
+    pub starting: String,
+    /// The Stop button's label in the default language, until the shell's script runs.
+    pub stop: String,
 }
 
 impl<'a> KioskShell<'a> {
@@ -76,8 +84,19 @@ impl<'a> KioskShell<'a> {
             rate: config.speech.rate_wpm,
             webrtc_camera: config.operator.camera == Camera::WebRtc,
             unavailable_page,
+            strings: serde_json::to_string(&shell_table(config)).unwrap_or_default(),
+            starting: default_words(config, ShellString::Starting),
+            stop: default_words(config, ShellString::Stop),
         }
     }
+}
+
+/// The shell's words for `string` in the bundle's default language.
+fn default_words(config: &SiteConfig, string: ShellString) -> String {
+    (shell_table(config).get(string.key()))
+        .and_then(|texts| texts.get(config.languages.default_language().as_str()))
+        .cloned()
+        .unwrap_or_default()
 }
 
 /// `value` as JSON for a `data-` attribute (askama escapes it), or empty for none: the
@@ -222,7 +241,13 @@ mod tests {
             "{page}"
         );
         for id in [
-            "act-list", "search", "speaking", "no-voice", "signin", "link",
+            "act-list",
+            "search",
+            "speaking",
+            "no-voice",
+            "signin",
+            "link",
+            "reload-banner",
         ] {
             assert!(page.contains(&format!(r#"id="{id}""#)), "no #{id}");
         }
@@ -312,5 +337,103 @@ mod tests {
         let page = ProjectorShell::new(&config).render().expect("renders");
         assert!(page.contains(r#"data-after-video="hold""#), "{page}");
         assert!(page.contains(r#"data-highlight-edge="0""#), "{page}");
+    }
+
+    #[test]
+    fn the_kiosk_shell_gets_its_words_in_every_declared_language() {
+        let list = ["de", "en"].map(|t| crate::content::Language::parse(t).expect("tag"));
+        let config = SiteConfig {
+            languages: Languages::new(list.to_vec()).expect("languages"),
+            ..SiteConfig::default()
+        };
+        let page = KioskShell::new(&config, "").render().expect("renders");
+        // Until the script runs: the default language's words, never English on a German kiosk.
+        assert!(page.contains(">Nicht mehr sprechen</button>"), "{page}");
+        assert!(!page.contains(">Stop speaking</button>"), "{page}");
+        let table = shell_table(&config);
+        for string in ShellString::ALL {
+            let texts = &table[string.key()];
+            assert_eq!(
+                texts.keys().collect::<Vec<_>>(),
+                ["de", "en"],
+                "{}",
+                string.key()
+            );
+            assert!(texts.values().all(|t| !t.is_empty()), "{}", string.key());
+        }
+        assert!(
+            page.contains("data-strings=\"{&#34;already_speaking&#34;:"),
+            "{page}"
+        );
+    }
+
+    /// Every word a visitor reads comes from the table: no shell script writes one itself (a
+    /// literal starting with a capitalised word and going on with another, outside comments,
+    /// the browser's log and protocol messages, is taken for one).
+    #[test]
+    fn no_shell_script_writes_words_for_visitors() {
+        let scripts = [
+            "kiosk.js",
+            "speech-state.js",
+            "speech.js",
+            "caption.js",
+            "attract.js",
+            "overlay.js",
+            "outage.js",
+            "language.js",
+            "shell-text.js",
+            "schedule.js",
+            "docent-page.js",
+            "socket.js",
+            "client-name.js",
+            "recorder.js",
+            "camera-kiosk.js",
+        ];
+        let mut found = Vec::new();
+        for name in scripts {
+            let (_, source) = crate::http::static_files::lookup(name).expect(name);
+            for (n, line) in source.lines().enumerate() {
+                let code = line.trim_start();
+                if ["//", "*", "/*"].iter().any(|c| code.starts_with(c))
+                    || line.contains("console.")
+                {
+                    continue;
+                }
+                for literal in visitor_literals(line) {
+                    found.push(format!("{name}:{}: {literal}", n + 1));
+                }
+            }
+        }
+        assert!(
+            found.is_empty(),
+            "words for visitors outside the shell's table: {found:#?}"
+        );
+    }
+
+    /// The quoted texts of `line` that read like words for people: `"Stop speaking"`, not
+    /// `"docent-stop-speech"`, and not a protocol frame's `message: "..."`.
+    fn visitor_literals(line: &str) -> Vec<&str> {
+        let mut out = Vec::new();
+        let mut rest = line;
+        while let Some(start) = rest.find(['"', '`']) {
+            let quote = rest[start..].chars().next().unwrap_or('"');
+            let after = &rest[start + 1..];
+            let Some(end) = after.find(quote) else { break };
+            let literal = &after[..end];
+            let before = rest[..start].trim_end();
+            let mut words = literal.split(' ');
+            let first = words.next().unwrap_or_default();
+            let capitalised = first.chars().next().is_some_and(char::is_uppercase)
+                && first.chars().skip(1).all(char::is_lowercase)
+                && first.len() > 1;
+            let more = words
+                .next()
+                .is_some_and(|w| w.starts_with(char::is_lowercase));
+            if capitalised && more && !before.ends_with("message:") {
+                out.push(literal);
+            }
+            rest = &after[end + 1..];
+        }
+        out
     }
 }
