@@ -138,4 +138,41 @@ mod tests {
             );
         }
     }
+
+    /// Regression (issue 28): while a save was refused, `/report` said "0 problems" although
+    /// `docent check` on the same files failed.
+    #[test]
+    fn a_refused_save_is_reported_with_the_files_problems_and_the_running_bundles_time() {
+        let dir = tempfile::tempdir().expect("a folder");
+        let acts = dir.path().join("acts.yaml");
+        std::fs::write(&acts, "- Label: GREET\n  Text: [Hello]\n").expect("written");
+        let live = crate::content::load_bundle(dir.path())
+            .bundle
+            .expect("a good bundle");
+        let since = UNIX_EPOCH + std::time::Duration::from_secs(1_800_000_000);
+
+        let good = report_now(&live, since);
+        assert!(good.refused.is_none());
+        assert!(good.report.problems.iter().all(|d| !d.is_error()));
+
+        std::fs::write(
+            &acts,
+            "- Label: GREET\n  Text: [Hello]\n  Cmds: [FLY_AWAY now]\n",
+        )
+        .expect("written");
+        let refused = report_now(&live, since);
+        let told = refused.refused.as_ref().expect("refused");
+        assert_eq!(told.errors, 1);
+        assert_eq!(told.live_since_ms, 1_800_000_000_000);
+        assert_eq!(refused.report.problems, checked(dir.path()).diagnostics);
+        assert!(
+            refused
+                .report
+                .problems
+                .iter()
+                .any(|d| d.code == "unknown-verb")
+        );
+        // The running bundle's acts stay listed: it is what visitors meet.
+        assert_eq!(refused.report.acts.len(), 1);
+    }
 }
