@@ -56,6 +56,8 @@ pub struct KioskShell<'a> {
     /// Every word the shell shows visitors, by key, by declared language, as JSON for
     /// `static/shell-text.js` (`content::shell_strings`: built in, and `kiosk: strings:`).
     pub strings: String,
+    /// The bundle's default language: that of `starting` and `stop`.
+    pub default_language: &'a str,
     /// "Starting…" in the default language, until the shell's script runs.
     pub starting: String,
     /// The Stop button's label in the default language, until the shell's script runs.
@@ -85,6 +87,7 @@ impl<'a> KioskShell<'a> {
             webrtc_camera: config.operator.camera == Camera::WebRtc,
             unavailable_page,
             strings: serde_json::to_string(&shell_table(config)).unwrap_or_default(),
+            default_language: config.languages.default_language().as_str(),
             starting: default_words(config, ShellString::Starting),
             stop: default_words(config, ShellString::Stop),
         }
@@ -348,7 +351,10 @@ mod tests {
         };
         let page = KioskShell::new(&config, "").render().expect("renders");
         // Until the script runs: the default language's words, never English on a German kiosk.
-        assert!(page.contains(">Nicht mehr sprechen</button>"), "{page}");
+        assert!(
+            page.contains(r#"type="button" lang="de" hidden>Nicht mehr sprechen</button>"#),
+            "{page}"
+        );
         assert!(!page.contains(">Stop speaking</button>"), "{page}");
         let table = shell_table(&config);
         for string in ShellString::ALL {
