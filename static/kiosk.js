@@ -10,7 +10,8 @@
 // Speech (speech-state.js's job, wired here): while the robot speaks, the shell's body and the
 // shown page's <html> carry `data-docent-speaking` (who asked: kiosk, operator, dm, http), and
 // a "Stop" button ends speech visitors started, never anyone else's. A tap on an act already
-// speaking is answered with a short notice.
+// speaking is answered with a short notice. Every word the shell shows visitors comes from the
+// server's table (`data-strings`, shell-text.js), in the language of the page on show.
 // Recording (recorder.js): on the server's `record` frame the shell records the microphone (and
 // camera) and uploads the chunks into the session's folder.
 // Attract loop (attract.js) and opening hours (schedule.js): after `after_ms` without a touch
@@ -32,6 +33,7 @@ import { clientName } from "./client-name.js";
 import { encodePath, keepConnected } from "./socket.js";
 import { startBrowserSpeech } from "./speech.js";
 import { askSchedule, followSchedule } from "./schedule.js";
+import { shellWords } from "./shell-text.js";
 import { speechState } from "./speech-state.js";
 
 const TRIGGER_ANSWER_TIMEOUT_MS = 10_000;
@@ -207,8 +209,19 @@ function shellControls() {
     .filter((element) => !element.hidden)
     .map((element) => element.getBoundingClientRect());
 }
+
+const language = kioskLanguage({
+  languages: config.languages,
+  pageFolders: parsed(config.pageFolders),
+  send: (frame) => socket.send(frame),
+  say: (key) => speech.say(key),
+  onChange: () => reloadPage(), // the page on show, in the new language
+});
+// Every word the shell shows visitors, in the shown page's language (shell-text.js).
+const words = shellWords({ table: parsed(config.strings), languages: config.languages, current: () => language.current() });
+
 const caption = captions({ documents: overlayDocuments, avoid: shellControls });
-const outages = outage({ documents: overlayDocuments, avoid: shellControls });
+const outages = outage({ documents: overlayDocuments, avoid: shellControls, words });
 outages.start();
 
 /** What a new connection's hello adds: the page on show, unless it is the "not available" copy. */
@@ -226,14 +239,7 @@ const speech = speechState({
   button: document.getElementById("docent-stop-speech"),
   notice: document.getElementById("docent-notice"),
   stop: () => window.docentShell.stopSpeech(),
-});
-
-const language = kioskLanguage({
-  languages: config.languages,
-  pageFolders: parsed(config.pageFolders),
-  send: (frame) => socket.send(frame),
-  say: (text) => speech.say(text),
-  onChange: () => reloadPage(), // the page on show, in the new language
+  words,
 });
 
 const socket = keepConnected({

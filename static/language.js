@@ -13,10 +13,11 @@ const ANSWER_TIMEOUT_MS = 10_000;
 
 /**
  * @param {{languages: string, pageFolders: Object<string, string>,
- *          send: (frame: object) => boolean, say: (text: string) => void,
+ *          send: (frame: object) => boolean, say: (key: string) => void,
  *          onChange: (language: string) => void}} options `languages`: the tags separated by
  *          spaces, the default first; `pageFolders`: each language's folder under pages/, as
- *          the server resolved it; `send`: the shell's socket; `say`: the shell's notice;
+ *          the server resolved it; `send`: the shell's socket; `say`: the shell's notice, by
+ *          the key of its words (shell-text.js);
  *          `onChange`: the language changed (the shell shows its page again in it)
  */
 export function kioskLanguage({ languages, pageFolders, send, say, onChange }) {
@@ -40,9 +41,7 @@ export function kioskLanguage({ languages, pageFolders, send, say, onChange }) {
   function refused(answer) {
     const message = answer.message || answer.code || "not possible";
     console.warn(`docent: the language was not changed: ${message}`);
-    say(answer.code === "offline" || answer.code === "disconnected"
-      ? "Not connected: the language was not changed."
-      : "This language is not available here.");
+    say(answer.code === "offline" || answer.code === "disconnected" ? "language_offline" : "language_unavailable");
   }
 
   return {

@@ -1,8 +1,9 @@
 // outage.js: what visitors see while Docent is away. After a second without the server (a
 // blip passes unseen) a calm notice appears in the page on show, styled by the bundle's CSS
 // as `.docent-offline-notice` and placed where it hides none of the page's controls
-// (overlay.js); a page may write its own, in its own words, as an element with
-// `data-docent-offline` (hidden; the shell shows it). A tap on a control meanwhile (a
+// (overlay.js), in the page's language (the shell's table, shell-text.js); a page may write
+// its own, in its own words, as an element with `data-docent-offline` (hidden; the shell
+// shows it). A tap on a control meanwhile (a
 // `data-act` element, a link, a button) is answered at once: the control gets
 // `data-docent-busy` for a moment and the notice shows. The tap does nothing else: nothing
 // is queued to fire later and no link leads to a page the server cannot send. Once Docent
@@ -13,27 +14,14 @@ import { overlayElement, place } from "./overlay.js";
 const NOTICE_AFTER_MS = 1_000;
 const BUSY_MS = 1_500;
 const CONTROLS = "[data-act], [data-docent-stop], a[href], button, [role=button]";
-// The notice in the language of the page on show (its `<html lang>`), English otherwise: a
-// German visitor on a German page is not told in English. A page's own element wins.
-const DEFAULT_TEXTS = {
-  en: "One moment, please: the robot will be right back.",
-  de: "Einen Moment bitte: Der Roboter ist gleich wieder da.",
-  fr: "Un instant, s'il vous plaît : le robot revient tout de suite.",
-  es: "Un momento, por favor: el robot vuelve enseguida.",
-  it: "Un momento, per favore: il robot torna subito.",
-  nl: "Een ogenblik alstublieft: de robot is zo terug.",
-};
-
-/** The built-in notice for `doc`'s language (`de-CH` → `de`), English when there is none. */
-function defaultText(doc) {
-  const primary = (doc.documentElement.lang || "en").toLowerCase().split("-")[0];
-  return DEFAULT_TEXTS[primary] ?? DEFAULT_TEXTS.en;
-}
-
 /**
- * @param {{documents: () => {page: Document|null, shell: Document}, avoid: () => DOMRect[]}} options
+ * @param {{documents: () => {page: Document|null, shell: Document}, avoid: () => DOMRect[],
+ *          words: (key: string, doc: Document) => {text: string, lang: string}}} options
+ *          `words`: the shell's words (shell-text.js), here the notice in the language of the
+ *          page on show (its `<html lang>`): a German visitor on a German page is not told in
+ *          English
  */
-export function outage({ documents, avoid }) {
+export function outage({ documents, avoid, words }) {
   let online = false;
   let noticeTimer = null;
   let noticeShown = false;
@@ -47,7 +35,11 @@ export function outage({ documents, avoid }) {
     const doc = page ?? shell;
     const attributes = { role: "status", "aria-live": "polite" };
     const { element, own } = overlayElement(doc, "docent-offline-notice", "data-docent-offline", attributes);
-    if (!own && !element.textContent) element.textContent = defaultText(doc);
+    if (!own && !element.textContent) {
+      const { text, lang } = words("one_moment", doc);
+      element.textContent = text;
+      element.lang = lang;
+    }
     element.hidden = false;
     if (!own) place(element, doc, avoid());
   }

@@ -8,11 +8,16 @@
 // events every operator gets), marked with its language (`args.language`, so that a screen
 // reader reads a German text as German; the kiosk frame's browser speech speaks it in that
 // language, speech.js), and it says so when this browser has no voice (speech.js).
+// The author sees every refusal and every change here: a save with errors shows at once above
+// the act list (the operator console's banner, reloadbanner.js: each problem at its file, line
+// and column with its hint, and that the last good bundle still runs), and goes when a good
+// save is live; the act list follows every good save (`bundle.reloaded`) without a reload.
 
 import { accessElements, createAccess } from "./operator/access.js";
 import { createActList } from "./operator/actlist.js";
 import { readActs } from "./operator/acts.js";
 import { byId, createNotice, h } from "./operator/dom.js";
+import { createReloadBanner } from "./operator/reloadbanner.js";
 import { detectVoice } from "./speech.js";
 
 const NOTICE_MS = 6_000;
@@ -126,6 +131,13 @@ async function loadActs() {
   list.setActs(readActs(answer));
 }
 
+// --- live reload --------------------------------------------------------------------------
+
+const banner = createReloadBanner({
+  element: byId("reload-banner"),
+  onReloaded: () => loadActs().catch((error) => notice(`The acts could not be loaded: ${error.message}`)),
+});
+
 // --- the server ---------------------------------------------------------------------------
 
 const access = createAccess({
@@ -133,6 +145,7 @@ const access = createAccess({
   open: config.credential === "open",
   ...accessElements(byId),
   onFrame: (frame) => {
+    banner.onFrame(frame);
     if (frame.type === "event") onEvent(frame.event);
     else if (frame.type === "error" && String(frame.ref ?? "").startsWith("preview-")) {
       notice(`Not fired: ${frame.message ?? frame.code}`);

@@ -4,11 +4,17 @@
 // "Stop speaking" button shows only while visitors' own speech runs (Docent refuses a kiosk's
 // stop for anyone else's). A tap on an act already speaking, or a visitor's speech that will
 // not be said (`outcome` frames), is answered with a short notice: never silently ignored.
+// The button's label and the notices are in the shown page's language (`words`,
+// shell-text.js).
 
 const NOTICE_MS = 3_000;
 
-/** The state of one shell: `button` and `notice` are its elements, `stop()` asks Docent. */
-export function speechState({ button, notice, stop }) {
+/**
+ * The state of one shell: `button` and `notice` are its elements, `stop()` asks Docent,
+ * `words(key, doc)` gives the shell's words for the page on show (shell-text.js).
+ */
+export function speechState({ button, notice, stop, words }) {
+  let shownDoc = null; // the document of the page on show, for its language
   let speaking = null; // the `speaking` frame in force, or null
   let noticeTimer = null;
 
@@ -22,22 +28,36 @@ export function speechState({ button, notice, stop }) {
 
   function markPage(frame) {
     try {
+      shownDoc = frame?.contentDocument ?? null;
       mark(frame?.contentDocument?.documentElement);
       pageStops = Boolean(frame?.contentDocument?.querySelector("[data-docent-stop]"));
     } catch {
       // a page of another origin (the friendly offline copy) cannot be marked
+      shownDoc = null;
       pageStops = false;
     }
+    label();
     showButton();
+  }
+
+  /** The button says "Stop speaking" in the shown page's language. */
+  function label() {
+    if (!button) return;
+    const { text, lang } = words("stop", shownDoc);
+    button.textContent = text;
+    button.lang = lang;
   }
 
   function showButton() {
     if (button) button.hidden = !(speaking && speaking.stoppable) || pageStops;
   }
 
-  function say(text) {
+  /** Shows the shell's words for `key` (shell-text.js) in the shown page's language. */
+  function say(key) {
     if (!notice) return;
+    const { text, lang } = words(key, shownDoc);
     notice.textContent = text;
+    notice.lang = lang;
     notice.hidden = false;
     clearTimeout(noticeTimer);
     noticeTimer = setTimeout(() => {
@@ -46,10 +66,11 @@ export function speechState({ button, notice, stop }) {
   }
 
   button?.addEventListener("click", () => stop());
+  label();
 
   return {
     markPage,
-    /** Shows a short notice (also language.js's refusals). */
+    /** Shows a short notice by its key (also language.js's refusals). */
     say,
     /** The connection is gone: nothing is known to speak until Docent says so again. */
     forget(shown) {
@@ -64,11 +85,11 @@ export function speechState({ button, notice, stop }) {
         mark(document.body);
         markPage(shown);
       } else if (frame.type === "error" && frame.code === "already-speaking") {
-        say("Already speaking about this.");
+        say("already_speaking");
       } else if (frame.type === "outcome" && frame.verb === "SAY" && !frame.ended_by_visitor) {
         // Speech a visitor asked for that will not come (a full queue, the operator took over);
         // what the visitor ended themselves (stop, leaving the page) needs no word.
-        say("The robot cannot say this now.");
+        say("cannot_say");
       }
     },
   };

@@ -10,7 +10,7 @@ use clap::ValueEnum;
 
 use crate::adapters::{espeak_available, espeak_voices};
 use crate::content::{
-    Colour, Diagnostic, Severity, espeak_speaks, load_bundle, no_voice_diagnostics,
+    Colour, Diagnostic, LoadReport, Severity, espeak_speaks, load_bundle, no_voice_diagnostics,
     render_diagnostics,
 };
 
@@ -25,20 +25,7 @@ pub enum CheckFormat {
 
 /// Checks the bundle at `bundle` and prints its problems; the exit status to end with.
 pub fn run(bundle: &Path, format: CheckFormat, deny_warnings: bool) -> anyhow::Result<ExitCode> {
-    let mut report = load_bundle(bundle);
-    // A bundle that speaks through espeak-ng: each language needs an installed voice. Asked of
-    // espeak-ng here, not while loading (loading runs nothing); serving warns the same way.
-    // That is with `speech: {adapter: espeak}`, and without any adapter written where espeak-ng
-    // is installed (serve's default).
-    if let Some(config) = report.bundle.as_ref().map(|b| &b.config)
-        && let Some(choice) = espeak_speaks(&config.speech, espeak_available())
-    {
-        let missing = no_voice_diagnostics(config, &espeak_voices(), choice);
-        report.diagnostics.extend(missing);
-    }
-    // The converters are asked about media to convert here too, not while loading.
-    let tools = crate::media::Tools::find();
-    crate::media::check_decodable(&report.conversions, &tools, &mut report.diagnostics);
+    let report = checked(bundle);
     let Counts {
         errors,
         warnings,
@@ -57,6 +44,28 @@ pub fn run(bundle: &Path, format: CheckFormat, deny_warnings: bool) -> anyhow::R
     } else {
         ExitCode::SUCCESS
     })
+}
+
+/// The bundle at `bundle` loaded and checked as `docent check` does, with what only this
+/// computer can tell: the one check behind both `docent check` and `/report`, so the two
+/// never disagree about the files on disk. Blocking (it reads the bundle and may ask
+/// espeak-ng and ffmpeg): call it off the async runtime.
+pub fn checked(bundle: &Path) -> LoadReport {
+    let mut report = load_bundle(bundle);
+    // A bundle that speaks through espeak-ng: each language needs an installed voice. Asked of
+    // espeak-ng here, not while loading (loading runs nothing); serving warns the same way.
+    // That is with `speech: {adapter: espeak}`, and without any adapter written where espeak-ng
+    // is installed (serve's default).
+    if let Some(config) = report.bundle.as_ref().map(|b| &b.config)
+        && let Some(choice) = espeak_speaks(&config.speech, espeak_available())
+    {
+        let missing = no_voice_diagnostics(config, &espeak_voices(), choice);
+        report.diagnostics.extend(missing);
+    }
+    // The converters are asked about media to convert here too, not while loading.
+    let tools = crate::media::Tools::find();
+    crate::media::check_decodable(&report.conversions, &tools, &mut report.diagnostics);
+    report
 }
 
 /// Writes the problems and the summary line to standard output.

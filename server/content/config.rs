@@ -159,6 +159,8 @@ pub struct KioskConfig {
     pub leave_page_stops_speech: bool,
     /// The attract loop an unused touchscreen runs (`kiosk: attract:`), if any.
     pub attract: Option<AttractLoop>,
+    /// The site's own words for the shell (`kiosk: strings:`), over the built-in ones.
+    pub strings: crate::shell_strings::SiteStrings,
 }
 
 /// What the projector shows once a video has ended (`projector: after_video:`).
@@ -382,6 +384,7 @@ impl Default for SiteConfig {
                 idle_act: None,
                 leave_page_stops_speech: true,
                 attract: None,
+                strings: Default::default(),
             },
             projector: ProjectorConfig {
                 after_video: AfterVideo::Black,

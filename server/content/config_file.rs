@@ -30,6 +30,7 @@ pub(crate) mod screens;
 pub(crate) mod section;
 pub(crate) mod server;
 mod server_limits;
+pub(crate) mod shell_strings;
 mod verbs;
 
 use codebook::Codebook;

@@ -284,6 +284,11 @@ diagnostic_codes! {
     /// over English `Text:` and German `Text@de:`). Reported once, at the first language; the
     /// acts and pages are checked in the order meant.
     LanguagesReversed = "languages-reversed",
+    /// A language of `languages:` for which the kiosk shell has no words of its own (its "Stop
+    /// speaking" button, its notices, the outage notice): neither built in (English, German,
+    /// French, Spanish, Italian, Dutch) nor given in `kiosk: strings:`. Its visitors read the
+    /// default language's words there. Reported at the language, naming the missing keys.
+    ShellStringsMissing = "shell-strings-missing",
     /// When espeak-ng speaks the bundle (`speech: {adapter: espeak}`, or no adapter written and
     /// espeak-ng installed), from `docent check` on the computer it runs on:
     /// no installed espeak-ng voice speaks one of the bundle's languages (its voice in `speech:

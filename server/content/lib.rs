@@ -26,6 +26,8 @@
 //!   no text at all (a Word document, RTF, PDF...), named.
 //! - `duration`: `2s`, `500ms`, `1.5m`; `size`: amounts of storage, `4 GB`, `1.5 GiB`.
 //! - `attract`, `schedule`: the kiosk's attract loop and opening hours, parsed once.
+//! - `shell_strings`: the kiosk shell's own words in every language (built in, and the site's
+//!   `kiosk: strings:`), and the warning for a declared language without them.
 //! - `highlight`: the areas of a `HIGHLIGHT` argument.
 //! - `operator_check`: what the operator console uses (act keys, map, visitor groups),
 //!   checked against the whole bundle.
@@ -95,6 +97,7 @@ mod pages;
 mod paths;
 mod plain_text;
 mod render;
+pub mod shell_strings;
 pub mod size;
 mod speech;
 pub mod spreadsheet;

@@ -143,6 +143,7 @@ fn load(root: &Path, replaced: &ActsReplacements) -> LoadReport {
     );
     leftovers.report(&mut diagnostics);
     if !settings_unread {
+        crate::shell_strings::check_shell_strings(&config, &mut diagnostics);
         check_undeclared(&config, &merged.acts, &mut diagnostics);
         let idle = settings.idle_act.as_ref().map(|a| a.value.as_str());
         let reacting = (settings.reaction_acts.iter())

@@ -9,6 +9,7 @@ use axum::response::{IntoResponse, Response};
 
 use crate::content::Languages;
 use crate::content::config::{AdapterKind, Camera, SiteConfig};
+use crate::content::shell_strings::{ShellString, shell_table};
 use crate::http::AppError;
 use crate::http::missing_page::MissingPage;
 use crate::state::AppState;
@@ -52,6 +53,15 @@ pub struct KioskShell<'a> {
     /// The friendly "not available" page (`pages/missing/missing.html`), shown in place of a
     /// page the browser could not load at all; empty: the browser's own error screen.
     pub unavailable_page: &'a str,
+    /// Every word the shell shows visitors, by key, by declared language, as JSON for
+    /// `static/shell-text.js` (`content::shell_strings`: built in, and `kiosk: strings:`).
+    pub strings: String,
+    /// The bundle's default language: that of `starting` and `stop`.
+    pub default_language: &'a str,
+    /// "Starting…" in the default language, until the shell's script runs.
+    pub starting: String,
+    /// The Stop button's label in the default language, until the shell's script runs.
+    pub stop: String,
 }
 
 impl<'a> KioskShell<'a> {
@@ -76,8 +86,20 @@ impl<'a> KioskShell<'a> {
             rate: config.speech.rate_wpm,
             webrtc_camera: config.operator.camera == Camera::WebRtc,
             unavailable_page,
+            strings: serde_json::to_string(&shell_table(config)).unwrap_or_default(),
+            default_language: config.languages.default_language().as_str(),
+            starting: default_words(config, ShellString::Starting),
+            stop: default_words(config, ShellString::Stop),
         }
     }
+}
+
+/// The shell's words for `string` in the bundle's default language.
+fn default_words(config: &SiteConfig, string: ShellString) -> String {
+    (shell_table(config).get(string.key()))
+        .and_then(|texts| texts.get(config.languages.default_language().as_str()))
+        .cloned()
+        .unwrap_or_default()
 }
 
 /// `value` as JSON for a `data-` attribute (askama escapes it), or empty for none: the
@@ -205,6 +227,10 @@ pub(super) fn html(rendered: askama::Result<String>) -> Response {
 }
 
 #[cfg(test)]
+#[path = "shells_words_tests.rs"]
+mod words_tests;
+
+#[cfg(test)]
 mod tests {
     use std::time::Duration;
 
@@ -222,7 +248,13 @@ mod tests {
             "{page}"
         );
         for id in [
-            "act-list", "search", "speaking", "no-voice", "signin", "link",
+            "act-list",
+            "search",
+            "speaking",
+            "no-voice",
+            "signin",
+            "link",
+            "reload-banner",
         ] {
             assert!(page.contains(&format!(r#"id="{id}""#)), "no #{id}");
         }

@@ -58,10 +58,12 @@ pub fn not_applied(started: &SiteConfig, new: &SiteConfig) -> Vec<String> {
 }
 
 /// Whether the kiosk shell itself (not only its page) must reload for `new` to show: its
-/// settings are written into the shell when it loads.
+/// settings are written into the shell when it loads (the languages too: its page folders and
+/// its words for visitors, `data-strings`, are the declared languages').
 pub fn kiosk_shell_changed(old: &SiteConfig, new: &SiteConfig) -> bool {
     old.home != new.home
         || old.kiosk != new.kiosk
+        || old.languages != new.languages
         || old.operator.camera != new.operator.camera
         || old.speech != new.speech
 }
@@ -75,6 +77,15 @@ mod tests {
         let config = SiteConfig::default();
         assert!(not_applied(&config, &config.clone()).is_empty());
         assert!(!kiosk_shell_changed(&config, &config.clone()));
+        let german = crate::content::Language::parse("de").expect("a tag");
+        let mut two = config.clone();
+        two.languages =
+            crate::content::Languages::new(vec![crate::content::Language::english(), german])
+                .expect("languages");
+        assert!(
+            kiosk_shell_changed(&config, &two),
+            "a new language brings the shell its words"
+        );
     }
 
     #[test]

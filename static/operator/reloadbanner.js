@@ -42,7 +42,7 @@ export function createReloadBanner({ element, onReloaded }) {
     if (view.refused) {
       element.append(
         paragraph(
-          `The last save of the bundle has ${errors} error(s) and was not put live; the last good version keeps running until they are fixed:`,
+          `The last save of the bundle has ${errors} error(s) and was not put live; Docent is still running the last good bundle until they are fixed:`,
           "reload-title",
         ),
       );

@@ -3,7 +3,9 @@
 // GET /api/report with it as a Bearer header and renders the report (render.js). A refused
 // credential is forgotten and the form asks again; a lockout (429) is shown and waited out.
 // Printing renders every act first. `body[data-state]` says where the page is: signed-out,
-// loading, rendering, ready.
+// loading, rendering, ready. The problems are those of the files on disk now, as `docent check`
+// lists them; while they have errors (`report.refused`) the summary says so first, and that
+// the running bundle is the last good one, from when (`body[data-refused]`).
 
 import { authHeaders, retryAfter } from "../operator/api.js";
 import * as signin from "../operator/signin.js";
@@ -66,6 +68,16 @@ async function load(token) {
   show(await res.json());
 }
 
+/**
+ * The files on disk do not load: said first, as `docent check` would fail. The acts, pages and
+ * media listed are then the running bundle's, the last good one.
+ */
+function refusedSummary({ errors, live_since_ms }) {
+  const since = new Date(live_since_ms);
+  const time = `${String(since.getHours()).padStart(2, "0")}:${String(since.getMinutes()).padStart(2, "0")}`;
+  return `The files on disk have ${errors} error${errors === 1 ? "" : "s"}; the running bundle is the last good one from ${time}. Its acts, pages and media are listed below, the problems of the files on disk first.`;
+}
+
 function show(report) {
   const started = performance.now();
   setState("rendering");
@@ -74,7 +86,9 @@ function show(report) {
   const notes = report.problems.filter((p) => p.severity === "note").length;
   const warnings = report.problems.length - notes;
   const noted = notes ? `, ${notes} note${notes === 1 ? "" : "s"}` : "";
-  byId("summary").textContent = `${report.acts.length} acts, ${report.pages.length} pages, ${report.media.length} media files, ${warnings} problem${warnings === 1 ? "" : "s"}${noted}.`;
+  const counted = `${report.acts.length} acts, ${report.pages.length} pages, ${report.media.length} media files, ${warnings} problem${warnings === 1 ? "" : "s"}${noted}.`;
+  byId("summary").textContent = report.refused ? refusedSummary(report.refused) : counted;
+  body.dataset.refused = report.refused ? "true" : "false";
   byId("problem-count").textContent = `(${report.problems.length})`;
   byId("act-count").textContent = `(${report.acts.length})`;
   byId("page-count").textContent = `(${report.pages.length})`;

@@ -23,7 +23,7 @@ function list(items, empty = "none") {
   return items.length ? el("span", null, items.join(", ")) : el("span", "muted", empty);
 }
 
-/** The problems list: one line per warning or note, `file:line:column`, code and message. */
+/** The problems list: one line per problem, `file:line:column`, code and message. */
 export function renderProblems(container, problems) {
   container.replaceChildren();
   if (!problems.length) {
@@ -40,6 +40,7 @@ export function renderProblems(container, problems) {
       " ",
       el("span", "message", p.message),
     );
+    item.dataset.code = p.code;
     container.append(item);
   }
 }

@@ -39,4 +39,5 @@ mod page_behaviour;
 mod pages;
 mod paths;
 mod right_way;
+mod shell_strings;
 mod texts;

@@ -124,7 +124,7 @@ impl Reader {
 
     /// One language tag; a language written by its name (`English`) is reported with its tag
     /// and taken as meant; `None` after any other `bad-language` at `node`.
-    fn language(&mut self, node: &Node) -> Option<Language> {
+    pub(super) fn language(&mut self, node: &Node) -> Option<Language> {
         let text = node.as_text().unwrap_or_default();
         if let Some(language) = Language::parse(text) {
             return Some(language);

@@ -17,6 +17,7 @@ use serde_json::{Value, json};
 use super::Reader;
 use super::attract;
 use super::section::{Field, Limit, Section, Shape};
+use super::shell_strings;
 
 /// The settings of `kiosk:`.
 pub(crate) const KIOSK: Section = Section {
@@ -45,6 +46,11 @@ pub(crate) const KIOSK: Section = Section {
             key: "attract",
             description: attract::DESCRIPTION,
             shape: Shape::Nested(&attract::SECTION),
+        },
+        Field {
+            key: "strings",
+            description: shell_strings::DESCRIPTION,
+            shape: Shape::Custom(shell_strings::schema),
         },
     ],
 };
@@ -186,6 +192,10 @@ impl Reader {
             }
             if key == "attract" {
                 config.kiosk.attract = self.attract(value);
+                continue;
+            }
+            if key == "strings" {
+                config.kiosk.strings = self.shell_strings(value);
                 continue;
             }
             if key == "idle" {

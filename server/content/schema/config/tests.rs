@@ -105,8 +105,8 @@ fn every_section_rejects_other_keys_and_describes_its_own() {
     let schema = config_schema();
     // The top level, its 15 sections of settings, bounds, record limits, visitor groups, a
     // site command, a channel, a reaction, a rosbridge event, attract (thrice), an open entry,
-    // a special day and the server's four limits.
-    assert_eq!(walk(&schema, ""), 32);
+    // a special day, the server's four limits and a language's kiosk shell words.
+    assert_eq!(walk(&schema, ""), 33);
 }
 
 /// Figures that descriptions write out (they are `const` text) and the code holds.
