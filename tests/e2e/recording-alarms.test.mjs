@@ -22,6 +22,7 @@ import { signIn } from './lib/operator.mjs';
 import { connectOperator } from './lib/ws-client.mjs';
 
 const OUT = path.join(REPO, 'target/e2e/recording-alarms');
+const AXE = fs.readFileSync(path.join(REPO, 'tests/e2e/node_modules/axe-core/axe.min.js'), 'utf8');
 const LAPTOP = { width: 1366, height: 768 };
 
 let browser;
@@ -122,11 +123,16 @@ test('a kiosk closed or navigated away while recording is no failure; a console 
   await withServer(async (server, op) => {
     // The evening shutdown: the kiosk's browser itself is closed.
     const kioskBrowser = await launchBrowser(['--use-fake-device-for-media-stream', '--use-fake-ui-for-media-stream']);
-    const closed = await openKiosk(server, kioskBrowser);
-    await tap(closed.page);
-    const first = await op.waitForEvent((e) => e.type === 'recording.started');
-    await aChunkStored(closed.page);
-    await kioskBrowser.close();
+    let closed;
+    let first;
+    try {
+      closed = await openKiosk(server, kioskBrowser);
+      await tap(closed.page);
+      first = await op.waitForEvent((e) => e.type === 'recording.started');
+      await aChunkStored(closed.page);
+    } finally {
+      await kioskBrowser.close();
+    }
     const firstStop = await op.waitForEvent((e) => e.type === 'recording.stopped' && e.recording === first.recording);
     assert.equal(firstStop.reason, 'kiosk-left', JSON.stringify(op.events().filter((e) => e.type.startsWith('recording.'))));
 
@@ -234,6 +240,10 @@ test('Alt+Down, Down, Enter on consent asks first; Escape cancels; confirmed, th
     assert.match(await dialog.textContent(), new RegExp(`Delete the recording of session ${started.session} \\(\\d+ s, 1 file, [\\d.]+ (KB|MB|bytes)\\)\\? This cannot be undone\\.`));
     assert.equal(await page.evaluate(() => document.activeElement?.id), 'consent-confirm-cancel', 'Cancel is the default');
     await page.screenshot({ path: path.join(OUT, 'consent-confirm-1366x768.png') });
+    await page.addScriptTag({ content: AXE });
+    const axe = await page.evaluate(() => window.axe.run(document, { runOnly: { type: 'tag', values: ['wcag2a', 'wcag2aa', 'wcag21aa', 'wcag22aa'] } }));
+    const serious = axe.violations.filter((v) => v.impact === 'serious' || v.impact === 'critical').map((v) => `${v.id} at ${v.nodes[0].target.join(' ')}`);
+    assert.deepEqual(serious, [], 'the open confirmation passes axe');
 
     await page.keyboard.press('Escape');
     await dialog.waitFor({ state: 'hidden', timeout: DEADLINE_MS });
