@@ -8,8 +8,12 @@
 // clock (a few `clock` round trips, the best kept) and says so in `recording-started`; on
 // `record-stop` it stops, uploads what is left and says `recording-stopped`. Whatever fails
 // (permission, device, recorder, uploads past the retry budget, a full queue) is reported at
-// once in `recording-failed`, which the operators see. A page reload ends the recording: the
-// next one is a new file with its own WebM header. A piece of recording larger than the chunk
+// once in `recording-failed`, which the operators see. A page that goes away (closed, reloaded,
+// navigated: `pagehide`) is not a failure: its recordings end quietly, and the server closes
+// them as `kiosk-left` when the connection ends; a device that ends is reported a second later
+// only if the page still runs (a closing browser ends the tracks just before the page), so
+// only a device that ends while the page stays (unplugged) is `no-device`. A page reload ends the
+// recording: the next one is a new file with its own WebM header. A piece of recording larger than the chunk
 // limit the `record` frame gives (`max_chunk_bytes`) goes up as consecutive chunks: the file is
 // their concatenation, so nothing is lost.
 
@@ -21,6 +25,12 @@ const RETRY_FIRST_MS = 250;
 const RETRY_MAX_MS = 4000;
 const RETRY_BUDGET_MS = 60_000; // failing this long without one chunk stored: reported
 const DEFAULT_MAX_CHUNK_BYTES = 8 * 1024 * 1024; // a server that does not say its limit
+// A device that ends is reported this much later, if the page still runs: a browser that is
+// closing ends the tracks first and the page a few milliseconds after (without `pagehide`
+// when the whole browser closes), which must not read as an unplugged device. Measured by
+// tests/e2e/recording-alarms.test.mjs: closing the kiosk's browser reported `no-device` in 2
+// of 4 runs without it.
+const DEVICE_GRACE_MS = 1000;
 
 /**
  * `blob` cut into consecutive pieces of at most `max` bytes (one piece when it fits; none
@@ -64,6 +74,14 @@ export function answerRecordRequests({ send, on }) {
     return best;
   };
   const running = new Map(); // id -> recording not yet ended (one, or a stopping one beside it)
+  // The page is going away: every recording ends without a report (the server stops it when
+  // the connection ends, `kiosk-left`), so the tracks the browser ends with the page do not
+  // read as unplugged devices. A page kept in the back/forward cache that comes back
+  // reconnects, and the server asks it to record afresh.
+  window.addEventListener("pagehide", () => {
+    for (const recording of running.values()) recording.leave();
+    running.clear();
+  });
   on("record", (frame) => {
     asked.push({ recording: frame.recording, session: frame.session });
     // One being stopped (the session ended, the next began) uploads its last chunk meanwhile;
@@ -236,7 +254,7 @@ function record(frame, { send, syncClock }) {
       });
     };
     for (const track of stream.getTracks()) {
-      track.onended = () => fail("no-device", `the ${track.kind} device stopped (unplugged or taken by another program)`);
+      track.onended = () => setTimeout(() => fail("no-device", `the ${track.kind} device stopped (unplugged or taken by another program)`), DEVICE_GRACE_MS);
     }
     // The first sample is the one arriving as `start()` is called: Chromium fires the `start`
     // event about 50 ms later, and taking that time put every sound 62 ms late (measured by
@@ -255,6 +273,8 @@ function record(frame, { send, syncClock }) {
     },
     /** A new `record` frame replaced this one (the server closed it already). */
     abandon: end,
+    /** The page is going away: ended without a report (the server closes it, `kiosk-left`). */
+    leave: end,
     status: () => ({ recording: id, state: ended ? "ended" : stopping ? "stopping" : recorder?.state ?? "starting", queued: queue.length, acked, next: nextSeq, startTime }),
   };
 }

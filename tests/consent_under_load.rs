@@ -19,6 +19,7 @@ use docent::corpus::export::{ExportFormat, ExportWarning, export_session};
 use docent::events::{
     Consent, EVENT_CHANNEL_CAPACITY, EventKind, Hub, NoteWritten, SessionEnd, Source,
 };
+use docent::operator::Confirmation;
 use docent::state::AppState;
 use serde_json::{Value, json};
 use tokio::sync::watch;
@@ -140,9 +141,12 @@ async fn a_withdrawal_in_a_flood_of_events_still_removes_the_media() {
     let media = session_dirs(&server.corpus)[0].join("media");
     assert!(media.join("audio-1.webm").is_file());
     // Noted behind the recording path's back, as only the hub would tell it.
-    let session = state
-        .visits
-        .set_consent(Consent::Withdrawn, Source::Operator, 0);
+    let session = state.visits.set_consent(
+        Consent::Withdrawn,
+        Confirmation::Confirmed,
+        Source::Operator,
+        0,
+    );
     assert_eq!(session, Ok(1));
     flood(&state.hub);
     let stop = kiosk.recv_type("record-stop").await;
@@ -223,7 +227,7 @@ async fn no_chunk_is_acknowledged_after_a_withdrawal_is_answered_and_the_export_
             .join("media");
         let audio = std::fs::metadata(media.join("audio-1.webm")).expect("the audio is written");
         assert!(audio.len() >= 4096, "{} bytes", audio.len());
-        op.send(json!({"type": "mark", "mark": "consent", "value": "withdrawn", "ref": "w"}))
+        op.send(json!({"type": "mark", "mark": "consent", "value": "withdrawn", "confirm": true, "ref": "w"}))
             .await;
         op.recv_where(|f| f["type"] == "marked" && f["ref"] == "w")
             .await;

@@ -286,7 +286,9 @@ async fn withdrawn_consent_stops_the_recording_removes_its_media_and_refuses_lat
         )
         .await;
     op.event("recording.started").await;
-    mark(&mut op, "consent", Some("withdrawn")).await;
+    op.send(json!({"type": "mark", "mark": "consent", "value": "withdrawn", "confirm": true}))
+        .await;
+    op.recv_type("marked").await;
     let stop = kiosk.recv_type("record-stop").await;
     assert_eq!(stop["reason"], "consent");
     let deleted = op.event("recording.deleted").await;

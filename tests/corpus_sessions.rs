@@ -297,6 +297,10 @@ async fn consent_is_noted_in_the_log_and_the_manifest_and_a_withdrawal_stays() {
     );
     op.send(json!({"type": "mark", "mark": "consent", "value": "withdrawn"}))
         .await;
+    let unconfirmed = op.recv_type("error").await;
+    assert_eq!(unconfirmed["code"], "confirmation-required", "it deletes");
+    op.send(json!({"type": "mark", "mark": "consent", "value": "withdrawn", "confirm": true}))
+        .await;
     op.recv_type("marked").await;
     op.send(json!({"type": "mark", "mark": "consent", "value": "recorded"}))
         .await;

@@ -49,6 +49,7 @@ mod live_reload_flood;
 mod media_conversion;
 mod operator_protocol;
 mod projector_video;
+mod recording_alarms;
 mod recording_limits;
 mod report;
 mod robot_reactions;

@@ -7,4 +7,4 @@ mod proposals;
 mod visits;
 
 pub use proposals::{MAX_PENDING, Proposal, ProposalError, Proposals};
-pub use visits::{ConsentRefused, VISITOR_GROUPS, Visits};
+pub use visits::{Confirmation, ConsentRefused, VISITOR_GROUPS, Visits};

@@ -41,6 +41,23 @@ pub enum ConsentRefused {
         "this session's consent was withdrawn, which cannot be undone; start a new session to record again"
     )]
     Withdrawn,
+    /// A refusal of consent that deletes the session's recordings, not confirmed.
+    #[error(
+        "declining or withdrawing consent deletes this session's recordings, so it must be \
+         confirmed (`confirm: true` on the mark); nothing changed"
+    )]
+    Unconfirmed,
+}
+
+/// Whether an operator confirmed a consent change that deletes a session's recordings (the
+/// `mark` frame's `confirm: true`): a slip of the keyboard or a script's stray frame must not
+/// delete what visitors agreed to have recorded.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Confirmation {
+    /// The operator confirmed it.
+    Confirmed,
+    /// Nothing said it was meant.
+    Unconfirmed,
 }
 
 /// The current visitor session.
@@ -109,10 +126,12 @@ impl Visits {
     }
 
     /// Notes what the running session's visitors agreed to; returns the session's number.
-    /// Consent once withdrawn stays so: a new session records again.
+    /// Consent once withdrawn stays so: a new session records again. A change from
+    /// `recorded` to a refusal deletes the session's recordings, so it must be `confirmed`.
     pub fn set_consent(
         &self,
         consent: Consent,
+        confirmed: Confirmation,
         source: Source,
         client: u64,
     ) -> Result<u64, ConsentRefused> {
@@ -120,6 +139,12 @@ impl Visits {
         let current = inner.current.as_mut().ok_or(ConsentRefused::NoSession)?;
         if current.consent == Consent::Withdrawn && consent != Consent::Withdrawn {
             return Err(ConsentRefused::Withdrawn);
+        }
+        if current.consent == Consent::Recorded
+            && consent != Consent::Recorded
+            && confirmed == Confirmation::Unconfirmed
+        {
+            return Err(ConsentRefused::Unconfirmed);
         }
         current.consent = consent;
         self.hub.publish(EventKind::ConsentChanged(ConsentChanged {
@@ -340,23 +365,31 @@ mod tests {
     fn consent_needs_a_session_and_once_withdrawn_stays_withdrawn() {
         let (hub, _feed) = Hub::new();
         let visits = Visits::new(hub, Box::new(Display::default), Box::new(|| {}));
-        let refused = visits.set_consent(Consent::Declined, Source::Operator, 1);
+        let set = |consent, confirmed| visits.set_consent(consent, confirmed, Source::Operator, 1);
+        let refused = set(Consent::Declined, Confirmation::Confirmed);
         assert_eq!(refused, Err(ConsentRefused::NoSession));
         visits.start(&CorpusSettings::default(), Source::Operator, Some(1));
-        assert_eq!(
-            visits.set_consent(Consent::Declined, Source::Operator, 1),
-            Ok(1)
-        );
-        assert_eq!(
-            visits.set_consent(Consent::Recorded, Source::Operator, 1),
-            Ok(1)
-        );
-        assert_eq!(
-            visits.set_consent(Consent::Withdrawn, Source::Operator, 1),
-            Ok(1)
-        );
-        let again = visits.set_consent(Consent::Recorded, Source::Operator, 1);
+        assert_eq!(set(Consent::Declined, Confirmation::Confirmed), Ok(1));
+        assert_eq!(set(Consent::Recorded, Confirmation::Unconfirmed), Ok(1));
+        assert_eq!(set(Consent::Withdrawn, Confirmation::Confirmed), Ok(1));
+        let again = set(Consent::Recorded, Confirmation::Unconfirmed);
         assert_eq!(again, Err(ConsentRefused::Withdrawn));
+    }
+
+    #[test]
+    fn a_refusal_that_deletes_recordings_needs_confirming_and_one_that_deletes_nothing_does_not() {
+        let (hub, _feed) = Hub::new();
+        let visits = Visits::new(hub, Box::new(Display::default), Box::new(|| {}));
+        let set = |consent, confirmed| visits.set_consent(consent, confirmed, Source::Operator, 1);
+        visits.start(&CorpusSettings::default(), Source::Operator, Some(1));
+        for refusal in [Consent::Declined, Consent::Withdrawn] {
+            let slip = set(refusal, Confirmation::Unconfirmed);
+            assert_eq!(slip, Err(ConsentRefused::Unconfirmed));
+            assert_eq!(visits.consent(), Some(Consent::Recorded), "nothing changed");
+        }
+        assert_eq!(set(Consent::Declined, Confirmation::Confirmed), Ok(1));
+        // From declined nothing was recorded: withdrawing deletes nothing more.
+        assert_eq!(set(Consent::Withdrawn, Confirmation::Unconfirmed), Ok(1));
     }
 
     #[test]

@@ -182,6 +182,11 @@ pub enum ClientFrame {
         /// The group (`single`, `group`, `children`) or the situation's name.
         #[serde(default)]
         value: Option<String>,
+        /// For a consent that deletes the session's recordings (`recorded` to `declined` or
+        /// `withdrawn`): the operator confirmed it. Without it such a mark is refused
+        /// (`confirmation-required`).
+        #[serde(default)]
+        confirm: bool,
         /// Echoed back.
         #[serde(default, rename = "ref")]
         reference: Option<String>,

@@ -78,6 +78,9 @@ pub enum ErrorCode {
     NoSession,
     /// `bad-mark`: A `mark` with a value that is not allowed.
     BadMark,
+    /// `confirmation-required`: A consent `mark` that deletes a session's recordings without
+    /// `confirm: true`: nothing changed.
+    ConfirmationRequired,
     /// `bad-signal`: A `signal` with no known `kind`.
     BadSignal,
     /// `unknown-client`: A `signal` to a client that is not connected.
@@ -170,6 +173,7 @@ impl ErrorCode {
         ErrorCode::TooManyProposals,
         ErrorCode::NoSession,
         ErrorCode::BadMark,
+        ErrorCode::ConfirmationRequired,
         ErrorCode::BadSignal,
         ErrorCode::UnknownClient,
         ErrorCode::VerbNotRouted,
@@ -235,6 +239,7 @@ impl ErrorCode {
             ErrorCode::TooManyProposals => "too-many-proposals",
             ErrorCode::NoSession => "no-session",
             ErrorCode::BadMark => "bad-mark",
+            ErrorCode::ConfirmationRequired => "confirmation-required",
             ErrorCode::BadSignal => "bad-signal",
             ErrorCode::UnknownClient => "unknown-client",
             ErrorCode::VerbNotRouted => "verb-not-routed",

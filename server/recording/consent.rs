@@ -8,7 +8,7 @@ use std::path::Path;
 use super::frames::record_stop_frame;
 use super::{MEDIA_DIR, Recordings};
 use crate::events::{Consent, EventKind, FailureCode, RecordingEvent, Source, StopReason};
-use crate::operator::ConsentRefused;
+use crate::operator::{Confirmation, ConsentRefused};
 use crate::sync::lock;
 use crate::wire::outbox::Frame;
 
@@ -16,14 +16,18 @@ impl Recordings {
     /// Notes what the running session's visitors agreed to (see [`crate::operator::Visits::set_consent`]) and
     /// carries it out before returning: a consent declined or withdrawn has stopped and closed
     /// the session's recordings and removed its media by then, so the mark's answer never
-    /// precedes it. The only way consent changes.
+    /// precedes it. The only way consent changes; a refusal that deletes recordings must be
+    /// `confirmed`.
     pub fn note_consent(
         &self,
         consent: Consent,
+        confirmed: Confirmation,
         source: Source,
         client: u64,
     ) -> Result<u64, ConsentRefused> {
-        let session = self.visits.set_consent(consent, source, client)?;
+        let session = self
+            .visits
+            .set_consent(consent, confirmed, source, client)?;
         if consent != Consent::Recorded {
             self.refuse(session, consent);
         }
@@ -64,11 +68,12 @@ impl Recordings {
         // On this thread, not a blocking task: the mark is answered only once the files
         // are gone (a session's media are a few files, one per recording).
         match remove_media(&dir.join(MEDIA_DIR)) {
-            Ok(files) => {
+            Ok((files, bytes)) => {
                 self.hub
                     .publish(EventKind::Recording(RecordingEvent::Deleted {
                         session: number,
                         files,
+                        bytes,
                         consent,
                     }));
             }
@@ -92,16 +97,19 @@ impl Recordings {
 }
 
 /// Removes every file in a session's `media/` folder (the server made them all), then the
-/// folder; returns the files removed, relative to the session folder, sorted.
-fn remove_media(media: &Path) -> std::io::Result<Vec<String>> {
+/// folder; returns the files removed, relative to the session folder, sorted, and their
+/// bytes together (what the log says was deleted).
+fn remove_media(media: &Path) -> std::io::Result<(Vec<String>, u64)> {
     let entries = match std::fs::read_dir(media) {
         Ok(entries) => entries,
-        Err(e) if e.kind() == std::io::ErrorKind::NotFound => return Ok(Vec::new()),
+        Err(e) if e.kind() == std::io::ErrorKind::NotFound => return Ok((Vec::new(), 0)),
         Err(e) => return Err(e),
     };
     let mut removed = Vec::new();
+    let mut bytes = 0;
     for entry in entries {
         let entry = entry?;
+        bytes += entry.metadata().map_or(0, |m| m.len());
         std::fs::remove_file(entry.path())?;
         removed.push(format!(
             "{MEDIA_DIR}/{}",
@@ -115,5 +123,5 @@ fn remove_media(media: &Path) -> std::io::Result<Vec<String>> {
         other => other?,
     }
     removed.sort();
-    Ok(removed)
+    Ok((removed, bytes))
 }

@@ -65,6 +65,7 @@ impl Recordings {
                 session, consent, ..
             }) => {
                 *running = Some((*session, event.seq, event.mono_us));
+                self.forget_failures();
                 if *consent == Consent::Recorded {
                     self.begin(*session, event.seq, event.mono_us, settings())
                         .await;
@@ -86,6 +87,7 @@ impl Recordings {
             },
             EventKind::SessionEnded { .. } => {
                 *running = None;
+                self.forget_failures();
                 self.stop_all(StopReason::SessionEnded);
             }
             EventKind::ServerStopping => self.stop_all(StopReason::ServerStopping),
@@ -163,6 +165,8 @@ impl Recordings {
                 next_file: 1,
                 tracks,
                 quota: Arc::new(SessionQuota::new(settings.record_limits)),
+                started: 0,
+                first_start_mono_us: None,
             });
             inner.kiosks.keys().copied().collect()
         };
@@ -234,6 +238,17 @@ impl Recordings {
                 .insert(recording.id, (Arc::clone(&recording), None));
         }
         self.links.send_to(client, &Frame::from(frame));
+    }
+
+    /// A session starts or ends: the kiosks' failures were about the one before, so they are
+    /// no longer current (`/api/state` shows none; the log keeps each `recording.failed`).
+    fn forget_failures(&self) {
+        let mut inner = lock(&self.inner);
+        for kiosk in inner.kiosks.values_mut() {
+            if kiosk.state == KioskRecordingState::Failed {
+                *kiosk = off(kiosk.client);
+            }
+        }
     }
 
     /// Tells every kiosk recording to stop for `reason`; what is not closed by their reports

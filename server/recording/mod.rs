@@ -87,8 +87,25 @@ pub enum KioskRecordingState {
 pub struct RecordingView {
     /// The session being recorded, if any.
     pub session: Option<u64>,
-    /// Each connected kiosk.
+    /// Each connected kiosk: a `failed` one is a failure that is still current (it clears
+    /// when the kiosk records again, leaves, or the session ends or the next one starts).
     pub kiosks: Vec<KioskRecording>,
+    /// What the session being recorded holds: what a consent declined or withdrawn would
+    /// delete now (the console names it before asking to confirm).
+    pub kept: Option<KeptMedia>,
+}
+
+/// The recordings a session holds so far, as the operator is asked about them.
+#[derive(Clone, Copy, Debug, Serialize)]
+pub struct KeptMedia {
+    /// The session.
+    pub session: u64,
+    /// Its recordings that began (one file each).
+    pub files: u32,
+    /// The bytes stored (or being stored).
+    pub bytes: u64,
+    /// Seconds since its first recording began (0 before one did).
+    pub seconds: u64,
 }
 
 /// One recording: a kiosk's file in a session's `media/`.
@@ -129,6 +146,10 @@ struct Recorded {
     tracks: RecordTracks,
     /// Its limits, shared by its recordings.
     quota: Arc<SessionQuota>,
+    /// Its recordings that began (`recording.started`).
+    started: u32,
+    /// When the first of them began, on the hub's clock.
+    first_start_mono_us: Option<u64>,
 }
 
 #[derive(Debug, Default)]
@@ -194,9 +215,18 @@ impl Recordings {
     /// What each kiosk's recording is doing.
     pub fn view(&self) -> RecordingView {
         let inner = lock(&self.inner);
+        let now = self.hub.mono_us();
         RecordingView {
             session: inner.session.as_ref().map(|s| s.number),
             kiosks: inner.kiosks.values().cloned().collect(),
+            kept: inner.session.as_ref().map(|s| KeptMedia {
+                session: s.number,
+                files: s.started,
+                bytes: s.quota.used(),
+                seconds: s
+                    .first_start_mono_us
+                    .map_or(0, |at| now.saturating_sub(at) / 1_000_000),
+            }),
         }
     }
 
@@ -215,15 +245,22 @@ impl Recordings {
         let Some((recording, None)) = inner.open.get(&id).cloned() else {
             return false;
         };
-        let start_mono = match &inner.session {
-            Some(s) if s.number == recording.session => s.start_mono_us,
-            _ => return false,
-        };
         if recording.client != client {
             return false;
         }
+        let start_mono = match &mut inner.session {
+            Some(s) if s.number == recording.session => {
+                s.started += 1;
+                s.first_start_mono_us = s.first_start_mono_us.or(Some(mono_us));
+                s.start_mono_us
+            }
+            _ => return false,
+        };
         if let Some(kiosk) = inner.kiosks.get_mut(&client) {
+            // Recording again: an earlier failure of this kiosk is no longer current.
             kiosk.state = KioskRecordingState::Recording;
+            kiosk.code = None;
+            kiosk.message = None;
         }
         // Published under the lock: a consent withdrawn meanwhile comes after it in the log.
         self.hub

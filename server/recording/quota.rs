@@ -40,6 +40,11 @@ impl SessionQuota {
         }
     }
 
+    /// The bytes the session's recordings hold (or are storing) now.
+    pub fn used(&self) -> u64 {
+        lock(&self.used).values().sum()
+    }
+
     /// Counts `bytes` for kiosk `client`, if its share, the session's share and the disk's
     /// reserve (the free space `available` reports) allow them. Undo with [`Self::give_back`]
     /// when they are not stored after all.

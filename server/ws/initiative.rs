@@ -9,7 +9,7 @@ use crate::events::{
     ClientRole, Consent, EventKind, NoteWritten, ProposalAccepted, ProposalDismissed, ProposalMade,
     ProposalWithdrawn, SessionEnd, SituationMarked, VisitorGroup,
 };
-use crate::operator::{ConsentRefused, Proposal, VISITOR_GROUPS};
+use crate::operator::{Confirmation, ConsentRefused, Proposal, VISITOR_GROUPS};
 use crate::wire::ErrorCode;
 use crate::ws::client::Client;
 use crate::ws::protocol::{
@@ -149,11 +149,13 @@ pub(super) fn dismiss(
 
 /// An operator marks a visitor session, the visitor group or a dialog situation; a dialog
 /// manager may mark sessions.
+/// `confirmed` matters only to a consent that deletes recordings (the frame's `confirm`).
 pub(super) fn mark(
     client: &Client,
     role: Option<ClientRole>,
     mark: MarkKind,
     value: Option<String>,
+    confirmed: Confirmation,
     reference: Option<String>,
 ) {
     let reference = reference.as_deref();
@@ -181,12 +183,14 @@ pub(super) fn mark(
                 return;
             };
             let consent = Consent::from_word(word).expect("one of the words above");
-            match client.state.recordings.note_consent(consent, source, id) {
+            let recordings = &client.state.recordings;
+            match recordings.note_consent(consent, confirmed, source, id) {
                 Ok(session) => Some(session),
                 Err(refused) => {
                     let code = match refused {
                         ConsentRefused::NoSession => ErrorCode::NoSession,
                         ConsentRefused::Withdrawn => ErrorCode::BadMark,
+                        ConsentRefused::Unconfirmed => ErrorCode::ConfirmationRequired,
                     };
                     return client.reply_error(code, &refused.to_string(), reference, None);
                 }

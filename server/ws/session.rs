@@ -13,6 +13,7 @@ use tokio_util::sync::CancellationToken;
 use crate::access::TokenBucket;
 use crate::adapters::ScreenReport;
 use crate::events::{ClientLeft, ClientRole, Ended, EventKind};
+use crate::operator::Confirmation;
 use crate::wire::ErrorCode;
 use crate::ws::client::Client;
 use crate::ws::diagnose::diagnose;
@@ -146,8 +147,16 @@ impl Session {
             ClientFrame::Mark {
                 mark,
                 value,
+                confirm,
                 reference,
-            } => initiative::mark(client, role, mark, value, reference),
+            } => {
+                let confirmed = if confirm {
+                    Confirmation::Confirmed
+                } else {
+                    Confirmation::Unconfirmed
+                };
+                initiative::mark(client, role, mark, value, confirmed, reference);
+            }
             ClientFrame::Signal { to, data } => self.signal(to, &data),
             ClientFrame::Started { id } => {
                 reports::report(client, role, id, ScreenReport::Started);

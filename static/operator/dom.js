@@ -1,5 +1,5 @@
 // dom.js: the few DOM helpers the console's modules share: build an element tree with `h`,
-// find an element by id with `byId`, and format an event's time as the operator's clock.
+// find an element by id with `byId`, format an event's time as the operator's clock, and a size in words.
 
 /**
  * A new element: `h("button", {class: "act", onclick: fn, dataset: {label}}, "text", child)`.
@@ -74,4 +74,12 @@ export function createNotice(element, ms) {
     clearTimeout(timer);
     timer = setTimeout(() => (element.hidden = true), ms);
   };
+}
+
+/** A size as people read it: "812 bytes", "40 KB", "1.4 MB". */
+export function describeBytes(bytes) {
+  if (bytes < 1000) return `${bytes} bytes`;
+  if (bytes < 1e6) return `${Math.round(bytes / 1e3)} KB`;
+  if (bytes < 1e9) return `${(bytes / 1e6).toFixed(1)} MB`;
+  return `${(bytes / 1e9).toFixed(1)} GB`;
 }

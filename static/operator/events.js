@@ -33,7 +33,10 @@ export function createEvents({ panels, context, language, camera, operatorName, 
       if (e.seq <= lastSeq) return;
       lastSeq = e.seq;
     }
-    if (e.type === "client.connected" && e.client === me) streaming = true;
+    if (e.type === "client.connected" && e.client === me) {
+      streaming = true;
+      panels.recording?.live(); // the replayed history is over: recording alarms are current from here
+    }
     const at = Date.parse(e.time ?? "");
     // The smallest (local - server) time of live events: the clocks' offset plus the least delay.
     if (streaming && Number.isFinite(at)) clockOffset = Math.min(clockOffset ?? Infinity, Date.now() - at);

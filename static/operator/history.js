@@ -1,12 +1,14 @@
 // history.js: what happened, newest first: every act triggered by anyone (time, source, act,
 // variant and the exact text chosen), stops, refused triggers, proposals accepted, dismissed or
-// withdrawn (their dialog manager left), context and language changes, corpus marks, robot events and
+// withdrawn (their dialog manager left), context and language changes, corpus marks (consent
+// changes too, and the recordings a refused consent deleted), recording failures (the alarm
+// above shows only those still current: recording.js), robot events and
 // reactions to them that could not run, the fleet broker's link going down and up, a kiosk or
 // projector back after a lost connection (kioskbanner.js). An act whose
 // command was cancelled or failed says so on its line, with the reason: a text that was never
 // said must not read as said. Several consoles see each other's acts here live.
 
-import { clock, h } from "./dom.js";
+import { clock, describeBytes, h } from "./dom.js";
 
 const KEEP = 300;
 
@@ -54,6 +56,12 @@ export function createHistory(list) {
         return ["mark", [`session ${e.session} ended`]];
       case "visitor.group":
         return ["mark", [`visitor group: ${e.group}`, e.context ? ` (context ${e.context})` : ""]];
+      case "consent.changed":
+        return ["mark", [`consent of session ${e.session}: `, h("strong", {}, e.consent)]];
+      case "recording.deleted":
+        return ["refused", [`recording of session ${e.session} deleted (consent ${e.consent}): ${deletedFiles(e)}`]];
+      case "recording.failed":
+        return ["refused", [`recording failed${e.client ? ` on kiosk #${e.client}` : ""} (${e.code}): `, e.message ?? ""]];
       case "situation.marked":
         return ["mark", [`situation: ${e.situation}`]];
       case "note.written":
@@ -71,6 +79,13 @@ export function createHistory(list) {
       default:
         return null;
     }
+  }
+
+  /** What a `recording.deleted` removed: "2 files, 1.4 MB" (the `.chunks` indexes not counted). */
+  function deletedFiles(e) {
+    const media = (e.files ?? []).filter((f) => !f.endsWith(".chunks"));
+    if (media.length === 0) return "nothing had been stored";
+    return `${media.length === 1 ? "1 file" : `${media.length} files`}, ${describeBytes(e.bytes ?? 0)} (${media.join(", ")})`;
   }
 
   /** Notes on an act's line that one of its commands was not carried out. */

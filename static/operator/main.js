@@ -7,7 +7,8 @@
 // (over HTTP when the websocket cannot or does not answer), is stop.js; keys.js the keyboard.
 // The corpus banner (the log cannot be written, in the server's words) is corpusbanner.js.
 // The kiosk banner (a kiosk or projector whose connection was lost) is kioskbanner.js.
-// The live-reload banner (a refused save, a folder gone) is reloadbanner.js; after a good save
+// A consent change that deletes a session's recordings waits for the operator's confirmation
+// (consentconfirm.js). The live-reload banner (a refused save, a folder gone) is reloadbanner.js; after a good save
 // the act list is loaded again. What is left here: firing acts, answering proposals, marks, the notice line, and loading the
 // acts and the console's settings.
 
@@ -18,6 +19,7 @@ import * as api from "./api.js";
 import { createCameraPanel } from "./camerapanel.js";
 import { createClients } from "./clients.js";
 import { createCaptionLine } from "./caption.js";
+import { createConsentConfirm } from "./consentconfirm.js";
 import { createContext } from "./context.js";
 import { createCorpusBanner } from "./corpusbanner.js";
 import { byId, clock, createNotice } from "./dom.js";
@@ -114,10 +116,19 @@ const marks = createMarks({
   groups: byId("visitor-groups"),
   situations: byId("situation-buttons"),
   note: { form: byId("note-form"), input: byId("note") },
-  mark: (mark, value) => {
+  mark: (mark, value, extra = {}) => {
     if (mark === "group") context.expect(settings?.visitor_groups?.[value]);
-    send({ type: "mark", mark, ...(value ? { value } : {}), ref: ref("mark") }, `mark ${mark}`);
+    send({ type: "mark", mark, ...(value ? { value } : {}), ...extra, ref: ref("mark") }, `mark ${mark}`);
   },
+  confirmDeletion: (session, consent) => consentConfirm.ask(session, consent),
+});
+const consentConfirm = createConsentConfirm({
+  dialog: byId("consent-confirm"),
+  title: byId("consent-confirm-title"),
+  text: byId("consent-confirm-text"),
+  cancel: byId("consent-confirm-cancel"),
+  confirm: byId("consent-confirm-delete"),
+  recording: async () => (await getJson("/api/state", () => access.connection() !== null))?.recording ?? null,
 });
 
 const robotLink = createRobotLink(byId("robot-link"));
@@ -219,8 +230,11 @@ search.addEventListener("input", () => list.setQuery(search.value));
 
 bindKeys({
   search,
-  active: () => access.signedIn() && !byId("signin").open,
-  stop: stopper.stop,
+  active: () => access.signedIn() && !document.querySelector("dialog[open]"),
+  stop: () => {
+    consentConfirm.cancel(); // Esc answers an open question no, and stops as always
+    stopper.stop();
+  },
   fire: ({ interrupt }) => {
     const act = list.chosen();
     return act ? fire(act, { interrupt }) : false;

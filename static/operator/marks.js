@@ -4,7 +4,10 @@
 // `operator.visitor_groups`) and mark dialog situations (from `operator.situations`, keys
 // Alt+Shift+1..9), and write a note in the operator's own words (Alt+Shift+N goes to it; the
 // text stays in the field until its note.written event says it is in the corpus). Each sends
-// a `mark` frame; what is shown follows the session.* and consent.changed events.
+// a `mark` frame; what is shown follows the session.* and consent.changed events. A consent
+// change that deletes the session's recordings (`recorded` to `declined` or `withdrawn`) is
+// sent only once the operator confirmed it (`confirmDeletion`: consentconfirm.js), with
+// `confirm: true`.
 
 import { h } from "./dom.js";
 
@@ -18,9 +21,10 @@ const GROUPS = [
  * @param {{session: HTMLElement, start: HTMLElement, end: HTMLElement, consent: HTMLSelectElement,
  *          groups: HTMLElement, situations: HTMLElement,
  *          note: {form: HTMLFormElement, input: HTMLInputElement},
- *          mark: (mark: string, value?: string) => void}} options
+ *          mark: (mark: string, value?: string, extra?: object) => void,
+ *          confirmDeletion: (session: number, consent: string) => Promise<boolean>}} options
  */
-export function createMarks({ session, start, end, consent, groups, situations, note, mark }) {
+export function createMarks({ session, start, end, consent, groups, situations, note, mark, confirmDeletion }) {
   let current = null;
   let consentNow = null;
   let situationNames = [];
@@ -33,11 +37,16 @@ export function createMarks({ session, start, end, consent, groups, situations, 
 
   start.addEventListener("click", () => mark("session_start"));
   end.addEventListener("click", () => mark("session_end"));
-  consent.addEventListener("change", () => {
+  consent.addEventListener("change", async () => {
     const chosen = consent.value;
     // Shown as the server has it until its consent.changed arrives (or an error says why not).
     showConsent();
-    if (chosen !== consentNow) mark("consent", chosen);
+    if (chosen === consentNow) return;
+    const deletes = (consentNow ?? "recorded") === "recorded" && chosen !== "recorded";
+    if (!deletes) return mark("consent", chosen);
+    const asked = current;
+    // Sent only if confirmed while the same session still runs.
+    if ((await confirmDeletion(asked, chosen)) && current === asked) mark("consent", chosen, { confirm: true });
   });
 
   function showSession() {

@@ -290,6 +290,8 @@ test('session, visitor group, situation marks and a typed note reach the corpus;
       await page.locator('#session', { hasText: `session ${started.session}` }).waitFor();
       assert.equal(await page.inputValue('#consent'), 'recorded', "the site's default consent");
       await page.selectOption('#consent', 'declined');
+      // It would delete the session's recordings: asked first (recording-alarms.test.mjs).
+      await page.click('#consent-confirm-delete');
       await observer.waitForEvent((e) => e.type === 'consent.changed' && e.consent === 'declined');
       await page.selectOption('#consent', 'withdrawn');
       await observer.waitForEvent((e) => e.type === 'consent.changed' && e.consent === 'withdrawn');

@@ -348,6 +348,7 @@ impl EventKind {
                 | EventKind::ProposalWithdrawn { .. }
                 | EventKind::SessionStarted { .. }
                 | EventKind::SessionEnded { .. }
+                | EventKind::ConsentChanged { .. }
                 | EventKind::VisitorGroup { .. }
                 | EventKind::SituationMarked { .. }
                 | EventKind::NoteWritten { .. }

@@ -291,6 +291,7 @@ pub(super) fn every_kind() -> Vec<EventKind> {
         Recording(RecordingEvent::Deleted {
             session: 1,
             files: vec!["media/audio-2.webm".into()],
+            bytes: 4096,
             consent: Consent::Withdrawn,
         }),
         MediaConverted(crate::events::MediaConverted {

@@ -154,6 +154,10 @@ pub enum RecordingEvent {
         session: u64,
         /// The files removed, relative to the session folder.
         files: Vec<String>,
+        /// The bytes removed, the files' sizes together (added without a version change:
+        /// older logs lack it, read as 0).
+        #[serde(default)]
+        bytes: u64,
         /// The consent that removed them.
         consent: Consent,
     },
