@@ -8,11 +8,12 @@ use std::process::ExitCode;
 
 use anyhow::Context;
 use clap::{Parser, Subcommand, ValueEnum};
-use docent::access::{AccessMode, AccessSetup, Origin, decide_access};
+use docent::access::{AccessMode, decide_access};
 use docent::cli::check::{self as check_cli, CheckFormat, counts, explain_hint, render};
 use docent::cli::corpus as corpus_cli;
 use docent::cli::explain as explain_cli;
 use docent::cli::fleet as fleet_cli;
+use docent::cli::start::{cannot_listen, open_preview, print_access};
 use docent::cli::translations as translations_cli;
 use docent::content::config::AdapterKind;
 use docent::content::{load_bundle, schema};
@@ -311,88 +312,10 @@ fn serve(args: &ServeArgs) -> anyhow::Result<ExitCode> {
     })
 }
 
-/// What to do when Docent cannot listen on `listen`, in the words of the person starting it.
-fn cannot_listen(listen: SocketAddr, error: &std::io::Error) -> String {
-    let (ip, port) = (listen.ip(), listen.port());
-    let next = SocketAddr::new(ip, port.saturating_add(1));
-    match error.kind() {
-        std::io::ErrorKind::AddrInUse => format!(
-            "cannot listen on {listen}: another program already uses port {port} (another \
-             Docent, or the kiosk's own service: `ss -ltnp 'sport = :{port}'` names it). Stop \
-             it, or give another address: --listen {next}"
-        ),
-        std::io::ErrorKind::PermissionDenied => format!(
-            "cannot listen on {listen}: ports below 1024 need administrator rights. Give a \
-             higher port, for example --listen {ip}:8080"
-        ),
-        std::io::ErrorKind::AddrNotAvailable => format!(
-            "cannot listen on {listen}: this computer has no network address {ip}. Give one \
-             it has (`ip -brief address` lists them), 127.0.0.1 for this computer only, or \
-             0.0.0.0 for all of them"
-        ),
-        _ => format!("cannot listen on {listen}: {error}"),
-    }
-}
-
 /// `docent fleet`: the fleet view alone, behind the operator credential.
 fn fleet(args: &fleet_cli::FleetArgs) -> anyhow::Result<ExitCode> {
     init_logging();
     fleet_cli::run(args, shutdown_signal())
-}
-
-/// Says how operators and dialog managers get in. A generated credential is printed here,
-/// on the console of the person starting Docent, and nowhere else (never in the log).
-fn print_access(setup: &AccessSetup, addr: SocketAddr) {
-    let mut out = std::io::stdout().lock();
-    let _ = writeln!(out, "  operator:    http://{addr}/operator");
-    let AccessMode::Guarded(credentials) = &setup.mode else {
-        let _ = writeln!(
-            out,
-            "  access:      open (--open): no credentials needed; for development only"
-        );
-        return;
-    };
-    let roles = [
-        (
-            "operator",
-            &credentials.operator,
-            setup.operator,
-            "DOCENT_OPERATOR_TOKEN",
-        ),
-        (
-            "dialog manager",
-            &credentials.dm,
-            setup.dm,
-            "DOCENT_DM_TOKEN",
-        ),
-    ];
-    for (role, secret, origin, var) in roles {
-        let line = match origin {
-            Some(Origin::Generated) => format!(
-                "{role} credential (generated for this run; set {var} to choose one): {}",
-                secret.expose()
-            ),
-            Some(Origin::Environment) => format!("{role} credential: from {var}"),
-            Some(Origin::Settings) => format!("{role} credential: from docent.yaml"),
-            None => continue,
-        };
-        let _ = writeln!(out, "  {line}");
-    }
-}
-
-/// Prints the preview address and opens it in the desktop's browser when there is one.
-fn open_preview(url: &str) {
-    let opened = std::process::Command::new("xdg-open")
-        .arg(url)
-        .stdout(std::process::Stdio::null())
-        .stderr(std::process::Stdio::null())
-        .spawn();
-    if opened.is_err() {
-        let _ = writeln!(
-            std::io::stdout(),
-            "  open it in a browser to preview the bundle"
-        );
-    }
 }
 
 /// Logs to standard error, Docent's own at `info` unless `RUST_LOG` says otherwise.

@@ -8,7 +8,8 @@
 //!   `corpus`: `docent corpus` and its arguments; `corpus_show`: one session in full;
 //!   `corpus_export`: exports with a progress bar; `units`: counts, sizes and durations as
 //!   people read them; `translations`: `docent translations`; `fleet`: `docent fleet`'s
-//!   arguments and start; `explain`: `docent explain`.
+//!   arguments and start; `explain`: `docent explain`; `start`: what `docent serve` prints
+//!   beside the addresses (access, preview, a refused address).
 
 pub mod check;
 pub mod corpus;
@@ -16,5 +17,6 @@ mod corpus_export;
 mod corpus_show;
 pub mod explain;
 pub mod fleet;
+pub mod start;
 pub mod translations;
 mod units;
